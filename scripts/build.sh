@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Configures and builds rayint into build/ (or $RAYINT_BUILD_DIR), Release by default.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${RAYINT_BUILD_DIR:-$root/build}"
+"$root/scripts/install-deps.sh"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" "$@" >/dev/null
+cmake --build "$build" -j "$(nproc)"

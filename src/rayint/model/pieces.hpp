@@ -1,0 +1,40 @@
+#pragma once
+// Splitting a segment at every breakpoint of the six transfer functions (Williams & Max Sec. 3.3,
+// Fig. 2): on each resulting piece rho and kappa are linear in t, so kappa*rho is quadratic.
+#include <vector>
+
+#include "rayint/model/ray.hpp"
+
+namespace rayint {
+
+// One channel of one piece. "far" is where light enters the piece, "exit" is the eye side.
+struct ChannelPiece {
+  double length = 0.0;
+  double rho_far = 0.0;
+  double rho_exit = 0.0;
+  double kappa_far = 0.0;
+  double kappa_exit = 0.0;
+};
+
+struct Piece {
+  double length = 0.0;
+  double scalar_far = 0.0;
+  double scalar_exit = 0.0;
+  Rgb rho_far{}, rho_exit{}, kappa_far{}, kappa_exit{};
+
+  ChannelPiece channel(int c) const {
+    return {length, rho_far[c], rho_exit[c], kappa_far[c], kappa_exit[c]};
+  }
+};
+
+// Appends the pieces of `segment` (far -> near) to `out`. A segment whose scalar is constant
+// (w = 0) is one piece. Interior piece ends sit exactly on breakpoints, where the transfer
+// functions take their stored values; piece lengths are L * (s_{k+1} - s_k) / (s_near - s_far),
+// so pieces between breakpoints 1e-12 apart keep full relative accuracy. Zero-length pieces
+// are dropped (they transmit everything and emit nothing).
+void append_pieces(const TransferFunctions& tf, const Segment& segment,
+                   const std::vector<double>& breakpoints, std::vector<Piece>& out);
+
+std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray);
+
+}  // namespace rayint
