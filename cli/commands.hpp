@@ -1,0 +1,16 @@
+#pragma once
+// One file per subcommand; each registers its options on the app and calls the library.
+#include <CLI/CLI.hpp>
+
+namespace rayint::cli {
+
+// Exit codes: 0 success, 1 a check or gate failed, 2 bad input or usage.
+inline constexpr int kExitFailed = 1;
+inline constexpr int kExitBadInput = 2;
+
+void set_eval_command(CLI::App& app);
+
+// Prints `text` to stdout, or writes it atomically to `path` when non-empty.
+void emit(const std::string& text, const std::string& path);
+
+}  // namespace rayint::cli

@@ -1,0 +1,45 @@
+// rayint -- numerical verification of the ray integrals of direct volume rendering.
+#include <iostream>
+
+#include "commands.hpp"
+#include "rayint/io/atomic_file.hpp"
+#include "rayint/io/case_reader.hpp"
+
+namespace rayint::cli {
+
+void emit(const std::string& text, const std::string& path) {
+  if (path.empty() || path == "-") {
+    std::cout << text;
+    if (!text.empty() && text.back() != '\n') std::cout << '\n';
+  } else {
+    write_file_atomically(path, text.back() == '\n' ? text : text + "\n");
+  }
+}
+
+}  // namespace rayint::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
+  app.require_subcommand(1);
+  rayint::cli::set_eval_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "rayint: error: " << e.what() << "\n";
+    return rayint::cli::kExitBadInput;
+  } catch (const rayint::InputError& e) {
+    std::cerr << "rayint: error: " << e.what() << "\n";
+    return rayint::cli::kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "rayint: error: " << e.what() << "\n";
+    return rayint::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "rayint: error: " << e.what() << "\n";
+    return rayint::cli::kExitBadInput;
+  }
+  return 0;
+}
