@@ -8,7 +8,11 @@ namespace rayint::cli {
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 
-void set_eval_command(CLI::App& app);
+void set_eval_command(CLI::App& app);    // eval_command.cpp
+void set_bench_command(CLI::App& app);   // bench_command.cpp
+void set_stress_command(CLI::App& app);  // stress_command.cpp
+void set_gate_command(CLI::App& app);    // gate_command.cpp
+void set_check_command(CLI::App& app);   // check_command.cpp
 
 // Prints `text` to stdout, or writes it atomically to `path` when non-empty.
 void emit(const std::string& text, const std::string& path);

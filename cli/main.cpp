@@ -22,6 +22,10 @@ int main(int argc, char** argv) {
   CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
   app.require_subcommand(1);
   rayint::cli::set_eval_command(app);
+  rayint::cli::set_bench_command(app);
+  rayint::cli::set_stress_command(app);
+  rayint::cli::set_gate_command(app);
+  rayint::cli::set_check_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/factories.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/integrators/paper.hpp"
 
@@ -27,6 +28,17 @@ const std::vector<MethodEntry>& registry() {
        [](const MethodSpec&, const TransferFunctions& tf) -> std::unique_ptr<RayIntegrator> {
          return std::make_unique<PaperIntegrator>(tf);
        }},
+      // One line per method; the accepted parameters are the method's accuracy knobs.
+      {"ode", "rtol atol", make_ode},
+      {"rk4", "n", make_rk4},
+      {"riemann", "n dt order correction ref_dt", make_riemann},
+      {"eq5", "", make_eq5},
+      {"eq6", "", make_eq6},
+      {"eq7", "", make_eq7},
+      {"eq8", "", make_eq8},
+      {"particle", "", make_particle},
+      {"preintegrated", "size lookup dims step max_length", make_preintegrated},
+      {"psi_table", "size lookup", make_psi_table},
   };
   return entries;
 }

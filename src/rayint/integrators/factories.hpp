@@ -1,0 +1,20 @@
+#pragma once
+// Factories of the methods other than exact/paper; each is defined in the file named after it.
+#include <memory>
+
+#include "rayint/integrators/integrator.hpp"
+
+namespace rayint {
+
+std::unique_ptr<RayIntegrator> make_ode(const MethodSpec&, const TransferFunctions&);        // ode.cpp
+std::unique_ptr<RayIntegrator> make_rk4(const MethodSpec&, const TransferFunctions&);        // rk4.cpp
+std::unique_ptr<RayIntegrator> make_riemann(const MethodSpec&, const TransferFunctions&);    // riemann.cpp
+std::unique_ptr<RayIntegrator> make_eq5(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
+std::unique_ptr<RayIntegrator> make_eq6(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
+std::unique_ptr<RayIntegrator> make_eq7(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
+std::unique_ptr<RayIntegrator> make_eq8(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
+std::unique_ptr<RayIntegrator> make_particle(const MethodSpec&, const TransferFunctions&);   // particle.cpp
+std::unique_ptr<RayIntegrator> make_preintegrated(const MethodSpec&, const TransferFunctions&);  // preintegrated.cpp
+std::unique_ptr<RayIntegrator> make_psi_table(const MethodSpec&, const TransferFunctions&);  // psi_table.cpp
+
+}  // namespace rayint
