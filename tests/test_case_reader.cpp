@@ -1,0 +1,320 @@
+// Case-file reader: one test per class of input error (each checks that the one-line message
+// names the file and the field), valid round-trips in both transfer-function forms, and a load
+// of the whole cases/ corpus.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "rayint/io/case_reader.hpp"
+
+namespace {
+
+using rayint::Case;
+using rayint::InputError;
+using rayint::parse_case_text;
+using rayint::read_case_file;
+
+constexpr const char* kSource = "cases/x.json";
+
+// A valid case in the per-channel form; the error tests substitute one piece of it.
+const std::string kValid = R"({
+  "name": "paper-figure-2",
+  "description": "Williams & Max Fig. 2, first interval",
+  "transfer_function": {
+    "density": [[0.0, 5.0], [1.0, 2.0]],
+    "color": {"r": [[0.0, 1.7], [1.0, 1.7]], "g": [[0.0, 1.0], [1.0, 1.0]], "b": [[0.0, 0.2], [1.0, 0.2]]}
+  },
+  "rays": [
+    {"background": [0.0, 0.0, 0.0],
+     "segments": [{"length": 1.0, "scalar": [0.1, 0.9]}, {"length": 0.25, "scalar": [0.9, 0.4]}]}
+  ]
+})";
+
+// kValid with the first occurrence of `from` replaced by `to` (which must exist).
+std::string with(std::string_view from, std::string_view to, std::string text = kValid) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+  return text;
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_case_text(text, kSource);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// The message is `<file>: <path>: <what>` on one line.
+void check_error(const std::string& text, const std::string& path, const std::string& what) {
+  const std::string msg = error_of(text);
+  INFO("message: " << msg);
+  CHECK(msg.rfind(std::string(kSource) + ": " + path + ": ", 0) == 0);
+  CHECK(msg.find(what) != std::string::npos);
+  CHECK(msg.find('\n') == std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("valid case, per-channel colour and shared density, round-trips", "[case_reader]") {
+  const Case c = parse_case_text(kValid, kSource);
+  CHECK(c.name == "paper-figure-2");
+  CHECK(c.description == "Williams & Max Fig. 2, first interval");
+  CHECK(c.source == kSource);
+  for (int ch = 0; ch < rayint::kChannels; ++ch) {
+    CHECK(c.transfer.density[ch].scalar == std::vector<double>{0.0, 1.0});
+    CHECK(c.transfer.density[ch].value == std::vector<double>{5.0, 2.0});
+  }
+  CHECK(c.transfer.color[0].value == std::vector<double>{1.7, 1.7});
+  CHECK(c.transfer.color[1].value == std::vector<double>{1.0, 1.0});
+  CHECK(c.transfer.color[2].value == std::vector<double>{0.2, 0.2});
+  REQUIRE(c.rays.size() == 1);
+  CHECK(c.rays[0].background == rayint::Rgb{0.0, 0.0, 0.0});
+  REQUIRE(c.rays[0].segments.size() == 2);
+  CHECK(c.rays[0].segments[0].length == 1.0);
+  CHECK(c.rays[0].segments[0].scalar_far == 0.1);
+  CHECK(c.rays[0].segments[0].scalar_near == 0.9);
+  CHECK(c.rays[0].segments[1].length == 0.25);
+  CHECK(c.rays[0].segments[1].scalar_far == 0.9);
+  CHECK(c.rays[0].segments[1].scalar_near == 0.4);
+}
+
+TEST_CASE("valid case, per-channel density and shared colour, defaults applied", "[case_reader]") {
+  const Case c = parse_case_text(R"({
+    "name": "n",
+    "transfer_function": {
+      "density": {"r": [[0, 1]], "g": [[-1, 0], [2, 4]], "b": [[0.5, 3], [0.75, 0], [1e3, 1e6]]},
+      "color": [[0, 0.25], [1, 0.5]]
+    },
+    "rays": [{"segments": [{"length": 0, "scalar": [-2, 2]}]},
+             {"background": [1, 2, 3], "segments": [{"length": 5e-3, "scalar": [7, 7]}]}]
+  })",
+                                 kSource);
+  CHECK(c.description.empty());
+  CHECK(c.transfer.density[0].scalar == std::vector<double>{0.0});
+  CHECK(c.transfer.density[1].value == std::vector<double>{0.0, 4.0});
+  CHECK(c.transfer.density[2].scalar == std::vector<double>{0.5, 0.75, 1e3});
+  CHECK(c.transfer.density[2].value == std::vector<double>{3.0, 0.0, 1e6});
+  for (int ch = 0; ch < rayint::kChannels; ++ch)
+    CHECK(c.transfer.color[ch].value == std::vector<double>{0.25, 0.5});
+  REQUIRE(c.rays.size() == 2);
+  CHECK(c.rays[0].background == rayint::Rgb{0.0, 0.0, 0.0});
+  CHECK(c.rays[0].segments[0].length == 0.0);
+  CHECK(c.rays[1].background == rayint::Rgb{1.0, 2.0, 3.0});
+  CHECK(c.rays[1].segments[0].scalar_far == 7.0);
+}
+
+TEST_CASE("invalid JSON reports line and column", "[case_reader]") {
+  check_error(with(R"("rays": [)", R"("rays": [,)"), "(root)",
+              "invalid JSON at line 8, column 12:");
+  check_error("", "(root)", "invalid JSON at line 1, column 1:");
+  check_error(kValid + " trailing", "(root)", "invalid JSON at line 12, column 5:");
+  check_error(with("\"name\"", "// comment\n  \"name\""), "(root)", "invalid JSON at line 2");
+  check_error(
+      "{\"name\": \"a\nb\"}", "(root)",  // raw newline inside a string
+      "invalid JSON at line 1, column 12: syntax error while parsing value - invalid string");
+}
+
+TEST_CASE("wrong types name the field", "[case_reader]") {
+  check_error("[1, 2]", "(root)", "must be an object, got array");
+  check_error(with(R"("paper-figure-2")", "3"), "name", "must be a non-empty string, got number");
+  check_error(with(R"("paper-figure-2")", R"("")"), "name", "must be a non-empty string");
+  check_error(with(R"("Williams & Max Fig. 2, first interval")", "null"), "description",
+              "must be a string, got null");
+  check_error(
+      with(R"([[0.0, 5.0], [1.0, 2.0]])", R"("linear")"), "transfer_function.density",
+      "must be a list of [scalar, value] points or an object with keys r, g, b, got string");
+  check_error(with("[0.0, 5.0]", R"(["0.0", 5.0])"), "transfer_function.density[0][0]",
+              "must be a number, got string");
+  check_error(with("[0.0, 5.0]", "[0.0, true]"), "transfer_function.density[0][1]",
+              "must be a number, got boolean");
+  check_error(with("[0.0, 5.0]", "[0.0, 5.0, 1.0]"), "transfer_function.density[0]",
+              "must be a [scalar, value] pair");
+  check_error(with("[0.0, 5.0]", "5.0"), "transfer_function.density[0]",
+              "must be a [scalar, value] pair, got number");
+  check_error(with(R"("scalar": [0.1, 0.9])", R"("scalar": 0.5)"), "rays[0].segments[0].scalar",
+              "must be a [far, near] pair of numbers, got number");
+  check_error(with(R"("scalar": [0.9, 0.4])", R"("scalar": [0.9, "near"])"),
+              "rays[0].segments[1].scalar[1]", "must be a number, got string");
+  check_error(with(R"("length": 0.25)", R"("length": "1/4")"), "rays[0].segments[1].length",
+              "must be a number, got string");
+  check_error(with("[0.0, 0.0, 0.0]", "[0.0, 0.0]"), "rays[0].background",
+              "must be an array of 3 numbers [r, g, b], got an array of 2");
+  check_error(with("[0.0, 0.0, 0.0]", "{}"), "rays[0].background",
+              "must be an array of 3 numbers [r, g, b], got object");
+  check_error(with(R"({"length": 1.0, "scalar": [0.1, 0.9]})", "[1.0, 0.1, 0.9]"),
+              "rays[0].segments[0]", "must be an object, got array");
+  check_error(R"({"name": "n", "transfer_function": 7, "rays": []})", "transfer_function",
+              "must be an object, got number");
+}
+
+TEST_CASE("missing required fields", "[case_reader]") {
+  check_error(with(R"("name": "paper-figure-2",)", ""), "name", "missing required field");
+  check_error(with(R"("density": [[0.0, 5.0], [1.0, 2.0]],)", ""), "transfer_function.density",
+              "missing required field");
+  check_error(with(R"(, "b": [[0.0, 0.2], [1.0, 0.2]])", ""), "transfer_function.color.b",
+              "missing required field");
+  check_error(with(R"("length": 0.25, )", ""), "rays[0].segments[1].length",
+              "missing required field");
+  check_error(with(R"(, "scalar": [0.1, 0.9])", ""), "rays[0].segments[0].scalar",
+              "missing required field");
+  check_error(with(R"(,
+     "segments": [{"length": 1.0, "scalar": [0.1, 0.9]}, {"length": 0.25, "scalar": [0.9, 0.4]}])",
+                   ""),
+              "rays[0].segments", "missing required field");
+  check_error(R"({"name": "n", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]}})",
+              "rays", "missing required field");
+}
+
+TEST_CASE("unknown and duplicate fields are errors", "[case_reader]") {
+  check_error(with(R"("g": [[0.0, 1.0], [1.0, 1.0]])", R"("q": [[0.0, 1.0], [1.0, 1.0]])"),
+              "transfer_function.color.q", "unknown field (expected r, g, b)");
+  check_error(with(R"("description")", R"("descripton")"), "descripton",
+              "unknown field (expected name, description, transfer_function, rays)");
+  check_error(with(R"("segments")", R"("segmnts")"), "rays[0].segmnts",
+              "unknown field (expected background, segments)");
+  check_error(with(R"("length": 0.25)", R"("length": 0.25, "weight": 1)"),
+              "rays[0].segments[1].weight", "unknown field (expected length, scalar)");
+  check_error(with(R"("density")", R"("opacity": [], "density")"), "transfer_function.opacity",
+              "unknown field (expected density, color)");
+  check_error(with(R"("length": 0.25)", R"("length": 0.25, "length": 0.5)"),
+              "rays[0].segments[1].length", "duplicate field");
+}
+
+TEST_CASE("non-finite numbers (1e999 overflows a double) are rejected", "[case_reader]") {
+  check_error(with("[1.0, 2.0]", "[1.0, 1e999]"), "transfer_function.density[1][1]",
+              "must be finite, got 1e999");
+  check_error(with("[1.0, 2.0]", "[-1e999, 2.0]"), "transfer_function.density[1][0]",
+              "must be finite, got -1e999");
+  check_error(with(R"("length": 1.0)", R"("length": 1e400)"), "rays[0].segments[0].length",
+              "must be finite");
+  check_error(with("[0.9, 0.4]", "[0.9, -2e308]"), "rays[0].segments[1].scalar[1]",
+              "must be finite");
+  check_error(with("[0.0, 0.0, 0.0]", "[0.0, 1e999, 0.0]"), "rays[0].background[1]",
+              "must be finite");
+  check_error(with("[0.0, 1.7]", "[0.0, 1E+999]"), "transfer_function.color.r[0][1]",
+              "must be finite");
+}
+
+TEST_CASE("negative values are rejected", "[case_reader]") {
+  check_error(with("[1.0, 2.0]", "[1.0, -2.0]"), "transfer_function.density[1][1]",
+              "must be finite and >= 0, got -2");
+  check_error(with("[1.0, 0.2]", "[1.0, -0.5]"), "transfer_function.color.b[1][1]",
+              "must be finite and >= 0, got -0.5");
+  check_error(with("[0.0, 0.0, 0.0]", "[0.0, 0.0, -1e-300]"), "rays[0].background[2]",
+              "must be finite and >= 0, got -1e-300");
+  // -0 is >= 0; it is read as +0.
+  const Case c = parse_case_text(with("[0.0, 0.0, 0.0]", "[-0.0, 0, 0]"), kSource);
+  CHECK(c.rays[0].background[0] == 0.0);
+  CHECK(!std::signbit(c.rays[0].background[0]));
+  // Negative scalars are fine: the scalar axis is unconstrained.
+  CHECK_NOTHROW(parse_case_text(with("[0.1, 0.9]", "[-0.1, -0.9]"), kSource));
+}
+
+TEST_CASE("negative segment lengths are rejected", "[case_reader]") {
+  check_error(with(R"("length": 0.25)", R"("length": -1)"), "rays[0].segments[1].length",
+              "must be finite and >= 0, got -1");
+  check_error(with(R"("length": 1.0)", R"("length": -1e-20)"), "rays[0].segments[0].length",
+              "must be finite and >= 0, got -1e-20");
+  CHECK_NOTHROW(parse_case_text(with(R"("length": 1.0)", R"("length": 0)"), kSource));
+}
+
+TEST_CASE("breakpoints must be strictly increasing", "[case_reader]") {
+  check_error(with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.0, 5.0], [0.5, 1.0], [0.5, 2.0]]"),
+              "transfer_function.density[2][0]",
+              "scalar points must be strictly increasing (0.5 after 0.5)");
+  check_error(with("[[0.0, 0.2], [1.0, 0.2]]", "[[0.0, 0.2], [-1.0, 0.2]]"),
+              "transfer_function.color.b[1][0]",
+              "scalar points must be strictly increasing (-1 after 0)");
+  // Points one ulp apart are strictly increasing and allowed.
+  CHECK_NOTHROW(parse_case_text(
+      with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.7, 5.0], [0.7000000000000001, 2.0]]"), kSource));
+}
+
+TEST_CASE("empty transfer functions, rays and segments are rejected", "[case_reader]") {
+  check_error(with("[[0.0, 5.0], [1.0, 2.0]]", "[]"), "transfer_function.density",
+              "must be a non-empty array of [scalar, value] points, got []");
+  const std::string no_rays =
+      R"({"name": "n", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]}, "rays": []})";
+  check_error(no_rays, "rays", "must be a non-empty array, got []");
+  check_error(with("\"rays\": [", "\"rays\": {\"0\": ", with("]\n}", "}\n}")), "rays",
+              "must be a non-empty array, got object");
+}
+
+TEST_CASE("empty segment lists are rejected", "[case_reader]") {
+  const std::string text =
+      R"({"name": "n", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+          "rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]}, {"segments": []}]})";
+  check_error(text, "rays[1].segments", "must be a non-empty array, got []");
+}
+
+TEST_CASE("unreadable files name the file and the reason", "[case_reader]") {
+  const std::string missing = "cases/no-such-case-file.json";
+  try {
+    read_case_file(missing);
+    FAIL("no exception");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == missing + ": cannot read file (No such file or directory)");
+  }
+  const std::string dir = RAYINT_SOURCE_DIR "/cases";
+  try {
+    read_case_file(dir);
+    FAIL("no exception");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).rfind(dir + ": cannot read file (", 0) == 0);
+  }
+}
+
+TEST_CASE("file errors carry the file name", "[case_reader]") {
+  namespace fs = std::filesystem;
+  const fs::path tmp = fs::temp_directory_path() / "rayint_case_reader_bad.json";
+  {
+    std::FILE* f = std::fopen(tmp.string().c_str(), "wb");
+    REQUIRE(f != nullptr);
+    const std::string text = with(R"("length": 0.25)", R"("length": -1)");
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+  }
+  try {
+    read_case_file(tmp.string());
+    FAIL("no exception");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) ==
+          tmp.string() + ": rays[0].segments[1].length: must be finite and >= 0, got -1");
+  }
+  fs::remove(tmp);
+}
+
+TEST_CASE("every case in cases/ loads", "[case_reader][corpus]") {
+  namespace fs = std::filesystem;
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(RAYINT_SOURCE_DIR "/cases")) {
+    if (entry.path().extension() != ".json") continue;
+    ++count;
+    INFO("file: " << entry.path().string());
+    Case c;
+    REQUIRE_NOTHROW(c = read_case_file(entry.path().string()));
+    CHECK(c.name == entry.path().stem().string());  // file name = case name + .json
+    CHECK(!c.description.empty());
+  }
+  CHECK(count >= 20);
+}
+
+TEST_CASE("paper-figure-2 reproduces the paper's interval coefficients", "[case_reader][corpus]") {
+  // Williams & Max Sec. 3.3, first interval of Fig. 2: rho_r = a + b s, kappa_r rho_r = f + g s
+  // with a = 5, b = -3, f = 8.5, g = -5.1, h = 0.
+  const Case c = read_case_file(RAYINT_SOURCE_DIR "/cases/paper-figure-2.json");
+  const auto& rho = c.transfer.density[0];
+  const auto& kappa = c.transfer.color[0];
+  CHECK(rho(0.0) == 5.0);
+  CHECK(rho(1.0) - rho(0.0) == -3.0);
+  CHECK(kappa(0.0) * rho(0.0) == Approx(8.5).epsilon(1e-15));
+  CHECK(kappa(1.0) * rho(1.0) - kappa(0.0) * rho(0.0) == Approx(-5.1).epsilon(1e-15));
+  CHECK(kappa(0.25) == 1.7);
+}
