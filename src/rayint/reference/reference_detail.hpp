@@ -1,0 +1,67 @@
+#pragma once
+// Internals of the high-precision reference (reference.cpp), exposed for its tests and for
+// calibration programs. Not part of the public interface: use reference.hpp.
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include "rayint/model/transfer_function.hpp"
+#include "rayint/reference/reference.hpp"
+
+namespace rayint::reference_detail {
+
+using Real = boost::multiprecision::cpp_bin_float_50;  // 168-bit significand, eps = 5.3e-51
+
+// One channel of one piece in 50-digit arithmetic. s = distance from the exit (eye side);
+// rho and kappa are linear in s, from *_exit at s = 0 to *_far at s = length.
+struct PieceData {
+  Real length;
+  Real rho_far;
+  Real rho_exit;
+  Real kappa_far;
+  Real kappa_exit;
+};
+
+// What integrate_piece computed and how (branch introspection for test failures and reports).
+struct PieceQuadrature {
+  Real transmittance;        // exp(-T), T = length * (rho_far + rho_exit) / 2
+  Real transmittance_error;  // bound on |transmittance - exact|
+  Real emission;             // Eq. 4 on the piece
+  Real emission_error;       // bound on |emission - exact|: sum of the three below
+  Real quadrature_error;     //   sum over subintervals of |Kronrod - Gauss|
+  Real truncation_error;     //   bound on the part beyond tau_cut that was not integrated
+  Real rounding_error;       //   bound on 50-digit rounding (exp series, recurrences, sums)
+  Real optical_depth;        // T
+  Real tau_cut;              // optical depth where integration stopped (T if not truncated)
+  int rule = 0;              // Gauss-Kronrod points; 0 when no quadrature was needed
+  int subintervals = 0;
+  int refinements = 0;        // times the subintervals were doubled to meet the target
+  int truncation_passes = 0;  // times tau_cut was raised to meet the target
+  bool truncated = false;     // integration domain was cut at tau(s) = tau_cut < T
+  bool converged = true;      // estimates met the target within their budgets
+};
+
+// The automatic method: rule, subintervals and truncation chosen from the optical depth, then
+// refined within budgets until the estimates meet the internal target (see reference.cpp).
+PieceQuadrature integrate_piece(const PieceData& piece);
+
+// A forced method for calibration and for testing the error estimate on purpose-made coarse
+// rules: `rule` in {15, 21, 31, 41, 51, 61}, `subintervals` >= 1, truncation at tau_cut
+// (pass +infinity for none); no refinement.
+PieceQuadrature integrate_piece_forced(const PieceData& piece, int rule, int subintervals,
+                                       double tau_cut);
+
+// exp(z) by a Taylor series on z / 2^k (|z / 2^k| <= 1/32) followed by k squarings, for the
+// moderate arguments (|z| up to a few tens) at the quadrature nodes. `relative_error`, if
+// given, receives a bound on |result / exp(z) - 1|.
+Real exp_series(const Real& z, double* relative_error = nullptr);
+
+// Transfer function evaluated in 50 digits at a double scalar: the stored value at a
+// breakpoint, the end value beyond the ends, else (v0 (s1 - s) + v1 (s - s0)) / (s1 - s0),
+// whose two terms are non-negative, so the result has a few ulps relative error.
+Real interpolate(const PiecewiseLinear& f, double s);
+
+// hi = x rounded to nearest double (ties to even), lo = (x - hi) rounded likewise.
+ExtendedValue to_extended(const Real& x);
+// |x - (v.hi + v.lo)|, exact in 50 digits for the values to_extended returns.
+Real representation_error(const Real& x, const ExtendedValue& v);
+
+}  // namespace rayint::reference_detail
