@@ -18,6 +18,25 @@ struct Tolerances {
   // The paper's literal formula on a benign piece (T ~ 1, |q2| ~ q1): no overflow, but the
   // Erfi difference cancels; measured ~1e-15..1e-13, 1e-9 is a loose "it works here" bound.
   static constexpr double paper_benign_rel = 1e-9;
+
+  // --- table methods (tests/test_tables.cpp) ---
+  // psi_table read exactly at a grid point (and a pre-integrated step of exactly D between
+  // grid scalars), against exact: the stored entries are exact_piece's weights, so only the
+  // recombination rounding remains. Measured <= 6.7e-16 (nearest, linear) and 2.2e-15 (floor,
+  // whose test points are nudged 8 ulps up so floor() keeps them); 1e-14 leaves 4x.
+  static constexpr double table_grid_rel = 1e-14;
+  // Analytic limits through the tables (constant kappa; constant kappa and rho): the table
+  // drops out and the rounding of up to ~800 composited steps remains; measured <= 2.9e-14
+  // (preintegrated, Eq. 6), 3.8e-16 (psi_table, Eq. 5); 1e-13 leaves 3.5x.
+  static constexpr double table_limit_rel = 1e-13;
+  // Order of convergence of the tables, expected 1 (nearest, floor), 2 (linear), 1/2 (the sup
+  // of psi_table's error on its gamma_back = 1 edge). Least-squares order over 3-5 doublings
+  // of the size: measured within 0.14 of the expected order (preintegrated nearest: 1.14);
+  // 0.2 still tells 1 from 2 and 1/2 from 1.
+  static constexpr double table_order_band = 0.2;
+  // Any single doubling: measured within 0.30 (nearest zig-zags with where the scalars fall
+  // against the grid); 0.4 still excludes the neighbouring orders.
+  static constexpr double table_order_step_band = 0.4;
 };
 
 // The numerical methods of tests/test_methods.cpp (riemann, rk4, ode, eq5..eq8, particle).

@@ -37,7 +37,7 @@ const std::vector<MethodEntry>& registry() {
       {"eq7", "", make_eq7},
       {"eq8", "", make_eq8},
       {"particle", "", make_particle},
-      {"preintegrated", "size lookup dims step max_length", make_preintegrated},
+      {"preintegrated", "size lookup dims step max_length lengths", make_preintegrated},
       {"psi_table", "size lookup", make_psi_table},
   };
   return entries;

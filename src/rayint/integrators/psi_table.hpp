@@ -1,0 +1,61 @@
+#pragma once
+// Partial pre-integration (Moreland & Angel 2004, as in VTK's
+// vtkUnstructuredGridPartialPreIntegration): the one part of the exact piece integral that
+// is not elementary, Psi = int_0^1 exp(-tau(u)) du, is read from a table over
+// gamma = tau D / (1 + tau D) at the piece's two ends. See psi_table.cpp.
+#include <memory>
+#include <vector>
+
+#include "rayint/integrators/integrator.hpp"
+#include "rayint/integrators/table_grid.hpp"
+
+namespace rayint {
+
+// Psi and 1 - Psi on a size x size grid of (gamma_front, gamma_back); row = front (exit, eye
+// side), column = back (far side). Depends only on (size, lookup), so it is shared.
+class PsiTable {
+ public:
+  PsiTable(int size, table::Lookup lookup);
+  // Shared instance per (size, lookup == floor): built on first use, thread-safe.
+  static std::shared_ptr<const PsiTable> shared(int size, table::Lookup lookup);
+
+  int size() const { return size_; }
+  double gamma(int i) const;          // grid value i
+  double build_seconds() const { return build_seconds_; }
+  double bytes() const { return 2.0 * sizeof(double) * size_ * size_; }
+
+  // Bound on |interpolated Psi - Psi| over the whole square for `lookup` (see psi_table.cpp):
+  // the sup sits at gamma_back -> 1, where Psi ~ sqrt(pi (1 - gamma_back)/2), and scales
+  // like size^{-1/2} for every lookup.
+  double max_error(table::Lookup lookup) const;
+
+  struct Value {
+    double psi, one_minus_psi;
+  };
+  // Interpolated (per `lookup`) at optical depths tau_front D, tau_back D >= 0.
+  Value lookup(double tau_front_D, double tau_back_D, table::Lookup lookup) const;
+
+ private:
+  int size_;
+  double scale_;  // grid units per unit gamma: size - 1, or size for VTK's floor grid
+  std::vector<double> psi_, one_minus_psi_;
+  double build_seconds_ = 0.0;
+};
+
+// gamma = x/(1 + x) for x >= 0, 1 for x = +inf.
+double psi_gamma(double tau_D);
+
+class PsiTableIntegrator final : public RayIntegrator {
+ public:
+  PsiTableIntegrator(const TransferFunctions& tf, int size, table::Lookup lookup);
+  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  const PsiTable& table() const { return *table_; }
+
+ private:
+  const TransferFunctions& tf_;
+  std::vector<double> breakpoints_;
+  table::Lookup lookup_;
+  std::shared_ptr<const PsiTable> table_;
+};
+
+}  // namespace rayint
