@@ -1,6 +1,7 @@
 // rayint eval CASE.json [...] -- every method against the 50-digit reference, per ray.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,7 @@ void set_eval_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "eval", "Evaluate case files with each method against the 50-digit reference");
-  cmd->add_option("cases", opt->files, "Case files (JSON)")->required();
+  cmd->add_option("cases", opt->files, "Case files (JSON) or folders of them")->required();
   cmd->add_option("--methods", opt->methods,
                   "Comma-separated methods, each name[:key=value...] (default: exact,paper)");
   cmd->add_option("--format", opt->format, "json or table")
@@ -75,7 +76,13 @@ void set_eval_command(CLI::App& app) {
     const std::vector<MethodSpec> methods =
         opt->methods.empty() ? default_methods() : parse_method_list(opt->methods);
     std::vector<Case> cases;
-    for (const auto& f : opt->files) cases.push_back(read_case_file(f));  // validate all first
+    for (const auto& f : opt->files) {  // a folder means every case file in it
+      if (std::filesystem::is_directory(f)) {
+        for (const auto& file : list_case_files(f)) cases.push_back(read_case_file(file));
+      } else {
+        cases.push_back(read_case_file(f));  // validate all before evaluating any
+      }
+    }
     EvalOptions eo;
     eo.measure_time = !opt->no_timing;
     std::vector<CaseEvaluation> results;

@@ -3,4 +3,4 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/build.sh"
-"${RAYINT_BUILD_DIR:-$root/build}/rayint" eval "$root"/cases/*.json --format table
+"${RAYINT_BUILD_DIR:-$root/build}/rayint" eval "$root/cases" --format table

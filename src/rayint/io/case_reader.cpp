@@ -13,6 +13,8 @@
 // Every problem is thrown as one InputError line `<source>: <field path>: <what>`.
 #include "rayint/io/case_reader.hpp"
 
+#include <filesystem>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -398,6 +400,20 @@ Case read_case_file(const std::string& path) {
   while ((n = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, n);
   if (std::ferror(file.get())) cannot_read();
   return parse_case_text(text, path);
+}
+
+std::vector<std::string> list_case_files(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<std::string> files;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() == ".json" && p.filename() != kGateConfigName && it->is_regular_file(ec))
+      files.push_back(p.string());
+  }
+  if (ec) throw InputError(dir + ": cannot list folder (" + ec.message() + ")");
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace rayint

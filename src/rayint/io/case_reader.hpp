@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rayint/model/ray.hpp"
 
@@ -17,5 +18,13 @@ class InputError : public std::runtime_error {
 // `source` is the file name used in messages. Throws InputError.
 Case parse_case_text(std::string_view text, const std::string& source);
 Case read_case_file(const std::string& path);
+
+// The name of the gate configuration that lives beside the cases (cases/gates.json); it is the
+// one .json file in a case folder that is not a case.
+inline constexpr const char* kGateConfigName = "gates.json";
+
+// Every case file in `dir`: the *.json files except kGateConfigName, sorted by name.
+// Throws InputError if `dir` cannot be listed.
+std::vector<std::string> list_case_files(const std::string& dir);
 
 }  // namespace rayint
