@@ -13,14 +13,13 @@
 // Every problem is thrown as one InputError line `<source>: <field path>: <what>`.
 #include "rayint/io/case_reader.hpp"
 
-#include <filesystem>
-
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <initializer_list>
 #include <memory>
 #include <nlohmann/json.hpp>
