@@ -19,18 +19,21 @@
 namespace rayint::cli {
 namespace {
 
-std::vector<std::string> default_case_files() {
-  namespace fs = std::filesystem;
-  const fs::path dir = "cases";
-  if (!fs::is_directory(dir))
+// The case files named on the command line (a folder means every case file in it), or every
+// case of ./cases when none is named.
+std::vector<std::string> case_files(const std::vector<std::string>& args) {
+  if (args.empty() && !std::filesystem::is_directory("cases"))
     throw InputError("bench: no case files given and no cases/ folder in " +
-                     fs::current_path().string());
+                     std::filesystem::current_path().string());
   std::vector<std::string> files;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.is_regular_file() && entry.path().extension() == ".json")
-      files.push_back(entry.path().string());
-  std::sort(files.begin(), files.end());
-  if (files.empty()) throw InputError("bench: cases/ holds no .json files");
+  for (const auto& a : args.empty() ? std::vector<std::string>{"cases"} : args) {
+    if (std::filesystem::is_directory(a)) {
+      for (const auto& f : list_case_files(a)) files.push_back(f);
+    } else {
+      files.push_back(a);
+    }
+  }
+  if (files.empty()) throw InputError("bench: no case files found");
   return files;
 }
 
@@ -141,7 +144,8 @@ void set_bench_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "bench", "Accuracy/cost sweep: every method along its knob, error and time per ray");
-  cmd->add_option("cases", opt->files, "Case files (JSON); default: every cases/*.json");
+  cmd->add_option("cases", opt->files,
+                  "Case files (JSON) or folders of them; default: the folder cases/");
   cmd->add_option("--methods", opt->methods,
                   "Comma-separated method names to sweep (default: all; exact always runs)");
   cmd->add_option(
@@ -164,7 +168,7 @@ void set_bench_command(CLI::App& app) {
   cmd->add_flag("-q,--quiet", opt->quiet, "No progress on stderr");
   cmd->callback([opt] {
     const std::vector<SweepAxis> axes = select_sweep_axes(split_names(opt->methods));
-    const std::vector<std::string> files = opt->files.empty() ? default_case_files() : opt->files;
+    const std::vector<std::string> files = case_files(opt->files);
     std::vector<Case> cases;
     for (const auto& f : files) cases.push_back(read_case_file(f));  // validate all first
     if (opt->output != "-") {
