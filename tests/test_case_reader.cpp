@@ -293,10 +293,10 @@ TEST_CASE("file errors carry the file name", "[case_reader]") {
 
 TEST_CASE("every case in cases/ loads", "[case_reader][corpus]") {
   namespace fs = std::filesystem;
-  const std::vector<std::string> files = list_case_files(RAYINT_SOURCE_DIR "/cases");
+  const std::vector<std::string> files = rayint::list_case_files(RAYINT_SOURCE_DIR "/cases");
   for (const auto& file : files) {
     INFO("file: " << file);
-    CHECK(fs::path(file).filename() != kGateConfigName);
+    CHECK(fs::path(file).filename() != rayint::kGateConfigName);
     Case c;
     REQUIRE_NOTHROW(c = read_case_file(file));
     CHECK(c.name == fs::path(file).stem().string());  // file name = case name + .json

@@ -181,6 +181,19 @@ TEST_CASE("exact rays: w = 0, zero-length pieces, pulses 1e-12 wide, scalars out
     Ray ray{{1.0, 1.0, 1.0}, {{2.0, -5.0, 0.1}, {1.0, 0.5, 7.0}, {1.0, 9.0, 10.0}}};
     require_ray_matches_reference(tf, ray, Tolerances::exact_rel);
   }
+  SECTION("a segment whose scalar span is one denormal (found by rayint stress)") {
+    // L / (s1 - s0) overflowed to inf and made the piece length inf.
+    const TransferFunctions tf = uniform_tf(line(0.0, 0.5, 1.0, 3.0), line(0.0, 2.0, 1.0, 0.5));
+    Ray ray{{0.1, 0.2, 0.3}, {{24.0, 0.0, 5e-324}, {1.0, 0.2, 0.9}}};
+    require_ray_matches_reference(tf, ray, Tolerances::exact_rel);
+  }
+  SECTION("colour interpolated 4e-14 from its zero (found by rayint stress)") {
+    // kappa = 82.8 (1 - f) with f = 1 - 6.9e-14 lost 13 digits when formed as 1 - f.
+    const PiecewiseLinear kappa{{0.0, 0.6202816383715489, 1.0}, {82.79328637423598, 0.0, 1.0}};
+    const TransferFunctions tf = uniform_tf(constant(5.76e10), kappa);
+    Ray ray{{0.0, 0.0, 0.0}, {{0.13639106563747083, 0.6202816383715062, 0.6202816383715062}}};
+    require_ray_matches_reference(tf, ray, Tolerances::exact_rel);
+  }
   SECTION("very thick ray: background underflows") {
     const TransferFunctions tf = uniform_tf(line(0.0, 1e6, 1.0, 2e5), line(0.0, 1.0, 1.0, 2.0));
     Ray ray{{1.0, 1.0, 1.0}, {{1.0, 0.0, 1.0}, {3.0, 1.0, 0.0}}};

@@ -42,9 +42,12 @@ void append_pieces(const TransferFunctions& tf, const Segment& seg,
     ends.insert(ends.end(), std::make_reverse_iterator(last), std::make_reverse_iterator(first));
   }
   ends.push_back(s1);
-  const double inv_span = seg.length / (s1 - s0);
+  // Fraction of the segment first, then the length: L / (s1 - s0) overflows when the scalar
+  // span is tiny (a span of one denormal over L = 24 gave inf pieces in `rayint stress`), while
+  // the fraction is always in [0, 1]. Differences of nearby breakpoints are exact (Sterbenz).
+  const double span = s1 - s0;
   for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
-    const double len = (ends[k + 1] - ends[k]) * inv_span;  // difference of nearby breakpoints is exact
+    const double len = seg.length * ((ends[k + 1] - ends[k]) / span);
     if (len > 0.0) out.push_back(make_piece(tf, len, ends[k], ends[k + 1]));
   }
 }

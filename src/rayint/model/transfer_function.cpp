@@ -11,11 +11,14 @@ double PiecewiseLinear::operator()(double s) const {
   const auto k = static_cast<std::size_t>(it - scalar.begin());  // scalar[k-1] <= s < scalar[k]
   const double s0 = scalar[k - 1], s1 = scalar[k];
   if (s == s0) return value[k - 1];
-  // Interpolate from the nearer end so that values at breakpoints are reproduced exactly and
-  // the result stays between the two end values.
-  const double f = (s - s0) / (s1 - s0);
-  return f <= 0.5 ? value[k - 1] + f * (value[k] - value[k - 1])
-                  : value[k] + (1.0 - f) * (value[k - 1] - value[k]);
+  // Interpolate from the nearer end, with that end's distance computed directly: near a
+  // breakpoint s1 - s is exact (Sterbenz) where 1 - (s - s0)/(s1 - s0) would cancel. (`rayint
+  // stress` found kappa = 5.7e-12 at 4.3e-14 from a zero of kappa off by 5e-4 with 1 - f.)
+  // Values at breakpoints are reproduced exactly; the result lies between the end values and,
+  // the weight being <= 1/2, keeps at least half the nearer value: relative error a few ulps.
+  const double d0 = s - s0, d1 = s1 - s, span = s1 - s0;
+  return d0 <= d1 ? value[k - 1] + (d0 / span) * (value[k] - value[k - 1])
+                  : value[k] + (d1 / span) * (value[k - 1] - value[k]);
 }
 
 std::vector<double> TransferFunctions::breakpoints() const {
