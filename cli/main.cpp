@@ -12,7 +12,7 @@ void emit(const std::string& text, const std::string& path) {
     std::cout << text;
     if (!text.empty() && text.back() != '\n') std::cout << '\n';
   } else {
-    write_file_atomically(path, text.back() == '\n' ? text : text + "\n");
+    write_file_atomically(path, (text.empty() || text.back() == '\n') ? text : text + "\n");
   }
 }
 
