@@ -1,12 +1,90 @@
-#include <stdexcept>
+// rayint check CASE.json --candidate THEIRS.json -- another renderer's per-ray intensities
+// against the exact values; writes a JSON diff (docs/candidate-format.md). Exit 0 when every
+// channel of every ray is within tolerance, 1 when one is not, 2 on bad input.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
 
 #include "commands.hpp"
+#include "rayint/accuracy/check.hpp"
+#include "rayint/io/candidate_io.hpp"
+#include "rayint/io/case_reader.hpp"
 
 namespace rayint::cli {
+namespace {
+
+// A tolerance: a finite number >= 0 (CLI11's NonNegativeNumber lets "nan" through).
+const CLI::Validator kTolerance(
+    [](std::string& text) -> std::string {
+      double x = 0.0;
+      if (!CLI::detail::lexical_cast(text, x) || !std::isfinite(x) || x < 0.0)
+        return "must be a finite number >= 0, got " + text;
+      return {};
+    },
+    "TOL>=0");
+
+std::string g3(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+// One status line for CI logs (stderr, so stdout stays the diff).
+std::string summary_line(const CheckResult& r) {
+  const char* channel_names[kChannels] = {"r", "g", "b"};
+  const CheckSummary& s = r.summary;
+  return "rayint check: " + std::string(r.pass ? "PASS" : "FAIL") + ": " + r.candidate_source +
+         " vs " + r.case_source + ": " + std::to_string(s.failed_channels) + " of " +
+         std::to_string(s.channels) + " channels in " + std::to_string(s.failed_rays) + " of " +
+         std::to_string(s.rays) + " rays outside tolerance; max rel error " + g3(s.max_rel_error) +
+         ", max abs error " + g3(s.max_abs_error) + " (worst: ray " + std::to_string(s.worst_ray) +
+         " channel " + channel_names[s.worst_channel] + ")";
+}
+
+}  // namespace
 
 void set_check_command(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("check", "(not implemented yet)");
-  cmd->callback([] { throw std::runtime_error("rayint check is not implemented yet"); });
+  struct Options {
+    std::string case_file;
+    std::string candidate_file;
+    std::string output;
+    CheckOptions check;
+    bool no_reference = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "check", "Compare another renderer's per-ray intensities with the exact values");
+  cmd->add_option("case", opt->case_file, "Case file (JSON)")->required();
+  cmd->add_option("--candidate", opt->candidate_file,
+                  "The renderer's intensities (JSON, docs/candidate-format.md)")
+      ->required();
+  cmd->add_option("--rel-tol", opt->check.rel_tol,
+                  "Relative tolerance: a channel passes if "
+                  "|got - expected| <= max(abs-tol, rel-tol * |expected|)")
+      ->check(kTolerance)
+      ->capture_default_str();
+  cmd->add_option("--abs-tol", opt->check.abs_tol, "Absolute tolerance (see --rel-tol)")
+      ->check(kTolerance)
+      ->capture_default_str();
+  cmd->add_flag("--no-reference", opt->no_reference,
+                "Skip the 50-digit reference (reported for context only; costs time on big cases)");
+  cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");
+  cmd->callback([opt] {
+    const Case c = read_case_file(opt->case_file);
+    const Candidate candidate = read_candidate_file(opt->candidate_file, c);
+    CheckOptions co = opt->check;
+    co.with_reference = !opt->no_reference;
+    const CheckResult result = check_candidate(c, candidate, co);
+    emit(check_report_json(result).dump(2), opt->output);
+    std::cout.flush();
+    std::cerr << summary_line(result) << std::endl;
+    // The callback cannot return an exit code and main() maps exceptions to 2 (bad input), so a
+    // failed check ends here with 1, after its diff is written and flushed.
+    if (!result.pass) std::exit(kExitFailed);
+  });
 }
 
 }  // namespace rayint::cli

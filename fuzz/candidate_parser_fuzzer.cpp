@@ -1,0 +1,56 @@
+// libFuzzer target for the candidate parser of `rayint check` (rayint::parse_candidate_text,
+// io/candidate_io.hpp) on arbitrary bytes, followed by the match against a fixed three-ray case.
+// Run it with `RAYINT_FUZZ_TARGET=candidate_parser scripts/fuzz.sh`. A finding is any of:
+//   - a crash, sanitizer report, hang or leak;
+//   - an exception other than rayint::InputError escaping (reported as a deadly signal);
+//   - an InputError whose message is not one line starting with "<source>: ";
+//   - an accepted candidate that breaks the format's guarantees (docs/candidate-format.md):
+//     non-empty case name, at least one ray, every intensity finite.
+// Each check traps, so the input is saved as a crash artifact.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "rayint/io/candidate_io.hpp"
+
+namespace {
+
+constexpr const char* kSource = "fuzz-candidate.json";
+
+void require(bool ok) {
+  if (!ok) __builtin_trap();
+}
+
+void check_message(const std::string& what) {
+  const std::string prefix = std::string(kSource) + ": ";
+  require(what.compare(0, prefix.size(), prefix) == 0);
+  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
+}
+
+rayint::Case three_rays() {
+  rayint::Case c;
+  c.name = "fig2";
+  c.source = "fig2.json";
+  c.rays.resize(3);
+  return c;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const rayint::Case kCase = three_rays();
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    const rayint::Candidate c = rayint::parse_candidate_text(text, kSource);
+    require(!c.case_name.empty() && !c.intensity.empty() && c.source == kSource);
+    for (const rayint::Rgb& I : c.intensity)
+      for (double x : I) require(std::isfinite(x));
+    rayint::require_candidate_matches(c, kCase);
+    require(c.case_name == kCase.name && c.intensity.size() == kCase.rays.size());
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  }
+  return 0;
+}

@@ -1,0 +1,69 @@
+// libFuzzer target for the case parser (rayint::parse_case_text, io/case_reader.hpp) on arbitrary
+// bytes. Built by fuzz/CMakeLists.txt with -fsanitize=fuzzer,address,undefined; run it with
+// scripts/fuzz.sh. A finding is any of:
+//   - a crash, sanitizer report, hang or leak;
+//   - an exception other than rayint::InputError escaping the parser (libFuzzer reports the
+//     uncaught exception as a deadly signal);
+//   - an InputError whose message is not one line starting with "<source>: ";
+//   - a case accepted although it breaks the format's guarantees (cases/README.md): non-empty
+//     name, at least one ray and one segment, lengths and values finite and >= 0, scalars finite,
+//     breakpoints strictly increasing.
+// Each check traps, so the input is saved as a crash artifact.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "rayint/io/case_reader.hpp"
+
+namespace {
+
+constexpr const char* kSource = "fuzz-input.json";
+
+void require(bool ok) {
+  if (!ok) __builtin_trap();
+}
+
+bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
+
+void check_function(const rayint::PiecewiseLinear& f) {
+  require(!f.scalar.empty() && f.scalar.size() == f.value.size());
+  for (std::size_t i = 0; i < f.scalar.size(); ++i) {
+    require(std::isfinite(f.scalar[i]) && finite_non_negative(f.value[i]));
+    if (i > 0) require(f.scalar[i] > f.scalar[i - 1]);
+  }
+}
+
+void check_case(const rayint::Case& c) {
+  require(!c.name.empty() && c.source == kSource && !c.rays.empty());
+  for (int k = 0; k < rayint::kChannels; ++k) {
+    check_function(c.transfer.density[k]);
+    check_function(c.transfer.color[k]);
+  }
+  for (const rayint::Ray& ray : c.rays) {
+    require(!ray.segments.empty());
+    for (double b : ray.background) require(finite_non_negative(b));
+    for (const rayint::Segment& s : ray.segments)
+      require(finite_non_negative(s.length) && std::isfinite(s.scalar_far) &&
+              std::isfinite(s.scalar_near));
+  }
+}
+
+void check_message(const std::string& what) {
+  const std::string prefix = std::string(kSource) + ": ";
+  require(what.compare(0, prefix.size(), prefix) == 0);
+  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    check_case(rayint::parse_case_text(text, kSource));
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  }
+  return 0;
+}

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Fuzzes the case parser (rayint::parse_case_text) with libFuzzer + ASan + UBSan for a bounded
+# time, then prints the executions and findings.
+#
+#   scripts/fuzz.sh [SECONDS] [extra libFuzzer flags...]     (SECONDS defaults to 60)
+#
+# Configures its own clang build directory (RAYINT_FUZZ_BUILD_DIR, default build-fuzz/), builds
+# fuzz/<target>_fuzzer, seeds it (case_parser: cases/*.json, copied at run time;
+# candidate_parser: fuzz/seeds/candidate/) with the dictionary fuzz/<target>.dict, and keeps the
+# inputs it finds interesting in RAYINT_FUZZ_CORPUS (default fuzz-corpus/<target>/, reused by the
+# next run). RAYINT_FUZZ_TARGET selects the target: case_parser (default) or candidate_parser.
+# One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
+# <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
+# Exit status: 0 no findings, 1 findings, 2 usage or build error.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+seconds="${1:-60}"
+[ $# -gt 0 ] && shift
+if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ]; then
+  echo "usage: scripts/fuzz.sh [SECONDS>0] [libFuzzer flags...]" >&2
+  exit 2
+fi
+target="${RAYINT_FUZZ_TARGET:-case_parser}"
+case "$target" in
+  case_parser) seed_files=("$root"/cases/*.json); what="rayint::parse_case_text" ;;
+  candidate_parser) seed_files=("$root"/fuzz/seeds/candidate/*.json); what="rayint::parse_candidate_text" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser or candidate_parser" >&2; exit 2 ;;
+esac
+build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"
+command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 2; }
+
+mkdir -p "$build"
+build_log="$build/fuzz-build.log"
+if ! { cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+         -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYINT_BUILD_FUZZERS=ON -DRAYINT_BUILD_TESTS=OFF \
+         -DRAYINT_BUILD_CLI=OFF -DRAYINT_BUILD_BENCHMARKS=OFF &&
+       cmake --build "$build" --target "${target}_fuzzer" -j "$(nproc)"; } >"$build_log" 2>&1; then
+  tail -n 30 "$build_log" >&2
+  echo "fuzz.sh: building ${target}_fuzzer failed (log: $build_log)" >&2
+  exit 2
+fi
+fuzzer="$build/fuzz/${target}_fuzzer"
+
+seeds="$build/seed-corpus/$target"
+rm -rf "$seeds"
+mkdir -p "$seeds" "$corpus"
+cp "${seed_files[@]}" "$seeds/"
+artifacts="$build/artifacts/$target-$(date +%Y%m%d-%H%M%S)"
+mkdir -p "$artifacts"
+log="$artifacts/fuzz.log"
+
+echo "fuzz.sh: fuzzing $what for ${seconds} s" \
+     "(seeds: $(ls "$seeds" | wc -l) files, corpus: $corpus, log: $log)"
+set +e
+UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
+"$fuzzer" "$corpus" "$seeds" -dict="$root/fuzz/$target.dict" \
+  -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  -artifact_prefix="$artifacts/" "$@" >"$log" 2>&1
+status=$?
+set -e
+
+final_stat() { sed -n "s/^stat::$1: *//p" "$log" | tail -n 1; }
+runs="$(final_stat number_of_executed_units)"
+last="$(grep -E '^#[0-9]+' "$log" | tail -n 1 || true)"
+findings=()
+for f in "$artifacts"/crash-* "$artifacts"/leak-* "$artifacts"/timeout-* "$artifacts"/oom-*; do
+  [ -e "$f" ] && findings+=("$f")
+done
+echo "fuzz.sh: executions: ${runs:-unknown}, exec/s: $(final_stat average_exec_per_sec)," \
+     "peak RSS: $(final_stat peak_rss_mb) MB, corpus: $(ls "$corpus" | wc -l) inputs"
+echo "fuzz.sh: last status: ${last:-none}"
+if [ ${#findings[@]} -gt 0 ] || [ "$status" -ne 0 ]; then
+  echo "fuzz.sh: FINDINGS (libFuzzer exit status $status):"
+  for f in "${findings[@]}"; do echo "  $f"; done
+  grep -m 5 -E 'ERROR: (AddressSanitizer|libFuzzer|LeakSanitizer)|runtime error:|deadly signal|uncaught exception' "$log" | sed 's/^/  /' || true
+  echo "fuzz.sh: reproduce with: $fuzzer <artifact>; full log: $log"
+  exit 1
+fi
+echo "fuzz.sh: no findings"
