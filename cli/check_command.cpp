@@ -83,7 +83,7 @@ void set_check_command(CLI::App& app) {
     std::cerr << summary_line(result) << std::endl;
     // The callback cannot return an exit code and main() maps exceptions to 2 (bad input), so a
     // failed check ends here with 1, after its diff is written and flushed.
-    if (!result.pass) std::exit(kExitFailed);
+    if (!result.pass) throw ChecksFailed{};
   });
 }
 

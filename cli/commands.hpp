@@ -8,6 +8,10 @@ namespace rayint::cli {
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 
+// Thrown by a subcommand whose check or gate failed after its output was written; main()
+// turns it into kExitFailed, so destructors run and output is flushed.
+struct ChecksFailed {};
+
 void set_eval_command(CLI::App& app);    // eval_command.cpp
 void set_bench_command(CLI::App& app);   // bench_command.cpp
 void set_stress_command(CLI::App& app);  // stress_command.cpp

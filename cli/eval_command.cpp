@@ -78,7 +78,9 @@ void set_eval_command(CLI::App& app) {
     std::vector<Case> cases;
     for (const auto& f : opt->files) {  // a folder means every case file in it
       if (std::filesystem::is_directory(f)) {
-        for (const auto& file : list_case_files(f)) cases.push_back(read_case_file(file));
+        const std::vector<std::string> files = list_case_files(f);
+        if (files.empty()) throw InputError(f + ": folder holds no case files (*.json)");
+        for (const auto& file : files) cases.push_back(read_case_file(file));
       } else {
         cases.push_back(read_case_file(f));  // validate all before evaluating any
       }

@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const rayint::cli::ChecksFailed&) {
+    return rayint::cli::kExitFailed;
   } catch (const CLI::ParseError& e) {
     std::cerr << "rayint: error: " << e.what() << "\n";
     return rayint::cli::kExitBadInput;

@@ -16,11 +16,8 @@ cmake --build "$build" -j "$(nproc)"
 built=$(date +%s)
 export ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:strict_init_order=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
-# The package test (tests/package_consumer) installs this instrumented librayint.a and configures
-# a fresh consumer project, which must link the sanitizer runtimes too; CMake takes a fresh
-# project's CMAKE_EXE_LINKER_FLAGS from LDFLAGS. (The exported rayint::rayint target does not
-# carry -fsanitize itself: add_link_options is directory-scoped.)
-export LDFLAGS="-fsanitize=address,undefined${LDFLAGS:+ $LDFLAGS}"
+# The exported rayint::rayint target carries -fsanitize when RAYINT_SANITIZE is on, so the package
+# test's consumer project links the sanitizer runtimes by itself.
 status=0
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@" || status=$?
 done=$(date +%s)
