@@ -298,6 +298,15 @@ def targets_table(data, statistic, targets):
     return "\n".join(out)
 
 
+def median_ratio(data, label):
+    """A setting's median-ray time over exact's median-ray time (0 if unknown)."""
+    by_label = setting_by_label(data)
+    exact = by_label.get("exact")
+    if label not in by_label or not exact or not exact[1]["median_seconds_per_ray"]:
+        return 0
+    return by_label[label][1]["median_seconds_per_ray"] / exact[1]["median_seconds_per_ray"]
+
+
 def headline(data, targets):
     """One line per target: the cheapest way of all to reach it, by max and by median error."""
     lines = []
@@ -319,7 +328,8 @@ def headline(data, targets):
                                 key=lambda r: r["cost_vs_exact"])
                 if others:
                     text += (f"; the next cheapest, `{others[0]['label']}`, costs "
-                             f"{fmt_ratio(others[0]['cost_vs_exact'])}x")
+                             f"{fmt_ratio(others[0]['cost_vs_exact'])}x (median ray "
+                             f"{fmt_ratio(median_ratio(data, others[0]['label']))}x)")
                 else:
                     text += "; no other method reaches it"
             elif cheaper:
@@ -411,6 +421,24 @@ def orders_table(fits):
             else:
                 out.append(f"| {method} | {label} | -- (no asymptotic range) | | |")
     return "\n".join(out)
+
+
+def order_notes(fits):
+    """Readings of the fitted orders that need the method's definition to make sense."""
+    notes = []
+    smooth = {m: dict(rows).get(f"max on {SMOOTH_CASE}") for m, rows in fits.items()}
+    if smooth.get("ode"):
+        notes.append("- `ode`: the knob is the tolerance, so the order is that of error against "
+                     "1/rtol; about 1 means the error is proportional to rtol.")
+    if smooth.get("rk4") and smooth["rk4"][0] < 3:
+        notes.append(f"- `rk4` falls at order {smooth['rk4'][0]:.2f}, not 4, on `{SMOOTH_CASE}`: "
+                     "its n steps per segment ignore transfer-function breakpoints inside a "
+                     "segment (src/rayint/integrators/rk4.cpp), the segments of that case cross "
+                     "its transfer functions' breakpoints, and a kink in rho inside a step "
+                     "leaves an O(h^2) error. The median over all rays follows the kink-free rays' order.")
+    if smooth.get("riemann"):
+        notes.append("- `riemann` samples each step at its midpoint: order 2, kinks included.")
+    return ("\n" + "\n".join(notes) + "\n") if notes else ""
 
 
 def write_readme(data, fits, path, json_name):
@@ -515,8 +543,10 @@ convergence order.
 
 `exact` costs **{fmt_time(exact['seconds_per_ray'])} per ray** (mean; median ray
 {fmt_time(exact['median_seconds_per_ray'])}), i.e. **{per_piece * 1e9:.0f} ns per piece** of three
-channels over the {pieces} pieces of the case set (the issue's target is <= 100 ns per piece per
-channel; `bench/bench_exact.cpp` measures that directly). Its max error is
+channels over the {pieces} pieces of the case set, {per_piece / 3 * 1e9:.0f} ns per piece and channel
+including the ray's splitting at breakpoints and compositing (the issue's target is <= 100 ns per
+piece and channel; `bench/bench_exact.cpp` measures the closed form alone, per regime:
+`rayint_bench --benchmark_filter=exact --benchmark_repetitions=5`). Its max error is
 {fmt_err(exact['max_error'])}, its median {fmt_err(exact['median_error'])}.
 
 ## Cheapest setting per target: every ray (max error)
@@ -560,6 +590,7 @@ steps, stiff pieces) and need not converge at all; `{SMOOTH_CASE}` is the case m
 order studies.
 
 {orders_table(fits)}
+{order_notes(fits)}
 
 ## Failures, non-finite results, truncation, set-up
 
