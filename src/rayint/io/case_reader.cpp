@@ -1,17 +1,15 @@
 // Reading and validating case files (format: cases/README.md).
 //
 // Two stages:
-//  1. A SAX pass (CaseJsonBuilder) turns the text into a nlohmann::json tree while tracking the
-//     field path of every value, so that the two problems nlohmann itself would report without
-//     a path -- duplicate keys (which its DOM parser silently resolves to the last one) and
-//     numbers that overflow a double such as 1e999 (its out_of_range.406) -- are reported at
-//     their field. Syntax errors give the 1-based line and column of the offending character
-//     and nlohmann's reason.
+//  1. json_source::parse (io/json_source.hpp) turns the text into a nlohmann::json tree,
+//     reporting duplicate keys, overflowing numbers and syntax errors at their field or line.
 //  2. A strict schema walk over the tree: required fields, types, finite and non-negative
 //     values, strictly increasing breakpoints, non-empty arrays, and no unknown fields.
 //
 // Every problem is thrown as one InputError line `<source>: <field path>: <what>`.
 #include "rayint/io/case_reader.hpp"
+
+#include "rayint/io/json_source.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -31,158 +29,7 @@ namespace {
 
 using nlohmann::json;
 
-// Shortest decimal that reads back as the same double ("-1", "0.5", "1e-300", "inf").
-std::string format_number(double x) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, res.ptr);
-}
-
-// Messages are one line: any control character (e.g. from a file name) becomes a space.
-std::string one_line(std::string s) {
-  for (char& ch : s)
-    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = ' ';
-  return s;
-}
-
-[[noreturn]] void fail(const std::string& source, const std::string& path,
-                       const std::string& what) {
-  throw InputError(one_line(source + ": " + (path.empty() ? "(root)" : path) + ": " + what));
-}
-
-std::string member_path(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-
-std::string index_path(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
-
-// ---------------------------------------------------------------------------------------------
-// Stage 1: SAX builder with field paths.
-
-class CaseJsonBuilder final : public json::json_sax_t {
- public:
-  CaseJsonBuilder(std::string_view text, const std::string& source)
-      : text_(text), source_(source) {}
-
-  json take_root() { return std::move(root_); }
-
-  bool null() override { return add(json(nullptr)); }
-  bool boolean(bool val) override { return add(json(val)); }
-  bool number_integer(number_integer_t val) override { return add(json(val)); }
-  bool number_unsigned(number_unsigned_t val) override { return add(json(val)); }
-  bool number_float(number_float_t val, const string_t& /*token*/) override {
-    return add(json(val));
-  }
-  bool string(string_t& val) override { return add(json(std::move(val))); }
-  bool binary(binary_t& val) override { return add(json(std::move(val))); }
-
-  bool start_object(std::size_t /*elements*/) override {
-    stack_.push_back(place(json(json::value_t::object)));
-    frames_.push_back(Frame{false, {}, 0});
-    return true;
-  }
-
-  bool key(string_t& val) override {
-    json& object = *stack_.back();
-    frames_.back().key = val;
-    if (object.contains(val)) fail(source_, path(), "duplicate field");
-    object_element_ = &object[val];
-    return true;
-  }
-
-  bool end_object() override { return close(); }
-
-  bool start_array(std::size_t /*elements*/) override {
-    stack_.push_back(place(json(json::value_t::array)));
-    frames_.push_back(Frame{true, {}, 0});
-    return true;
-  }
-
-  bool end_array() override { return close(); }
-
-  bool parse_error(std::size_t position, const std::string& last_token,
-                   const json::exception& ex) override {
-    // out_of_range.406: a number literal that overflows a double (1e999). nlohmann stops here,
-    // before the value is stored, so the path of the value being read is still current.
-    if (ex.id == 406) fail(source_, path(), "must be finite, got " + last_token);
-    fail(source_, "", invalid_json_message(position, ex.what()));
-  }
-
- private:
-  struct Frame {
-    bool is_array;
-    std::string key;    // object: the key whose value is being read
-    std::size_t index;  // array: index of the element being read
-  };
-
-  // "invalid JSON at line L, column C: <reason>". `position` counts the characters read, the
-  // last of which is the offending one (or the end of the input); L and C are 1-based and point
-  // at it. The reason is nlohmann's, from its message
-  // "[json.exception.parse_error.101] parse error at line 3, column 7: <reason>".
-  std::string invalid_json_message(std::size_t position, const std::string& what) const {
-    const std::size_t at = std::min(position > 0 ? position - 1 : 0, text_.size());
-    const auto line = 1 + std::count(text_.begin(), text_.begin() + at, '\n');
-    const std::size_t newline = at == 0 ? std::string_view::npos : text_.rfind('\n', at - 1);
-    const std::size_t line_begin = newline == std::string_view::npos ? 0 : newline + 1;
-    const std::size_t column = at - line_begin + 1;
-    const auto column_at = what.find("column ");
-    const auto colon = column_at == std::string::npos ? column_at : what.find(": ", column_at);
-    const auto bracket = what.find("] ");
-    const std::string reason = colon != std::string::npos     ? what.substr(colon + 2)
-                               : bracket != std::string::npos ? what.substr(bracket + 2)
-                                                              : what;
-    return "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
-           ": " + reason;
-  }
-
-  std::string path() const {
-    std::string p;
-    for (const Frame& f : frames_) p = f.is_array ? index_path(p, f.index) : member_path(p, f.key);
-    return p;
-  }
-
-  // Stores a value at the current position and returns where it lives.
-  json* place(json value) {
-    if (stack_.empty()) {
-      root_ = std::move(value);
-      return &root_;
-    }
-    json& parent = *stack_.back();
-    if (parent.is_array()) {
-      parent.push_back(std::move(value));
-      return &parent.back();
-    }
-    *object_element_ = std::move(value);
-    return object_element_;
-  }
-
-  // A value is complete: the enclosing array moves on to its next index.
-  void finished_value() {
-    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
-  }
-
-  bool add(json value) {
-    place(std::move(value));
-    finished_value();
-    return true;
-  }
-
-  bool close() {
-    stack_.pop_back();
-    frames_.pop_back();
-    finished_value();
-    return true;
-  }
-
-  std::string_view text_;
-  const std::string& source_;
-  json root_;
-  std::vector<json*> stack_;
-  std::vector<Frame> frames_;
-  json* object_element_ = nullptr;
-};
+using namespace json_source;  // parse, fail, paths, format_number
 
 // ---------------------------------------------------------------------------------------------
 // Stage 2: schema.
@@ -374,30 +221,11 @@ class CaseSchema {
 }  // namespace
 
 Case parse_case_text(std::string_view text, const std::string& source) {
-  CaseJsonBuilder builder(text, source);
-  // strict: nothing but whitespace may follow the document; comments are not JSON.
-  json::sax_parse(text.begin(), text.end(), &builder, json::input_format_t::json, /*strict=*/true,
-                  /*ignore_comments=*/false);
-  return CaseSchema(source).read(builder.take_root());
+  return CaseSchema(source).read(json_source::parse(text, source));
 }
 
 Case read_case_file(const std::string& path) {
-  errno = 0;
-  struct Close {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-  };
-  const std::unique_ptr<std::FILE, Close> file(std::fopen(path.c_str(), "rb"));
-  auto cannot_read = [&path]() {
-    const int err = errno;
-    throw InputError(one_line(path + ": cannot read file (" +
-                              (err != 0 ? std::strerror(err) : "read error") + ")"));
-  };
-  if (!file) cannot_read();
-  std::string text;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, n);
-  if (std::ferror(file.get())) cannot_read();
+  const std::string text = json_source::read_text_file(path);
   return parse_case_text(text, path);
 }
 
