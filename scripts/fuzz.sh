@@ -28,7 +28,13 @@ case "$target" in
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"
-command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 2; }
+# clang and its libFuzzer/sanitizer runtimes, from Debian's packages, only if missing.
+for p in clang libclang-rt-14-dev; do
+  dpkg -s "$p" >/dev/null 2>&1 && continue
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "$p" >&2
+done
+command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found after installing clang" >&2; exit 2; }
 
 mkdir -p "$build"
 build_log="$build/fuzz-build.log"
