@@ -21,6 +21,8 @@
 #include <string>
 #include <string_view>
 
+#include "cli_harness.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -58,60 +60,10 @@ std::string candidate_with(std::string_view from, std::string_view to) {
   return with(kCandidate, from, to);
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A scratch directory under the system temp dir, removed on destruction.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() / ("rayint-test-bad-input-" + std::to_string(::getpid()) +
-                                        "-" + std::to_string(counter++));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(path / name, std::ios::binary) << text;
-  }
-  std::set<std::string> entries() const {
-    std::set<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.insert(e.path().filename().string());
-    return names;
-  }
-};
-
-struct CliRun {
-  int status = -1;  // exit status, or 128 + signal
-  std::string out, err;
-};
-
-// Runs the real rayint binary with `args` (shell syntax) in `dir`; stdout and stderr are captured
-// outside `dir`, so that `dir` shows exactly what rayint left there.
-CliRun run_cli(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir.parent_path() / (dir.filename().string() + ".stdout");
-  const fs::path err = dir.parent_path() / (dir.filename().string() + ".stderr");
-  const std::string cmd = "cd '" + dir.string() + "' && '" RAYINT_CLI_PATH "' " + args + " >'" +
-                          out.string() + "' 2>'" + err.string() + "'";
-  const int raw = std::system(cmd.c_str());
-  CliRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
+using rayint::test::CliRun;
+using rayint::test::run_cli;
+using rayint::test::slurp;
+using rayint::test::TempDir;
 
 // Runs `args --output out.json` in `dir` and checks everything a bad input must give: exit 2,
 // no stdout, one stderr line starting `rayint: error: <prefix>` and containing `what`, and the

@@ -26,6 +26,7 @@
 #include "rayint/io/case_writer.hpp"
 #include "rayint/io/stress_json.hpp"
 #include "rayint/model/pieces.hpp"
+#include "cli_harness.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
@@ -33,48 +34,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() /
-           ("rayint-test-stress-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct CliRun {
-  int status = -1;  // exit status, or 128 + signal
-  std::string out, err;
-};
-
-// Runs the real rayint binary with `args` (shell syntax) in `dir`.
-CliRun run_cli(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / ".." / (dir.filename().string() + ".stdout");
-  const fs::path err = dir / ".." / (dir.filename().string() + ".stderr");
-  const std::string cmd = "cd '" + dir.string() + "' && '" RAYINT_CLI_PATH "' " + args + " >'" +
-                          out.string() + "' 2>'" + err.string() + "'";
-  const int raw = std::system(cmd.c_str());
-  CliRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
+using rayint::test::CliRun;
+using rayint::test::run_cli;
+using rayint::test::slurp;
+using rayint::test::TempDir;
 
 long lines(const std::string& s) { return static_cast<long>(std::count(s.begin(), s.end(), '\n')); }
 

@@ -1,0 +1,78 @@
+#pragma once
+// Shared by the tests that run the real `rayint` binary (RAYINT_CLI_PATH): a scratch folder
+// removed on destruction, a file reader, and one CLI run with exit status, stdout and stderr.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+namespace rayint::test {
+
+namespace fs = std::filesystem;
+
+inline std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A scratch directory under the system temp dir, removed on destruction.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    static int counter = 0;
+    path = fs::temp_directory_path() /
+           ("rayint-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name, std::ios::binary) << text;
+  }
+  // Copies cases/<name>.json of the source tree into the folder.
+  void copy_case(const std::string& name) const {
+    fs::copy_file(fs::path(RAYINT_SOURCE_DIR) / "cases" / (name + ".json"), path / (name + ".json"));
+  }
+  std::set<std::string> entries() const {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(path)) names.insert(e.path().filename().string());
+    return names;
+  }
+};
+
+struct CliRun {
+  int status = -1;  // exit status, or 128 + signal
+  std::string out, err;
+};
+
+// Runs the real rayint binary with `args` (shell syntax) in `dir`; stdout and stderr are captured
+// outside `dir`, so that `dir` shows exactly what rayint left there.
+inline CliRun run_cli(const fs::path& dir, const std::string& args) {
+  const fs::path out = dir.parent_path() / (dir.filename().string() + ".stdout");
+  const fs::path err = dir.parent_path() / (dir.filename().string() + ".stderr");
+  const std::string cmd = "cd '" + dir.string() + "' && '" RAYINT_CLI_PATH "' " + args + " >'" +
+                          out.string() + "' 2>'" + err.string() + "'";
+  const int raw = std::system(cmd.c_str());
+  CliRun r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+}  // namespace rayint::test
