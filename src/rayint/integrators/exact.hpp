@@ -38,8 +38,7 @@ class ExactIntegrator final : public RayIntegrator {
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
-  const TransferFunctions& tf_;
-  std::vector<double> breakpoints_;
+  PieceSplitter splitter_;
 };
 
 }  // namespace rayint

@@ -72,7 +72,7 @@ OdeOptions ode_options(const MethodSpec& spec) {
 }
 
 OdeIntegrator::OdeIntegrator(const TransferFunctions& tf, const OdeOptions& options)
-    : tf_(tf), opt_(options), breakpoints_(tf.breakpoints()) {}
+    : splitter_(tf), opt_(options) {}
 
 RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   auto stepper = odeint::make_controlled(opt_.atol, opt_.rtol, odeint::runge_kutta_dopri5<State>());
@@ -80,10 +80,8 @@ RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   for (int c = 0; c < kChannels; ++c) x[c] = ray.background[c];
   long accepted = 0, rejected = 0, n_pieces = 0;
   const char* failed = nullptr;  // why the integration stopped early, if it did
-  thread_local std::vector<Piece> pieces;
   for (const auto& seg : ray.segments) {
-    pieces.clear();
-    append_pieces(tf_, seg, breakpoints_, pieces);
+    const std::vector<Piece>& pieces = splitter_.pieces(seg);
     for (const auto& piece : pieces) {
       ++n_pieces;
       const double L = piece.length;

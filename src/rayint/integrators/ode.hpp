@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/model/pieces.hpp"
 
 namespace rayint {
 
@@ -24,9 +25,8 @@ class OdeIntegrator final : public RayIntegrator {
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
-  const TransferFunctions& tf_;
+  PieceSplitter splitter_;
   OdeOptions opt_;
-  std::vector<double> breakpoints_;
 };
 
 }  // namespace rayint

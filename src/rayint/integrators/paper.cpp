@@ -67,16 +67,14 @@ double paper_transmittance(const PaperInterval& iv) {
 }
 
 PaperIntegrator::PaperIntegrator(const TransferFunctions& tf)
-    : tf_(tf), breakpoints_(tf.breakpoints()) {}
+    : splitter_(tf) {}
 
 RayResult PaperIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   RayResult r;
   r.intensity = ray.background;
   r.transmittance = {1.0, 1.0, 1.0};
-  thread_local std::vector<Piece> pieces;
   for (const auto& seg : ray.segments) {
-    pieces.clear();
-    append_pieces(tf_, seg, breakpoints_, pieces);
+    const std::vector<Piece>& pieces = splitter_.pieces(seg);
     // Eq. 13: S(t) = v + w t, t measured from where the ray enters the cell (segment).
     const double v = seg.scalar_far;
     const double w = (seg.scalar_near - seg.scalar_far) / seg.length;

@@ -3,6 +3,7 @@
 // the q2 = 0 expression, in the paper's variables (t measured from the cell entry). Kept to show
 // where the printed formula overflows or cancels; non-finite results are returned as they come.
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/model/pieces.hpp"
 
 namespace rayint {
 
@@ -22,8 +23,7 @@ class PaperIntegrator final : public RayIntegrator {
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
-  const TransferFunctions& tf_;
-  std::vector<double> breakpoints_;
+  PieceSplitter splitter_;
 };
 
 }  // namespace rayint

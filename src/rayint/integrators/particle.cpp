@@ -54,7 +54,7 @@ std::string particle_model_mismatch(const TransferFunctions& tf) {
 }
 
 ParticleIntegrator::ParticleIntegrator(const TransferFunctions& tf)
-    : tf_(tf), breakpoints_(tf.breakpoints()) {
+    : splitter_(tf) {
   const std::string why = particle_model_mismatch(tf);
   if (!why.empty())
     throw std::invalid_argument("particle: needs a single transfer function: " + why);
@@ -62,12 +62,10 @@ ParticleIntegrator::ParticleIntegrator(const TransferFunctions& tf)
 }
 
 RayResult ParticleIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
-  thread_local std::vector<Piece> pieces;
   double R = 0.0;  // int rho along the whole ray
   long n_pieces = 0;
   for (const auto& seg : ray.segments) {
-    pieces.clear();
-    append_pieces(tf_, seg, breakpoints_, pieces);
+    const std::vector<Piece>& pieces = splitter_.pieces(seg);
     for (const auto& p : pieces) R += 0.5 * (p.rho_far[0] + p.rho_exit[0]) * p.length;
     n_pieces += static_cast<long>(pieces.size());
   }

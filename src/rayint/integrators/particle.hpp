@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/model/pieces.hpp"
 
 namespace rayint {
 
@@ -19,8 +20,7 @@ class ParticleIntegrator final : public RayIntegrator {
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
-  const TransferFunctions& tf_;
-  std::vector<double> breakpoints_;
+  PieceSplitter splitter_;
   Rgb kappa_{};  // the constant particle colour per channel
 };
 

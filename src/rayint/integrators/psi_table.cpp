@@ -143,8 +143,7 @@ PsiTable::Value PsiTable::lookup(double tau_front_D, double tau_back_D,
 
 PsiTableIntegrator::PsiTableIntegrator(const TransferFunctions& tf, int size,
                                        table::Lookup lookup)
-    : tf_(tf),
-      breakpoints_(tf.breakpoints()),
+    : splitter_(tf),
       lookup_(lookup),
       table_(PsiTable::shared(size, lookup)) {}
 
@@ -152,13 +151,11 @@ RayResult PsiTableIntegrator::integrate(const Ray& ray, Diagnostics* diag) const
   RayResult r;
   r.intensity = ray.background;
   r.transmittance = {1.0, 1.0, 1.0};
-  thread_local std::vector<Piece> pieces;
   long lookups = 0, clamped = 0, transparent = 0;
   const double psi_error = diag ? table_->max_error(lookup_) : 0.0;
   Rgb bound{0.0, 0.0, 0.0};  // composited like the intensity; only kept when diag is set
   for (const auto& seg : ray.segments) {
-    pieces.clear();
-    append_pieces(tf_, seg, breakpoints_, pieces);
+    const std::vector<Piece>& pieces = splitter_.pieces(seg);
     for (const Piece& piece : pieces) {
       for (int c = 0; c < kChannels; ++c) {
         const double x_front = piece.rho_exit[c] * piece.length;

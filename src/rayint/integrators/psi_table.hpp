@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/model/pieces.hpp"
 #include "rayint/integrators/table_grid.hpp"
 
 namespace rayint {
@@ -52,8 +53,7 @@ class PsiTableIntegrator final : public RayIntegrator {
   const PsiTable& table() const { return *table_; }
 
  private:
-  const TransferFunctions& tf_;
-  std::vector<double> breakpoints_;
+  PieceSplitter splitter_;
   table::Lookup lookup_;
   std::shared_ptr<const PsiTable> table_;
 };

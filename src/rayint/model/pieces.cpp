@@ -59,4 +59,14 @@ std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray) {
   return pieces;
 }
 
+
+PieceSplitter::PieceSplitter(const TransferFunctions& tf) : tf_(&tf), breakpoints_(tf.breakpoints()) {}
+
+const std::vector<Piece>& PieceSplitter::pieces(const Segment& segment) const {
+  thread_local std::vector<Piece> buffer;
+  buffer.clear();
+  append_pieces(*tf_, segment, breakpoints_, buffer);
+  return buffer;
+}
+
 }  // namespace rayint

@@ -37,4 +37,18 @@ void append_pieces(const TransferFunctions& tf, const Segment& segment,
 
 std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray);
 
+// What every piece-wise integrator needs: the transfer functions' breakpoints, collected once,
+// and the pieces of one segment at a time. pieces() returns a per-thread buffer that stays valid
+// until the next pieces() call on the same thread (no allocation per segment in timing loops).
+class PieceSplitter {
+ public:
+  explicit PieceSplitter(const TransferFunctions& tf);
+  const std::vector<Piece>& pieces(const Segment& segment) const;
+  const TransferFunctions& transfer() const { return *tf_; }
+
+ private:
+  const TransferFunctions* tf_;
+  std::vector<double> breakpoints_;
+};
+
 }  // namespace rayint
