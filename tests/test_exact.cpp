@@ -11,23 +11,16 @@
 #include "rayint/integrators/paper.hpp"
 #include "rayint/reference/reference.hpp"
 #include "tolerances.hpp"
+#include "transfer_builders.hpp"
 
 using namespace rayint;
 using rayint::test::Tolerances;
 
 namespace {
 
-PiecewiseLinear line(double s0, double v0, double s1, double v1) { return {{s0, s1}, {v0, v1}}; }
-PiecewiseLinear constant(double v) { return {{0.0}, {v}}; }
-
-TransferFunctions uniform_tf(const PiecewiseLinear& rho, const PiecewiseLinear& kappa) {
-  TransferFunctions tf;
-  for (int c = 0; c < kChannels; ++c) {
-    tf.density[c] = rho;
-    tf.color[c] = kappa;
-  }
-  return tf;
-}
+using rayint::test::constant;
+using rayint::test::line;
+using rayint::test::uniform_tf;
 
 // Passes if relative error <= rel, or absolute error <= Tolerances::exact_abs_underflow where
 // the reference value is itself below the underflow threshold.

@@ -20,6 +20,7 @@
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/reference/reference.hpp"
 #include "tolerances.hpp"
+#include "transfer_builders.hpp"
 
 using namespace rayint;
 using rayint::test::MethodTolerances;
@@ -27,8 +28,8 @@ using rayint::test::Tolerances;
 
 namespace {
 
-PiecewiseLinear line(double s0, double v0, double s1, double v1) { return {{s0, s1}, {v0, v1}}; }
-PiecewiseLinear constant(double v) { return {{0.0}, {v}}; }
+using rayint::test::constant;
+using rayint::test::line;
 
 std::unique_ptr<RayIntegrator> make(const std::string& spec, const TransferFunctions& tf) {
   return make_integrator(parse_method_spec(spec), tf);
