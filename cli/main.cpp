@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   rayint::cli::set_stress_command(app);
   rayint::cli::set_gate_command(app);
   rayint::cli::set_check_command(app);
+  rayint::cli::set_render_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

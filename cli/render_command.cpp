@@ -1,0 +1,39 @@
+// `rayint render FILE.json -o image.png`: a mesh case (issue: meshes) or a scene (issue: scenes).
+// The file's top-level keys decide which: a scene names its "effects"; a mesh case has a "mesh"
+// or "mesh_file". Each kind has its own file (render_mesh.cpp, render_scene.cpp).
+#include <string>
+
+#include "commands.hpp"
+#include "render_kinds.hpp"
+#include "rayint/io/case_reader.hpp"
+#include "rayint/io/json_source.hpp"
+
+namespace rayint::cli {
+
+void set_render_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("render", "Render a mesh case or a scene to a PNG image");
+  auto opts = std::make_shared<RenderOptions>();
+  cmd->add_option("file", opts->input, "mesh case or scene JSON")->required();
+  cmd->add_option("-o,--output", opts->output, "PNG image to write")->required();
+  cmd->add_option("--compare", opts->compare,
+                  "method to compare against the exact/reference image (error heat map)");
+  cmd->add_option("--stats", opts->stats_path, "write statistics / per-effect costs as JSON here");
+  cmd->add_option("--exposure", opts->exposure, "radiance multiplier before 8-bit encoding")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", opts->threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");
+  cmd->callback([opts] {
+    const nlohmann::json root =
+        json_source::parse(json_source::read_text_file(opts->input), opts->input);
+    if (root.is_object() && (root.contains("effects") || root.contains("medium")))
+      render_scene_file(root, *opts);
+    else if (root.is_object() && (root.contains("mesh") || root.contains("mesh_file")))
+      render_mesh_file(root, *opts);
+    else
+      throw InputError(opts->input +
+                       ": (root): not a renderable file (a scene has \"effects\", a mesh case has "
+                       "\"mesh\" or \"mesh_file\")");
+  });
+}
+
+}  // namespace rayint::cli

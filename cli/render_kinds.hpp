@@ -1,0 +1,21 @@
+#pragma once
+// The two kinds of file `rayint render` draws; render_command.cpp dispatches between them.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace rayint::cli {
+
+struct RenderOptions {
+  std::string input;
+  std::string output;
+  std::string compare;     // method name (+ knobs); empty: no comparison
+  std::string stats_path;  // JSON statistics; empty: none
+  double exposure = 1.0;
+  unsigned threads = 0;
+  bool quiet = false;
+};
+
+void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);   // render_mesh.cpp
+void render_scene_file(const nlohmann::json& root, const RenderOptions& options);  // render_scene.cpp
+
+}  // namespace rayint::cli

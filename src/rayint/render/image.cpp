@@ -1,0 +1,96 @@
+#include "rayint/render/image.hpp"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include "rayint/io/atomic_file.hpp"
+#include "rayint/io/case_reader.hpp"  // InputError
+
+namespace rayint {
+
+Image::Image(int w, int h, Rgb fill)
+    : width(w), height(h), pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
+
+Rgb Image::sample(double u, double v) const {
+  if (width == 0 || height == 0) return Rgb{0.0, 0.0, 0.0};
+  const double fx = std::clamp(u * width - 0.5, 0.0, width - 1.0);
+  const double fy = std::clamp(v * height - 0.5, 0.0, height - 1.0);
+  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+  const double ax = fx - x0, ay = fy - y0;
+  Rgb out{};
+  for (int c = 0; c < 3; ++c) {
+    const double top = (1 - ax) * at(x0, y0)[c] + ax * at(x1, y0)[c];
+    const double bottom = (1 - ax) * at(x0, y1)[c] + ax * at(x1, y1)[c];
+    out[c] = (1 - ay) * top + ay * bottom;
+  }
+  return out;
+}
+
+double srgb_encode(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+}
+
+double srgb_decode(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
+}
+
+std::string encode_png(const Image& image, const PngOptions& options) {
+  if (image.width < 1 || image.height < 1) throw std::runtime_error("encode_png: empty image");
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      double v = image.pixels[i][c] * options.exposure;
+      if (!std::isfinite(v)) v = 0.0;  // a NaN pixel shows black rather than poisoning the file
+      v = options.srgb ? srgb_encode(v) : std::clamp(v, 0.0, 1.0);
+      rgb[3 * i + c] = static_cast<std::uint8_t>(std::lround(v * 255.0));
+    }
+  }
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width);
+  png.height = static_cast<png_uint_32>(image.height);
+  png.format = PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, rgb.data(), 0, nullptr))
+    throw std::runtime_error(std::string("PNG encoding failed: ") + png.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, rgb.data(), 0, nullptr))
+    throw std::runtime_error(std::string("PNG encoding failed: ") + png.message);
+  bytes.resize(size);
+  return bytes;
+}
+
+void write_png(const std::string& path, const Image& image, const PngOptions& options) {
+  write_file_atomically(path, encode_png(image, options));
+}
+
+Image read_png(const std::string& path, bool srgb) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, path.c_str()))
+    throw InputError(path + ": cannot read PNG (" + png.message + ")");
+  png.format = PNG_FORMAT_RGB;
+  if (png.width > 16384 || png.height > 16384) {
+    png_image_free(&png);
+    throw InputError(path + ": PNG larger than 16384 x 16384");
+  }
+  std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, rgb.data(), 0, nullptr))
+    throw InputError(path + ": cannot decode PNG (" + png.message + ")");
+  Image image(static_cast<int>(png.width), static_cast<int>(png.height));
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double v = rgb[3 * i + c] / 255.0;
+      image.pixels[i][c] = srgb ? srgb_decode(v) : v;
+    }
+  return image;
+}
+
+}  // namespace rayint
