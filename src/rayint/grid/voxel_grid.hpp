@@ -1,0 +1,117 @@
+#pragma once
+// Voxel grids: scalars on the points of a regular grid, and what a viewing ray sees of them.
+//
+// Two interpolants of the same point values are offered, because the issue asks how far apart
+// they are:
+//  * trilinear (sample(), trilinear_pieces()): inside one cube the scalar is
+//    f(u, v, w) = sum_{a,b,c in {0,1}} f_abc u^a (1-u)^(1-a) ... (Williams & Max 1992, appendix,
+//    the 8-node brick); along a straight ray u, v, w are linear in t, so f is a cubic in t
+//    (the uvw term), and the closed form of Sec. 3.3 does not apply;
+//  * piecewise linear on the Freudenthal/Kuhn decomposition of every cube into 6 tetrahedra
+//    around its main diagonal (kuhn_value(), ray_segments()): inside each tetrahedron the scalar
+//    is linear (Eq. 9), so along the ray it is linear between breakpoints (Eq. 13) and the exact
+//    method applies unchanged.
+//
+// Why Kuhn and not the alternating 5-tet split: the Kuhn tetrahedra of all cubes together are
+// the cells of the hyperplane arrangement {x_i = k} and {x_i - x_j = k} (i < j, k integer, in
+// grid index coordinates x). The same 6 tets are used in every cube (no parity to track), faces
+// match between neighbours by construction (the face of a cube is split along the same face
+// diagonal from both sides), and the breakpoints along a ray are just the crossings of those
+// planes: no cell walk, no face tests, nothing that can fail for rays through edges or vertices
+// or lying in a grid plane (a plane parallel to the ray has no crossing; the interpolant is
+// continuous, so a point on a face may be evaluated from either side). The 5-tet split has
+// fewer tets but its face diagonals alternate with the cube's parity, so its breakpoints are
+// not a fixed plane arrangement. Kuhn's tets are not congruent-regular (one edge is the cube
+// diagonal) and the interpolant is not symmetric under reflections of the grid; both are
+// irrelevant for the measurements here.
+//
+// Accuracy (tests/test_voxel_grid.cpp, [grid]): segment endpoints and the scalars at them are
+// computed in double from the plane crossings. The summed segment lengths match the analytic box
+// chord to <= 2.0e-15 of the box diagonal (400 random face-to-face rays at > 3 degrees to their
+// faces; rays in grid planes, along grid lines, through vertices: within 1e-14 relative); the
+// Kuhn interpolant deviates from linear inside a segment by <= 1.3e-14 (values O(1)); the
+// trilinear cubics match sample() to <= 5.6e-15. A crossing at a grazing angle theta moves by
+// ~eps |coordinate| / sin(theta): that is the conditioning of the ray, not of this code.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "rayint/geometry/vec3.hpp"
+#include "rayint/model/poly_ray.hpp"
+#include "rayint/model/ray.hpp"
+
+namespace rayint {
+
+// [t_enter, t_exit] of a ray parameter t (point = origin + t * direction).
+struct RayInterval {
+  double t_enter = 0.0;
+  double t_exit = 0.0;
+  bool hit = false;  // false: the ray misses (t_enter, t_exit are then 0)
+  double length() const { return hit ? t_exit - t_enter : 0.0; }
+};
+
+class VoxelGrid {
+ public:
+  VoxelGrid() = default;
+  // dims: points per axis (each >= 2); spacing > 0 per axis; values in x-fastest order,
+  // index = i + nx * (j + ny * k), size nx * ny * nz. Throws std::invalid_argument otherwise.
+  VoxelGrid(std::array<int, 3> dims, Vec3 origin, Vec3 spacing, std::vector<double> values);
+
+  const std::array<int, 3>& dims() const { return dims_; }
+  const Vec3& origin() const { return origin_; }
+  const Vec3& spacing() const { return spacing_; }
+  const std::vector<double>& values() const { return values_; }
+  Vec3 lower() const { return origin_; }  // world bounds
+  Vec3 upper() const;
+  std::size_t point_count() const { return values_.size(); }
+  double value(int i, int j, int k) const {
+    return values_[static_cast<std::size_t>(i) +
+                   static_cast<std::size_t>(dims_[0]) *
+                       (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims_[1]) *
+                                                          static_cast<std::size_t>(k))];
+  }
+
+  // Trilinear interpolation at a world point. Points outside the box are clamped to it (the
+  // value on the nearest boundary point), so a renderer stepping slightly past a face reads the
+  // face value.
+  double sample(const Vec3& p) const;
+  // The piecewise linear (Kuhn, 6 tets per cube) interpolant at a world point; clamped likewise.
+  double kuhn_value(const Vec3& p) const;
+
+  // Where the ray is inside the closed box, restricted to t >= 0 (in front of the eye). Slab
+  // method; a direction component of 0 leaves that slab unrestricted when the origin lies in it
+  // (a ray in a boundary plane counts as inside). hit == false when the intersection is empty
+  // or a single point.
+  RayInterval clip(const ViewRay& ray) const;
+
+ private:
+  std::array<int, 3> dims_{{2, 2, 2}};
+  Vec3 origin_ = Vec3::Zero();
+  Vec3 spacing_ = Vec3::Ones();
+  std::vector<double> values_ = std::vector<double>(8, 0.0);
+};
+
+// The segments of the Kuhn interpolant along `ray` inside the grid, far -> near as model/ray.hpp
+// orders them, each with its world length (|direction| need not be 1) and the scalars at its
+// ends; `background` is what enters at the far end. A ray that misses gives no segments.
+// Breakpoints are never merged (merging would put a kink inside a segment): planes crossing at
+// one point (a ray through an edge or vertex) give equal t values, kept once; nearly equal ones
+// give very short segments, which cost a piece each and contribute their (tiny) share exactly.
+Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background = Rgb{});
+
+// One cube of the trilinear interpolant along a ray: the scalar is the cubic
+// f(s) = c[0] + c[1] s + c[2] s^2 + c[3] s^3 in the distance s from the far end of the piece
+// (s in [0, length], toward the eye), so that the pieces read like model/poly_ray.hpp.
+struct TrilinearPiece {
+  std::array<int, 3> cube{};  // lower-corner point index of the cube
+  double t_far = 0.0;         // ray parameters of the piece's ends (t_far > t_near)
+  double t_near = 0.0;
+  PolySegment segment;        // length and the 4 coefficients in s
+};
+
+// The cubes the ray crosses inside the grid, far -> near, with the cubic of each.
+std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRay& ray);
+// The same as a PolyRay for the polynomial reference (reference/poly_reference.hpp).
+PolyRay trilinear_ray(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background = Rgb{});
+
+}  // namespace rayint
