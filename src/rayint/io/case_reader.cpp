@@ -11,6 +11,7 @@
 
 #include "rayint/io/json_schema.hpp"
 #include "rayint/io/json_source.hpp"
+#include "rayint/io/mesh_case_reader.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -95,7 +96,13 @@ class CaseSchema {
 }  // namespace
 
 Case parse_case_text(std::string_view text, const std::string& source) {
-  return CaseSchema(source).read(json_source::parse(text, source));
+  const json root = json_source::parse(text, source);
+  if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
+    MeshCase mc = parse_mesh_case(root, source);
+    const TetTraversal mesh(mc.mesh, mc.mesh_source);
+    return trace_mesh_case(mc, mesh);
+  }
+  return CaseSchema(source).read(root);
 }
 
 Case read_case_file(const std::string& path) {

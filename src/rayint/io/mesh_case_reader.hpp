@@ -1,0 +1,19 @@
+#pragma once
+// Reading mesh cases (format: cases/README.md, "Mesh cases") through the shared JsonSchema walk.
+// The mesh is inline ("mesh": {"points", "scalars", "tets"}) or a VTK legacy file
+// ("mesh_file", relative to the case file's folder). Every problem is one InputError line naming
+// the file and the field (or, for a .vtk file, the file and its section).
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "rayint/mesh/mesh_case.hpp"
+
+namespace rayint {
+
+// True when `root` is a mesh case (an object with "mesh" or "mesh_file").
+bool is_mesh_case(const nlohmann::json& root);
+
+MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source);
+MeshCase read_mesh_case_file(const std::string& path);
+
+}  // namespace rayint

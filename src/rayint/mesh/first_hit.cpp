@@ -1,0 +1,105 @@
+// Embree-backed first hit on the mesh boundary (see first_hit.hpp).
+#include "rayint/mesh/first_hit.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rayint {
+
+struct BoundaryFirstHit::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+struct FilterContext {
+  RTCIntersectContext base;  // first member: Embree passes a pointer to it
+  BoundaryFirstHit::Filter filter;
+  const void* user;
+};
+
+void intersect_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* ctx = reinterpret_cast<const FilterContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned face = RTCHitN_primID(args->hit, args->N, i);
+    if (!ctx->filter(ctx->user, face)) args->valid[i] = 0;
+  }
+}
+
+[[noreturn]] void embree_failed(RTCDevice device, const char* what) {
+  throw std::runtime_error(std::string("Embree: ") + what + " failed (error " +
+                           std::to_string(static_cast<int>(rtcGetDeviceError(device))) + ")");
+}
+
+}  // namespace
+
+BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
+                                   const std::vector<std::array<std::int32_t, 3>>& faces)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->device = rtcNewDevice("threads=1");  // build only; queries run on the caller's threads
+  if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  if (!faces.empty()) {
+    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), points.size()));
+    if (!v) embree_failed(impl_->device, "vertex buffer");
+    for (std::size_t i = 0; i < points.size(); ++i)
+      for (int k = 0; k < 3; ++k) v[3 * i + static_cast<std::size_t>(k)] = static_cast<float>(points[i][k]);
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), faces.size()));
+    if (!idx) embree_failed(impl_->device, "index buffer");
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      for (std::size_t k = 0; k < 3; ++k) idx[3 * f + k] = static_cast<unsigned>(faces[f][k]);
+    rtcSetGeometryIntersectFilterFunction(geom, intersect_filter);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(impl_->scene);
+  if (rtcGetDeviceError(impl_->device) != RTC_ERROR_NONE) embree_failed(impl_->device, "scene build");
+}
+
+BoundaryFirstHit::~BoundaryFirstHit() = default;
+
+std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, double t_near,
+                                     double t_far, Filter filter, const void* user) const {
+  FilterContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.filter = filter;
+  ctx.user = user;
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(origin.x());
+  rh.ray.org_y = static_cast<float>(origin.y());
+  rh.ray.org_z = static_cast<float>(origin.z());
+  rh.ray.dir_x = static_cast<float>(direction.x());
+  rh.ray.dir_y = static_cast<float>(direction.y());
+  rh.ray.dir_z = static_cast<float>(direction.z());
+  rh.ray.tnear = static_cast<float>(std::max(0.0, t_near));
+  rh.ray.tfar = std::isfinite(t_far) && t_far < 3e38 ? static_cast<float>(t_far)
+                                                      : std::numeric_limits<float>::infinity();
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx.base, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+  return static_cast<std::int64_t>(rh.hit.primID);
+}
+
+}  // namespace rayint

@@ -1,0 +1,43 @@
+#pragma once
+// First hit of a ray on the boundary of a tetrahedral mesh: Embree 3 (Debian's libembree-dev)
+// over the boundary faces, in its robust (watertight) mode.
+//
+// Embree intersects in single precision, so it only proposes a face; the decision is taken in
+// double precision by the caller's filter (TetTraversal passes one that recomputes the crossing
+// parameter from the face's own plane and accepts only entering faces at or beyond a bound).
+// Consequence, documented in cases/README.md: whether a ray that passes within ~1e-7 x the scene
+// size of a boundary edge of the mesh's silhouette hits the adjacent face or not is decided in
+// single precision.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "rayint/geometry/vec3.hpp"
+
+namespace rayint {
+
+class BoundaryFirstHit {
+ public:
+  // Accepts or rejects a proposed boundary face (index into the faces given to the constructor).
+  using Filter = bool (*)(const void* user, std::uint32_t face);
+
+  // points: all mesh points; faces: boundary triangles as point indices.
+  BoundaryFirstHit(const std::vector<Vec3>& points,
+                   const std::vector<std::array<std::int32_t, 3>>& faces);
+  ~BoundaryFirstHit();
+  BoundaryFirstHit(const BoundaryFirstHit&) = delete;
+  BoundaryFirstHit& operator=(const BoundaryFirstHit&) = delete;
+
+  // The closest face with Embree parameter in [t_near, t_far] that `filter` accepts; -1 if none.
+  // Thread-safe.
+  std::int64_t first(const Vec3& origin, const Vec3& direction, double t_near, double t_far,
+                     Filter filter, const void* user) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rayint

@@ -1,0 +1,63 @@
+// Cell, vertex-averaged and inverse-distance-weighted gradients (Williams & Max Sec. 3.2; see
+// gradients.hpp).
+#include "rayint/mesh/gradients.hpp"
+
+#include <Eigen/LU>
+#include <stdexcept>
+
+namespace rayint {
+
+std::string gradient_mode_name(GradientMode mode) {
+  switch (mode) {
+    case GradientMode::cell: return "cell";
+    case GradientMode::vertex_average: return "vertex_average";
+    case GradientMode::inverse_distance: return "inverse_distance";
+  }
+  return "cell";
+}
+
+GradientMode parse_gradient_mode(const std::string& name) {
+  if (name == "cell") return GradientMode::cell;
+  if (name == "vertex_average") return GradientMode::vertex_average;
+  if (name == "inverse_distance") return GradientMode::inverse_distance;
+  throw std::invalid_argument("must be \"cell\", \"vertex_average\" or \"inverse_distance\", got \"" + name + "\"");
+}
+
+std::array<double, 4> barycentric(const TetMesh& mesh, std::size_t cell, const Vec3& p) {
+  const auto& t = mesh.tets[cell];
+  const Vec3& x0 = mesh.points[t[0]];
+  Eigen::Matrix3d e;
+  for (int k = 0; k < 3; ++k) e.col(k) = mesh.points[t[static_cast<std::size_t>(k + 1)]] - x0;
+  const Vec3 l = e.fullPivLu().solve(p - x0);
+  return {1.0 - l[0] - l[1] - l[2], l[0], l[1], l[2]};
+}
+
+GradientField::GradientField(const TetTraversal& mesh, GradientMode mode) : mesh_(&mesh), mode_(mode) {
+  if (mode == GradientMode::cell) return;
+  const TetMesh& m = mesh.mesh();
+  vertex_.assign(m.points.size(), Vec3::Zero());
+  std::vector<double> weight(m.points.size(), 0.0);
+  for (std::size_t c = 0; c < m.tets.size(); ++c) {
+    Vec3 centroid = Vec3::Zero();
+    for (auto i : m.tets[c]) centroid += m.points[i];
+    centroid /= 4.0;
+    const Vec3& g = mesh.field(c).gradient;
+    for (auto i : m.tets[c]) {
+      const double wgt = mode == GradientMode::vertex_average ? 1.0 : 1.0 / (centroid - m.points[i]).norm();
+      vertex_[i] += wgt * g;
+      weight[i] += wgt;
+    }
+  }
+  for (std::size_t i = 0; i < vertex_.size(); ++i)
+    if (weight[i] > 0.0) vertex_[i] /= weight[i];
+}
+
+Vec3 GradientField::at(std::size_t cell, const Vec3& p) const {
+  if (mode_ == GradientMode::cell) return mesh_->field(cell).gradient;
+  const auto l = barycentric(mesh_->mesh(), cell, p);
+  Vec3 g = Vec3::Zero();
+  for (std::size_t k = 0; k < 4; ++k) g += l[k] * vertex_[mesh_->mesh().tets[cell][k]];
+  return g;
+}
+
+}  // namespace rayint

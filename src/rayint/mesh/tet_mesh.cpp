@@ -1,0 +1,83 @@
+// Validation of tetrahedral meshes (see tet_mesh.hpp for the checks and the orientation rule).
+#include "rayint/mesh/tet_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "rayint/io/case_reader.hpp"  // InputError
+#include "rayint/io/json_source.hpp"  // format_number
+
+namespace rayint {
+namespace {
+
+[[noreturn]] void fail(const std::string& source, const std::string& field, const std::string& what) {
+  throw InputError(source + ": " + field + ": " + what);
+}
+
+std::string at(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
+
+}  // namespace
+
+double signed_volume6(const TetMesh& mesh, std::size_t tet) {
+  const auto& t = mesh.tets[tet];
+  const Vec3& p0 = mesh.points[t[0]];
+  return (mesh.points[t[1]] - p0).cross(mesh.points[t[2]] - p0).dot(mesh.points[t[3]] - p0);
+}
+
+std::size_t reorient_tets(TetMesh& mesh) {
+  std::size_t swapped = 0;
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    if (signed_volume6(mesh, i) < 0.0) {
+      std::swap(mesh.tets[i][2], mesh.tets[i][3]);
+      ++swapped;
+    }
+  }
+  return swapped;
+}
+
+void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const MeshFieldNames& names) {
+  if (mesh.points.empty()) fail(source, names.points, "no points");
+  if (mesh.tets.empty()) fail(source, names.tets, "no tetrahedra");
+  if (mesh.scalars.size() != mesh.points.size())
+    fail(source, names.scalars,
+         std::to_string(mesh.scalars.size()) + " scalars for " + std::to_string(mesh.points.size()) +
+             " points (need one per point)");
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(mesh.points[i][k]))
+        fail(source, at(at(names.points, i), static_cast<std::size_t>(k)),
+             "coordinate must be finite, got " + json_source::format_number(mesh.points[i][k]));
+  for (std::size_t i = 0; i < mesh.scalars.size(); ++i)
+    if (!std::isfinite(mesh.scalars[i]))
+      fail(source, at(names.scalars, i),
+           "must be finite, got " + json_source::format_number(mesh.scalars[i]));
+  const auto n = static_cast<long long>(mesh.points.size());
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    const auto& t = mesh.tets[i];
+    for (std::size_t k = 0; k < 4; ++k)
+      if (t[k] < 0 || t[k] >= n)
+        fail(source, at(at(names.tets, i), k),
+             "point index " + std::to_string(t[k]) + " out of range [0, " + std::to_string(n) + ")");
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = a + 1; b < 4; ++b)
+        if (t[a] == t[b])
+          fail(source, at(names.tets, i),
+               "degenerate tetrahedron: point " + std::to_string(t[a]) + " appears twice");
+    const double v6 = signed_volume6(mesh, i);
+    double longest = 0.0;
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = a + 1; b < 4; ++b)
+        longest = std::max(longest, (mesh.points[t[a]] - mesh.points[t[b]]).norm());
+    if (!(std::fabs(v6) > kDegenerateTetRatio * longest * longest * longest))
+      fail(source, at(names.tets, i),
+           "degenerate tetrahedron (volume " + json_source::format_number(v6 / 6.0) +
+               ", flat or with coincident points)");
+    if (v6 < 0.0)
+      fail(source, at(names.tets, i),
+           "inverted tetrahedron (negative volume " + json_source::format_number(v6 / 6.0) +
+               "); order points so that (p1-p0)x(p2-p0).(p3-p0) > 0, as VTK does");
+  }
+}
+
+}  // namespace rayint

@@ -1,0 +1,327 @@
+// Ray traversal of a tetrahedral mesh (see tet_traversal.hpp for the method and its robustness
+// rules, numbered 1-4 below as there).
+#include "rayint/mesh/tet_traversal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "rayint/io/case_reader.hpp"  // InputError
+#include "rayint/mesh/first_hit.hpp"
+
+namespace rayint {
+
+void TraversalStats::add(const TraversalStats& o) {
+  rays += o.rays;
+  crossings += o.crossings;
+  face_steps += o.face_steps;
+  zero_length_steps += o.zero_length_steps;
+  star_searches += o.star_searches;
+  first_hit_queries += o.first_hit_queries;
+  budget_exhausted += o.budget_exhausted;
+}
+
+namespace {
+// Local face k of a tet is the one opposite point k.
+constexpr std::array<std::array<int, 3>, 4> kFacePoints{{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
+}  // namespace
+
+TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std::move(mesh)) {
+  const std::size_t n = mesh_.tets.size();
+  // Faces: sort (sorted point triple, tet, k) records and merge equal triples.
+  struct Rec {
+    std::array<std::int32_t, 3> key;
+    std::int32_t tet;
+    std::int8_t k;
+  };
+  std::vector<Rec> recs;
+  recs.reserve(4 * n);
+  for (std::size_t t = 0; t < n; ++t)
+    for (int k = 0; k < 4; ++k) {
+      Rec r{};
+      for (int j = 0; j < 3; ++j) r.key[static_cast<std::size_t>(j)] = mesh_.tets[t][static_cast<std::size_t>(kFacePoints[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)])];
+      std::sort(r.key.begin(), r.key.end());
+      r.tet = static_cast<std::int32_t>(t);
+      r.k = static_cast<std::int8_t>(k);
+      recs.push_back(r);
+    }
+  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
+    return std::tie(a.key, a.tet) < std::tie(b.key, b.tet);
+  });
+  cell_faces_.assign(n, {-1, -1, -1, -1});
+  cell_signs_.assign(n, {0, 0, 0, 0});
+  for (std::size_t i = 0; i < recs.size();) {
+    std::size_t j = i + 1;
+    while (j < recs.size() && recs[j].key == recs[i].key) ++j;
+    if (j - i > 2)
+      throw InputError(source + ": tets[" + std::to_string(recs[i + 2].tet) + "]: face (" +
+                       std::to_string(recs[i].key[0]) + ", " + std::to_string(recs[i].key[1]) + ", " +
+                       std::to_string(recs[i].key[2]) + ") is shared by more than two tetrahedra (also tets[" +
+                       std::to_string(recs[i].tet) + "] and tets[" + std::to_string(recs[i + 1].tet) + "])");
+    Face f;
+    f.points = recs[i].key;
+    const Vec3& a = mesh_.points[f.points[0]];
+    f.normal = (mesh_.points[f.points[1]] - a).cross(mesh_.points[f.points[2]] - a);
+    const auto id = static_cast<std::int32_t>(faces_.size());
+    for (std::size_t r = i; r < j; ++r) {
+      const auto t = static_cast<std::size_t>(recs[r].tet);
+      const auto k = static_cast<std::size_t>(recs[r].k);
+      const Vec3& opposite = mesh_.points[mesh_.tets[t][k]];
+      cell_faces_[t][k] = id;
+      cell_signs_[t][k] = f.normal.dot(opposite - a) < 0.0 ? std::int8_t{1} : std::int8_t{-1};
+      f.cells[r - i] = recs[r].tet;
+    }
+    if (j - i == 2) {
+      const auto t0 = static_cast<std::size_t>(f.cells[0]), t1 = static_cast<std::size_t>(f.cells[1]);
+      if (cell_signs_[t0][static_cast<std::size_t>(recs[i].k)] == cell_signs_[t1][static_cast<std::size_t>(recs[i + 1].k)])
+        throw InputError(source + ": tets[" + std::to_string(t1) + "]: overlaps tets[" + std::to_string(t0) +
+                         "] (both lie on the same side of their shared face)");
+    } else {
+      boundary_.push_back(id);
+    }
+    faces_.push_back(f);
+    i = j;
+  }
+  // Eq. 9 per cell.
+  fields_.resize(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    std::array<Vec3, 4> x;
+    std::array<double, 4> s{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      x[k] = mesh_.points[mesh_.tets[t][k]];
+      s[k] = mesh_.scalars[mesh_.tets[t][k]];
+    }
+    fields_[t] = fit_linear_tet(x, s);
+  }
+  box_min_ = box_max_ = mesh_.points.front();
+  for (const Vec3& p : mesh_.points) {
+    box_min_ = box_min_.cwiseMin(p);
+    box_max_ = box_max_.cwiseMax(p);
+  }
+  diagonal_ = (box_max_ - box_min_).norm();
+  std::vector<std::array<std::int32_t, 3>> tris;
+  tris.reserve(boundary_.size());
+  for (std::int32_t f : boundary_) {
+    // Embree needs no particular winding (the filter decides entering vs leaving).
+    tris.push_back(faces_[static_cast<std::size_t>(f)].points);
+  }
+  first_hit_ = std::make_unique<BoundaryFirstHit>(mesh_.points, tris);
+}
+
+TetTraversal::~TetTraversal() = default;
+
+std::int32_t TetTraversal::neighbor(std::size_t cell, int k) const {
+  const Face& f = faces_[static_cast<std::size_t>(cell_faces_[cell][static_cast<std::size_t>(k)])];
+  const auto c = static_cast<std::int32_t>(cell);
+  return f.cells[0] == c ? f.cells[1] : f.cells[0];
+}
+
+struct TetTraversal::Walk {
+  Vec3 o, d;
+  double t_lo = 0.0;  // re-entry filter bound
+  bool strict = false;
+  const TetTraversal* self = nullptr;
+};
+
+// Rule 1: the crossing parameter of face f, the same double whichever cell asks.
+double TetTraversal::crossing(const Walk& w, std::int32_t f) const {
+  const Face& face = faces_[static_cast<std::size_t>(f)];
+  return face.normal.dot(mesh_.points[face.points[0]] - w.o) / face.normal.dot(w.d);
+}
+
+struct FirstHitFilterAccess {
+  // Rule 4: accept an entering boundary face at t_f >= t_lo (or > t_lo when strict).
+  static bool accept(const void* user, std::uint32_t prim) {
+    const auto* w = static_cast<const TetTraversal::Walk*>(user);
+    const TetTraversal& m = *w->self;
+    const std::int32_t f = m.boundary_[prim];
+    const TetTraversal::Face& face = m.faces_[static_cast<std::size_t>(f)];
+    const auto cell = static_cast<std::size_t>(face.cells[0]);
+    int k = 0;
+    while (m.cell_faces_[cell][static_cast<std::size_t>(k)] != f) ++k;
+    const double dn = m.cell_signs_[cell][static_cast<std::size_t>(k)] * face.normal.dot(w->d);
+    if (!(dn < 0.0)) return false;  // leaving or parallel
+    const double t = m.crossing(*w, f);
+    return w->strict ? t > w->t_lo : t >= w->t_lo;
+  }
+};
+
+// Rule 3: the cell around p = o + t d that the ray continues into.
+bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::int32_t& cell,
+                               double& t_out) const {
+  const Vec3 p = w.o + t * w.d;
+  const double tol = kStarTolerance * diagonal_;
+  const double tol_t = kStarTolerance * (diagonal_ + std::fabs(t));
+  std::vector<std::int32_t> queue{from};
+  std::vector<std::int32_t> seen{from};
+  constexpr std::size_t kMaxStar = 4096;
+  bool found = false;
+  double best = t;
+  for (std::size_t q = 0; q < queue.size() && q < kMaxStar; ++q) {
+    const auto c = static_cast<std::size_t>(queue[q]);
+    bool holds = true;
+    double ta = -std::numeric_limits<double>::infinity(), tb = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Face& face = faces_[static_cast<std::size_t>(cell_faces_[c][k])];
+      const double s = cell_signs_[c][k];
+      const double dist = s * face.normal.dot(p - mesh_.points[face.points[0]]) / face.normal.norm();
+      if (dist > tol) holds = false;
+      const double dn = s * face.normal.dot(w.d);
+      if (dn > 0.0) tb = std::min(tb, crossing(w, cell_faces_[c][k]));
+      else if (dn < 0.0) ta = std::max(ta, crossing(w, cell_faces_[c][k]));
+    }
+    if (!holds && q > 0) continue;
+    if (ta <= t + tol_t && tb > best) {
+      best = tb;
+      cell = static_cast<std::int32_t>(c);
+      found = true;
+    }
+    if (!holds) continue;
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t nb = neighbor(c, k);
+      if (nb >= 0 && std::find(seen.begin(), seen.end(), nb) == seen.end()) {
+        seen.push_back(nb);
+        queue.push_back(nb);
+      }
+    }
+  }
+  t_out = best;
+  return found;
+}
+
+void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats) const {
+  out.crossings.clear();
+  TraversalStats local;
+  local.rays = 1;
+  Vec3 d = ray.direction;
+  const double dnorm = d.norm();
+  if (dnorm > 0.0 && std::isfinite(dnorm)) d /= dnorm;
+  out.direction = d;
+  // Ray against the bounding box (slabs), to move the walk's origin just outside it.
+  double tb0 = -std::numeric_limits<double>::infinity(), tb1 = std::numeric_limits<double>::infinity();
+  const double pad = 1e-6 * diagonal_ + 1e-300;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = box_min_[k] - pad, hi = box_max_[k] + pad;
+    if (d[k] == 0.0) {
+      if (ray.origin[k] < lo || ray.origin[k] > hi) tb1 = -1.0;
+    } else {
+      double a = (lo - ray.origin[k]) / d[k], b = (hi - ray.origin[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      tb0 = std::max(tb0, a);
+      tb1 = std::min(tb1, b);
+    }
+  }
+  out.origin = ray.origin;
+  out.t_eye = 0.0;
+  if (!(tb1 >= std::max(tb0, 0.0)) || !(dnorm > 0.0)) {
+    if (stats) stats->add(local);
+    return;
+  }
+  const double t_base = tb0 - 0.01 * diagonal_;  // walk origin: just outside the box
+  out.origin = ray.origin + t_base * d;
+  out.t_eye = -t_base;  // > 0 when the eye is inside the box: clip there
+  Walk w;
+  w.o = out.origin;
+  w.d = d;
+  w.self = this;
+  const double t_end = tb1 - t_base + 0.01 * diagonal_;
+  const long budget = 8 * static_cast<long>(mesh_.tets.size()) + 1000;
+  long steps = 0;
+  double t = 0.0;
+  auto emit = [&](std::int32_t cell, double t_in, double t_out) {
+    double a = std::max(t_in, out.t_eye);
+    if (!(t_out > a)) return;
+    const LinearTetField& f = fields_[static_cast<std::size_t>(cell)];
+    const Eq13 e = ray_parameters(f, w.o + a * d, d);
+    CellCrossing c;
+    c.cell = cell;
+    c.t_in = a;
+    c.t_out = t_out;
+    c.s_in = e.v;
+    c.s_out = e.v + e.w * (t_out - a);
+    out.crossings.push_back(c);
+    ++local.crossings;
+  };
+  while (steps < budget) {
+    // Outside the mesh: the next entering boundary face (rule 4).
+    w.t_lo = t;
+    ++local.first_hit_queries;
+    const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
+    const std::int64_t prim = first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);
+    if (prim < 0) break;
+    const std::int32_t entry_face = boundary_[static_cast<std::size_t>(prim)];
+    std::int32_t cell = faces_[static_cast<std::size_t>(entry_face)].cells[0];
+    double t_in = std::max(t, crossing(w, entry_face));
+    const double t_entered = t_in;
+    int zero_steps = 0;
+    bool progressed = false;
+    while (++steps < budget) {
+      // Leave the cell through the face with the smallest crossing parameter (rules 1, 2).
+      const auto c = static_cast<std::size_t>(cell);
+      double t_min = std::numeric_limits<double>::infinity();
+      int k_min = -1;
+      for (int k = 0; k < 4; ++k) {
+        const std::int32_t f = cell_faces_[c][static_cast<std::size_t>(k)];
+        if (cell_signs_[c][static_cast<std::size_t>(k)] * faces_[static_cast<std::size_t>(f)].normal.dot(d) <= 0.0) continue;
+        const double tf = crossing(w, f);
+        if (tf < t_min) {
+          t_min = tf;
+          k_min = k;
+        }
+      }
+      const double t_out = std::max(t_in, t_min);
+      if (k_min < 0 || !std::isfinite(t_out)) break;  // cannot happen for a valid tet and d != 0
+      if (t_out > t_in) {
+        emit(cell, t_in, t_out);
+        zero_steps = 0;
+        progressed = true;
+      } else {
+        ++zero_steps;
+        ++local.zero_length_steps;
+      }
+      t = t_out;
+      std::int32_t next = neighbor(c, k_min);
+      if (next < 0 || zero_steps > kZeroStepBudget) {  // rule 3
+        ++local.star_searches;
+        std::int32_t star_cell = -1;
+        double star_out = t;
+        if (star_search(w, cell, t, star_cell, star_out)) {
+          emit(star_cell, t, star_out);
+          progressed = true;
+          zero_steps = 0;
+          t = star_out;
+          // Continue from star_cell's exit: find its exit face again from t.
+          cell = star_cell;
+          t_in = t;
+          continue;
+        }
+        break;  // the ray leaves the mesh at t
+      }
+      ++local.face_steps;
+      cell = next;
+      t_in = t;
+    }
+    w.strict = !progressed;  // rule 4: an entry that made no progress must not be taken again
+    if (!progressed) t = std::max(t, t_entered);
+  }
+  if (steps >= budget) ++local.budget_exhausted;
+  if (stats) stats->add(local);
+}
+
+Ray ray_from_trace(const RayTrace& trace, const Rgb& background) {
+  Ray r;
+  r.background = background;
+  r.segments.reserve(trace.crossings.size());
+  for (auto it = trace.crossings.rbegin(); it != trace.crossings.rend(); ++it)
+    r.segments.push_back(Segment{it->t_out - it->t_in, it->s_out, it->s_in});
+  return r;
+}
+
+Ray mesh_ray(const TetTraversal& mesh, const ViewRay& ray, const Rgb& background, TraversalStats* stats) {
+  RayTrace trace;
+  mesh.trace(ray, trace, stats);
+  return ray_from_trace(trace, background);
+}
+
+}  // namespace rayint

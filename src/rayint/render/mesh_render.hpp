@@ -1,0 +1,62 @@
+#pragma once
+// Rendering a mesh case's camera: one viewing ray per pixel traced through the mesh
+// (mesh/tet_traversal.hpp) and integrated by a method (normally `exact`), multithreaded over
+// image rows with std::thread. Optionally a second method is run on the same segments and
+// compared pixel by pixel with the first (relative error, the largest of the three channels).
+// Progress is reported through a callback from the calling thread only (it polls the workers),
+// so the callback needs no locking. Library code: nothing is printed.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rayint/integrators/integrator.hpp"
+#include "rayint/mesh/mesh_case.hpp"
+#include "rayint/mesh/tet_traversal.hpp"
+#include "rayint/render/image.hpp"
+
+namespace rayint {
+
+struct MeshRenderSettings {
+  unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
+  // Called every ~0.2 s and once at the end with (rows done, rows total).
+  std::function<void(int, int)> progress;
+};
+
+struct MeshRenderCost {
+  double wall_seconds = 0.0;
+  double traversal_seconds = 0.0;    // summed over threads: tracing rays through the mesh
+  double integration_seconds = 0.0;  // summed over threads: the method on the segments
+  long rays = 0;
+  long segments = 0;                 // cell crossings
+  long pieces = 0;                   // segments split at transfer-function breakpoints
+  unsigned threads = 1;
+  TraversalStats traversal;
+};
+
+struct ErrorSummary {
+  long pixels = 0;
+  double max_rel = 0.0, mean_rel = 0.0, median_rel = 0.0, p99_rel = 0.0;
+  double max_abs = 0.0;
+  long non_finite = 0;
+};
+
+struct MeshRender {
+  Image image;              // with `method`
+  MeshRenderCost cost;      // of `method` (traversal + integration)
+  Image compared;           // with `compare` (empty when none)
+  std::vector<double> rel_error;  // per pixel, row-major (empty when none)
+  ErrorSummary error;
+};
+
+// Renders mesh_case.camera (which must be set). `compare` may be null. With mesh_case.shading
+// enabled, both methods go through integrate_shaded (mesh/surface_shading.hpp).
+MeshRender render_mesh(const MeshCase& mesh_case, const TetTraversal& mesh,
+                       const RayIntegrator& method, const RayIntegrator* compare,
+                       const MeshRenderSettings& settings);
+
+// The heat map of a per-pixel relative error: log10 of the error mapped from 1e-16 (dark blue)
+// through 1e-8 (green) to >= 1 (white); an error of exactly 0 is black, a non-finite one magenta.
+// Linear RGB, to be written with write_png.
+Image error_heat_map(const std::vector<double>& rel_error, int width, int height);
+
+}  // namespace rayint
