@@ -61,6 +61,18 @@ TEST_CASE("CLI: eval on a mesh case gives per-ray JSON, a missing ray only the b
   CHECK(rays[1]["methods"]["exact"]["transmittance"][0].get<double>() == 1.0);
 }
 
+TEST_CASE("CLI: eval on a mesh case with only a camera evaluates one ray per pixel", "[mesh]") {
+  TempDir dir;
+  std::string c = with(kMeshCase, R"("rays": [{"origin": [0.2, 0.2, 5], "direction": [0, 0, -1]},
+           {"origin": [5, 5, 5], "direction": [0, 0, 1]}],)", "");
+  c = with(c, R"("width": 12, "height": 10)", R"("width": 3, "height": 2)");
+  dir.write("cam.json", c);
+  const auto r = run_cli(dir.path, "eval cam.json --methods exact --no-timing");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(nlohmann::json::parse(r.out)["cases"][0]["rays"].size() == 6);
+}
+
 TEST_CASE("CLI: eval on the bundled mesh cases (mesh_file relative to the case)", "[mesh]") {
   const auto r = run_cli(fs::path(RAYINT_SOURCE_DIR), "eval cases/mesh-ring-nonconvex.json --methods exact --no-timing");
   REQUIRE(r.status == 0);
