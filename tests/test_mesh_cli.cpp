@@ -118,6 +118,10 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
   dir.write("gone.json", R"({"name": "g", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
     "mesh_file": "gone.vtk", "rays": [{"origin": [0, 0, 5], "direction": [0, 0, -1]}]})");
   expect_bad(dir, "eval gone.json -o out.json", "gone.json: mesh_file: no such file");
+  dir.write("m.obj", "v 0 0 0\n");
+  dir.write("obj.json", R"({"name": "o", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+    "mesh_file": "m.obj", "rays": [{"origin": [0, 0, 5], "direction": [0, 0, -1]}]})");
+  expect_bad(dir, "eval obj.json -o out.json", "obj.json: mesh_file: unsupported mesh format \".obj\"");
   dir.write("hex.vtk", "# vtk DataFile Version 3.0\nh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n"
                        "0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1\nCELLS 1 9\n8 0 1 2 3 4 5 6 7\n"
                        "CELL_TYPES 1\n12\nPOINT_DATA 8\nSCALARS s float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n");

@@ -113,7 +113,12 @@ MeshCase parse_mesh_case(const json& root, const std::string& source) {
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) s.fail("mesh_file", "no such file: " + mc.mesh_source);
     const std::string name = scalar_field ? s.non_empty_string(*scalar_field, "scalar_field") : "";
-    mc.mesh = read_vtk_legacy(mc.mesh_source, name);
+    // One reader per format, chosen by extension (other mesh formats plug in here).
+    if (p.extension() == ".vtk")
+      mc.mesh = read_vtk_legacy(mc.mesh_source, name);
+    else
+      s.fail("mesh_file", "unsupported mesh format \"" + p.extension().string() +
+                              "\" (read: .vtk, VTK legacy unstructured grid)");
   }
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
