@@ -2,6 +2,7 @@
 // linear over the whole mesh, the mesh path (traversal + Eq. 9/13 + exact) against one exact
 // segment through the box (src/rayint/accuracy/mesh_agreement.hpp; the [mesh] test runs the
 // same function with the defaults).
+#include <array>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -13,17 +14,25 @@ namespace rayint::cli {
 void set_mesh_agreement_command(CLI::App& app) {
   auto opt = std::make_shared<MeshAgreementOptions>();
   auto out = std::make_shared<std::string>();
+  auto vertex = std::make_shared<std::array<int, 2>>(std::array<int, 2>{50000, 16});
   CLI::App* cmd = app.add_subcommand(
       "mesh-agreement", "Mesh path vs. one exact segment on a globally linear field (random rays)");
   cmd->add_option("--rays", opt->rays, "number of random rays")->check(CLI::Range(1, 100000000));
   cmd->add_option("--seed", opt->seed, "random seed");
   cmd->add_option("--n", opt->n, "linear-box resolution (6 (2n)^3 tets)")->check(CLI::Range(1, 60));
+  cmd->add_option("--vertex-rays", (*vertex)[0], "rays through pairs of grid vertices")->check(CLI::Range(0, 100000000));
+  cmd->add_option("--grid", (*vertex)[1], "cubes per edge of the structured mesh for --vertex-rays")->check(CLI::Range(1, 60));
   cmd->add_option("-o,--output", *out, "write the JSON here instead of stdout");
-  cmd->callback([opt, out] {
+  cmd->callback([opt, out, vertex] {
     const MeshAgreement a = measure_linear_field_agreement(*opt);
-    const nlohmann::json j = {{"rays", a.rays}, {"seed", opt->seed}, {"n", opt->n}, {"tets", a.tets},
-                              {"hits", a.hits}, {"segments", a.segments}, {"max_rel_error", a.max_rel},
-                              {"max_length_error", a.max_length_abs}, {"budget_exhausted", a.budget_exhausted}};
+    const VertexRayChords v = measure_vertex_ray_chords((*vertex)[1], (*vertex)[0], opt->seed);
+    const nlohmann::json j = {
+        {"linear_field", {{"rays", a.rays}, {"seed", opt->seed}, {"n", opt->n}, {"tets", a.tets},
+                          {"hits", a.hits}, {"segments", a.segments}, {"max_rel_error", a.max_rel},
+                          {"max_length_error", a.max_length_abs}, {"budget_exhausted", a.budget_exhausted}}},
+        {"vertex_rays", {{"rays", v.rays}, {"seed", opt->seed}, {"grid", (*vertex)[1]}, {"tets", v.tets},
+                         {"max_length_error", v.max_length_abs}, {"zero_length_steps", v.zero_length_steps},
+                         {"star_searches", v.star_searches}, {"budget_exhausted", v.budget_exhausted}}}};
     emit(j.dump(2), *out);
   });
 }

@@ -80,4 +80,39 @@ MeshAgreement measure_linear_field_agreement(const MeshAgreementOptions& o) {
   return a;
 }
 
+VertexRayChords measure_vertex_ray_chords(int n, int rays, std::uint64_t seed) {
+  const TetTraversal mesh(structured_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), n, n, n), "cube");
+  VertexRayChords v;
+  v.tets = static_cast<long>(mesh.cell_count());
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> idx(0, n);
+  TraversalStats stats;
+  for (int i = 0; i < rays; ++i) {
+    Vec3 a(idx(rng), idx(rng), idx(rng)), b(idx(rng), idx(rng), idx(rng));
+    a /= n;
+    b /= n;
+    bool tangent = a == b;
+    for (int k = 0; k < 3; ++k) tangent = tangent || (a[k] == b[k] && (a[k] == 0.0 || a[k] == 1.0));
+    if (tangent) continue;
+    const Vec3 d = (b - a).normalized();
+    const Vec3 o = a - 3.0 * d;
+    double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (d[k] == 0.0) continue;
+      double lo = (0.0 - o[k]) / d[k], hi = (1.0 - o[k]) / d[k];
+      if (lo > hi) std::swap(lo, hi);
+      t0 = std::max(t0, lo);
+      t1 = std::min(t1, hi);
+    }
+    double length = 0.0;
+    for (const Segment& s : mesh_ray(mesh, ViewRay{o, d}, Rgb{0, 0, 0}, &stats).segments) length += s.length;
+    v.max_length_abs = std::max(v.max_length_abs, std::fabs(length - std::max(0.0, t1 - t0)));
+    ++v.rays;
+  }
+  v.zero_length_steps = stats.zero_length_steps;
+  v.star_searches = stats.star_searches;
+  v.budget_exhausted = stats.budget_exhausted;
+  return v;
+}
+
 }  // namespace rayint

@@ -32,4 +32,16 @@ TransferFunctions agreement_transfer_functions();
 
 MeshAgreement measure_linear_field_agreement(const MeshAgreementOptions& options);
 
+// Robustness of traversal: rays exactly through two random vertices of the structured mesh of the
+// unit cube (n^3 cubes, 6 Kuhn tets each: the rays run along edges, in faces and through vertices),
+// total length inside against the analytic chord. Rays lying in a boundary plane of the cube are
+// skipped (tangent: inside or not is a convention).
+struct VertexRayChords {
+  long rays = 0;
+  long tets = 0;
+  double max_length_abs = 0.0;  // cube edge 1
+  long zero_length_steps = 0, star_searches = 0, budget_exhausted = 0;
+};
+VertexRayChords measure_vertex_ray_chords(int n, int rays, std::uint64_t seed);
+
 }  // namespace rayint
