@@ -22,6 +22,12 @@ void set_render_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", opts->threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");
+  cmd->add_option("--method", opts->methods,
+                  "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "
+                  "shadows=two_pass:grid=64");
+  cmd->add_option("--errors", opts->error_grid,
+                  "scenes: measure each term against its reference on K x K pixels (all explicit rays)")
+      ->check(CLI::Range(0, 4096));
   cmd->callback([opts] {
     const nlohmann::json root =
         json_source::parse(json_source::read_text_file(opts->input), opts->input);

@@ -2,6 +2,7 @@
 // The two kinds of file `rayint render` draws; render_command.cpp dispatches between them.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace rayint::cli {
 
@@ -13,6 +14,8 @@ struct RenderOptions {
   double exposure = 1.0;
   unsigned threads = 0;
   bool quiet = false;
+  std::vector<std::string> methods;  // scenes: EFFECT=SPEC overrides of the scene's "methods"
+  int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
 };
 
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);   // render_mesh.cpp

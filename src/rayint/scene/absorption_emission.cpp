@@ -1,0 +1,157 @@
+#include "rayint/scene/absorption_emission.hpp"
+
+#include <stdexcept>
+
+#include "rayint/integrators/exact.hpp"
+#include "rayint/model/pieces.hpp"
+#include "rayint/reference/reference.hpp"
+#include "rayint/scene/ray_quadrature.hpp"
+#include "rayint/scene/riemann_march.hpp"
+
+namespace rayint {
+namespace {
+
+int samples_of(const MethodSpec& spec) {
+  const double n = spec.number("n", 128);
+  if (!(n >= 1 && n <= 1e8 && n == std::floor(n)))
+    throw std::invalid_argument(spec.label() + ": n must be an integer in [1, 1e8]");
+  return static_cast<int>(n);
+}
+
+void check_exact_allowed(const EffectContext& ctx, const char* effect) {
+  if (ctx.method.name == "exact" && !ctx.scene.medium.field().piecewise_linear())
+    throw std::invalid_argument(std::string(effect) + ": method exact needs a medium that is piecewise "
+                                "linear along rays (homogeneous or grid), not " +
+                                ctx.scene.medium.field().kind() + "; use riemann:n=N");
+}
+
+class AbsorptionEffect final : public Effect {
+ public:
+  explicit AbsorptionEffect(const EffectContext& ctx)
+      : scene_(ctx.scene), spec_(ctx.method), tf_(ctx.scene.medium.transfer().emission_absorption(false)) {
+    check_exact_allowed(ctx, "absorption");
+    exact_ = spec_.name == "exact";
+    if (exact_) integrator_ = std::make_unique<ExactIntegrator>(tf_);
+    else n_ = samples_of(spec_);
+  }
+  std::string name() const override { return "absorption"; }
+  std::string method_label() const override { return spec_.label(); }
+
+  Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
+    ++work.rays;
+    Rgb T;
+    if (exact_) {
+      const Ray ray = scene_.medium.field().linear_segments(pr.ray, Rgb{});
+      work.samples += static_cast<long long>(ray.segments.size());
+      T = integrator_->integrate(ray, nullptr).transmittance;
+    } else {
+      T = riemann_transmittance(scene_.medium, pr.ray, n_, work.samples);
+    }
+    return {pr.background[0] * T[0], pr.background[1] * T[1], pr.background[2] * T[2]};
+  }
+
+  ReferenceValue reference(const PixelRay& pr) const override {
+    ReferenceValue r;
+    if (scene_.medium.field().piecewise_linear()) {
+      const ReferenceRay ref = reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
+      for (int c = 0; c < kChannels; ++c) {
+        r.value[c] = ref.transmittance[c].hi;
+        r.error_estimate[c] = 1e-30;  // 50-digit arithmetic
+      }
+      r.evaluations = ref.subintervals;
+    } else {
+      r = reference_transmittance(scene_, pr.ray);
+    }
+    for (int c = 0; c < kChannels; ++c) {
+      r.value[c] *= pr.background[c];
+      r.error_estimate[c] *= pr.background[c];
+    }
+    return r;
+  }
+
+ private:
+  const Scene& scene_;
+  MethodSpec spec_;
+  TransferFunctions tf_;
+  bool exact_ = false;
+  int n_ = 0;
+  std::unique_ptr<ExactIntegrator> integrator_;
+};
+
+class EmissionEffect final : public Effect {
+ public:
+  explicit EmissionEffect(const EffectContext& ctx)
+      : scene_(ctx.scene), spec_(ctx.method), absorption_(ctx.absorption),
+        tf_(ctx.scene.medium.transfer().emission_absorption(true)) {
+    check_exact_allowed(ctx, "emission");
+    exact_ = spec_.name == "exact";
+    if (exact_) integrator_ = std::make_unique<ExactIntegrator>(tf_);
+    else n_ = samples_of(spec_);
+  }
+  std::string name() const override { return "emission"; }
+  std::string method_label() const override { return spec_.label(); }
+
+  Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
+    ++work.rays;
+    if (exact_) {
+      const Ray ray = scene_.medium.field().linear_segments(pr.ray, Rgb{});
+      work.samples += static_cast<long long>(ray.segments.size());
+      return absorption_ ? integrator_->integrate(ray, nullptr).intensity : emission_only_exact(tf_, ray);
+    }
+    return riemann_march(scene_.medium, pr.ray, n_, absorption_,
+                         [](const Vec3&, const Optics& o) {
+                           return Rgb{o.kappa[0] * o.sigma_t[0], o.kappa[1] * o.sigma_t[1], o.kappa[2] * o.sigma_t[2]};
+                         },
+                         work.samples);
+  }
+
+  ReferenceValue reference(const PixelRay& pr) const override {
+    if (absorption_ && scene_.medium.field().piecewise_linear()) {
+      ReferenceValue r;
+      const ReferenceRay ref = reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
+      for (int c = 0; c < kChannels; ++c) {
+        r.value[c] = ref.intensity[c].hi;
+        r.error_estimate[c] = ref.error_bound[c];
+      }
+      r.evaluations = ref.subintervals;
+      return r;
+    }
+    return reference_source_term(
+        scene_, pr.ray,
+        [](const Vec3&, const Optics& o, const LightTransmittanceFn&) {
+          return Rgb{o.kappa[0] * o.sigma_t[0], o.kappa[1] * o.sigma_t[1], o.kappa[2] * o.sigma_t[2]};
+        },
+        absorption_, false);
+  }
+
+ private:
+  const Scene& scene_;
+  MethodSpec spec_;
+  bool absorption_;
+  TransferFunctions tf_;
+  bool exact_ = false;
+  int n_ = 0;
+  std::unique_ptr<ExactIntegrator> integrator_;
+};
+
+}  // namespace
+
+Rgb emission_only_exact(const TransferFunctions& tf, const Ray& ray) {
+  Rgb sum{};
+  for (const Piece& p : split_ray(tf, ray))
+    for (int c = 0; c < kChannels; ++c) {
+      // kappa and rho linear on the piece: int kappa rho = L (2 kf rf + 2 ke re + kf re + ke rf) / 6
+      const double kf = p.kappa_far[c], ke = p.kappa_exit[c], rf = p.rho_far[c], re = p.rho_exit[c];
+      sum[c] += p.length * (2.0 * kf * rf + 2.0 * ke * re + kf * re + ke * rf) / 6.0;
+    }
+  return sum;
+}
+
+std::unique_ptr<Effect> make_absorption_effect(const EffectContext& context) {
+  return std::make_unique<AbsorptionEffect>(context);
+}
+std::unique_ptr<Effect> make_emission_effect(const EffectContext& context) {
+  return std::make_unique<EmissionEffect>(context);
+}
+
+}  // namespace rayint

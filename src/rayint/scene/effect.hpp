@@ -1,0 +1,102 @@
+#pragma once
+// The effect interface and registry: how a scene's "effects" become a pipeline.
+//
+// An effect contributes one *term* to the light reaching the eye along each viewing ray; a pixel
+// is the sum of the terms (plus the unattenuated background when `absorption` is not named).
+// Two effects are *modifiers* of the others rather than terms of their own:
+//   - absorption: the medium's extinction along the viewing ray. Its term is the background seen
+//     through the medium, B * T; every other term is attenuated by T when it is named, and not at
+//     all otherwise (Max's emission-only model, Sec. 3);
+//   - shadows: the light's optical depth to each scattering point (Sec. 6), applied by the
+//     single_scattering and shading terms through a Shadowing (scene/shadowing.hpp). It has no
+//     term; its work (shadow rays, light-grid pass) is reported under its own name.
+// A term no named effect asks for is never evaluated; adding a term effect never changes
+// another's term (each is integrated on its own samples; tests/test_scene_pipeline.cpp).
+//
+// To add an effect (e.g. `multiple_scattering`, issue 7): implement Effect in its own file under
+// src/rayint/scene/ (or your own folder), and add one EffectInfo line to effect_registry() in
+// scene/effect_registry.cpp. docs/scenes.md describes the contract.
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rayint/scene/scene.hpp"
+
+namespace rayint {
+
+class Shadowing;
+
+// Work done by one effect, summed over threads and rays.
+struct EffectWork {
+  double seconds = 0.0;        // wall time in this effect's per-ray work (summed over threads)
+  double setup_seconds = 0.0;  // one-time work before the rays (e.g. the two-pass light grid)
+  long long rays = 0;          // viewing rays evaluated
+  long long samples = 0;       // medium samples along viewing rays
+  long long shadow_rays = 0;   // rays cast toward a light
+  long long shadow_samples = 0;
+  long long lookups = 0;       // light-grid lookups (two-pass)
+  void add(const EffectWork& o);
+};
+
+// One viewing ray and the background radiance entering it at the far end.
+struct PixelRay {
+  ViewRay ray;
+  Rgb background{};
+};
+
+// A reference value of a term with the integrator's own error estimate.
+struct ReferenceValue {
+  Rgb value{};
+  Rgb error_estimate{};  // absolute
+  long long evaluations = 0;
+  bool converged = true;
+};
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  virtual std::string name() const = 0;
+  virtual std::string method_label() const = 0;
+  // This effect's term for one ray. `work` is this effect's counter, `shadow_work` the shadows'.
+  // Must be thread-safe (called concurrently for different rays).
+  virtual Rgb term(const PixelRay& ray, EffectWork& work, EffectWork& shadow_work) const = 0;
+  // The same term by the effect's independent reference.
+  virtual ReferenceValue reference(const PixelRay& ray) const = 0;
+};
+
+// Everything a factory may use. `shadowing` is never null (NoShadows when `shadows` is not named).
+struct EffectContext {
+  const Scene& scene;
+  MethodSpec method;
+  const nlohmann::json* settings;  // scene "settings"[name], or null
+  const Shadowing* shadowing;
+  bool absorption;  // attenuate the term along the viewing ray
+  bool shadows;
+};
+
+struct MethodInfo {
+  std::string name;
+  std::vector<std::string> keys;  // accepted parameters
+  std::string summary;
+};
+
+struct EffectInfo {
+  std::string name;
+  enum class Role { term, attenuation_term, modifier } role = Role::term;
+  std::string summary;
+  std::string default_method;
+  std::vector<MethodInfo> methods;
+  // Null for modifiers (shadows) and for reserved names whose implementation has not landed.
+  std::function<std::unique_ptr<Effect>(const EffectContext&)> make;
+};
+
+const std::vector<EffectInfo>& effect_registry();  // scene/effect_registry.cpp
+const EffectInfo* find_effect(const std::string& name);  // null if unknown
+// Throws std::invalid_argument when `spec` names no method of `effect` or an unknown parameter.
+void check_effect_method(const EffectInfo& effect, const MethodSpec& spec);
+// "name" or "name:key=value:...", checked with check_effect_method; throws std::invalid_argument.
+MethodSpec parse_effect_method(const EffectInfo& effect, const std::string& text);
+
+}  // namespace rayint

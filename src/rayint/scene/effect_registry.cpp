@@ -1,0 +1,98 @@
+// The effects a scene may name, in the order the pipeline evaluates them. To add an effect, add
+// one line here (see scene/effect.hpp and docs/scenes.md).
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "rayint/scene/absorption_emission.hpp"
+#include "rayint/scene/effect.hpp"
+#include "rayint/scene/scattering_terms.hpp"
+
+namespace rayint {
+
+void EffectWork::add(const EffectWork& o) {
+  seconds += o.seconds;
+  setup_seconds += o.setup_seconds;
+  rays += o.rays;
+  samples += o.samples;
+  shadow_rays += o.shadow_rays;
+  shadow_samples += o.shadow_samples;
+  lookups += o.lookups;
+}
+
+const std::vector<EffectInfo>& effect_registry() {
+  using Role = EffectInfo::Role;
+  static const std::vector<EffectInfo> registry = {
+      {"absorption", Role::attenuation_term,
+       "extinction along the viewing ray: the background seen through the medium, B*T; attenuates "
+       "every other term",
+       "exact on piecewise-linear media, else riemann:n=128",
+       {{"exact", {}, "integrators/exact on the ray's linear segments"},
+        {"riemann", {"n"}, "n midpoint samples"}},
+       make_absorption_effect},
+      {"emission", Role::term, "glow g = kappa*sigma_t along the viewing ray",
+       "exact on piecewise-linear media, else riemann:n=128",
+       {{"exact", {}, "integrators/exact (with absorption) or exact piece integrals (without)"},
+        {"riemann", {"n"}, "n midpoint samples"}},
+       make_emission_effect},
+      {"single_scattering", Role::term,
+       "external light scattered once toward the eye: sigma_s * phase * E * T_light",
+       "riemann:n=128", {{"riemann", {"n"}, "n midpoint samples"}}, make_single_scattering_effect},
+      {"shadows", Role::modifier,
+       "the light's optical depth to every scattering point (no term of its own)",
+       "shadow_rays with the single-scattering n",
+       {{"shadow_rays", {"n"}, "a shadow ray with n midpoint samples per lookup"},
+        {"two_pass", {"grid"}, "Kajiya-Von Herzen light grid of grid^3 vertices, trilinear lookup"}},
+       nullptr},
+      {"shading", Role::term, "Max's gradient-strength surface shading (Lambert/Phong)",
+       "riemann:n=128", {{"riemann", {"n"}, "n midpoint samples"}}, make_shading_effect},
+      {"multiple_scattering", Role::term,
+       "reserved for the multiple-scattering issue (not implemented here)", "", {}, nullptr},
+  };
+  return registry;
+}
+
+const EffectInfo* find_effect(const std::string& name) {
+  for (const EffectInfo& e : effect_registry())
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+MethodSpec parse_effect_method(const EffectInfo& effect, const std::string& text) {
+  MethodSpec spec;
+  std::stringstream in(text);
+  std::string part;
+  std::getline(in, spec.name, ':');
+  if (spec.name.empty()) throw std::invalid_argument("empty method name in '" + text + "'");
+  while (std::getline(in, part, ':')) {
+    const auto eq = part.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == part.size())
+      throw std::invalid_argument("method " + spec.name + ": expected key=value, got '" + part + "'");
+    if (spec.params.count(part.substr(0, eq)) != 0)
+      throw std::invalid_argument("method " + spec.name + ": parameter " + part.substr(0, eq) + " given twice");
+    spec.params[part.substr(0, eq)] = part.substr(eq + 1);
+  }
+  check_effect_method(effect, spec);
+  return spec;
+}
+
+void check_effect_method(const EffectInfo& effect, const MethodSpec& spec) {
+  std::string names;
+  for (const MethodInfo& m : effect.methods) {
+    names += (names.empty() ? "" : ", ") + m.name;
+    if (m.name != spec.name) continue;
+    for (const auto& kv : spec.params) {
+      bool known = false;
+      for (const std::string& k : m.keys) known = known || k == kv.first;
+      if (!known) throw std::invalid_argument("method " + m.name + " has no parameter " + kv.first);
+      const double v = spec.number(kv.first, 0.0);
+      if (!(v >= 1 && v <= 1e8 && v == std::floor(v)))
+        throw std::invalid_argument(m.name + ": " + kv.first + " must be an integer in [1, 1e8]");
+    }
+    return;
+  }
+  throw std::invalid_argument("unknown method " + spec.name + " for effect " + effect.name +
+                              " (expected " + (names.empty() ? "none" : names) + ")");
+}
+
+}  // namespace rayint

@@ -1,0 +1,20 @@
+#include "rayint/scene/light.hpp"
+
+namespace rayint {
+
+LightArrival Light::at(const Vec3& p) const {
+  LightArrival a;
+  if (kind == Kind::directional) {
+    a.propagation = direction;
+    a.irradiance = intensity;
+    return a;
+  }
+  const Vec3 d = p - position;
+  const double r2 = d.squaredNorm();
+  a.distance = std::sqrt(r2);
+  a.propagation = a.distance > 0.0 ? Vec3(d / a.distance) : Vec3::UnitZ();
+  for (int c = 0; c < kChannels; ++c) a.irradiance[c] = r2 > 0.0 ? intensity[c] / r2 : 0.0;
+  return a;
+}
+
+}  // namespace rayint

@@ -1,0 +1,242 @@
+#include "rayint/scene/pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include "rayint/scene/parallel.hpp"
+
+namespace rayint {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const char* role_name(EffectInfo::Role r) {
+  switch (r) {
+    case EffectInfo::Role::term: return "term";
+    case EffectInfo::Role::attenuation_term: return "attenuation_term";
+    case EffectInfo::Role::modifier: return "modifier";
+  }
+  return "term";
+}
+
+struct ErrorAccumulator {
+  double max_abs = 0.0, sum_abs = 0.0, peak = 0.0, ref_err = 0.0, seconds = 0.0;
+  long long rays = 0, channels = 0;
+  bool converged = true;
+  void add(const Rgb& approx, const Rgb& ref, const Rgb& ref_error) {
+    ++rays;
+    for (int c = 0; c < kChannels; ++c) {
+      const double e = std::abs(approx[c] - ref[c]);
+      max_abs = std::max(max_abs, e);
+      sum_abs += e;
+      ++channels;
+      peak = std::max(peak, std::abs(ref[c]));
+      ref_err = std::max(ref_err, ref_error[c]);
+    }
+  }
+  void merge(const ErrorAccumulator& o) {
+    max_abs = std::max(max_abs, o.max_abs);
+    sum_abs += o.sum_abs;
+    peak = std::max(peak, o.peak);
+    ref_err = std::max(ref_err, o.ref_err);
+    seconds += o.seconds;
+    rays += o.rays;
+    channels += o.channels;
+    converged = converged && o.converged;
+  }
+  TermError result() const {
+    TermError t;
+    t.rays = rays;
+    t.max_abs = max_abs;
+    t.mean_abs = channels > 0 ? sum_abs / static_cast<double>(channels) : 0.0;
+    t.peak_reference = peak;
+    t.max_rel_to_peak = peak > 0.0 ? max_abs / peak : (max_abs > 0.0 ? INFINITY : 0.0);
+    t.max_reference_error = ref_err;
+    t.reference_converged = converged;
+    t.reference_seconds = seconds;
+    return t;
+  }
+};
+
+}  // namespace
+
+MethodSpec effective_method(const Scene& scene, const EffectInfo& effect) {
+  const auto it = scene.methods.find(effect.name);
+  if (it != scene.methods.end()) return it->second;
+  if (effect.name == "absorption" || effect.name == "emission")
+    return parse_effect_method(effect, scene.medium.field().piecewise_linear() ? "exact" : "riemann:n=128");
+  if (effect.name == "shadows") {
+    MethodSpec s = parse_effect_method(effect, "shadow_rays");
+    const auto ss = scene.methods.find("single_scattering");
+    s.params["n"] = ss != scene.methods.end() ? ss->second.text("n", "128") : "128";
+    return s;
+  }
+  if (effect.default_method.empty()) return MethodSpec{};
+  return parse_effect_method(effect, effect.default_method);
+}
+
+ScenePipeline::ScenePipeline(const Scene& scene, unsigned threads)
+    : scene_(scene), threads_(resolve_threads(threads)) {
+  for (const std::string& name : scene.effects)
+    if (find_effect(name) == nullptr) throw std::invalid_argument("unknown effect " + name);
+  const Clock::time_point t0 = Clock::now();
+  shadowing_ = make_shadowing(scene, threads_);
+  const bool absorption = scene.has("absorption");
+  const bool shadows = scene.has("shadows");
+  for (const EffectInfo& info : effect_registry()) {
+    if (!scene.has(info.name) || info.role == EffectInfo::Role::modifier) continue;
+    if (!info.make)
+      throw std::invalid_argument("effect " + info.name + " is not available in this build (" +
+                                  info.summary + ")");
+    const auto settings = scene.settings.find(info.name);
+    const EffectContext ctx{scene, effective_method(scene, info),
+                            settings != scene.settings.end() ? &settings->second : nullptr,
+                            shadowing_.get(), absorption, shadows};
+    effects_.push_back(info.make(ctx));
+    infos_.push_back(&info);
+  }
+  setup_seconds_ = seconds_since(t0);
+}
+
+long long ScenePipeline::ray_count() const {
+  if (scene_.camera) return static_cast<long long>(scene_.camera->width) * scene_.camera->height;
+  return static_cast<long long>(scene_.rays.size());
+}
+
+PixelRay ScenePipeline::ray(long long index) const {
+  PixelRay pr;
+  if (scene_.camera) {
+    const Camera& cam = *scene_.camera;
+    const int x = static_cast<int>(index % cam.width);
+    const int y = static_cast<int>(index / cam.width);
+    pr.ray = cam.ray_for_pixel(x, y);
+    pr.background = scene_.background.at((x + 0.5) / cam.width, (y + 0.5) / cam.height);
+  } else {
+    pr.ray = scene_.rays[static_cast<std::size_t>(index)];
+    pr.background = scene_.background.color;
+  }
+  return pr;
+}
+
+SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const {
+  SceneRenderResult out;
+  const unsigned threads = options.threads != 0 ? options.threads : threads_;
+  out.threads = threads;
+  out.setup_seconds = setup_seconds_;
+  const long long count = ray_count();
+  const int width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
+  const int height = scene_.camera ? scene_.camera->height : 1;
+  out.image = Image(width, height);
+  const std::size_t ne = effects_.size();
+  const bool absorption = scene_.has("absorption");
+  const bool keep_terms = !scene_.camera;
+  if (keep_terms) out.ray_terms.assign(static_cast<std::size_t>(count), std::vector<Rgb>(ne));
+
+  // work[worker][e] for the term effects, work[worker][ne] for shadows.
+  std::vector<std::vector<EffectWork>> work(threads, std::vector<EffectWork>(ne + 1));
+  std::mutex progress_mutex;
+  long long rows_done = 0;
+  const long long rows = height;
+  const Clock::time_point t_render = Clock::now();
+  parallel_for(rows, threads, [&](long long row, unsigned w) {
+    for (int x = 0; x < width; ++x) {
+      const long long index = row * width + x;
+      const PixelRay pr = ray(index);
+      Rgb pixel = absorption ? Rgb{} : pr.background;
+      for (std::size_t e = 0; e < ne; ++e) {
+        const Clock::time_point t0 = Clock::now();
+        const Rgb term = effects_[e]->term(pr, work[w][e], work[w][ne]);
+        work[w][e].seconds += seconds_since(t0);
+        for (int c = 0; c < kChannels; ++c) pixel[c] += term[c];
+        if (keep_terms) out.ray_terms[static_cast<std::size_t>(index)][e] = term;
+      }
+      out.image.at(x, static_cast<int>(row)) = pixel;
+    }
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      options.progress(static_cast<double>(++rows_done) / static_cast<double>(rows));
+    }
+  });
+  out.render_seconds = seconds_since(t_render);
+
+  for (std::size_t e = 0; e < ne; ++e) {
+    EffectReport r;
+    r.effect = effects_[e]->name();
+    r.method = effects_[e]->method_label();
+    r.role = role_name(infos_[e]->role);
+    for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][e]);
+    out.effects.push_back(r);
+  }
+  if (scene_.has("shadows")) {
+    EffectReport r;
+    r.effect = "shadows";
+    r.method = shadowing_->label();
+    r.role = "modifier";
+    for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][ne]);
+    r.work.setup_seconds = shadowing_->setup_seconds();
+    out.effects.push_back(r);
+  }
+
+  if (options.error_grid > 0 && count > 0) {
+    std::vector<long long> subset;
+    if (scene_.camera) {
+      const int k = options.error_grid;
+      for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) {
+          const int x = std::min(width - 1, static_cast<int>((i + 0.5) * width / k));
+          const int y = std::min(height - 1, static_cast<int>((j + 0.5) * height / k));
+          subset.push_back(static_cast<long long>(y) * width + x);
+        }
+    } else {
+      for (long long i = 0; i < count; ++i) subset.push_back(i);
+    }
+    std::vector<std::vector<ErrorAccumulator>> acc(threads, std::vector<ErrorAccumulator>(ne + 1));
+    const Clock::time_point t_err = Clock::now();
+    parallel_for(static_cast<long long>(subset.size()), threads, [&](long long s, unsigned w) {
+      const PixelRay pr = ray(subset[static_cast<std::size_t>(s)]);
+      EffectWork scratch, shadow_scratch;
+      Rgb total_approx = absorption ? Rgb{} : pr.background;
+      Rgb total_ref = total_approx, total_ref_err{};
+      for (std::size_t e = 0; e < ne; ++e) {
+        const Rgb approx = effects_[e]->term(pr, scratch, shadow_scratch);
+        const Clock::time_point t0 = Clock::now();
+        const ReferenceValue ref = effects_[e]->reference(pr);
+        acc[w][e].seconds += seconds_since(t0);
+        acc[w][e].converged = acc[w][e].converged && ref.converged;
+        acc[w][e].add(approx, ref.value, ref.error_estimate);
+        for (int c = 0; c < kChannels; ++c) {
+          total_approx[c] += approx[c];
+          total_ref[c] += ref.value[c];
+          total_ref_err[c] += ref.error_estimate[c];
+        }
+      }
+      acc[w][ne].add(total_approx, total_ref, total_ref_err);
+    });
+    out.error_seconds = seconds_since(t_err);
+    for (std::size_t e = 0; e <= ne; ++e) {
+      ErrorAccumulator a;
+      for (unsigned w = 0; w < threads; ++w) a.merge(acc[w][e]);
+      if (e < ne) {
+        out.effects[e].has_error = true;
+        out.effects[e].error = a.result();
+      } else {
+        out.has_total_error = true;
+        out.total_error = a.result();
+      }
+    }
+  }
+  return out;
+}
+
+bool Scene::has(const std::string& effect) const {
+  for (const std::string& e : effects)
+    if (e == effect) return true;
+  return false;
+}
+
+}  // namespace rayint

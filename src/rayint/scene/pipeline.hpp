@@ -1,0 +1,86 @@
+#pragma once
+// The scene pipeline: the named effects, assembled from the registry (scene/effect.hpp), evaluated
+// on every viewing ray (pixel or explicit ray), in parallel, with per-effect time and work; and,
+// on request, each term's error against its reference on a subset of the rays.
+//
+// A pixel is the sum of the named terms, plus the background itself when `absorption` is not
+// named (nothing attenuates it then). Terms nobody named are never evaluated: no effect object
+// exists for them, and NoShadows casts no shadow ray.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rayint/scene/effect.hpp"
+#include "rayint/scene/shadowing.hpp"
+
+namespace rayint {
+
+struct TermError {
+  long long rays = 0;            // rays compared
+  double max_abs = 0.0;          // over rays and channels
+  double mean_abs = 0.0;
+  double peak_reference = 0.0;   // largest |reference| over rays and channels
+  double max_rel_to_peak = 0.0;  // max_abs / peak_reference
+  double max_reference_error = 0.0;  // the reference's own largest error estimate
+  bool reference_converged = true;
+  double reference_seconds = 0.0;   // summed over threads
+};
+
+struct EffectReport {
+  std::string effect;
+  std::string method;
+  std::string role;  // term, attenuation_term, modifier
+  EffectWork work;
+  bool has_error = false;
+  TermError error;
+};
+
+struct SceneRenderOptions {
+  unsigned threads = 0;  // 0: all cores
+  // Reference errors on error_grid x error_grid pixels spread over the image (0: none). With
+  // explicit rays, every ray is compared when error_grid > 0.
+  int error_grid = 0;
+  std::function<void(double fraction)> progress;  // called from worker threads, serialised
+};
+
+struct SceneRenderResult {
+  Image image;                     // width x height (explicit rays: N x 1)
+  std::vector<EffectReport> effects;
+  double render_seconds = 0.0;     // wall time of the pass over the rays (without setup, errors)
+  double setup_seconds = 0.0;      // wall time of building the pipeline (light grids)
+  double error_seconds = 0.0;      // wall time of the reference comparison
+  unsigned threads = 1;
+  bool has_total_error = false;
+  TermError total_error;           // of the whole pixel (sum of terms) against the references' sum
+  // Explicit rays only: terms per ray, in the order of `effects` (modifiers give zeros).
+  std::vector<std::vector<Rgb>> ray_terms;
+};
+
+class ScenePipeline {
+ public:
+  // Throws std::invalid_argument for an effect or method that cannot run on this scene.
+  ScenePipeline(const Scene& scene, unsigned threads = 0);
+
+  const Scene& scene() const { return scene_; }
+  long long ray_count() const;
+  PixelRay ray(long long index) const;  // pixel index y * width + x, or explicit ray index
+  // The term effects in pipeline order (the registry's), excluding modifiers.
+  const std::vector<std::unique_ptr<Effect>>& effects() const { return effects_; }
+  const Shadowing& shadowing() const { return *shadowing_; }
+
+  SceneRenderResult render(const SceneRenderOptions& options) const;
+
+ private:
+  const Scene& scene_;
+  unsigned threads_;
+  std::unique_ptr<Shadowing> shadowing_;
+  std::vector<std::unique_ptr<Effect>> effects_;
+  std::vector<const EffectInfo*> infos_;
+  double setup_seconds_ = 0.0;
+};
+
+// The method an effect uses in this scene: scene.methods[name] or the effect's default.
+MethodSpec effective_method(const Scene& scene, const EffectInfo& effect);
+
+}  // namespace rayint
