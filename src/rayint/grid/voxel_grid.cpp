@@ -145,10 +145,19 @@ RayInterval VoxelGrid::clip(const ViewRay& ray) const {
 }
 
 Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background) {
+  return ray_segments(grid, ray, RayInterval{0.0, std::numeric_limits<double>::infinity(), true},
+                      background);
+}
+
+Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RayInterval& within,
+                 const Rgb& background) {
   Ray out;
   out.background = background;
-  const RayInterval span = grid.clip(ray);
-  if (!span.hit) return out;
+  RayInterval span = grid.clip(ray);
+  if (!span.hit || !within.hit) return out;
+  span.t_enter = std::max(span.t_enter, within.t_enter);
+  span.t_exit = std::min(span.t_exit, within.t_exit);
+  if (!(span.t_exit > span.t_enter)) return out;
   const IndexRay r = to_index(grid, ray);
   std::vector<double> t = breakpoints(r, span.t_enter, span.t_exit, true);
   t.insert(t.begin(), span.t_enter);

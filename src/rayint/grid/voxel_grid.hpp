@@ -98,6 +98,10 @@ class VoxelGrid {
 // one point (a ray through an edge or vertex) give equal t values, kept once; nearly equal ones
 // give very short segments, which cost a piece each and contribute their (tiny) share exactly.
 Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background = Rgb{});
+// The same restricted to t in `within` (e.g. the part of the ray inside a cell whose faces are
+// planes of the Kuhn arrangement, as cells/cell.cpp uses it); within.hit == false gives none.
+Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RayInterval& within,
+                 const Rgb& background);
 
 // One cube of the trilinear interpolant along a ray: the scalar is the cubic
 // f(s) = c[0] + c[1] s + c[2] s^2 + c[3] s^3 in the distance s from the far end of the piece

@@ -9,7 +9,8 @@
 // breakpoint, model/pieces.hpp), with rho and kappa linear in the distance on each piece, so the
 // right-hand side is a polynomial on every integration interval and the 5(4) error estimate is
 // valid; the state carries over from piece to piece, the FSAL derivative does not (reset).
-// Steps: our own loop over try_step (what integrate_adaptive does inside) so that a budget can
+// Steps: our own loop over try_step (what integrate_adaptive does inside; integrators/
+// ode_stepping.hpp, shared with cells/poly_ode.cpp) so that a budget can
 // be kept: each piece starts with h = its length, the last step is clipped to end exactly on the
 // piece end, and at most kOdeStepBudget attempted steps per ray are made. Running out of budget,
 // or a step size that stops advancing, returns NaN intensity and transmittance (counted as the
@@ -34,6 +35,7 @@
 #include <stdexcept>
 
 #include "rayint/integrators/factories.hpp"
+#include "rayint/integrators/ode_stepping.hpp"
 #include "rayint/model/pieces.hpp"
 
 namespace rayint {
@@ -78,7 +80,8 @@ RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   auto stepper = odeint::make_controlled(opt_.atol, opt_.rtol, odeint::runge_kutta_dopri5<State>());
   State x{};
   for (int c = 0; c < kChannels; ++c) x[c] = ray.background[c];
-  long accepted = 0, rejected = 0, n_pieces = 0;
+  ode_stepping::Counters counts;
+  long n_pieces = 0;
   const char* failed = nullptr;  // why the integration stopped early, if it did
   for (const auto& seg : ray.segments) {
     const std::vector<Piece>& pieces = splitter_.pieces(seg);
@@ -87,27 +90,12 @@ RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
       const double L = piece.length;
       const PieceSystem system{&piece, 1.0 / L};
       stepper.reset();  // the stored first-same-as-last derivative belongs to the last piece
-      double s = 0.0, h = L;
-      while (s < L && !failed) {
-        if (accepted + rejected >= kOdeStepBudget) {
-          failed = "step_budget_exhausted";
-          break;
-        }
-        const bool last = s + h >= L;
-        if (last) h = L - s;
-        const double s_before = s;
-        if (stepper.try_step(system, x, s, h) == odeint::success) {
-          ++accepted;
-          if (last) s = L;
-          if (!(s > s_before)) failed = "step_size_collapsed";  // h below the spacing at s
-        } else {
-          ++rejected;
-        }
-        if (!(h > 0.0) || !std::isfinite(h)) failed = "step_size_collapsed";  // NaN error
-      }
+      failed = ode_stepping::integrate_interval(stepper, system, x, L, counts, kOdeStepBudget);
+      if (failed) break;
     }
     if (failed) break;
   }
+  const long accepted = counts.accepted, rejected = counts.rejected;
   RayResult r;
   for (int c = 0; c < kChannels; ++c) {
     r.intensity[c] = failed ? std::numeric_limits<double>::quiet_NaN() : x[c];

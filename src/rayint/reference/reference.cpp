@@ -458,6 +458,44 @@ Real exp_series(const Real& z, double* relative_error) {
 
 PieceQuadrature integrate_piece(const PieceData& piece) { return integrate(piece, nullptr); }
 
+namespace {
+template <unsigned N>
+GaussKronrodRule rule_view() {
+  const GaussKronrodTable<N>& t = gauss_kronrod_table<N>();
+  return {static_cast<int>(N), GaussKronrodTable<N>::kSize, t.x.data(), t.kronrod.data(),
+          t.gauss.data()};
+}
+}  // namespace
+
+GaussKronrodRule gauss_kronrod_rule(int points) {
+  switch (points) {
+    case 15:
+      return rule_view<15>();
+    case 21:
+      return rule_view<21>();
+    case 31:
+      return rule_view<31>();
+    case 41:
+      return rule_view<41>();
+    case 51:
+      return rule_view<51>();
+    case 61:
+      return rule_view<61>();
+    default:
+      throw std::invalid_argument("reference: no Gauss-Kronrod rule with " +
+                                  std::to_string(points) + " points");
+  }
+}
+
+double unit_roundoff() { return eps(); }
+
+double rounded_up(const Real& x) { return round_up_to_double(x); }
+
+void check_transfer_functions(const TransferFunctions& tf) {
+  for (const auto* group : {&tf.density, &tf.color})
+    for (const PiecewiseLinear& f : *group) check_function(f);
+}
+
 PieceQuadrature integrate_piece_forced(const PieceData& piece, int rule, int subintervals,
                                        double tau_cut) {
   if (subintervals < 1) throw std::invalid_argument("reference: subintervals must be >= 1");

@@ -59,6 +59,27 @@ Real exp_series(const Real& z, double* relative_error = nullptr);
 // whose two terms are non-negative, so the result has a few ulps relative error.
 Real interpolate(const PiecewiseLinear& f, double s);
 
+// A Gauss-Kronrod rule on [-1, 1] with Boost.Math's nodes and weights in 50 digits, as the
+// quadrature above uses it (shared with reference/poly_reference.cpp): x[0] = 0 < x[1] < ... <
+// x[size - 1], each x[j] > 0 standing for the pair -+x[j]; Kronrod weights; Gauss weights, 0 at
+// the Kronrod-only nodes. `points` in {15, 21, 31, 41, 51, 61}; the tables live for the program.
+struct GaussKronrodRule {
+  int points = 0;
+  std::size_t size = 0;
+  const Real* x = nullptr;
+  const Real* kronrod = nullptr;
+  const Real* gauss = nullptr;
+};
+GaussKronrodRule gauss_kronrod_rule(int points);
+
+// The unit roundoff of Real, 2^(1 - 168).
+double unit_roundoff();
+// The smallest double >= x (error bounds are rounded up).
+double rounded_up(const Real& x);
+// Throws std::invalid_argument unless every function has matching, non-empty point lists with
+// strictly increasing finite scalars and finite values >= 0.
+void check_transfer_functions(const TransferFunctions& tf);
+
 // hi = x rounded to nearest double (ties to even), lo = (x - hi) rounded likewise.
 ExtendedValue to_extended(const Real& x);
 // |x - (v.hi + v.lo)|, exact in 50 digits for the values to_extended returns.
