@@ -1,6 +1,8 @@
 #pragma once
 // Every tolerance the tests use, in one table, with where it comes from. Change a number here
 // only with a measured reason; never loosen one to make a test pass.
+#include <string>
+
 namespace rayint::test {
 
 struct Tolerances {
@@ -64,6 +66,60 @@ struct MethodTolerances {
   // Riemann with exact per-sample opacity on constant kappa, rho: exact but for the rounding of
   // up to ~260 compounded transparencies, N eps = 5.8e-14; measured <= 1.2e-14.
   static constexpr double riemann_constant_rel = 1e-13;
+};
+
+// Multiple scattering (tests/test_scatter_slab.cpp, tests/test_scatter_volume.cpp, [scatter]).
+struct ScatterTolerances {
+  // --- multiple scattering, plane-parallel slab (tests/test_scatter_slab.cpp, [scatter]) ---
+  // Azimuthally averaged phase function (isotropic, HG by E(k)) against the 4096-node
+  // trapezoid rule; both are accurate to ~1e-15 there; measured <= 2e-15.
+  static constexpr double azimuthal_phase_rel = 1e-12;
+  // E(k) by the AGM against Boost.Math ellint_2 in 50 digits: measured <= 2.2e-16 for
+  // k^2 <= 0.999 (beyond, Boost's double ellint_2 is used).
+  static constexpr double elliptic_e_rel = 1e-15;
+  // Doubling at omega = 1e-6 against the single-scattering closed forms: second order is
+  // 1e-6 relative, quadrature of the flux 64 points; measured <= 1.1e-6.
+  static constexpr double slab_single_rel = 5e-6;
+  // Doubling, omega = 1: flux_up + diffuse_down + direct_down = pi; measured <= 3.9e-7 for
+  // streams 32..128, tau 1/32..32, isotropic and HG 0.75 (start layer 1e-8, Richardson); with
+  // 16 streams the quadrature itself breaks conservation by 1.2e-5 (HG more). A start layer thin
+  // enough to round away exp(-t0/mu) broke it at the 1e-3 level (slab_doubling.hpp).
+  static constexpr double slab_energy_abs = 1e-6;
+  // DISORT benchmark values (cases/scattering/disort_slab.json) that the doubling method does
+  // not reproduce within the stated tolerance, with the largest relative deviation measured
+  // (doubling, 64 streams; stable to < 1e-6 from 32 to 128 streams and start layers 1e-5..1e-9).
+  // "disputed": the Monte Carlo (exact orders 0-1 + MC, 1e8 photons, seed 1,
+  // reports/scattering/) agrees with the doubling within 1.8 SE and excludes the published
+  // value by > 4 SE (7 to 54 SE). "undecided": the Monte Carlo cannot tell at 1e8 photons
+  // (|z| <= 3.2 against the published value). The bound pins each deviation (measured x 1.05)
+  // so a change of the solver shows.
+  struct SlabNotReproduced {
+    const char* label;
+    double measured_rel_dev;
+    bool disputed;
+  };
+  static const SlabNotReproduced* slab_not_reproduced(const std::string& label) {
+    static const SlabNotReproduced table[] = {
+        {"1a intensity_up_top(mu=0.1)", 1.84e-4, true},
+        {"1a intensity_up_top(mu=0.5)", 1.86e-4, true},
+        {"1a intensity_up_top(mu=1)", 1.86e-4, true},
+        {"1b intensity_up_top(mu=0.1)", 9.90e-4, true},
+        {"1b intensity_up_top(mu=0.5)", 9.75e-4, true},
+        {"1b intensity_up_top(mu=1)", 9.74e-4, true},
+        {"1c flux_up_top", 1.08e-3, true},
+        {"1c intensity_up_top(mu=0.1)", 1.25e-4, false},
+        {"3a intensity_up_top(mu=0.1)", 1.41e-3, false},
+        {"3a intensity_up_top(mu=0.5)", 9.95e-4, false},
+        {"3a intensity_up_top(mu=1)", 1.14e-2, true},
+        {"3a intensity_down_bottom(mu=0.1)", 2.52e-4, false},
+        {"3a intensity_down_bottom(mu=1)", 2.19e-3, true},
+    };
+    for (const auto& e : table)
+      if (label == e.label) return &e;
+    return nullptr;
+  }
+  static constexpr int slab_not_reproduced_count = 13;
+  static constexpr double slab_pin_factor = 1.05;
 };
 
 }  // namespace rayint::test

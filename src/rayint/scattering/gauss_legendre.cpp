@@ -1,0 +1,51 @@
+// Gauss-Legendre nodes and weights on [0, 1]; see gauss_legendre.hpp.
+#include "rayint/scattering/gauss_legendre.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rayint {
+
+GaussLegendre gauss_legendre_01(int n) {
+  if (n < 1) throw std::invalid_argument("gauss_legendre_01: n must be >= 1");
+  constexpr double kPi = 3.14159265358979323846;
+  GaussLegendre q;
+  q.nodes.resize(static_cast<std::size_t>(n));
+  q.weights.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    // Root i of P_n on [-1, 1] in descending order; Tricomi's guess.
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double dp = 0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      if (n == 1) p0 = 1;
+      dp = n * (x * p1 - p0) / (x * x - 1);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::fabs(dx) < 1e-15) break;
+    }
+    {  // derivative at the converged root
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      if (n == 1) p0 = 1;
+      dp = n * (x * p1 - p0) / (x * x - 1);
+    }
+    const double w = 2 / ((1 - x * x) * dp * dp);
+    // map [-1, 1] -> [0, 1], ascending
+    const std::size_t j = static_cast<std::size_t>(n - 1 - i);
+    q.nodes[j] = 0.5 * (x + 1);
+    q.weights[j] = 0.5 * w;
+  }
+  return q;
+}
+
+}  // namespace rayint
