@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   rayint::cli::set_mesh_agreement_command(app);
   rayint::cli::set_cells_command(app);
   rayint::cli::set_slab_command(app);
+  rayint::cli::set_scatter_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

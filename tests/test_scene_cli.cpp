@@ -63,8 +63,10 @@ TEST_CASE("render scene: bad input, one line naming file and field", "[scene][cl
   j["effects"] = json::array({"absorption", "absorption"});
   expect_bad(j, "effects[1]", "named twice");
   j = valid_scene();
-  j["effects"] = json::array({"multiple_scattering"});
-  expect_bad(j, "effects[0]", "not available");
+  // multiple_scattering is registered (issue 7): an unknown parameter of its method is refused.
+  j["effects"] = json::array({"absorption", "multiple_scattering"});
+  j["methods"] = {{"multiple_scattering", "discrete_ordinates:foo=1"}};
+  expect_bad(j, "methods.multiple_scattering", "foo");
   j = valid_scene();
   j["effects"] = json::array();
   expect_bad(j, "effects", "non-empty array");

@@ -206,14 +206,15 @@ DiscreteOrdinatesSolution solve_discrete_ordinates(const ScatteringVolume& v,
 }
 
 double gather_discrete_ordinates(const ScatteringVolume& v, const DiscreteOrdinatesSolution& sol,
-                                 const ViewRay& ray) {
+                                 const ViewRay& ray, bool include_single) {
   const Vec3 d = ray.direction.normalized();
   const RayInterval iv = v.density.clip(ViewRay{ray.origin, d});
-  if (!iv.hit) return v.background;
+  const double background = include_single ? v.background : 0.0;
+  if (!iv.hit) return background;
   const CellGrid& g = sol.cells;
   const std::size_t m = sol.bins.size();
   const Vec3 w_out = -d;
-  const double p_sun = v.phase.eval(v.light.direction.dot(w_out));
+  const double p_sun = include_single ? v.phase.eval(v.light.direction.dot(w_out)) : 0.0;
   std::vector<double> Q(m, 0.0);
   for (std::size_t b = 0; b < m; ++b)
     for (std::size_t j = 0; j < sol.bins[b].sub_directions.size(); ++j)
@@ -242,7 +243,7 @@ double gather_discrete_ordinates(const ScatteringVolume& v, const DiscreteOrdina
     L += T * J * a1;
     T *= 1 - sigma * a1;
   }
-  return L + T * v.background;
+  return L + T * background;
 }
 
 }  // namespace rayint

@@ -81,6 +81,7 @@ DiscreteOrdinatesSolution solve_discrete_ordinates(const ScatteringVolume& volum
 
 // Step 5 for one viewing ray (origin, direction from the eye).
 double gather_discrete_ordinates(const ScatteringVolume& volume,
-                                 const DiscreteOrdinatesSolution& solution, const ViewRay& ray);
+                                 const DiscreteOrdinatesSolution& solution, const ViewRay& ray,
+    bool include_single = true);
 
 }  // namespace rayint

@@ -30,11 +30,11 @@ double ratio_tracking(const ScatteringVolume& v, const Vec3& x, const Vec3& w, d
 }  // namespace
 
 double trace_path(const ScatteringVolume& v, const ViewRay& ray, Rng& rng, int max_order,
-                  PathTraceStats* stats) {
+                  PathTraceStats* stats, int min_order, double sigma_maj) {
   PathTraceStats local;
   PathTraceStats& s = stats ? *stats : local;
   ++s.paths;
-  const double sigma_maj = v.majorant();
+  if (sigma_maj < 0) sigma_maj = v.majorant();
   const Vec3 to_light = -v.light.direction;
   Vec3 x = ray.origin, d = ray.direction.normalized();
   double L = 0, throughput = 1;
@@ -57,15 +57,17 @@ double trace_path(const ScatteringVolume& v, const ViewRay& ray, Rng& rng, int m
       }
     }
     if (!collided) {
-      if (order == 0) L += throughput * v.background;
+      if (order == 0 && min_order == 0) L += throughput * v.background;
       return L;
     }
     ++order;
     ++s.real_collisions;
     // Next event toward the light: light propagating along light.direction scatters into -d.
-    ++s.shadow_rays;
-    const double T = ratio_tracking(v, x, to_light, sigma_maj, rng, s);
-    L += throughput * v.albedo * v.phase.eval(v.light.direction.dot(-d)) * v.light.irradiance * T;
+    if (order >= min_order) {
+      ++s.shadow_rays;
+      const double T = ratio_tracking(v, x, to_light, sigma_maj, rng, s);
+      L += throughput * v.albedo * v.phase.eval(v.light.direction.dot(-d)) * v.light.irradiance * T;
+    }
     if (max_order > 0 && order >= max_order) return L;
     throughput *= v.albedo;
     if (throughput < kRouletteWeight) {
@@ -78,11 +80,13 @@ double trace_path(const ScatteringVolume& v, const ViewRay& ray, Rng& rng, int m
 }
 
 Estimate trace_ray(const ScatteringVolume& v, const ViewRay& ray, int samples, std::uint64_t seed,
-                   std::uint64_t index, int max_order, PathTraceStats* stats) {
+                   std::uint64_t index, int max_order, PathTraceStats* stats, int min_order,
+                   double sigma_maj) {
   Rng rng = block_rng(seed, index);
+  if (sigma_maj < 0) sigma_maj = v.majorant();
   double sum = 0, sum2 = 0;
   for (int i = 0; i < samples; ++i) {
-    const double x = trace_path(v, ray, rng, max_order, stats);
+    const double x = trace_path(v, ray, rng, max_order, stats, min_order, sigma_maj);
     sum += x;
     sum2 += x * x;
   }
@@ -107,13 +111,15 @@ EstimateImage path_trace_image(const ScatteringVolume& v, const Camera& camera,
   img.mean.assign(n, 0.0);
   img.std_error.assign(n, 0.0);
   std::mutex stats_mutex;
+  const double sigma_maj = v.majorant();
   const auto start = std::chrono::steady_clock::now();
   parallel_for_blocks(static_cast<std::size_t>(camera.height), o.threads, [&](std::size_t row) {
     PathTraceStats s;
     for (int x = 0; x < camera.width; ++x) {
       const std::size_t i = row * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
       const Estimate e = trace_ray(v, camera.ray_for_pixel(x, static_cast<int>(row)),
-                                   o.samples_per_pixel, o.seed, i, o.max_order, &s);
+                                   o.samples_per_pixel, o.seed, i, o.max_order, &s, o.min_order,
+                                   sigma_maj);
       img.mean[i] = e.mean;
       img.std_error[i] = e.std_error;
     }

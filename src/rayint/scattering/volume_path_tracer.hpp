@@ -29,6 +29,7 @@ struct PathTracerOptions {
   std::uint64_t seed = 1;
   int threads = 0;
   int max_order = 0;  // 0: every order; 1: single scattering with shadows
+  int min_order = 0;  // 2: multiple scattering only
 };
 
 struct PathTraceStats {
@@ -37,13 +38,16 @@ struct PathTraceStats {
 };
 
 // One path sample of the radiance along `ray` (origin, unit direction).
+// Orders below `min_order` are not scored (2: multiple scattering only; the background counts
+// as order 0). `sigma_maj`: the volume's majorant() (a scan of the grid), computed once by the
+// caller; negative: computed here.
 double trace_path(const ScatteringVolume& volume, const ViewRay& ray, Rng& rng, int max_order,
-                  PathTraceStats* stats = nullptr);
+                  PathTraceStats* stats = nullptr, int min_order = 0, double sigma_maj = -1);
 
 // spp paths along one ray: mean and standard error; stream block_rng(seed, index).
 Estimate trace_ray(const ScatteringVolume& volume, const ViewRay& ray, int samples,
                    std::uint64_t seed, std::uint64_t index, int max_order,
-                   PathTraceStats* stats = nullptr);
+                   PathTraceStats* stats = nullptr, int min_order = 0, double sigma_maj = -1);
 
 struct EstimateImage {
   int width = 0, height = 0;

@@ -114,12 +114,13 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
   return sol;
 }
 
-double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const ViewRay& ray) {
+double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const ViewRay& ray, bool include_single) {
   const Vec3 d = ray.direction.normalized();
   const RayInterval iv = v.density.clip(ViewRay{ray.origin, d});
-  if (!iv.hit) return v.background;
+  const double background = include_single ? v.background : 0.0;
+  if (!iv.hit) return background;
   const CellGrid& g = sol.cells;
-  const double p_sun = v.phase.eval(v.light.direction.dot(-d));
+  const double p_sun = include_single ? v.phase.eval(v.light.direction.dot(-d)) : 0.0;
   const double step = 0.25 * g.h.minCoeff();
   const double len = iv.t_exit - iv.t_enter;
   const int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
@@ -139,7 +140,7 @@ double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const V
     L += T * J * a1;
     T *= 1 - sigma * a1;
   }
-  return L + T * v.background;
+  return L + T * background;
 }
 
 }  // namespace rayint

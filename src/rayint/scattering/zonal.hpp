@@ -37,6 +37,7 @@ struct ZonalSolution {
 };
 
 ZonalSolution solve_zonal(const ScatteringVolume& volume, const ZonalOptions& options);
-double gather_zonal(const ScatteringVolume& volume, const ZonalSolution& solution, const ViewRay& ray);
+double gather_zonal(const ScatteringVolume& volume, const ZonalSolution& solution, const ViewRay& ray,
+    bool include_single = true);
 
 }  // namespace rayint

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rayint/scattering/multiple_scattering_effect.hpp"
 #include "rayint/scene/absorption_emission.hpp"
 #include "rayint/scene/effect.hpp"
 #include "rayint/scene/scattering_terms.hpp"
@@ -47,7 +48,13 @@ const std::vector<EffectInfo>& effect_registry() {
       {"shading", Role::term, "Max's gradient-strength surface shading (Lambert/Phong)",
        "riemann:n=128", {{"riemann", {"n"}, "n midpoint samples"}}, make_shading_effect},
       {"multiple_scattering", Role::term,
-       "reserved for the multiple-scattering issue (not implemented here)", "", {}, nullptr},
+       "light scattered two or more times (orders >= 2; src/rayint/scattering/, "
+       "docs/multiple-scattering.md)",
+       "discrete_ordinates:grid=32:bins=3",
+       {{"discrete_ordinates", {"grid", "bins", "points"}, "Max's direction bins on a grid^3 cell grid"},
+        {"zonal", {"grid", "points"}, "zonal method, isotropic scattering only"},
+        {"monte_carlo", {"spp", "seed", "points"}, "path tracing of orders >= 2"}},
+       make_multiple_scattering_effect},
   };
   return registry;
 }
