@@ -18,6 +18,7 @@ void set_stress_command(CLI::App& app);  // stress_command.cpp
 void set_gate_command(CLI::App& app);    // gate_command.cpp
 void set_check_command(CLI::App& app);   // check_command.cpp
 void set_render_command(CLI::App& app);  // render_command.cpp
+void set_scene_sweep_command(CLI::App& app);  // scene_sweep_command.cpp
 void set_generate_mesh_command(CLI::App& app);  // generate_mesh_command.cpp
 void set_mesh_agreement_command(CLI::App& app);  // mesh_agreement_command.cpp
 void set_cells_command(CLI::App& app);   // cells_command.cpp

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   rayint::cli::set_gate_command(app);
   rayint::cli::set_check_command(app);
   rayint::cli::set_render_command(app);
+  rayint::cli::set_scene_sweep_command(app);
   rayint::cli::set_generate_mesh_command(app);
   rayint::cli::set_mesh_agreement_command(app);
   rayint::cli::set_cells_command(app);

@@ -106,9 +106,9 @@ CloudParams max_figure_cloud(std::uint64_t seed) {
       {Vec3(-0.2, -0.2, 0.3), Vec3(0.7, 0.35, 0.45), 0.6},
   };
   c.scale = 1.0;
-  c.threshold = 0.35;
-  c.amplitude = 0.35;
-  c.frequency = 2.5;
+  c.threshold = 0.55;
+  c.amplitude = 0.6;
+  c.frequency = 3.0;
   c.octaves = 5;
   c.lacunarity = 2.0;
   c.gain = 0.5;

@@ -1,0 +1,89 @@
+// `rayint scene-sweep SCENE.json --config EFFECT=METHOD[,EFFECT=METHOD...] ... --errors K`:
+// error against cost of method configurations on one scene, references computed once
+// (scene/scene_sweep.hpp). JSON to stdout or -o.
+#include <iostream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "rayint/io/json_source.hpp"
+#include "rayint/io/scene_reader.hpp"
+#include "rayint/io/scene_report_json.hpp"
+#include "rayint/scene/effect.hpp"
+#include "rayint/scene/scene_sweep.hpp"
+
+namespace rayint::cli {
+
+void set_scene_sweep_command(CLI::App& app) {
+  struct Options {
+    std::string input, output;
+    std::vector<std::string> configs;
+    int errors = 8;
+    unsigned threads = 0;
+    bool quiet = false;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("scene-sweep", "Error against cost of method configurations on a scene");
+  cmd->add_option("scene", opt->input, "scene JSON")->required();
+  cmd->add_option("--config", opt->configs,
+                  "EFFECT=METHOD[,EFFECT=METHOD...], one configuration (repeatable)")->required();
+  cmd->add_option("--errors", opt->errors, "compare on K x K pixels")->check(CLI::Range(1, 4096));
+  cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
+  cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
+  cmd->add_flag("--quiet", opt->quiet, "no progress on stderr");
+  cmd->callback([opt] {
+    const Scene scene = read_scene_file(opt->input);
+    std::vector<std::map<std::string, MethodSpec>> configs;
+    for (const std::string& text : opt->configs) {
+      std::map<std::string, MethodSpec> c;
+      std::stringstream in(text);
+      std::string item;
+      while (std::getline(in, item, ',')) {
+        const auto eq = item.find('=');
+        const std::string effect = eq == std::string::npos ? "" : item.substr(0, eq);
+        const EffectInfo* info = find_effect(effect);
+        if (info == nullptr || !scene.has(effect))
+          throw InputError("--config " + text + ": " + (effect.empty() ? item : effect) +
+                           " is not an effect named in " + opt->input);
+        try {
+          c[effect] = parse_effect_method(*info, item.substr(eq + 1));
+        } catch (const std::invalid_argument& e) {
+          throw InputError("--config " + text + ": " + e.what());
+        }
+      }
+      configs.push_back(c);
+    }
+    const SweepResult r = sweep_scene(scene, configs, opt->errors, opt->threads,
+                                      [opt](std::size_t done, std::size_t total) {
+                                        if (!opt->quiet) std::cerr << "\rconfiguration " << done << "/" << total << std::flush;
+                                      });
+    if (!opt->quiet) std::cerr << "\n";
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["source"] = opt->input;
+    j["width"] = scene.camera ? scene.camera->width : static_cast<int>(scene.rays.size());
+    j["height"] = scene.camera ? scene.camera->height : 1;
+    j["error_grid"] = r.error_grid;
+    j["threads"] = r.threads;
+    j["reference_seconds"] = r.reference_seconds;
+    j["points"] = nlohmann::json::array();
+    for (const SweepPoint& p : r.points) {
+      nlohmann::json x;
+      for (const auto& kv : p.methods) x["methods"][kv.first] = kv.second.label();
+      x["render_seconds"] = p.render_seconds;
+      x["setup_seconds"] = p.setup_seconds;
+      x["total_error"] = term_error_json(p.total_error);
+      for (const EffectReport& e : p.effects) {
+        nlohmann::json ej = {{"effect", e.effect}, {"method", e.method}, {"seconds", e.work.seconds},
+                             {"setup_seconds", e.work.setup_seconds}, {"samples", e.work.samples},
+                             {"shadow_rays", e.work.shadow_rays}, {"shadow_samples", e.work.shadow_samples},
+                             {"light_grid_lookups", e.work.lookups}};
+        if (e.has_error) ej["error"] = term_error_json(e.error);
+        x["effects"].push_back(ej);
+      }
+      j["points"].push_back(x);
+    }
+    emit(j.dump(2) + "\n", opt->output);
+  });
+}
+
+}  // namespace rayint::cli
