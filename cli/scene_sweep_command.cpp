@@ -71,9 +71,11 @@ void set_scene_sweep_command(CLI::App& app) {
       for (const auto& kv : p.methods) x["methods"][kv.first] = kv.second.label();
       x["render_seconds"] = p.render_seconds;
       x["setup_seconds"] = p.setup_seconds;
+      x["render_cpu_seconds"] = p.render_cpu_seconds;
+      x["setup_cpu_seconds"] = p.setup_cpu_seconds;
       x["total_error"] = term_error_json(p.total_error);
       for (const EffectReport& e : p.effects) {
-        nlohmann::json ej = {{"effect", e.effect}, {"method", e.method}, {"seconds", e.work.seconds},
+        nlohmann::json ej = {{"effect", e.effect}, {"method", e.method}, {"seconds", e.work.seconds}, {"cpu_seconds", e.work.cpu_seconds},
                              {"setup_seconds", e.work.setup_seconds}, {"samples", e.work.samples},
                              {"shadow_rays", e.work.shadow_rays}, {"shadow_samples", e.work.shadow_samples},
                              {"light_grid_lookups", e.work.lookups}};

@@ -30,6 +30,8 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
   j["height"] = r.image.height;
   j["threads"] = r.threads;
   j["render_seconds"] = r.render_seconds;
+  j["render_cpu_seconds"] = r.render_cpu_seconds;
+  j["setup_cpu_seconds"] = r.setup_cpu_seconds;
   j["setup_seconds"] = r.setup_seconds;
   j["error_seconds"] = r.error_seconds;
   nlohmann::json effects = nlohmann::json::array();
@@ -38,7 +40,9 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
                         {"method", e.method},
                         {"role", e.role},
                         {"seconds", e.work.seconds},
+                        {"cpu_seconds", e.work.cpu_seconds},
                         {"setup_seconds", e.work.setup_seconds},
+                        {"setup_cpu_seconds", e.work.setup_cpu_seconds},
                         {"rays", e.work.rays},
                         {"samples", e.work.samples},
                         {"shadow_rays", e.work.shadow_rays},

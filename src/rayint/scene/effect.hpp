@@ -31,7 +31,9 @@ class Shadowing;
 // Work done by one effect, summed over threads and rays.
 struct EffectWork {
   double seconds = 0.0;        // wall time in this effect's per-ray work (summed over threads)
+  double cpu_seconds = 0.0;    // CPU time of the same work (thread CPU clocks, summed)
   double setup_seconds = 0.0;  // one-time work before the rays (e.g. the two-pass light grid)
+  double setup_cpu_seconds = 0.0;
   long long rays = 0;          // viewing rays evaluated
   long long samples = 0;       // medium samples along viewing rays
   long long shadow_rays = 0;   // rays cast toward a light

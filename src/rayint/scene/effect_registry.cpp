@@ -13,7 +13,9 @@ namespace rayint {
 
 void EffectWork::add(const EffectWork& o) {
   seconds += o.seconds;
+  cpu_seconds += o.cpu_seconds;
   setup_seconds += o.setup_seconds;
+  setup_cpu_seconds += o.setup_cpu_seconds;
   rays += o.rays;
   samples += o.samples;
   shadow_rays += o.shadow_rays;

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "rayint/scene/cpu_clock.hpp"
 #include "rayint/scene/parallel.hpp"
 
 namespace rayint {
@@ -85,6 +86,7 @@ ScenePipeline::ScenePipeline(const Scene& scene, unsigned threads)
   for (const std::string& name : scene.effects)
     if (find_effect(name) == nullptr) throw std::invalid_argument("unknown effect " + name);
   const Clock::time_point t0 = Clock::now();
+  const double c0 = process_cpu_seconds();
   shadowing_ = make_shadowing(scene, threads_);
   const bool absorption = scene.has("absorption");
   const bool shadows = scene.has("shadows");
@@ -101,6 +103,7 @@ ScenePipeline::ScenePipeline(const Scene& scene, unsigned threads)
     infos_.push_back(&info);
   }
   setup_seconds_ = seconds_since(t0);
+  setup_cpu_seconds_ = process_cpu_seconds() - c0;
 }
 
 long long ScenePipeline::ray_count() const {
@@ -128,6 +131,7 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
   const unsigned threads = options.threads != 0 ? options.threads : threads_;
   out.threads = threads;
   out.setup_seconds = setup_seconds_;
+  out.setup_cpu_seconds = setup_cpu_seconds_;
   const long long count = ray_count();
   const int width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
   const int height = scene_.camera ? scene_.camera->height : 1;
@@ -143,6 +147,7 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
   long long rows_done = 0;
   const long long rows = height;
   const Clock::time_point t_render = Clock::now();
+  const double cpu_render = process_cpu_seconds();
   parallel_for(rows, threads, [&](long long row, unsigned w) {
     for (int x = 0; x < width; ++x) {
       const long long index = row * width + x;
@@ -150,7 +155,9 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
       Rgb pixel = absorption ? Rgb{} : pr.background;
       for (std::size_t e = 0; e < ne; ++e) {
         const Clock::time_point t0 = Clock::now();
+        const double c0 = thread_cpu_seconds();
         const Rgb term = effects_[e]->term(pr, work[w][e], work[w][ne]);
+        work[w][e].cpu_seconds += thread_cpu_seconds() - c0;
         work[w][e].seconds += seconds_since(t0);
         for (int c = 0; c < kChannels; ++c) pixel[c] += term[c];
         if (keep_terms) out.ray_terms[static_cast<std::size_t>(index)][e] = term;
@@ -163,6 +170,7 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     }
   });
   out.render_seconds = seconds_since(t_render);
+  out.render_cpu_seconds = process_cpu_seconds() - cpu_render;
 
   for (std::size_t e = 0; e < ne; ++e) {
     EffectReport r;
@@ -179,6 +187,7 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     r.role = "modifier";
     for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][ne]);
     r.work.setup_seconds = shadowing_->setup_seconds();
+    r.work.setup_cpu_seconds = shadowing_->setup_cpu_seconds();
     out.effects.push_back(r);
   }
 

@@ -48,6 +48,8 @@ struct SceneRenderResult {
   Image image;                     // width x height (explicit rays: N x 1)
   std::vector<EffectReport> effects;
   double render_seconds = 0.0;     // wall time of the pass over the rays (without setup, errors)
+  double render_cpu_seconds = 0.0; // process CPU time of the same pass (all threads)
+  double setup_cpu_seconds = 0.0;
   double setup_seconds = 0.0;      // wall time of building the pipeline (light grids)
   double error_seconds = 0.0;      // wall time of the reference comparison
   unsigned threads = 1;
@@ -78,6 +80,7 @@ class ScenePipeline {
   std::vector<std::unique_ptr<Effect>> effects_;
   std::vector<const EffectInfo*> infos_;
   double setup_seconds_ = 0.0;
+  double setup_cpu_seconds_ = 0.0;
 };
 
 // The method an effect uses in this scene: scene.methods[name] or the effect's default.

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "rayint/scene/cpu_clock.hpp"
 #include "rayint/scene/parallel.hpp"
 
 namespace rayint {
@@ -83,12 +84,15 @@ SweepResult sweep_scene(const Scene& scene, const std::vector<std::map<std::stri
     SweepPoint point;
     point.methods = configs[ci];
     const Clock::time_point ts = Clock::now();
+    const double cs = process_cpu_seconds();
     const ScenePipeline p(variant, threads);
     point.setup_seconds = seconds_since(ts);
+    point.setup_cpu_seconds = process_cpu_seconds() - cs;
     SceneRenderOptions ro;
     ro.threads = threads;
     const SceneRenderResult r = p.render(ro);
     point.render_seconds = r.render_seconds;
+    point.render_cpu_seconds = r.render_cpu_seconds;
     point.effects = r.effects;
     // approximations on the subset (untimed)
     std::vector<std::vector<Rgb>> approx(ne, std::vector<Rgb>(subset.size()));

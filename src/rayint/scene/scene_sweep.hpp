@@ -16,6 +16,8 @@ struct SweepPoint {
   std::map<std::string, MethodSpec> methods;  // the overrides of this configuration
   double render_seconds = 0.0;                // wall time of the whole image
   double setup_seconds = 0.0;                 // wall time of building the pipeline (light grid)
+  double render_cpu_seconds = 0.0;            // process CPU time of the render
+  double setup_cpu_seconds = 0.0;             // process CPU time of building the pipeline
   std::vector<EffectReport> effects;          // work and error per effect
   TermError total_error;
 };

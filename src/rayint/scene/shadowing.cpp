@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/scene/cpu_clock.hpp"
 #include "rayint/scene/parallel.hpp"
 
 namespace rayint {
@@ -31,6 +32,7 @@ ShadowRays::ShadowRays(const Scene& scene, int n) : scene_(scene), n_(n) {
 
 Rgb ShadowRays::transmittance(std::size_t light, const Vec3& p, EffectWork& work) const {
   const Clock::time_point t0 = Clock::now();
+  const double c0 = thread_cpu_seconds();
   const LightArrival arrival = scene_.lights[light].at(p);
   const Vec3 u = -arrival.propagation;
   const ViewRay toward{p, u};
@@ -49,6 +51,7 @@ Rgb ShadowRays::transmittance(std::size_t light, const Vec3& p, EffectWork& work
     }
   }
   ++work.shadow_rays;
+  work.cpu_seconds += thread_cpu_seconds() - c0;
   work.seconds += seconds_since(t0);
   return exp_neg(tau);
 }
@@ -61,6 +64,7 @@ LightGrid::LightGrid(const Scene& scene, int resolution, unsigned threads)
   lower_ = b.lower;
   spacing_ = (b.upper - b.lower) / (res_ - 1);
   const Clock::time_point t0 = Clock::now();
+  const double c0 = process_cpu_seconds();
   grids_.resize(scene.lights.size());
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     grids_[l].assign(static_cast<std::size_t>(res_) * res_ * res_, Rgb{1.0, 1.0, 1.0});
@@ -70,6 +74,7 @@ LightGrid::LightGrid(const Scene& scene, int resolution, unsigned threads)
       march_point(l, threads);
   }
   setup_seconds_ = seconds_since(t0);
+  setup_cpu_seconds_ = process_cpu_seconds() - c0;
 }
 
 Vec3 LightGrid::vertex(int i, int j, int k) const {

@@ -30,6 +30,7 @@ class Shadowing {
   // Transmittance from light `light` (index into scene.lights) to p. Thread-safe.
   virtual Rgb transmittance(std::size_t light, const Vec3& p, EffectWork& work) const = 0;
   virtual double setup_seconds() const { return 0.0; }
+  virtual double setup_cpu_seconds() const { return 0.0; }
 };
 
 class NoShadows final : public Shadowing {
@@ -56,6 +57,7 @@ class LightGrid final : public Shadowing {
   std::string label() const override { return "two_pass:grid=" + std::to_string(res_); }
   Rgb transmittance(std::size_t light, const Vec3& p, EffectWork& work) const override;
   double setup_seconds() const override { return setup_seconds_; }
+  double setup_cpu_seconds() const override { return setup_cpu_seconds_; }
   long long setup_samples() const { return setup_samples_; }
 
  private:
@@ -71,6 +73,7 @@ class LightGrid final : public Shadowing {
   Vec3 lower_, spacing_;
   std::vector<std::vector<Rgb>> grids_;  // per light
   double setup_seconds_ = 0.0;
+  double setup_cpu_seconds_ = 0.0;
   long long setup_samples_ = 0;
 };
 
