@@ -114,6 +114,34 @@ TEST_CASE("scene pipeline: results do not depend on the number of threads", "[sc
   CHECK(report_of(one, "shadows").work.shadow_rays == report_of(two, "shadows").work.shadow_rays);
 }
 
+TEST_CASE("scene pipeline: the reported means are the means of the terms and of the pixels", "[scene]") {
+  // Without absorption the background enters the pixel unattenuated but is no term: the image
+  // mean is then the terms' means plus the background.
+  for (const bool absorption : {true, false}) {
+    json effects = absorption ? json{"absorption", "emission", "single_scattering"} : json{"emission", "single_scattering"};
+    const SceneRenderResult r = render_rays(scene_from(cloud_scene(effects)));
+    REQUIRE(r.ray_terms.size() == 24);
+    Rgb pixel_mean{}, terms_total{};
+    for (std::size_t i = 0; i < 24; ++i)
+      for (int c = 0; c < 3; ++c) pixel_mean[c] += r.image.pixels[i][c] / 24.0;
+    for (std::size_t e = 0; e < r.ray_terms[0].size(); ++e) {
+      Rgb mean{};
+      for (std::size_t i = 0; i < 24; ++i)
+        for (int c = 0; c < 3; ++c) mean[c] += r.ray_terms[i][e][c] / 24.0;
+      for (int c = 0; c < 3; ++c) {
+        CHECK(r.effects[e].mean_term[c] == Approx(mean[c]).epsilon(1e-13).margin(1e-300));
+        terms_total[c] += r.effects[e].mean_term[c];
+      }
+    }
+    const Rgb background{0.2, 0.3, 0.5};
+    for (int c = 0; c < 3; ++c) {
+      CHECK(r.image_mean[c] == Approx(pixel_mean[c]).epsilon(1e-13));
+      CHECK(r.image_mean[c] == Approx(terms_total[c] + (absorption ? 0.0 : background[c])).epsilon(1e-12));
+    }
+    CHECK(r.image_mean[0] > 0.0);
+  }
+}
+
 TEST_CASE("scene: the cloud's Perlin noise stays within the bound used for its majorant", "[scene]") {
   // CloudField's max_density assumes |perlin| < 1.1; sample 200,000 points of three seeds.
   double worst = 0;

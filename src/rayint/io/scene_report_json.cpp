@@ -34,6 +34,7 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
   j["setup_cpu_seconds"] = r.setup_cpu_seconds;
   j["setup_seconds"] = r.setup_seconds;
   j["error_seconds"] = r.error_seconds;
+  j["image_mean"] = rgb(r.image_mean);
   nlohmann::json effects = nlohmann::json::array();
   for (const EffectReport& e : r.effects) {
     nlohmann::json x = {{"effect", e.effect},
@@ -47,7 +48,8 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
                         {"samples", e.work.samples},
                         {"shadow_rays", e.work.shadow_rays},
                         {"shadow_samples", e.work.shadow_samples},
-                        {"light_grid_lookups", e.work.lookups}};
+                        {"light_grid_lookups", e.work.lookups},
+                        {"mean_term", rgb(e.mean_term)}};
     if (e.has_error) x["error"] = term_error_json(e.error);
     effects.push_back(x);
   }

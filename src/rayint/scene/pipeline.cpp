@@ -1,5 +1,6 @@
 #include "rayint/scene/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -143,6 +144,8 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
 
   // work[worker][e] for the term effects, work[worker][ne] for shadows.
   std::vector<std::vector<EffectWork>> work(threads, std::vector<EffectWork>(ne + 1));
+  // term_sum[worker][e]: each term summed over the rays, and [ne] the whole pixel (for means).
+  std::vector<std::vector<Rgb>> term_sum(threads, std::vector<Rgb>(ne + 1, Rgb{}));
   std::mutex progress_mutex;
   long long rows_done = 0;
   const long long rows = height;
@@ -159,10 +162,14 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
         const Rgb term = effects_[e]->term(pr, work[w][e], work[w][ne]);
         work[w][e].cpu_seconds += thread_cpu_seconds() - c0;
         work[w][e].seconds += seconds_since(t0);
-        for (int c = 0; c < kChannels; ++c) pixel[c] += term[c];
+        for (int c = 0; c < kChannels; ++c) {
+          pixel[c] += term[c];
+          term_sum[w][e][c] += term[c];
+        }
         if (keep_terms) out.ray_terms[static_cast<std::size_t>(index)][e] = term;
       }
       out.image.at(x, static_cast<int>(row)) = pixel;
+      for (int c = 0; c < kChannels; ++c) term_sum[w][ne][c] += pixel[c];
     }
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
@@ -177,9 +184,16 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     r.effect = effects_[e]->name();
     r.method = effects_[e]->method_label();
     r.role = role_name(infos_[e]->role);
-    for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][e]);
+    for (unsigned w = 0; w < threads; ++w) {
+      r.work.add(work[w][e]);
+      for (int c = 0; c < kChannels; ++c) r.mean_term[c] += term_sum[w][e][c];
+    }
+    for (int c = 0; c < kChannels; ++c) r.mean_term[c] /= static_cast<double>(std::max(count, 1LL));
     out.effects.push_back(r);
   }
+  for (unsigned w = 0; w < threads; ++w)
+    for (int c = 0; c < kChannels; ++c) out.image_mean[c] += term_sum[w][ne][c];
+  for (int c = 0; c < kChannels; ++c) out.image_mean[c] /= static_cast<double>(std::max(count, 1LL));
   if (scene_.has("shadows")) {
     EffectReport r;
     r.effect = "shadows";

@@ -32,6 +32,7 @@ struct EffectReport {
   std::string method;
   std::string role;  // term, attenuation_term, modifier
   EffectWork work;
+  Rgb mean_term{};  // the term averaged over every ray (pixel) rendered; zeros for modifiers
   bool has_error = false;
   TermError error;
 };
@@ -46,6 +47,7 @@ struct SceneRenderOptions {
 
 struct SceneRenderResult {
   Image image;                     // width x height (explicit rays: N x 1)
+  Rgb image_mean{};                // the pixel (sum of terms) averaged over every ray
   std::vector<EffectReport> effects;
   double render_seconds = 0.0;     // wall time of the pass over the rays (without setup, errors)
   double render_cpu_seconds = 0.0; // process CPU time of the same pass (all threads)
