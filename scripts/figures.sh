@@ -1,7 +1,8 @@
 #!/bin/sh
 # Regenerates reports/figures/: Max's (1995) cloud figure set rendered by `rayint render` at
 # 512 x 512 on 2 threads, each with its per-effect cost and its error against the references on
-# 8 x 8 pixels, the all-effects cost table, and the two-pass vs shadow-ray sweep (64 x 64 image,
+# 8 x 8 pixels (the multiple-scattering figure: the shadowed one plus multiple scattering, whose
+# reference is Monte Carlo), the all-effects cost table, and the two-pass vs shadow-ray sweep (64 x 64 image,
 # errors on 6 x 6 pixels, references once). Then reports/figures/README.md and the plot.
 # Usage: scripts/figures.sh [BUILD_DIR]   (default build/)
 set -eu
@@ -12,7 +13,8 @@ OUT=$ROOT/reports/figures
 mkdir -p "$OUT"
 cd "$ROOT"
 for s in cloud-absorption cloud-emission cloud-emission-absorption cloud-single-scattering \
-         cloud-single-scattering-shadows cloud-single-scattering-two-pass; do
+         cloud-single-scattering-shadows cloud-single-scattering-two-pass \
+         cloud-multiple-scattering-figure; do
   echo "== $s" >&2
   "$RAYINT" render "cases/scenes/$s.json" -o "$OUT/$s.png" --stats "$OUT/$s.json" --errors 8 --threads 2 --quiet
 done

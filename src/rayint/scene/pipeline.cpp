@@ -100,7 +100,11 @@ ScenePipeline::ScenePipeline(const Scene& scene, unsigned threads)
     const EffectContext ctx{scene, effective_method(scene, info),
                             settings != scene.settings.end() ? &settings->second : nullptr,
                             shadowing_.get(), absorption, shadows};
+    // Each effect's own set-up (e.g. the discrete-ordinates solve) is timed and reported with it.
+    const Clock::time_point te = Clock::now();
+    const double ce = process_cpu_seconds();
     effects_.push_back(info.make(ctx));
+    effect_setup_.push_back({seconds_since(te), process_cpu_seconds() - ce});
     infos_.push_back(&info);
   }
   setup_seconds_ = seconds_since(t0);
@@ -184,6 +188,8 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     r.effect = effects_[e]->name();
     r.method = effects_[e]->method_label();
     r.role = role_name(infos_[e]->role);
+    r.work.setup_seconds = effect_setup_[e].first;
+    r.work.setup_cpu_seconds = effect_setup_[e].second;
     for (unsigned w = 0; w < threads; ++w) {
       r.work.add(work[w][e]);
       for (int c = 0; c < kChannels; ++c) r.mean_term[c] += term_sum[w][e][c];

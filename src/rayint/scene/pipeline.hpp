@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rayint/scene/effect.hpp"
@@ -81,6 +82,7 @@ class ScenePipeline {
   std::unique_ptr<Shadowing> shadowing_;
   std::vector<std::unique_ptr<Effect>> effects_;
   std::vector<const EffectInfo*> infos_;
+  std::vector<std::pair<double, double>> effect_setup_;  // per effect: wall, process CPU seconds
   double setup_seconds_ = 0.0;
   double setup_cpu_seconds_ = 0.0;
 };
