@@ -67,7 +67,8 @@ CloudField::CloudField(CloudParams params) : params_(std::move(params)), noise_(
   max_density_ = params_.scale * std::max(0.0, wsum + params_.amplitude * kNoiseBound * gsum - params_.threshold);
   // Central differences at 1/20 of the finest noise wavelength (and of the smallest radius).
   const double finest = 1.0 / (params_.frequency * std::pow(params_.lacunarity, std::max(0, params_.octaves - 1)));
-  gradient_step_ = 0.05 * std::min(finest, rmin);
+  feature_length_ = std::min(finest, rmin);
+  gradient_step_ = 0.05 * feature_length_;
 }
 
 double CloudField::base(const Vec3& p) const {

@@ -58,6 +58,8 @@ class CloudField final : public DensityField {
   double density(const Vec3& p) const override;
   double max_density() const override { return max_density_; }
   double gradient_step() const override { return gradient_step_; }
+  // The finest noise wavelength (or the smallest ellipsoid radius, if smaller).
+  double feature_length() const override { return feature_length_; }
   const CloudParams& params() const { return params_; }
 
  private:
@@ -68,6 +70,7 @@ class CloudField final : public DensityField {
   Bounds bounds_;
   double max_density_ = 0.0;
   double gradient_step_ = 1e-3;
+  double feature_length_ = 1.0;
 };
 
 // The cloud of the bundled figure scenes (cases/scenes/): five ellipsoids around the origin,

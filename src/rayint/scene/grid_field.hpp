@@ -18,6 +18,8 @@ class GridField final : public DensityField {
   double density(const Vec3& p) const override;
   double max_density() const override { return max_; }
   double gradient_step() const override { return 0.25 * grid_.spacing().minCoeff(); }
+  // Linear on each Kuhn tetrahedron: a cell's smallest spacing holds at most a few kinks.
+  double feature_length() const override { return grid_.spacing().minCoeff(); }
   bool piecewise_linear() const override { return true; }
   Ray linear_segments(const ViewRay& ray, const Rgb& background) const override;
   const VoxelGrid& grid() const { return grid_; }

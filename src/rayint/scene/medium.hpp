@@ -52,6 +52,10 @@ class DensityField {
   // Gradient of the density (shading). Default: central differences with gradient_step().
   virtual Vec3 gradient(const Vec3& p) const;
   virtual double gradient_step() const { return 1e-3; }
+  // The longest stretch of a line on which the density can hold a feature that 15 Gauss-Kronrod
+  // nodes spread over it would all miss: the references start every integral from panels no
+  // longer than this (QuadratureOptions::panel_length). Infinity for fields smooth on any scale.
+  virtual double feature_length() const = 0;
   // True when the density is piecewise linear along every straight line (homogeneous media,
   // Kuhn-tetrahedralized grids); then linear_segments() gives the ray inside bounds as model
   // segments, far -> near, so that integrators/exact and reference/ apply unchanged.
@@ -68,6 +72,8 @@ class HomogeneousField final : public DensityField {
   double density(const Vec3& p) const override { return bounds_.contains(p) ? density_ : 0.0; }
   double max_density() const override { return density_; }
   Vec3 gradient(const Vec3&) const override { return Vec3::Zero(); }
+  // Constant on the span clipped to the bounds: one panel suffices.
+  double feature_length() const override { return std::numeric_limits<double>::infinity(); }
   bool piecewise_linear() const override { return true; }
   Ray linear_segments(const ViewRay& ray, const Rgb& background) const override;
   bool slab() const { return slab_; }

@@ -105,10 +105,23 @@ QuadratureResult integrate_adaptive(const std::function<Rgb(double)>& f, double 
   const double sign = b > a ? 1.0 : -1.0;
   if (b < a) std::swap(a, b);
   std::priority_queue<Panel> heap;
-  Panel first = gk15(f, a, b, out.evaluations);
-  Rgb total = first.value, err = first.error;
-  heap.push(first);
-  int intervals = 1;
+  // Starting panels of at most options.panel_length, so that no feature hides between nodes.
+  const double panels_wanted = std::ceil((b - a) / options.panel_length);
+  const int panels = std::isfinite(panels_wanted)
+                         ? static_cast<int>(std::clamp(panels_wanted, 1.0, std::max(1.0, 0.5 * options.max_intervals)))
+                         : 1;
+  Rgb total{}, err{};
+  for (int i = 0; i < panels; ++i) {
+    const double pa = i == 0 ? a : a + (b - a) * i / panels;
+    const double pb = i + 1 == panels ? b : a + (b - a) * (i + 1) / panels;
+    const Panel p = gk15(f, pa, pb, out.evaluations);
+    for (int c = 0; c < kChannels; ++c) {
+      total[c] += p.value[c];
+      err[c] += p.error[c];
+    }
+    heap.push(p);
+  }
+  int intervals = panels;
   auto done = [&] {
     for (int c = 0; c < kChannels; ++c)
       if (err[c] > std::max(options.atol, options.rtol * std::abs(total[c]))) return false;
@@ -165,6 +178,7 @@ Rgb reference_light_transmittance(const Scene& scene, std::size_t light, const V
   QuadratureOptions opt = options;
   opt.rtol *= 0.1;
   opt.atol *= 0.1;
+  opt.panel_length = scene.medium.field().feature_length();
   const QuadratureResult r = integrate_adaptive(
       [&](double t) { return scene.medium.extinction(p + u * t); }, span.t_near, t_end, opt);
   evaluations += r.evaluations;
@@ -177,7 +191,8 @@ ReferenceValue reference_source_term(const Scene& scene, const ViewRay& ray, con
   ReferenceValue out;
   const RaySpan span = scene.medium.bounds().clip(ray);
   if (!span.hit) return out;
-  const QuadratureOptions& opt = scene.reference;
+  QuadratureOptions opt = scene.reference;
+  opt.panel_length = scene.medium.field().feature_length();
   long long evals = 0;
   bool converged = true;
   std::unique_ptr<ViewDepth> depth;
@@ -211,6 +226,7 @@ ReferenceValue reference_transmittance(const Scene& scene, const ViewRay& ray) {
   const RaySpan span = scene.medium.bounds().clip(ray);
   if (!span.hit) return out;
   QuadratureOptions opt = scene.reference;
+  opt.panel_length = scene.medium.field().feature_length();
   const QuadratureResult r = integrate_adaptive(
       [&](double t) { return scene.medium.extinction(ray.origin + ray.direction * t); },
       span.t_near, span.t_far, opt);

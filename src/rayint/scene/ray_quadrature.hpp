@@ -8,7 +8,8 @@
 // over the whole span for absorption.
 //
 // Method: global adaptive Gauss-Kronrod 7-15 (nodes and weights from Boost.Math) on Rgb-valued
-// integrands; the interval with the largest error estimate |K15 - G7| is bisected until every
+// integrands, started from panels no longer than the medium's feature_length() (one panel whose
+// nodes all miss a feature would report a zero error and stop); the interval with the largest error estimate |K15 - G7| is bisected until every
 // channel's total estimate is <= max(atol, rtol |value|) or the interval budget is spent
 // (converged = false then, never silently). tau(t) at an outer node is tau at the nearest of 64
 // knots (each knot-to-knot depth adaptive to rtol / 10) plus an adaptive integral from the knot.

@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct QuadratureOptions {
   double rtol = 1e-9;            // relative tolerance of every adaptive integral
   double atol = 1e-14;           // absolute floor
   int max_intervals = 4000;      // subintervals per integral before it reports non-convergence
+  // Each integral starts from panels no longer than this (the medium's feature_length()): a
+  // single Gauss-Kronrod panel whose 15 nodes all miss a feature reports a zero error estimate
+  // and "converges" to the wrong value (seen: a ray clipping the cloud's edge got T = 1 against
+  // a true 0.88). Infinity: one starting panel.
+  double panel_length = std::numeric_limits<double>::infinity();
 };
 
 struct Scene {
