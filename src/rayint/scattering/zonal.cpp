@@ -4,22 +4,53 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "rayint/scattering/block_runner.hpp"
+#include "rayint/scattering/estimate.hpp"
 
 namespace rayint {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-double projected_area(const Vec3& h, const Vec3& d) {
-  return std::fabs(d[0]) * h[1] * h[2] + std::fabs(d[1]) * h[0] * h[2] + std::fabs(d[2]) * h[0] * h[1];
-}
-
 double one_minus_exp_over(double sigma, double s) {
   const double x = sigma * s;
   return x < 1e-8 ? s * (1 - 0.5 * x) : -std::expm1(-x) / sigma;
+}
+
+// Walks the ray x + t d (x inside the box or on its boundary, d unit) through the zones with
+// exact chords (Amanatides & Woo 1987), calling visit(cell, chord) until it leaves the box.
+template <class Visit>
+void walk_cells(const CellGrid& g, const Vec3& x, const Vec3& d, Visit&& visit) {
+  int idx[3], step[3];
+  double t_max[3], t_delta[3];
+  for (int a = 0; a < 3; ++a) {
+    idx[a] = std::clamp(static_cast<int>(std::floor((x[a] - g.lower[a]) / g.h[a])), 0, g.n - 1);
+    if (d[a] > 0) {
+      step[a] = 1;
+      t_max[a] = (g.lower[a] + (idx[a] + 1) * g.h[a] - x[a]) / d[a];
+      t_delta[a] = g.h[a] / d[a];
+    } else if (d[a] < 0) {
+      step[a] = -1;
+      t_max[a] = (g.lower[a] + idx[a] * g.h[a] - x[a]) / d[a];
+      t_delta[a] = -g.h[a] / d[a];
+    } else {
+      step[a] = 0;
+      t_max[a] = t_delta[a] = std::numeric_limits<double>::infinity();
+    }
+    t_max[a] = std::max(0.0, t_max[a]);
+  }
+  double t = 0;
+  for (;;) {
+    const int a = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+    if (!visit(g.index(idx[0], idx[1], idx[2]), t_max[a] - t)) return;
+    t = t_max[a];
+    idx[a] += step[a];
+    if (idx[a] < 0 || idx[a] >= g.n) return;
+    t_max[a] += t_delta[a];
+  }
 }
 }  // namespace
 
@@ -29,6 +60,8 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
     throw std::invalid_argument("zonal method: isotropic scattering only (phase function is " +
                                 std::string(v.phase.name()) + ")");
   if (o.grid < 2 || o.grid > 20) throw std::invalid_argument("zonal method: grid must be in [2, 20]");
+  if (o.rays_per_cell < 1 || o.light_rays_per_face < 1)
+    throw std::invalid_argument("zonal method: rays_per_cell and light_rays_per_face must be >= 1");
   const auto start = std::chrono::steady_clock::now();
   ZonalSolution sol;
   sol.cells = make_cell_grid(v, o.grid);
@@ -36,56 +69,70 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
   const std::size_t nc = g.size();
   const Vec3 h = g.h;
   const double V = h[0] * h[1] * h[2];
-  const double S = 2 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]);
   sol.sigma_t.resize(nc);
-  std::vector<Vec3> centers(nc);
   for (int k = 0; k < g.n; ++k)
     for (int j = 0; j < g.n; ++j)
-      for (int i = 0; i < g.n; ++i) {
-        const std::size_t c = g.index(i, j, k);
-        centers[c] = g.center(i, j, k);
-        sol.sigma_t[c] = v.sigma_t(centers[c]);
-      }
+      for (int i = 0; i < g.n; ++i) sol.sigma_t[g.index(i, j, k)] = v.sigma_t(g.center(i, j, k));
   sol.irradiance = first_pass_irradiance(v, g, o.threads);
+  const std::vector<double>& sig = sol.sigma_t;
 
-  // Light power extinguished per cell.
-  std::vector<double> P_light(nc);
-  for (std::size_t c = 0; c < nc; ++c) {
-    const double A = projected_area(h, v.light.direction);
-    const double sigma = sol.sigma_t[c];
-    P_light[c] = sol.irradiance[c] * A * sigma * one_minus_exp_over(sigma, V / A);
+  // Light power extinguished per zone: parallel rays entering through the lit faces.
+  std::vector<double> P_light(nc, 0.0);
+  const Vec3 d_light = v.light.direction.normalized();
+  const int m = o.light_rays_per_face;
+  for (int a = 0; a < 3; ++a) {
+    if (d_light[a] == 0) continue;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    const double face = d_light[a] > 0 ? g.lower[a] : g.upper[a];
+    const double dA = (h[b] / m) * (h[c] / m);
+    const double power = v.light.irradiance * std::fabs(d_light[a]) * dA;
+    for (int ib = 0; ib < g.n * m; ++ib)
+      for (int ic = 0; ic < g.n * m; ++ic) {
+        Vec3 x;
+        x[a] = face;
+        x[b] = g.lower[b] + (ib + 0.5) * h[b] / m;
+        x[c] = g.lower[c] + (ic + 0.5) * h[c] / m;
+        double T = 1;
+        walk_cells(g, x, d_light, [&](std::size_t cell, double len) {
+          const double absorbed = -std::expm1(-sig[cell] * len);
+          P_light[cell] += power * T * absorbed;
+          T *= 1 - absorbed;
+          return true;
+        });
+        sol.power_incident += power;
+        sol.power_direct += power * T;
+      }
   }
 
-  // Form factors F(i, j): fraction of j's isotropic power extinguished in i (row i).
+  // Exchange factors F(i, j) (row i, column j), column j from rays leaving zone j.
   std::vector<double> F(nc * nc, 0.0);
-  const double step = 0.5 * h.minCoeff();
-  parallel_for_blocks(nc, o.threads, [&](std::size_t i) {
-    const double sigma_i = sol.sigma_t[i];
-    for (std::size_t j = 0; j < nc; ++j) {
-      if (i == j) {
-        F[i * nc + i] = 1 - 1 / (1 + sigma_i * 4 * V / S);
-        continue;
-      }
-      if (sigma_i <= 0) continue;
-      const Vec3 diff = centers[i] - centers[j];
-      const double r = diff.norm();
-      const Vec3 d = diff / r;
-      const double A = projected_area(h, d), s_chord = V / A;
-      const int steps = std::max(1, static_cast<int>(std::ceil(r / step)));
-      const double dt = r / steps;
-      double tau = 0;
-      for (int s = 0; s < steps; ++s) {
-        const Vec3 x = centers[j] + (s + 0.5) * dt * d;
-        // nearest cell centre's sigma_t (the zones are constant)
-        int idx[3];
-        for (int a = 0; a < 3; ++a)
-          idx[a] = std::clamp(static_cast<int>(std::floor((x[a] - g.lower[a]) / h[a])), 0, g.n - 1);
-        tau += sol.sigma_t[g.index(idx[0], idx[1], idx[2])] * dt;
-      }
-      tau -= 0.5 * s_chord * (sol.sigma_t[i] + sol.sigma_t[j]);
-      const double T = std::exp(-std::max(0.0, tau));
-      F[i * nc + j] = T * A * sigma_i * one_minus_exp_over(sigma_i, s_chord) / (4 * kPi * r * r);
+  sol.escape.assign(nc, 0.0);
+  const double w = 1.0 / o.rays_per_cell;
+  parallel_for_blocks(nc, o.threads, [&](std::size_t jc) {
+    if (sig[jc] <= 0) {  // a zone that scatters nothing emits nothing; its column is unused
+      sol.escape[jc] = 1;
+      return;
     }
+    Rng rng = block_rng(o.seed, jc);
+    const int ii = static_cast<int>(jc % g.n), jj = static_cast<int>((jc / g.n) % g.n),
+              kk = static_cast<int>(jc / (static_cast<std::size_t>(g.n) * g.n));
+    const Vec3 corner = g.lower + Vec3(ii * h[0], jj * h[1], kk * h[2]);
+    double escaped = 0;
+    for (int r = 0; r < o.rays_per_cell; ++r) {
+      const Vec3 x = corner + Vec3(rng.uniform() * h[0], rng.uniform() * h[1], rng.uniform() * h[2]);
+      const double cz = 2 * rng.uniform() - 1, phi = 2 * kPi * rng.uniform();
+      const double sz = std::sqrt(std::max(0.0, 1 - cz * cz));
+      const Vec3 d(sz * std::cos(phi), sz * std::sin(phi), cz);
+      double T = w;
+      walk_cells(g, x, d, [&](std::size_t cell, double len) {
+        const double absorbed = -std::expm1(-sig[cell] * len);
+        F[cell * nc + jc] += T * absorbed;
+        T *= 1 - absorbed;
+        return T > 1e-17 * w;  // what is left is below double resolution of the column sum
+      });
+      escaped += T;
+    }
+    sol.escape[jc] = escaped;
   });
 
   // Gauss-Seidel on P = omega (P_light + F P).
@@ -108,8 +155,15 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
     }
   }
   sol.multiple.resize(nc);
-  for (std::size_t c = 0; c < nc; ++c)
-    sol.multiple[c] = std::max(0.0, P[c] - v.albedo * P_light[c]) / (4 * kPi * V);
+  for (std::size_t i = 0; i < nc; ++i) {
+    double inscattered = 0;
+    const double* row = &F[i * nc];
+    for (std::size_t j = 0; j < nc; ++j) inscattered += row[j] * P[j];
+    sol.multiple[i] = v.albedo * inscattered / (4 * kPi * V);
+    sol.power_escaped += P[i] * sol.escape[i];
+    sol.power_absorbed += (1 - v.albedo) * (P_light[i] + inscattered);
+  }
+  sol.power = std::move(P);
   sol.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sol;
 }
