@@ -43,4 +43,12 @@ for n in 32 64; do
 done
 echo "== sweep" >&2
 "$RAYINT" scene-sweep "$SWEEP_SCENE" --errors 6 --threads 2 --quiet "$@" -o "$OUT/sweep.json"
+# The matched-error pair of the sweep (max error ~0.013 of the peak), at the figure's 512 x 512,
+# without references: shadow rays n = 32 against the two-pass grid 128^3.
+echo "== matched pair at 512 x 512" >&2
+"$RAYINT" render cases/scenes/cloud-single-scattering-shadows.json -o "$OUT/matched.png" --threads 2 --quiet \
+    --method single_scattering=riemann:n=32 --method shadows=shadow_rays:n=32 --stats "$OUT/matched-shadow_rays_n_32.json"
+"$RAYINT" render cases/scenes/cloud-single-scattering-shadows.json -o "$OUT/matched.png" --threads 2 --quiet \
+    --method single_scattering=riemann:n=32 --method shadows=two_pass:grid=128 --stats "$OUT/matched-two_pass_grid_128.json"
+rm -f "$OUT/matched.png"
 /usr/bin/python3 "$ROOT/scripts/figures_report.py" "$OUT"
