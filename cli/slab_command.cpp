@@ -1,7 +1,9 @@
 // rayint slab -- the plane-parallel slab (src/rayint/scattering/slab.hpp): either one problem
 // given by options, or every value of a published benchmark file (--benchmark), solved by the
-// adding-doubling method and by Monte Carlo. A table or JSON; exit 1 if a benchmark value is
+// adding-doubling method, by Monte Carlo and (isotropic problems) by the integral equation for
+// the source function. A table or JSON; exit 1 if a benchmark value is
 // not reproduced under the acceptance rule of slab_benchmark.hpp.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -27,6 +29,8 @@ struct SlabOptions {
   int streams = 64;
   double start_thickness = 1e-8;
   bool no_richardson = false;
+  bool no_integral_equation = false;
+  int ie_segments = 128;
   bool mc_analog = false;
   double mc_max_rel = 0.02;
   bool json = false;
@@ -65,8 +69,9 @@ nlohmann::json estimate_json(const Estimate& e) {
 std::string benchmark_table(const BenchmarkReport& r, const BenchmarkRunOptions& o) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-4s %-30s %12s %8s | %12s %10s %4s | %12s %10s %25s %10s %3s %4s  %s\n",
-                "id", "value", "published", "tol", "doubling", "rel dev", "ok", "monte carlo",
+  std::snprintf(line, sizeof line, "%-4s %-30s %12s %8s | %12s %10s %4s | %13s %8s %10s | %12s %10s %25s %10s %3s %4s  %s\n",
+                "id", "value", "published", "tol", "doubling", "rel dev", "ok", "integral eq", "est err",
+                "rel dev", "monte carlo",
                 "rel dev", "95% interval", "4 SE/pub", "in", "ok", "verdict");
   out += line;
   for (const auto& row : r.rows) {
@@ -80,6 +85,12 @@ std::string benchmark_table(const BenchmarkReport& r, const BenchmarkRunOptions&
     else
       std::snprintf(line, sizeof line, "%12s %10s %4s | ", "-", "-", "-");
     out += line;
+    if (row.has_integral_equation)
+      std::snprintf(line, sizeof line, "%13.10g %8.1e %10.2e | ", row.integral_equation, row.ie_error,
+                    row.ie_rel_dev);
+    else
+      std::snprintf(line, sizeof line, "%13s %8s %10s | ", "-", "-", "-");
+    out += line;
     if (row.has_monte_carlo) {
       const Estimate& e = row.monte_carlo;
       std::snprintf(line, sizeof line, "%12.7g %10.2e [%11.6g,%11.6g] %10.2e %3s %4s  %s\n", e.mean,
@@ -92,8 +103,11 @@ std::string benchmark_table(const BenchmarkReport& r, const BenchmarkRunOptions&
     out += line;
   }
   long long photons = 0, collisions = 0;
-  double mc_s = 0, d_s = 0;
+  double mc_s = 0, d_s = 0, ie_s = 0;
+  int ie_segments = 0;
   for (const auto& c : r.costs) {
+    ie_s += c.ie_seconds;
+    ie_segments = std::max(ie_segments, c.ie_segments);
     photons += c.mc_photons;
     collisions += c.mc_collisions;
     mc_s += c.mc_seconds;
@@ -102,6 +116,11 @@ std::string benchmark_table(const BenchmarkReport& r, const BenchmarkRunOptions&
   if (o.doubling)
     out += "doubling: " + std::to_string(o.doubling_options.streams) + " streams per hemisphere, " +
            fmt("%.3f", d_s) + " s in total\n";
+  if (ie_segments > 0)
+    out += "integral equation (isotropic problems): product integration, meshes " +
+           std::to_string(o.ie_options.segments) + "-" + std::to_string(ie_segments) +
+           " segments, Richardson; est err = change of the extrapolation with the last mesh; " +
+           fmt("%.3f", ie_s) + " s in total\n";
   if (o.monte_carlo)
     out += std::string(o.mc_split ? "monte carlo (exact orders 0-1 + MC orders >= 2)"
                                   : "monte carlo (analog)") + ": seed " + std::to_string(o.mc_options.seed) + ", " +
@@ -117,8 +136,9 @@ std::string benchmark_table(const BenchmarkReport& r, const BenchmarkRunOptions&
     if (row.verdict == BenchmarkRow::Verdict::disputed) ++disputed;
     if (row.verdict == BenchmarkRow::Verdict::failed) ++failed;
   }
-  out += "disputed: the published value misses its tolerance, both solvers agree within 4 SE and "
-         "the Monte Carlo excludes the published value by more than 4 SE\n";
+  out += "disputed: the published value misses its tolerance, doubling and Monte Carlo agree within 4 SE, "
+         "and the Monte Carlo excludes the published value by more than 4 SE or the integral equation "
+         "(est err <= 1e-6 rel) agrees with the doubling and so excludes it too\n";
   out += std::to_string(reproduced) + " reproduced, " + std::to_string(disputed) + " disputed, " +
          std::to_string(failed) + " failed of " + std::to_string(r.rows.size()) + " values\n";
   return out;
@@ -136,6 +156,10 @@ nlohmann::json benchmark_json(const SlabBenchmark& b, const BenchmarkReport& r,
     if (row.has_doubling)
       j["doubling"] = {{"value", row.doubling}, {"rel_dev", row.doubling_rel_dev},
                        {"pass", row.doubling_pass}};
+    if (row.has_integral_equation)
+      j["integral_equation"] = {{"value", row.integral_equation}, {"error_estimate", row.ie_error},
+                                {"observed_order", row.ie_order}, {"rel_dev", row.ie_rel_dev},
+                                {"pass", row.ie_pass}};
     if (row.has_monte_carlo) {
       j["monte_carlo"] = estimate_json(row.monte_carlo);
       j["monte_carlo"]["rel_dev"] = row.mc_rel_dev;
@@ -148,10 +172,13 @@ nlohmann::json benchmark_json(const SlabBenchmark& b, const BenchmarkReport& r,
   nlohmann::json costs = nlohmann::json::array();
   for (const auto& c : r.costs)
     costs.push_back({{"id", c.problem_id}, {"doubling_seconds", c.doubling_seconds},
+                     {"ie_seconds", c.ie_seconds}, {"ie_finest_segments", c.ie_segments},
                      {"mc_seconds", c.mc_seconds}, {"mc_photons", c.mc_photons},
                      {"mc_collisions", c.mc_collisions}});
   return {{"benchmark_source", b.source},
           {"doubling_streams", o.doubling_options.streams},
+          {"ie_segments", o.integral_equation ? o.ie_options.segments : 0},
+          {"ie_levels", o.ie_options.levels},
           {"mc_seed", o.mc_options.seed},
           {"mc_photons_per_problem", o.mc_options.photons},
           {"mc_threads", o.mc_options.threads},
@@ -193,6 +220,15 @@ void run_one(const SlabOptions& s, bool doubling, bool mc) {
     d.start_thickness = s.start_thickness;
     d.richardson = !s.no_richardson;
     j["doubling"] = values_json(solve_slab_doubling(p, d));
+  }
+  if (doubling && s.max_order == 0 && !s.no_integral_equation &&
+      p.phase.kind() == PhaseFunction::Kind::isotropic) {
+    SlabIntegralEquationOptions ie;
+    ie.segments = s.ie_segments;
+    const SlabIntegralEquationResult r = solve_slab_integral_equation(p, ie);
+    j["integral_equation"] = values_json(r.values);
+    j["integral_equation"]["error_estimate"] = values_json(r.error_estimate);
+    j["integral_equation"]["finest_segments"] = r.finest_segments;
   }
   if (s.max_order == 1)
     j["single_scattering_closed_form"] = values_json(single_scattering(p));
@@ -242,6 +278,10 @@ void set_slab_command(CLI::App& app) {
                   "doubling: largest optical thickness of the single-scattering start layer (1e-8)");
   cmd->add_flag("--no-richardson", s->no_richardson,
                 "doubling: no extrapolation in the start thickness (for convergence studies)");
+  cmd->add_flag("--no-integral-equation", s->no_integral_equation,
+                "no integral-equation solver (isotropic problems; it runs with the doubling)");
+  cmd->add_option("--ie-segments", s->ie_segments,
+                  "integral equation: coarsest mesh segments (default 128; meshes x1, x2, x4, x8)");
   cmd->add_option("--mc-max-rel", s->mc_max_rel,
                   "benchmark: largest 4 SE / published a Monte Carlo check may have (default 0.02)");
   cmd->add_flag("--mc-analog", s->mc_analog,
@@ -269,6 +309,8 @@ void set_slab_command(CLI::App& app) {
     if (s->streams < 2 || s->streams > 1024) throw std::invalid_argument("--streams: must be in [2, 1024]");
     if (!(s->start_thickness > 0 && s->start_thickness <= 1e-3))
       throw std::invalid_argument("--start-thickness: must be in (0, 1e-3]");
+    if (s->ie_segments < 4 || s->ie_segments > 512)
+      throw std::invalid_argument("--ie-segments: must be in [4, 512]");
     if (!(s->mc_max_rel > 0)) throw std::invalid_argument("--mc-max-rel: must be > 0");
     if (s->max_order < 0) throw std::invalid_argument("--max-order: must be >= 0");
     if (s->benchmark.empty()) {
@@ -295,6 +337,8 @@ void set_slab_command(CLI::App& app) {
     o.doubling_options.streams = s->streams;
     o.doubling_options.start_thickness = s->start_thickness;
     o.doubling_options.richardson = !s->no_richardson;
+    o.integral_equation = doubling && !s->no_integral_equation;
+    o.ie_options.segments = s->ie_segments;
     o.mc_options.photons = s->photons;
     o.mc_options.seed = s->seed;
     o.mc_options.threads = s->threads;

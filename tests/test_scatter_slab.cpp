@@ -19,6 +19,7 @@
 #include "rayint/scattering/gauss_legendre.hpp"
 #include "rayint/scattering/slab_benchmark.hpp"
 #include "rayint/scattering/slab_doubling.hpp"
+#include "rayint/scattering/slab_integral_equation.hpp"
 #include "rayint/scattering/slab_monte_carlo.hpp"
 #include "rayint/scattering/slab_single_scattering.hpp"
 #include "tolerances.hpp"
@@ -217,6 +218,7 @@ TEST_CASE("DISORT benchmark: doubling holds the published tolerance", "[scatter]
   REQUIRE(b.problems.size() == 8);
   BenchmarkRunOptions o;
   o.monte_carlo = false;
+  o.integral_equation = false;  // its own test below
   const BenchmarkReport r = run_slab_benchmark(b, o);
   REQUIRE(r.rows.size() == 42);
   int reproduced = 0;
@@ -333,4 +335,102 @@ TEST_CASE("complete elliptic integral E(k) by the AGM against 50-digit Boost.Mat
     INFO("k^2 = " << k2);
     CHECK(rel(complete_elliptic_e(k), ref) <= Tolerances::elliptic_e_rel);
   }
+}
+
+// --- the integral equation for the source function (slab_integral_equation.hpp) ---
+namespace {
+// Bounds of the integral-equation tests, each the measured value rounded up (Dec 2026).
+struct IntegralEquationTolerances {
+  // omega = 1e-8 against the single-scattering closed forms (second order ~ omega/2 relative);
+  // measured <= 6.7e-9.
+  static constexpr double single_rel = 2e-8;
+  // omega = 1, beam: F_up + F_down,diffuse + direct = pi after Richardson; measured 4.9e-14,
+  // 1.5e-10, 3.3e-8 at tau = 1/32, 1, 8 (the raw 128-segment mesh: 7.7e-8, 9.2e-6, 5.7e-4).
+  static constexpr double energy_beam_rel = 1e-7;
+  // omega = 1, isotropic incidence: conserved on every mesh (product integration is exact for
+  // the E2 source); measured <= 2.3e-15.
+  static constexpr double energy_isotropic_rel = 1e-13;
+  // observed order of the mesh sequence 128..1024 on DISORT 1a-1c: measured 2.00.
+  static constexpr double order_lo = 1.95, order_hi = 2.05;
+  // extrapolations from 64- and 128-segment starts on 1a-1c: measured <= 2e-10 relative.
+  static constexpr double start_independence_rel = 1e-8;
+};
+using IE = IntegralEquationTolerances;
+constexpr double kPiIE = 3.14159265358979323846;
+
+void check_rel(double got, double expected, double tol, const std::string& what) {
+  INFO(what << ": got " << got << ", expected " << expected << ", rel " << (got - expected) / expected);
+  CHECK(std::fabs(got - expected) <= tol * std::fabs(expected));
+}
+}  // namespace
+
+TEST_CASE("slab integral equation: first order equals the single-scattering closed forms", "[scatter][ie]") {
+  for (SlabSource src : {SlabSource::beam, SlabSource::isotropic}) {
+    SlabProblem p;
+    p.tau = 0.7;
+    p.albedo = 1e-8;
+    p.mu0 = 0.4;
+    p.source = src;
+    p.mu_up = {0.1, 0.4, 1.0};
+    p.mu_down = {0.2, 0.4, 1.0};  // 0.4 = mu0: the limit form
+    const SlabIntegralEquationResult r = solve_slab_integral_equation(p);
+    const SlabValues c = single_scattering(p);
+    const std::string name = src == SlabSource::beam ? "beam" : "isotropic";
+    for (std::size_t i = 0; i < p.mu_up.size(); ++i)
+      check_rel(r.values.intensity_up_top[i], c.intensity_up_top[i], IE::single_rel, name + " up");
+    check_rel(r.values.flux_up_top, c.flux_up_top, IE::single_rel, name + " flux up");
+    if (src == SlabSource::beam) {  // with isotropic incidence "diffuse down" includes the unscattered light
+      for (std::size_t i = 0; i < p.mu_down.size(); ++i)
+        check_rel(r.values.intensity_down_bottom[i], c.intensity_down_bottom[i], IE::single_rel, name + " down");
+      check_rel(r.values.diffuse_down_bottom, c.diffuse_down_bottom, IE::single_rel, name + " diffuse down");
+    }
+  }
+}
+
+TEST_CASE("slab integral equation: conservative scattering conserves the incident flux", "[scatter][ie]") {
+  for (SlabSource src : {SlabSource::beam, SlabSource::isotropic})
+    for (double tau : {0.03125, 1.0, 8.0}) {
+      SlabProblem p;
+      p.tau = tau;
+      p.albedo = 1;
+      p.mu0 = 0.4;
+      p.source = src;
+      const SlabIntegralEquationResult r = solve_slab_integral_equation(p);
+      const double total = r.values.flux_up_top + r.values.diffuse_down_bottom + r.values.direct_down_bottom;
+      const bool beam = src == SlabSource::beam;
+      check_rel(total, kPiIE, beam ? IE::energy_beam_rel : IE::energy_isotropic_rel,
+                std::string(beam ? "beam" : "isotropic") + " tau " + std::to_string(tau));
+      if (!beam)
+        for (const SlabValues& m : r.meshes)
+          check_rel(m.flux_up_top + m.diffuse_down_bottom, kPiIE, IE::energy_isotropic_rel, "one mesh");
+    }
+}
+
+TEST_CASE("slab integral equation: second-order convergence and Richardson on DISORT 1a-1c", "[scatter][ie]") {
+  const SlabBenchmark b = read_slab_benchmark(benchmark_path());
+  for (const auto& bp : b.problems) {
+    if (bp.id != "1a" && bp.id != "1b" && bp.id != "1c") continue;
+    SlabIntegralEquationOptions fine, coarse;
+    coarse.segments = 64;
+    const SlabIntegralEquationResult r = solve_slab_integral_equation(bp.problem, fine);
+    const SlabIntegralEquationResult q = solve_slab_integral_equation(bp.problem, coarse);
+    REQUIRE(r.finest_segments == 1024);
+    for (std::size_t i = 0; i < bp.problem.mu_up.size(); ++i) {
+      const std::string what = bp.id + " I_up(mu=" + std::to_string(bp.problem.mu_up[i]) + ")";
+      INFO(what << " order " << r.observed_order.intensity_up_top[i]);
+      CHECK(r.observed_order.intensity_up_top[i] >= IE::order_lo);
+      CHECK(r.observed_order.intensity_up_top[i] <= IE::order_hi);
+      check_rel(q.values.intensity_up_top[i], r.values.intensity_up_top[i], IE::start_independence_rel, what);
+    }
+    INFO(bp.id << " flux order " << r.observed_order.flux_up_top);
+    CHECK(r.observed_order.flux_up_top >= IE::order_lo);
+    CHECK(r.observed_order.flux_up_top <= IE::order_hi);
+    check_rel(q.values.flux_up_top, r.values.flux_up_top, IE::start_independence_rel, bp.id + " flux up");
+  }
+}
+
+TEST_CASE("slab integral equation refuses anisotropic scattering", "[scatter][ie]") {
+  SlabProblem p;
+  p.phase = PhaseFunction::henyey_greenstein(0.75);
+  CHECK_THROWS_AS(solve_slab_integral_equation(p), std::invalid_argument);
 }

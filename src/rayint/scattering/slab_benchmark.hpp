@@ -18,6 +18,12 @@
 //   with each other (|doubling - MC| <= 4 SE), the Monte Carlo rejects the published value
 //   (|published - MC| > 4 SE) and 4 SE <= mc_max_rel |published|: evidence that the published
 //   value is off, not us. Too few photons make a value "failed", never "disputed".
+//   For isotropic problems the integral equation for the source function
+//   (slab_integral_equation.hpp) is a third, deterministic solver: a value is also disputed when
+//   the doubling misses the tolerance, the integral equation agrees with the doubling within
+//   max(4 x its error estimate, 1e-6 |published|) with an error estimate <= 1e-6 |published|,
+//   so it excludes the published value too, and the Monte Carlo (if run) agrees with the
+//   doubling within 4 SE.
 // - failed: anything else. With one method only, a value is reproduced or failed.
 #include <functional>
 #include <string>
@@ -25,6 +31,7 @@
 
 #include "rayint/scattering/slab.hpp"
 #include "rayint/scattering/slab_doubling.hpp"
+#include "rayint/scattering/slab_integral_equation.hpp"
 #include "rayint/scattering/slab_monte_carlo.hpp"
 
 namespace rayint {
@@ -63,6 +70,9 @@ struct BenchmarkRow {
   bool has_doubling = false;
   double doubling = 0, doubling_rel_dev = 0;
   bool doubling_pass = false;
+  bool has_integral_equation = false;  // isotropic problems only
+  double integral_equation = 0, ie_error = 0, ie_order = 0, ie_rel_dev = 0;
+  bool ie_pass = false;
   bool has_monte_carlo = false;
   Estimate monte_carlo;
   double mc_rel_dev = 0;
@@ -76,7 +86,9 @@ struct BenchmarkRow {
 struct BenchmarkRunOptions {
   bool doubling = true;
   bool monte_carlo = true;
+  bool integral_equation = true;  // on the isotropic problems
   DoublingOptions doubling_options;
+  SlabIntegralEquationOptions ie_options;
   SlabMonteCarloOptions mc_options;
   double mc_max_rel = 0.02;  // 4 SE must be within this fraction of the published value
   bool mc_split = true;      // exact orders 0-1 + Monte Carlo orders >= 2 (else plain Monte Carlo)
@@ -85,6 +97,8 @@ struct BenchmarkRunOptions {
 struct BenchmarkProblemCost {
   std::string problem_id;
   double doubling_seconds = 0;
+  double ie_seconds = 0;
+  int ie_segments = 0;  // finest mesh; 0 if not run
   double mc_seconds = 0;
   long long mc_photons = 0, mc_collisions = 0;
 };
