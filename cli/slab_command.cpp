@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "rayint/scattering/slab_benchmark.hpp"
+#include "rayint/scattering/slab_scene.hpp"
 #include "rayint/scattering/slab_single_scattering.hpp"
 
 namespace rayint::cli {
@@ -21,6 +22,7 @@ namespace {
 
 struct SlabOptions {
   std::string benchmark;
+  std::string scene;
   std::vector<std::string> problems;
   std::string method = "both";
   long long photons = 1000000;
@@ -189,6 +191,8 @@ nlohmann::json benchmark_json(const SlabBenchmark& b, const BenchmarkReport& r,
           {"all_pass", r.all_pass()}};
 }
 
+void run_problem(const SlabOptions& s, const SlabProblem& p, nlohmann::json j, bool doubling, bool mc);
+
 void run_one(const SlabOptions& s, bool doubling, bool mc) {
   SlabProblem p;
   p.tau = s.tau;
@@ -207,6 +211,21 @@ void run_one(const SlabOptions& s, bool doubling, bool mc) {
   nlohmann::json j = {{"tau", p.tau}, {"albedo", p.albedo}, {"phase", s.phase},
                       {"source", s.source}, {"mu0", p.mu0}, {"mu_up", p.mu_up},
                       {"mu_down", p.mu_down}};
+  run_problem(s, p, j, doubling, mc);
+}
+
+void run_scene(const SlabOptions& s, bool doubling, bool mc) {
+  const SlabScene scene = read_slab_scene(s.scene);
+  const SlabProblem& p = scene.problem;
+  const bool beam = p.source == SlabSource::beam;
+  nlohmann::json j = {{"scene", s.scene}, {"name", scene.name}, {"tau", p.tau}, {"albedo", p.albedo},
+                      {"phase", p.phase.name()}, {"source", beam ? "beam" : "isotropic"},
+                      {"mu_up", p.mu_up}, {"mu_down", p.mu_down}};
+  if (beam) j["mu0"] = p.mu0;
+  run_problem(s, p, j, doubling, mc);
+}
+
+void run_problem(const SlabOptions& s, const SlabProblem& p, nlohmann::json j, bool doubling, bool mc) {
   auto values_json = [&](const SlabValues& v) {
     return nlohmann::json{{"flux_up_top", v.flux_up_top},
                           {"diffuse_down_bottom", v.diffuse_down_bottom},
@@ -267,6 +286,9 @@ void set_slab_command(CLI::App& app) {
       "slab", "Plane-parallel slab multiple scattering: one problem, or a published benchmark file");
   cmd->add_option("--benchmark", s->benchmark,
                   "benchmark file (cases/scattering/disort_slab.json): check every value");
+  cmd->add_option("--scene", s->scene,
+                  "slab scene file (medium type \"slab\", beam or isotropic light, detectors; "
+                  "docs/multiple-scattering.md): solve it");
   cmd->add_option("--problems", s->problems, "benchmark: only these problem ids (e.g. 1a,3b)")
       ->delimiter(',');
   cmd->add_option("--method", s->method, "doubling, monte_carlo or both (default)");
@@ -313,6 +335,12 @@ void set_slab_command(CLI::App& app) {
       throw std::invalid_argument("--ie-segments: must be in [4, 512]");
     if (!(s->mc_max_rel > 0)) throw std::invalid_argument("--mc-max-rel: must be > 0");
     if (s->max_order < 0) throw std::invalid_argument("--max-order: must be >= 0");
+    if (!s->scene.empty() && !s->benchmark.empty())
+      throw std::invalid_argument("--scene and --benchmark: give one of them");
+    if (!s->scene.empty()) {
+      run_scene(*s, doubling, mc);
+      return;
+    }
     if (s->benchmark.empty()) {
       run_one(*s, doubling, mc);
       return;

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -433,4 +434,43 @@ TEST_CASE("slab integral equation refuses anisotropic scattering", "[scatter][ie
   SlabProblem p;
   p.phase = PhaseFunction::henyey_greenstein(0.75);
   CHECK_THROWS_AS(solve_slab_integral_equation(p), std::invalid_argument);
+}
+
+TEST_CASE("rayint slab --scene: a scene with a slab medium gives the slab results", "[scatter][cli]") {
+  // cases/scenes/slab-disort-1b.json declares DISORT problem 1b as a scene; the solvers must see
+  // exactly the benchmark's problem (same doubling values to the last bit).
+  rayint::test::TempDir dir;
+  const std::string scene = std::string(RAYINT_SOURCE_DIR) + "/cases/scenes/slab-disort-1b.json";
+  const auto run = rayint::test::run_cli(dir.path, "slab --scene '" + scene + "' --method doubling -o out.json");
+  INFO(run.err);
+  REQUIRE(run.status == 0);
+  const auto j = nlohmann::json::parse(rayint::test::slurp(dir.path / "out.json"));
+  const SlabBenchmark b = read_slab_benchmark(benchmark_path());
+  SlabProblem p;
+  for (const auto& bp : b.problems)
+    if (bp.id == "1b") p = bp.problem;
+  p.mu_down = {0.1, 0.5, 1.0};
+  REQUIRE(p.mu_up == std::vector<double>{0.1, 0.5, 1.0});
+  const SlabValues d = solve_slab_doubling(p);
+  CHECK(j["doubling"]["flux_up_top"].get<double>() == d.flux_up_top);
+  CHECK(j["doubling"]["diffuse_down_bottom"].get<double>() == d.diffuse_down_bottom);
+  CHECK(j["doubling"]["direct_down_bottom"].get<double>() == d.direct_down_bottom);
+  for (std::size_t i = 0; i < 3; ++i) {
+    CHECK(j["doubling"]["intensity_up_top"][i].get<double>() == d.intensity_up_top[i]);
+    CHECK(j["doubling"]["intensity_down_bottom"][i].get<double>() == d.intensity_down_bottom[i]);
+  }
+  REQUIRE(j.contains("integral_equation"));  // isotropic: the third solver runs too
+  CHECK(std::fabs(j["integral_equation"]["intensity_up_top"][0].get<double>() - d.intensity_up_top[0]) <=
+        1e-6 * d.intensity_up_top[0]);
+  // A scene medium that is not a slab, an unknown field, two lights: one line, exit 2.
+  for (const std::string bad :
+       {R"({"name":"x","medium":{"type":"cloud","optical_thickness":1,"albedo":1},"phase":{"type":"isotropic"},"lights":[{"type":"beam","mu0":1}]})",
+        R"({"name":"x","medium":{"type":"slab","optical_thickness":1,"albedo":1,"color":1},"phase":{"type":"isotropic"},"lights":[{"type":"beam","mu0":1}]})",
+        R"({"name":"x","medium":{"type":"slab","optical_thickness":1,"albedo":1},"phase":{"type":"isotropic"},"lights":[{"type":"beam","mu0":1},{"type":"isotropic"}]})"}) {
+    std::ofstream(dir.path / "bad.json") << bad;
+    const auto r = rayint::test::run_cli(dir.path, "slab --scene bad.json --method doubling");
+    INFO(bad << " -> " << r.err);
+    CHECK(r.status == 2);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
 }
