@@ -227,8 +227,8 @@ TEST_CASE("DISORT benchmark: doubling holds the published tolerance", "[scatter]
     const std::string label = row.problem_id + " " + row.value.label();
     INFO(label << ": published " << row.value.published << ", doubling " << row.doubling
                << ", rel dev " << row.doubling_rel_dev);
-    // Values not reproduced (tests/tolerances.hpp: disputed by the Monte Carlo at 1e8 photons,
-    // or undecided): pinned at their measured deviation.
+    // Values not reproduced (tests/tolerances.hpp: the published value is off by the three
+    // solvers' verdict, or undecided): pinned at their measured deviation.
     const auto* nr = Tolerances::slab_not_reproduced(label);
     if (nr) {
       CHECK_FALSE(row.doubling_pass);

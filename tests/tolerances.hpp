@@ -88,11 +88,13 @@ struct ScatterTolerances {
   // DISORT benchmark values (cases/scattering/disort_slab.json) that the doubling method does
   // not reproduce within the stated tolerance, with the largest relative deviation measured
   // (doubling, 64 streams; stable to < 1e-6 from 32 to 128 streams and start layers 1e-5..1e-9).
-  // "disputed": the Monte Carlo (exact orders 0-1 + MC, 1e8 photons, seed 1,
-  // reports/scattering/) agrees with the doubling within 1.8 SE and excludes the published
-  // value by > 4 SE (7 to 54 SE). "undecided": the Monte Carlo cannot tell at 1e8 photons
-  // (|z| <= 3.2 against the published value). The bound pins each deviation (measured x 1.05)
-  // so a change of the solver shows.
+  // "disputed" (the published value is off): the doubling, the integral equation (isotropic
+  // problems, estimate <= 1e-11 relative on thin slabs) and the Monte Carlo (exact orders 0-1 +
+  // MC; 1e8 photons seed 1, 3a 4e8 photons seed 2; reports/scattering/) agree with each other and
+  // exclude the published value: the integral equation by its error estimate, or the MC by
+  // 4.7 to 109 SE. "undecided": only 3a I_down(mu=0.1), where the MC (0.6 SE from the published
+  // value) cannot tell. The bound pins each deviation (measured x 1.05) so a change of the
+  // solver shows.
   struct SlabNotReproduced {
     const char* label;
     double measured_rel_dev;
@@ -107,9 +109,9 @@ struct ScatterTolerances {
         {"1b intensity_up_top(mu=0.5)", 9.75e-4, true},
         {"1b intensity_up_top(mu=1)", 9.74e-4, true},
         {"1c flux_up_top", 1.08e-3, true},
-        {"1c intensity_up_top(mu=0.1)", 1.25e-4, false},
-        {"3a intensity_up_top(mu=0.1)", 1.41e-3, false},
-        {"3a intensity_up_top(mu=0.5)", 9.95e-4, false},
+        {"1c intensity_up_top(mu=0.1)", 1.25e-4, true},
+        {"3a intensity_up_top(mu=0.1)", 1.41e-3, true},
+        {"3a intensity_up_top(mu=0.5)", 9.95e-4, true},
         {"3a intensity_up_top(mu=1)", 1.14e-2, true},
         {"3a intensity_down_bottom(mu=0.1)", 2.52e-4, false},
         {"3a intensity_down_bottom(mu=1)", 2.19e-3, true},
