@@ -2,6 +2,10 @@
 #include <iostream>
 
 #include "commands.hpp"
+#ifdef RAYINT_WITH_VTK
+#include "rayint/vtk/vtk_integrators.hpp"
+#include "rayint/vtk/vtk_mesh_reader.hpp"
+#endif
 #include "rayint/io/atomic_file.hpp"
 #include "rayint/io/case_reader.hpp"
 
@@ -19,6 +23,10 @@ void emit(const std::string& text, const std::string& path) {
 }  // namespace rayint::cli
 
 int main(int argc, char** argv) {
+#ifdef RAYINT_WITH_VTK
+  rayint::register_vtk_methods();  // vtk_linear, vtk_partial_preint, vtk_preint, vtk_homogeneous
+  rayint::register_vtk_mesh_readers();  // mesh_file .vtu, .pvtu
+#endif
   CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
   app.require_subcommand(1);
   rayint::cli::set_eval_command(app);

@@ -52,6 +52,12 @@ std::vector<MethodSpec> parse_method_list(const std::string& csv);  // "exact,ri
 std::unique_ptr<RayIntegrator> make_integrator(const MethodSpec& spec,
                                                const TransferFunctions& tf);
 std::vector<std::string> method_names();
+
+// Adds a method to the table (optional libraries, e.g. the VTK peer methods in src/rayint/vtk/).
+// `params` lists the accepted parameter names, space-separated; call before any use from
+// several threads. Throws std::invalid_argument if `name` is already registered.
+using MethodFactory = std::unique_ptr<RayIntegrator> (*)(const MethodSpec&, const TransferFunctions&);
+void register_method(const char* name, const char* params, MethodFactory make);
 std::vector<MethodSpec> default_methods();  // what `rayint eval` runs without --methods
 
 }  // namespace rayint

@@ -18,8 +18,8 @@ struct MethodEntry {
   std::unique_ptr<RayIntegrator> (*make)(const MethodSpec&, const TransferFunctions&);
 };
 
-const std::vector<MethodEntry>& registry() {
-  static const std::vector<MethodEntry> entries = {
+std::vector<MethodEntry>& registry() {
+  static std::vector<MethodEntry> entries = {
       {"exact", "",
        [](const MethodSpec&, const TransferFunctions& tf) -> std::unique_ptr<RayIntegrator> {
          return std::make_unique<ExactIntegrator>(tf);
@@ -52,6 +52,13 @@ const MethodEntry& find_entry(const std::string& name) {
 }
 
 }  // namespace
+
+void register_method(const char* name, const char* params, MethodFactory make) {
+  for (const auto& e : registry())
+    if (std::string(name) == e.name)
+      throw std::invalid_argument(std::string("method '") + name + "' is already registered");
+  registry().push_back({name, params, make});
+}
 
 std::string MethodSpec::label() const {
   std::string out = name;

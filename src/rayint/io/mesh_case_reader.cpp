@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 
 #include "rayint/io/json_schema.hpp"
@@ -11,6 +12,17 @@
 
 namespace rayint {
 namespace {
+
+std::map<std::string, MeshFileReader>& extra_mesh_readers() {
+  static std::map<std::string, MeshFileReader> readers;
+  return readers;
+}
+
+std::string extra_mesh_extensions() {
+  std::string out;
+  for (const auto& [ext, read] : extra_mesh_readers()) out += ", " + ext;
+  return out;
+}
 
 using nlohmann::json;
 using json_source::index_path;
@@ -114,11 +126,15 @@ MeshCase parse_mesh_case(const json& root, const std::string& source) {
     if (!fs::is_regular_file(p, ec)) s.fail("mesh_file", "no such file: " + mc.mesh_source);
     const std::string name = scalar_field ? s.non_empty_string(*scalar_field, "scalar_field") : "";
     // One reader per format, chosen by extension (other mesh formats plug in here).
+    const auto extra = extra_mesh_readers().find(p.extension().string());
     if (p.extension() == ".vtk")
       mc.mesh = read_vtk_legacy(mc.mesh_source, name);
+    else if (extra != extra_mesh_readers().end())
+      mc.mesh = extra->second(mc.mesh_source, name);
     else
       s.fail("mesh_file", "unsupported mesh format \"" + p.extension().string() +
-                              "\" (read: .vtk, VTK legacy unstructured grid)");
+                              "\" (read: .vtk, VTK legacy unstructured grid" +
+                              extra_mesh_extensions() + ")");
   }
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
@@ -145,6 +161,10 @@ MeshCase parse_mesh_case(const json& root, const std::string& source) {
 
 MeshCase read_mesh_case_file(const std::string& path) {
   return parse_mesh_case(json_source::parse(json_source::read_text_file(path), path), path);
+}
+
+void register_mesh_reader(const std::string& extension, MeshFileReader read) {
+  extra_mesh_readers()[extension] = read;
 }
 
 }  // namespace rayint

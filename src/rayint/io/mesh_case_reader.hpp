@@ -16,4 +16,10 @@ bool is_mesh_case(const nlohmann::json& root);
 MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source);
 MeshCase read_mesh_case_file(const std::string& path);
 
+// Adds a reader for "mesh_file" paths ending in `extension` (e.g. ".vtu"; optional libraries such
+// as src/rayint/vtk/). The reader throws InputError "<file>: <field>: <what>". Register before
+// reading from several threads; a later registration of the same extension replaces the earlier.
+using MeshFileReader = TetMesh (*)(const std::string& path, const std::string& scalar_name);
+void register_mesh_reader(const std::string& extension, MeshFileReader read);
+
 }  // namespace rayint
