@@ -26,6 +26,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+const std::string kMeshField = "\"mesh_file\": \"meshes/linear-box.vtk\"";
+const std::string kMeshFieldVtu = "\"mesh_file\": \"meshes/linear-box.vtu\"";
 const fs::path kBox = fs::path(RAYINT_SOURCE_DIR) / "cases" / "meshes" / "linear-box.vtk";
 
 void write_vtu(vtkUnstructuredGrid* grid, const fs::path& out) {
@@ -69,7 +71,8 @@ TEST_CASE("a mesh case with a .vtu gives the .vtk case's numbers", "[vtk][mesh][
   std::ifstream in(fs::path(RAYINT_SOURCE_DIR) / "cases" / "mesh-linear-field.json");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::string vtu = text;
-  vtu.replace(vtu.find("meshes/linear-box.vtk"), 21, "meshes/linear-box.vtu");
+  vtu.replace(vtu.find(kMeshField), kMeshField.size(), kMeshFieldVtu);
+  REQUIRE(vtu.find(kMeshFieldVtu) != std::string::npos);
   dir.write("a.json", text);
   dir.write("b.json", vtu);
   const auto a = run_cli(dir.path, "eval a.json --methods exact,vtk_linear --format table");
@@ -95,7 +98,7 @@ TEST_CASE("bad .vtu: unreadable file, exit 2 with one line naming the file", "[v
   dir.write("meshes/linear-box.vtu", "this is not a VTK XML file\n");
   std::ifstream in(fs::path(RAYINT_SOURCE_DIR) / "cases" / "mesh-linear-field.json");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find("meshes/linear-box.vtk"), 21, "meshes/linear-box.vtu");
+  text.replace(text.find(kMeshField), kMeshField.size(), kMeshFieldVtu);
   dir.write("c.json", text);
   const auto r = run_cli(dir.path, "eval c.json -o out.json");
   INFO(r.err);
@@ -123,7 +126,7 @@ TEST_CASE("bad .vtu: a hexahedron, exit 2 with one line naming the file and the 
   write_vtu(grid, dir.path / "meshes" / "linear-box.vtu");
   std::ifstream in(fs::path(RAYINT_SOURCE_DIR) / "cases" / "mesh-linear-field.json");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find("meshes/linear-box.vtk"), 21, "meshes/linear-box.vtu");
+  text.replace(text.find(kMeshField), kMeshField.size(), kMeshFieldVtu);
   dir.write("d.json", text);
   const auto r = run_cli(dir.path, "eval d.json -o out.json");
   INFO(r.err);
