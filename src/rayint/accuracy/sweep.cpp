@@ -186,8 +186,9 @@ std::vector<MethodSpec> SweepAxis::settings() const {
   return out;
 }
 
-const std::vector<SweepAxis>& sweep_table() {
-  static const std::vector<SweepAxis> table = {
+namespace {
+std::vector<SweepAxis>& mutable_sweep_table() {
+  static std::vector<SweepAxis> table = {
       {"exact", "", {}},
       {"paper", "", {}},
       {"eq5", "", {}},
@@ -203,6 +204,11 @@ const std::vector<SweepAxis>& sweep_table() {
   };
   return table;
 }
+}  // namespace
+
+const std::vector<SweepAxis>& sweep_table() { return mutable_sweep_table(); }
+
+void register_sweep_axis(const SweepAxis& axis) { mutable_sweep_table().push_back(axis); }
 
 std::vector<SweepAxis> select_sweep_axes(const std::vector<std::string>& methods) {
   const auto& table = sweep_table();

@@ -73,6 +73,8 @@ struct SweepAxis {
 // ODE: rtol = 1e-2 .. 1e-13 (atol at its default); tables: size = 32 .. 2048 (powers of two);
 // the other methods have no knob and one setting.
 const std::vector<SweepAxis>& sweep_table();
+// Appends an axis (optional libraries, e.g. src/rayint/vtk/); call before any sweep runs.
+void register_sweep_axis(const SweepAxis& axis);
 
 // The rows of the table for these method names, in table order, with exact always included
 // (the baseline of every cost multiple). Empty `methods` = the whole table. Throws

@@ -46,6 +46,7 @@
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
+#include "rayint/accuracy/sweep.hpp"
 #include "rayint/integrators/integrator.hpp"
 
 namespace rayint {
@@ -196,6 +197,10 @@ void register_vtk_methods() {
     register_method("vtk_partial_preint", "", make_vtk_partial);
     register_method("vtk_preint", "incremental scalar_res length_res max_length", make_vtk_preint);
     register_method("vtk_homogeneous", "table_size", make_vtk_homogeneous);
+    register_sweep_axis({"vtk_linear", "", {}});  // `rayint bench`: VTK's knob-free methods
+    register_sweep_axis({"vtk_partial_preint", "", {}});
+    register_sweep_axis({"vtk_homogeneous", "table_size", {"64", "256", "1024", "4096"}});
+    register_sweep_axis({"vtk_preint", "scalar_res", {"32", "64", "128"}});
   });
 }
 
