@@ -25,7 +25,7 @@ mkdir -p reports/vtk
 # the stress run uses a 32 x 32 x 64 table; the default 128 x 128 x 256 is measured in eval.
 methods="exact,vtk_linear,vtk_partial_preint,vtk_homogeneous,vtk_preint:incremental=1:scalar_res=32:length_res=64:max_length=1000,vtk_preint:incremental=0:scalar_res=32:length_res=64:max_length=1000"
 build-vtk/rayint stress --count "$count" --seed "$seed" --threads 2 \
-  --regime moderate,thin,q2_near_zero_pos,thick --methods "$methods" \
+  --regime tau_moderate,tau_thin,q2_near_zero_pos,tau_thick --methods "$methods" \
   --json -o reports/vtk/stress.json --no-worst --quiet
 # Cost per segment and error, VTK's methods and ours, in ONE eval run (same process, same rays):
 # 50-segment rays with breakpoints crossed and a background (cases/many-segments-background.json).

@@ -391,3 +391,53 @@ TEST_CASE("stress: scoring -- underflow by absolute error, order statistics by n
   CHECK(error_stats({}).max == 0.0);
   CHECK(error_stats({7.0}).p99 == 7.0);
 }
+
+TEST_CASE("stress: the opt-in tau regimes draw their optical depths and are not in the default run", "[stress]") {
+  struct Range {
+    Regime regime;
+    const char* name;
+    double lo, hi;
+  };
+  for (const Range& r : {Range{Regime::tau_moderate, "tau_moderate", 0.1, 10.0},
+                         Range{Regime::tau_thin, "tau_thin", 1e-8, 1e-3},
+                         Range{Regime::tau_thick, "tau_thick", 20.0, 1000.0}}) {
+    INFO(r.name);
+    Regime parsed{};
+    REQUIRE(parse_regime(r.name, parsed));
+    CHECK(parsed == r.regime);
+    CHECK(std::find(stress_regimes().begin(), stress_regimes().end(), r.regime) == stress_regimes().end());
+    CHECK(std::find(all_regimes().begin(), all_regimes().end(), r.regime) == all_regimes().end());
+    std::mt19937_64 rng(11);
+    for (int i = 0; i < 200; ++i) CHECK(in_range(optical_depth(sample_piece(r.regime, rng).piece), r.lo, r.hi));
+  }
+}
+
+TEST_CASE("stress: negative outputs are counted, finite ones only", "[stress]") {
+  // RK4 with one step on thick pieces: the step's amplification R > 1, so I = R B + (1 - R) kappa
+  // goes negative whenever the background B is small against kappa (always when B = 0). The
+  // count must match a recount of the same samples, and exact must have none.
+  StressOptions o;
+  o.count = 200;
+  o.seed = 4;
+  o.regimes = {Regime::tau_thick};
+  o.methods = parse_method_list("exact,rk4:n=1");
+  o.threads = 1;
+  const StressReport r = run_stress(o);
+  REQUIRE(r.regimes.size() == 1);
+  REQUIRE(r.regimes[0].methods.size() == 2);
+  long expected = 0;
+  for (long i = 0; i < r.regimes[0].samples; ++i) {
+    const RaySample sample = stress_sample(o.seed, Regime::tau_thick, i);
+    const RayResult res = make_integrator(o.methods[1], sample.transfer)->integrate(sample.ray, nullptr);
+    bool finite = true, negative = false;
+    for (int c = 0; c < 3; ++c) {
+      finite = finite && std::isfinite(res.intensity[c]) && std::isfinite(res.transmittance[c]);
+      negative = negative || res.intensity[c] < 0.0 || res.transmittance[c] < 0.0;
+    }
+    if (finite && negative) ++expected;
+  }
+  CHECK(expected > 0);
+  CHECK(r.regimes[0].methods[0].negative == 0);
+  CHECK(r.regimes[0].methods[1].negative == expected);
+  CHECK(r.overall[1].negative == expected);
+}

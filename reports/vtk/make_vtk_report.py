@@ -19,14 +19,18 @@ def fmt(x):
 
 def stress_tables(report):
     out = [f"Seed {report['seed']}, {report['count']} pieces in all, split evenly over the regimes.", ""]
+    about = {"tau_moderate": "optical depth T = tauD in [0.1, 10]", "tau_thin": "T in [1e-8, 1e-3]",
+             "tau_thick": "T in [20, 1000]",
+             "q2_near_zero_pos": "near-homogeneous: density rising toward the eye by a relative 1e-16 .. 1e-4, T in [1e-3, 1e3]"}
     for r in report["regimes"]:
         out += [f"### {r['regime']} ({r['pieces']} pieces, {r['samples']} samples)", "",
-                "| method | max rel | p99 rel | median rel | non-finite | failures | scored |",
-                "|---|---|---|---|---|---|---|"]
+                f"{about.get(r['regime'], '')}. `negative`: finite samples with a negative intensity or transmittance channel.", "",
+                "| method | max rel | p99 rel | median rel | negative | non-finite | failures | scored |",
+                "|---|---|---|---|---|---|---|---|"]
         for m in r["methods"]:
             e = m["rel_error"]
             out.append(f"| `{m['method']}` | {fmt(e.get('max'))} | {fmt(e.get('p99'))} | "
-                       f"{fmt(e.get('median'))} | {m['non_finite']} | {m['failures']} | {m['scored']} |")
+                       f"{fmt(e.get('median'))} | {m.get('negative', '—')} | {m['non_finite']} | {m['failures']} | {m['scored']} |")
         out.append("")
     return out
 

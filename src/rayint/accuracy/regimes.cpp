@@ -41,7 +41,14 @@ const RegimeInfo kRegimes[] = {
     {Regime::narrow_pulse, "narrow_pulse"},
     {Regime::long_ray, "long_ray"},
     {Regime::out_of_range, "out_of_range"},
+    {Regime::tau_moderate, "tau_moderate"},
+    {Regime::tau_thin, "tau_thin"},
+    {Regime::tau_thick, "tau_thick"},
 };
+
+bool is_extra_regime(Regime r) {
+  return r == Regime::tau_moderate || r == Regime::tau_thin || r == Regime::tau_thick;
+}
 
 double uniform(std::mt19937_64& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
@@ -64,9 +71,14 @@ const std::vector<Regime>& all_regimes() {
   static const std::vector<Regime> all = [] {
     std::vector<Regime> v;
     for (const auto& r : kRegimes)
-      if (!is_ray_regime(r.regime)) v.push_back(r.regime);
+      if (!is_ray_regime(r.regime) && !is_extra_regime(r.regime)) v.push_back(r.regime);
     return v;
   }();
+  return all;
+}
+
+const std::vector<Regime>& extra_regimes() {
+  static const std::vector<Regime> all = {Regime::tau_moderate, Regime::tau_thin, Regime::tau_thick};
   return all;
 }
 
@@ -120,6 +132,15 @@ RegimeSample sample_piece(Regime r, std::mt19937_64& rng) {
       break;
     case Regime::thick:
       set_depth(p, log_uniform(rng, 30.0, 1e6), uniform(rng, 0.0, 1.0));
+      break;
+    case Regime::tau_moderate:
+      set_depth(p, log_uniform(rng, 0.1, 10.0), uniform(rng, 0.0, 1.0));
+      break;
+    case Regime::tau_thin:
+      set_depth(p, log_uniform(rng, 1e-8, 1e-3), uniform(rng, 0.0, 1.0));
+      break;
+    case Regime::tau_thick:
+      set_depth(p, log_uniform(rng, 20.0, 1000.0), uniform(rng, 0.0, 1.0));
       break;
     case Regime::q2_near_zero_pos:
     case Regime::q2_near_zero_neg: {

@@ -42,13 +42,19 @@ enum class Regime {
   long_ray,      // 10^4 segments through 2..12 breakpoints, total optical depth 1e-2 .. 1e3
   out_of_range,  // scalars below and above the transfer functions' range, by up to 1e6 times
                  // the range (end values hold there)
+  // piece-level, opt-in (named with --regime, not in all_regimes / stress_regimes): the
+  // optical-depth ranges of the VTK measurement in issue 8, tauD = T
+  tau_moderate,  // T in [0.1, 10]
+  tau_thin,      // T in [1e-8, 1e-3]
+  tau_thick,     // T in [20, 1000]
 };
 
 // The piece-level regimes, in declaration order (what sample_piece accepts). Kept under this
 // name for the per-piece tests and benchmarks that iterate over it.
 const std::vector<Regime>& all_regimes();
 const std::vector<Regime>& ray_regimes();     // narrow_pulse, long_ray, out_of_range
-const std::vector<Regime>& stress_regimes();  // piece-level then ray-level: every regime
+const std::vector<Regime>& stress_regimes();  // piece-level then ray-level: every default regime
+const std::vector<Regime>& extra_regimes();   // the opt-in piece-level regimes (tau_*)
 bool is_ray_regime(Regime r);
 std::string regime_name(Regime r);
 bool parse_regime(const std::string& name, Regime& out);

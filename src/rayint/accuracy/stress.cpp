@@ -82,7 +82,7 @@ struct Candidate {
 
 // Per-thread accumulator for one (regime, method).
 struct MethodAccumulator {
-  long scored = 0, non_finite = 0, failures = 0, underflow = 0;
+  long scored = 0, non_finite = 0, failures = 0, underflow = 0, negative = 0;
   double max_abs_underflow = 0.0;
   std::map<std::string, long> branches;
   Candidate worst;         // over all samples
@@ -139,6 +139,11 @@ void run_method(const MethodSpec& spec, const RaySample& sample,
     sev.tier = 2;
     sev.error = 0.0;
   } else {
+    for (int c = 0; c < kChannels; ++c)
+      if (result.intensity[c] < 0.0 || result.transmittance[c] < 0.0) {
+        ++acc.negative;
+        break;
+      }
     if (any_scored) {
       ++acc.scored;
       rel_slot = rel;
@@ -178,6 +183,7 @@ void merge_into(MethodAccumulator& into, MethodAccumulator& from) {
   into.scored += from.scored;
   into.non_finite += from.non_finite;
   into.failures += from.failures;
+  into.negative += from.negative;
   into.underflow += from.underflow;
   into.max_abs_underflow = std::max(into.max_abs_underflow, from.max_abs_underflow);
   for (const auto& [k, v] : from.branches) into.branches[k] += v;
@@ -233,6 +239,7 @@ MethodStress to_method_stress(const std::string& label, MethodAccumulator& acc,
   m.scored = acc.scored;
   m.non_finite = acc.non_finite;
   m.failures = acc.failures;
+  m.negative = acc.negative;
   m.underflow = acc.underflow;
   m.max_abs_error_underflow = acc.max_abs_underflow;
   m.branches = acc.branches;
@@ -488,6 +495,7 @@ StressReport run_stress(const StressOptions& opt) {
       pa.scored += ma.scored;
       pa.non_finite += ma.non_finite;
       pa.failures += ma.failures;
+      pa.negative += ma.negative;
       pa.underflow += ma.underflow;
       pa.max_abs_underflow = std::max(pa.max_abs_underflow, ma.max_abs_underflow);
       for (const auto& [k, v] : ma.branches) pa.branches[k] += v;

@@ -108,6 +108,7 @@ struct MethodStress {
   long scored = 0;      // finite samples with at least one channel not underflowed
   long non_finite = 0;  // samples with a non-finite intensity or transmittance, or a failure
   long failures = 0;    // of those, samples where the method threw
+  long negative = 0;    // finite samples with a negative intensity or transmittance channel
   long underflow = 0;   // finite samples with at least one channel underflowed
   ErrorStats rel;       // per sample: the largest relative error over its scored channels
   ErrorStats ulp;       // likewise in ulps

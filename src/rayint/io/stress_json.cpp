@@ -51,6 +51,7 @@ nlohmann::ordered_json to_json(const MethodStress& m) {
   j["method"] = m.method;
   j["scored"] = m.scored;
   j["non_finite"] = m.non_finite;
+  j["negative"] = m.negative;
   j["failures"] = m.failures;
   j["underflow"] = m.underflow;
   j["rel_error"] = to_json(m.rel);
