@@ -137,6 +137,8 @@ void set_stress_command(CLI::App& app) {
       ->capture_default_str();
   std::string regime_help = "Regimes to run (repeat or comma-separate; default all):";
   for (const Regime r : stress_regimes()) regime_help += " " + regime_name(r);
+  regime_help += "; opt-in, by name only:";
+  for (const Regime r : extra_regimes()) regime_help += " " + regime_name(r);
   cmd->add_option("--regime", opt->regimes, regime_help)->delimiter(',');
   cmd->add_option("--methods", opt->methods,
                   "Comma-separated methods, each name[:key=value...]")
