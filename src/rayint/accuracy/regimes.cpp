@@ -13,6 +13,7 @@
 #include "rayint/accuracy/regimes.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -46,8 +47,10 @@ const RegimeInfo kRegimes[] = {
     {Regime::tau_thick, "tau_thick"},
 };
 
+const Regime kExtraRegimes[] = {Regime::tau_moderate, Regime::tau_thin, Regime::tau_thick};
+
 bool is_extra_regime(Regime r) {
-  return r == Regime::tau_moderate || r == Regime::tau_thin || r == Regime::tau_thick;
+  return std::find(std::begin(kExtraRegimes), std::end(kExtraRegimes), r) != std::end(kExtraRegimes);
 }
 
 double uniform(std::mt19937_64& rng, double lo, double hi) {
@@ -78,7 +81,7 @@ const std::vector<Regime>& all_regimes() {
 }
 
 const std::vector<Regime>& extra_regimes() {
-  static const std::vector<Regime> all = {Regime::tau_moderate, Regime::tau_thin, Regime::tau_thick};
+  static const std::vector<Regime> all(std::begin(kExtraRegimes), std::end(kExtraRegimes));
   return all;
 }
 

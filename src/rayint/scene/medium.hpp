@@ -55,6 +55,9 @@ class DensityField {
   // The longest stretch of a line on which the density can hold a feature that 15 Gauss-Kronrod
   // nodes spread over it would all miss: the references start every integral from panels no
   // longer than this (QuadratureOptions::panel_length). Infinity for fields smooth on any scale.
+  // Measured (tests/test_scene_references.cpp): with the cloud's finest noise wavelength, the
+  // view transmittance on rays grazing the cloud matches a 400,000-point midpoint sum to 1e-6
+  // (to 9 digits on the probed pixels), where one starting panel was off by 0.12.
   virtual double feature_length() const = 0;
   // True when the density is piecewise linear along every straight line (homogeneous media,
   // Kuhn-tetrahedralized grids); then linear_segments() gives the ray inside bounds as model

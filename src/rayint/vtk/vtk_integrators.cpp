@@ -117,7 +117,14 @@ class VtkIntegrator final : public RayIntegrator {
   }
 
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override {
-    vtkNew<vtkDoubleArray> lengths, near_s, far_s;
+    // Per-thread arrays, reset per ray: allocating three vtkDoubleArrays per ray cost more than
+    // some of VTK's integrators themselves.
+    thread_local const vtkSmartPointer<vtkDoubleArray> lengths = vtkSmartPointer<vtkDoubleArray>::New();
+    thread_local const vtkSmartPointer<vtkDoubleArray> near_s = vtkSmartPointer<vtkDoubleArray>::New();
+    thread_local const vtkSmartPointer<vtkDoubleArray> far_s = vtkSmartPointer<vtkDoubleArray>::New();
+    lengths->Reset();
+    near_s->Reset();
+    far_s->Reset();
     // near -> far: our segments reversed, each split at the range ends (see the file comment)
     for (auto it = ray.segments.rbegin(); it != ray.segments.rend(); ++it) {
       const double sn = it->scalar_near, sf = it->scalar_far, length = it->length;
