@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "rayint/accuracy/regimes.hpp"
+#include "rayint/generators/regimes.hpp"
 #include "rayint/integrators/exact.hpp"
 
 namespace {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
-#include "rayint/io/mesh_case_reader.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/mesh/first_hit.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 

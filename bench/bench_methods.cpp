@@ -1,5 +1,5 @@
 // Cost per ray of every method of the registry at the middle setting of its knob (the middle
-// entry of the sweep table, src/rayint/accuracy/sweep.hpp: riemann/rk4 n = 256, ode rtol = 1e-8,
+// entry of the sweep table, src/rayint/studies/sweep.hpp: riemann/rk4 n = 256, ode rtol = 1e-8,
 // tables size = 256), on the rays of cases/smooth-convergence.json -- a representative smooth
 // case with a few breakpoints inside segments. A method that refuses that case (particle needs a
 // single transfer function) runs on cases/paper-figure-2.json instead; the label names the case.
@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "rayint/accuracy/sweep.hpp"
+#include "rayint/studies/sweep.hpp"
 #include "rayint/integrators/integrator.hpp"
-#include "rayint/io/case_reader.hpp"
+#include "rayint/input/case_reader.hpp"
 
 namespace {
 

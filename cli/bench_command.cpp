@@ -1,4 +1,4 @@
-// rayint bench [CASES...] -- the accuracy/cost sweep (accuracy/sweep.hpp): every method along its
+// rayint bench [CASES...] -- the accuracy/cost sweep (studies/sweep.hpp): every method along its
 // knob, error against the 50-digit reference and time per ray, written as JSON
 // (reports/bench.json by default; reports/make_report.py turns it into plots and a README).
 #include <algorithm>
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "rayint/accuracy/sweep.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/sweep_json.hpp"
+#include "rayint/studies/sweep.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/report/sweep_json.hpp"
 
 namespace rayint::cli {
 namespace {

@@ -1,7 +1,7 @@
 // rayint cells -- higher-order cells (tet10, hex8, hex20) and voxel grids: the error of
 // decomposing them into linear tetrahedra and integrating with `exact`, per subdivision level,
 // and of the polynomial-scalar ODE, against the 50-digit polynomial reference
-// (src/rayint/accuracy/cells_study.hpp). JSON on stdout or to -o (then a table on stdout);
+// (src/rayint/studies/cells_study.hpp). JSON on stdout or to -o (then a table on stdout);
 // progress on stderr.
 #include <cstdio>
 #include <iostream>
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "commands.hpp"
-#include "rayint/accuracy/cells_study.hpp"
-#include "rayint/io/cells_json.hpp"
+#include "rayint/studies/cells_study.hpp"
+#include "rayint/report/cells_json.hpp"
 
 namespace rayint::cli {
 namespace {

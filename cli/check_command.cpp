@@ -9,9 +9,10 @@
 #include <string>
 
 #include "commands.hpp"
-#include "rayint/accuracy/check.hpp"
-#include "rayint/io/candidate_io.hpp"
-#include "rayint/io/case_reader.hpp"
+#include "rayint/studies/check.hpp"
+#include "rayint/input/candidate_reader.hpp"
+#include "rayint/report/check_json.hpp"
+#include "rayint/input/case_reader.hpp"
 
 namespace rayint::cli {
 namespace {

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "rayint/accuracy/evaluate.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/report_json.hpp"
+#include "rayint/studies/evaluate.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/report/evaluation_json.hpp"
 
 namespace rayint::cli {
 namespace {

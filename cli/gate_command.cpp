@@ -1,5 +1,5 @@
 // rayint gate [--config cases/gates.json] -- every tolerance of every method, on the corpus and a
-// stress sample (src/rayint/accuracy/gate.hpp, docs/gates.md). One line per check on stdout;
+// stress sample (src/rayint/studies/gate.hpp, docs/gates.md). One line per check on stdout;
 // exit 0 when all hold, 1 when any fails, 2 on a bad config.
 #include <cmath>
 #include <cstdio>
@@ -10,9 +10,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "rayint/accuracy/gate.hpp"
-#include "rayint/io/gate_config.hpp"
-#include "rayint/io/stress_json.hpp"
+#include "rayint/studies/gate.hpp"
+#include "rayint/input/gate_config.hpp"
+#include "rayint/report/stress_json.hpp"
 
 namespace rayint::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "rayint/io/vtk_legacy_writer.hpp"
+#include "rayint/report/vtk_legacy_writer.hpp"
 #include "rayint/mesh/mesh_generators.hpp"
 
 namespace rayint::cli {

@@ -6,8 +6,8 @@
 #include "rayint/vtk/vtk_integrators.hpp"
 #include "rayint/vtk/vtk_mesh_reader.hpp"
 #endif
-#include "rayint/io/atomic_file.hpp"
-#include "rayint/io/case_reader.hpp"
+#include "rayint/core/atomic_file.hpp"
+#include "rayint/input/case_reader.hpp"
 
 namespace rayint::cli {
 

@@ -1,13 +1,13 @@
 // rayint mesh-agreement [--rays N] [--seed S] [--n N] -- the issue-5 target measured: on a field
 // linear over the whole mesh, the mesh path (traversal + Eq. 9/13 + exact) against one exact
-// segment through the box (src/rayint/accuracy/mesh_agreement.hpp; the [mesh] test runs the
+// segment through the box (src/rayint/studies/mesh_agreement.hpp; the [mesh] test runs the
 // same function with the defaults).
 #include <array>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "rayint/accuracy/mesh_agreement.hpp"
+#include "rayint/studies/mesh_agreement.hpp"
 
 namespace rayint::cli {
 

@@ -5,8 +5,8 @@
 
 #include "commands.hpp"
 #include "render_kinds.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/json_source.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/input/json_source.hpp"
 
 namespace rayint::cli {
 

@@ -11,9 +11,9 @@
 #include "commands.hpp"
 #include "render_kinds.hpp"
 #include "rayint/integrators/integrator.hpp"
-#include "rayint/io/atomic_file.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/mesh_case_reader.hpp"
+#include "rayint/core/atomic_file.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/render/image.hpp"
 #include "rayint/render/mesh_render.hpp"
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "rayint/io/scene_reader.hpp"
+#include "rayint/input/scene_reader.hpp"
 #include "rayint/render/image.hpp"
-#include "rayint/scattering/scene_volume.hpp"
+#include "rayint/scene/scene_volume.hpp"
 #include "rayint/scattering/volume_comparison.hpp"
 
 namespace rayint::cli {

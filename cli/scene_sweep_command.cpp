@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "rayint/io/json_source.hpp"
-#include "rayint/io/scene_reader.hpp"
-#include "rayint/io/scene_report_json.hpp"
+#include "rayint/input/json_source.hpp"
+#include "rayint/input/scene_reader.hpp"
+#include "rayint/report/scene_report_json.hpp"
 #include "rayint/scene/effect.hpp"
 #include "rayint/scene/scene_sweep.hpp"
 

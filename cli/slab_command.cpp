@@ -13,8 +13,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "rayint/input/slab_benchmark_reader.hpp"
 #include "rayint/scattering/slab_benchmark.hpp"
-#include "rayint/scattering/slab_scene.hpp"
+#include "rayint/input/slab_scene_reader.hpp"
 #include "rayint/scattering/slab_single_scattering.hpp"
 
 namespace rayint::cli {

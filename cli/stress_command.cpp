@@ -1,5 +1,5 @@
 // rayint stress -- adversarial pieces and rays, regime by regime, each method against the 50-digit
-// reference (src/rayint/accuracy/stress.hpp); a table or JSON on stdout, progress on stderr, the
+// reference (src/rayint/studies/stress.hpp); a table or JSON on stdout, progress on stderr, the
 // worst sample of each regime and method written as a replayable case file.
 #include <cmath>
 #include <cstdio>
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "rayint/accuracy/stress.hpp"
-#include "rayint/io/stress_json.hpp"
+#include "rayint/studies/stress.hpp"
+#include "rayint/report/stress_json.hpp"
 
 namespace rayint::cli {
 namespace {

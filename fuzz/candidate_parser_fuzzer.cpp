@@ -1,5 +1,5 @@
 // libFuzzer target for the candidate parser of `rayint check` (rayint::parse_candidate_text,
-// io/candidate_io.hpp) on arbitrary bytes, followed by the match against a fixed three-ray case.
+// input/candidate_reader.hpp) on arbitrary bytes, followed by the match against a fixed three-ray case.
 // Run it with `RAYINT_FUZZ_TARGET=candidate_parser scripts/fuzz.sh`. A finding is any of:
 //   - a crash, sanitizer report, hang or leak;
 //   - an exception other than rayint::InputError escaping (reported as a deadly signal);
@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "rayint/io/candidate_io.hpp"
+#include "rayint/input/candidate_reader.hpp"
 
 namespace {
 

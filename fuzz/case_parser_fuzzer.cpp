@@ -1,4 +1,4 @@
-// libFuzzer target for the case parser (rayint::parse_case_text, io/case_reader.hpp) on arbitrary
+// libFuzzer target for the case parser (rayint::parse_case_text, input/case_reader.hpp) on arbitrary
 // bytes. Built by fuzz/CMakeLists.txt with -fsanitize=fuzzer,address,undefined; run it with
 // scripts/fuzz.sh. A finding is any of:
 //   - a crash, sanitizer report, hang or leak;
@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "rayint/io/case_reader.hpp"
+#include "rayint/input/case_reader.hpp"
 
 namespace {
 

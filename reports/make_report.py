@@ -6,7 +6,7 @@
   reports/README.md          the Pareto front in words and the 1e-3 / 1e-6 / 1e-10 target tables
 
 Every number comes from the one JSON file; in particular the "cheapest setting per target" rows
-are the ones `rayint bench` computed (src/rayint/accuracy/sweep.cpp, tested in
+are the ones `rayint bench` computed (src/rayint/studies/sweep.cpp, tested in
 tests/test_sweep.cpp) -- this script formats them, it does not re-derive them.
 
 Run with Debian's python3-matplotlib: /usr/bin/python3 reports/make_report.py [bench.json]
@@ -537,7 +537,7 @@ convergence order.
   (or median) error is <= the target; the **cheapest** is the one of least time, with settings
   within {data['definitions']['time_tie_band'] * 100:.0f}% of that time counted as ties and won by the smallest knob.
   These rows are computed by `rayint bench` itself (`cheapest_setting` in
-  `src/rayint/accuracy/sweep.cpp`, tested in `tests/test_sweep.cpp`).
+  `src/rayint/studies/sweep.cpp`, tested in `tests/test_sweep.cpp`).
 
 ## `exact`
 

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "rayint/io/scene_reader.hpp"
+#include "rayint/input/scene_reader.hpp"
 #include "rayint/scene/pipeline.hpp"
 
 namespace rayint::test {

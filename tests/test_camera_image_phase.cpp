@@ -6,10 +6,10 @@
 #include <random>
 
 #include "cli_harness.hpp"
-#include "rayint/io/json_schema.hpp"
-#include "rayint/io/json_source.hpp"
+#include "rayint/input/json_schema.hpp"
+#include "rayint/input/json_source.hpp"
 #include "rayint/optics/phase.hpp"
-#include "rayint/render/camera.hpp"
+#include "rayint/geometry/camera.hpp"
 #include "rayint/render/image.hpp"
 
 using rayint::Camera;

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "rayint/io/case_reader.hpp"
+#include "rayint/input/case_reader.hpp"
 
 namespace {
 

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "cli_harness.hpp"
-#include "rayint/accuracy/cells_study.hpp"
-#include "rayint/accuracy/error_metrics.hpp"
+#include "rayint/studies/cells_study.hpp"
+#include "rayint/metrics/error_metrics.hpp"
 #include "rayint/cells/cell.hpp"
 #include "rayint/cells/poly_ode.hpp"
 #include "rayint/cells/shape_functions.hpp"

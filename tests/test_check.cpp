@@ -16,10 +16,11 @@
 #include <string>
 #include <string_view>
 
-#include "rayint/accuracy/check.hpp"
+#include "rayint/studies/check.hpp"
 #include "rayint/integrators/exact.hpp"
-#include "rayint/io/candidate_io.hpp"
-#include "rayint/io/case_reader.hpp"
+#include "rayint/input/candidate_reader.hpp"
+#include "rayint/report/check_json.hpp"
+#include "rayint/input/case_reader.hpp"
 #include "cli_harness.hpp"
 #include "tolerances.hpp"
 

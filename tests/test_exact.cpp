@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "rayint/accuracy/error_metrics.hpp"
-#include "rayint/accuracy/regimes.hpp"
+#include "rayint/metrics/error_metrics.hpp"
+#include "rayint/generators/regimes.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/paper.hpp"
 #include "rayint/reference/reference.hpp"

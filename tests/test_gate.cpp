@@ -1,4 +1,4 @@
-// `rayint gate` (src/rayint/accuracy/gate.hpp, io/gate_config.hpp, docs/gates.md): a config is
+// `rayint gate` (src/rayint/studies/gate.hpp, input/gate_config.hpp, docs/gates.md): a config is
 // read strictly (one line naming the file and the field for every problem, exit 2), paths are
 // relative to the config, a limit that cannot hold fails with exit 1 and says by how much, and
 // the project's own config (cases/gates.json) holds. CTest also runs the real command on that
@@ -15,10 +15,10 @@
 #include <sstream>
 #include <string>
 
-#include "rayint/accuracy/gate.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/gate_config.hpp"
-#include "rayint/io/stress_json.hpp"
+#include "rayint/studies/gate.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/input/gate_config.hpp"
+#include "rayint/report/stress_json.hpp"
 #include "cli_harness.hpp"
 
 using namespace rayint;

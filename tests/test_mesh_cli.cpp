@@ -7,7 +7,7 @@
 #include <string>
 
 #include "cli_harness.hpp"
-#include "rayint/io/vtk_legacy_reader.hpp"
+#include "rayint/input/vtk_legacy_reader.hpp"
 
 using rayint::test::run_cli;
 using rayint::test::slurp;

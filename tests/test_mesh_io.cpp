@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <string>
 
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/json_source.hpp"
-#include "rayint/io/mesh_case_reader.hpp"
-#include "rayint/io/vtk_legacy_reader.hpp"
-#include "rayint/io/vtk_legacy_writer.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/input/json_source.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
+#include "rayint/input/vtk_legacy_reader.hpp"
+#include "rayint/report/vtk_legacy_writer.hpp"
 #include "rayint/mesh/mesh_generators.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 

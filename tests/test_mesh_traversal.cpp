@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "rayint/accuracy/mesh_agreement.hpp"
+#include "rayint/studies/mesh_agreement.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/mesh/gradients.hpp"
 #include "rayint/mesh/mesh_case.hpp"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "rayint/accuracy/error_metrics.hpp"
+#include "rayint/metrics/error_metrics.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/reference/reference.hpp"

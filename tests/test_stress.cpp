@@ -1,4 +1,4 @@
-// `rayint stress` (src/rayint/accuracy/stress.hpp, regimes.hpp): reproducible whatever the thread
+// `rayint stress` (src/rayint/studies/stress.hpp, regimes.hpp): reproducible whatever the thread
 // count, every regime's samples valid case input within the ranges regimes.hpp states, worst
 // samples that replay to the same error, the underflow scoring rule, and the command line's
 // handling of bad options. Sizes are small (the million-piece figures come from the command
@@ -19,12 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "rayint/accuracy/evaluate.hpp"
-#include "rayint/accuracy/regimes.hpp"
-#include "rayint/accuracy/stress.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/case_writer.hpp"
-#include "rayint/io/stress_json.hpp"
+#include "rayint/studies/evaluate.hpp"
+#include "rayint/generators/regimes.hpp"
+#include "rayint/studies/stress.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/report/case_writer.hpp"
+#include "rayint/report/stress_json.hpp"
 #include "rayint/model/pieces.hpp"
 #include "cli_harness.hpp"
 #include "tolerances.hpp"

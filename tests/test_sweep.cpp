@@ -1,4 +1,4 @@
-// The accuracy/cost sweep behind `rayint bench` and reports/ (accuracy/sweep.hpp): its table
+// The accuracy/cost sweep behind `rayint bench` and reports/ (studies/sweep.hpp): its table
 // covers the registry, its errors fall along every knob on a smooth case, its "cheapest setting"
 // is the least-time setting meeting a target, and a budget that runs out is recorded.
 #include <algorithm>
@@ -7,9 +7,9 @@
 #include <limits>
 #include <string>
 
-#include "rayint/accuracy/sweep.hpp"
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/sweep_json.hpp"
+#include "rayint/studies/sweep.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/report/sweep_json.hpp"
 
 using namespace rayint;
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "rayint/accuracy/error_metrics.hpp"
+#include "rayint/metrics/error_metrics.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/preintegrated.hpp"
 #include "rayint/integrators/psi_table.hpp"

@@ -13,9 +13,9 @@
 
 #include "cli_harness.hpp"
 #include "rayint/grid/voxel_grid.hpp"
-#include "rayint/grid/voxel_grid_reader.hpp"
+#include "rayint/input/voxel_grid_reader.hpp"
 #include "rayint/integrators/exact.hpp"
-#include "rayint/io/case_reader.hpp"
+#include "rayint/input/case_reader.hpp"
 #include "tolerances.hpp"
 #include "transfer_builders.hpp"
 

@@ -16,7 +16,7 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include "../cli_harness.hpp"
-#include "rayint/io/vtk_legacy_reader.hpp"
+#include "rayint/input/vtk_legacy_reader.hpp"
 #include "rayint/vtk/vtk_mesh_reader.hpp"
 
 using namespace rayint;

@@ -12,7 +12,7 @@
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "rayint/model/ray.hpp"
-#include "rayint/render/camera.hpp"
+#include "rayint/geometry/camera.hpp"
 
 namespace rayint {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "rayint/io/case_reader.hpp"  // InputError
-#include "rayint/io/json_source.hpp"  // format_number
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
 
 namespace rayint {
 namespace {
@@ -47,11 +47,11 @@ void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const Mes
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(mesh.points[i][k]))
         fail(source, at(at(names.points, i), static_cast<std::size_t>(k)),
-             "coordinate must be finite, got " + json_source::format_number(mesh.points[i][k]));
+             "coordinate must be finite, got " + format_number(mesh.points[i][k]));
   for (std::size_t i = 0; i < mesh.scalars.size(); ++i)
     if (!std::isfinite(mesh.scalars[i]))
       fail(source, at(names.scalars, i),
-           "must be finite, got " + json_source::format_number(mesh.scalars[i]));
+           "must be finite, got " + format_number(mesh.scalars[i]));
   const auto n = static_cast<long long>(mesh.points.size());
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     const auto& t = mesh.tets[i];
@@ -71,11 +71,11 @@ void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const Mes
         longest = std::max(longest, (mesh.points[t[a]] - mesh.points[t[b]]).norm());
     if (!(std::fabs(v6) > kDegenerateTetRatio * longest * longest * longest))
       fail(source, at(names.tets, i),
-           "degenerate tetrahedron (volume " + json_source::format_number(v6 / 6.0) +
+           "degenerate tetrahedron (volume " + format_number(v6 / 6.0) +
                ", flat or with coincident points)");
     if (v6 < 0.0)
       fail(source, at(names.tets, i),
-           "inverted tetrahedron (negative volume " + json_source::format_number(v6 / 6.0) +
+           "inverted tetrahedron (negative volume " + format_number(v6 / 6.0) +
                "); order points so that (p1-p0)x(p2-p0).(p3-p0) > 0, as VTK does");
   }
 }

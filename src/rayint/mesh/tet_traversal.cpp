@@ -7,7 +7,7 @@
 #include <limits>
 #include <tuple>
 
-#include "rayint/io/case_reader.hpp"  // InputError
+#include "rayint/core/error.hpp"
 #include "rayint/mesh/first_hit.hpp"
 
 namespace rayint {

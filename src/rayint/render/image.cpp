@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "rayint/io/atomic_file.hpp"
-#include "rayint/io/case_reader.hpp"  // InputError
+#include "rayint/core/atomic_file.hpp"
+#include "rayint/core/error.hpp"
 
 namespace rayint {
 

@@ -25,7 +25,7 @@
 // Errors against the Monte Carlo reference are measured, not claimed: reports/scattering/.
 #include <vector>
 
-#include "rayint/render/camera.hpp"
+#include "rayint/geometry/camera.hpp"
 #include "rayint/scattering/direction_bins.hpp"
 #include "rayint/scattering/scattering_volume.hpp"
 

@@ -61,8 +61,6 @@ struct SlabBenchmark {
 };
 
 // Reads and validates a benchmark file (strict: unknown fields, bad numbers -> InputError).
-SlabBenchmark read_slab_benchmark(const std::string& path);
-SlabBenchmark parse_slab_benchmark(const std::string& text, const std::string& source);
 
 struct BenchmarkRow {
   std::string problem_id;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rayint/render/camera.hpp"
+#include "rayint/geometry/camera.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
 
 namespace rayint {

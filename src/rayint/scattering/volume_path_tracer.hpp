@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rayint/render/camera.hpp"
+#include "rayint/geometry/camera.hpp"
 #include "rayint/scattering/estimate.hpp"
 #include "rayint/scattering/scattering_volume.hpp"
 

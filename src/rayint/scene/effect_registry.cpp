@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "rayint/scattering/multiple_scattering_effect.hpp"
+#include "rayint/scene/multiple_scattering_effect.hpp"
 #include "rayint/scene/absorption_emission.hpp"
 #include "rayint/scene/effect.hpp"
 #include "rayint/scene/scattering_terms.hpp"

@@ -6,8 +6,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "rayint/scene/cpu_clock.hpp"
-#include "rayint/scene/parallel.hpp"
+#include "rayint/core/cpu_clock.hpp"
+#include "rayint/core/parallel.hpp"
 
 namespace rayint {
 namespace {

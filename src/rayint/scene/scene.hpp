@@ -1,5 +1,5 @@
 #pragma once
-// A scene (format: docs/scenes.md; reader: io/scene_reader.hpp): the medium, lights, phase
+// A scene (format: docs/scenes.md; reader: input/scene_reader.hpp): the medium, lights, phase
 // function, a camera or explicit rays, the background, and the effects it asks for, each with the
 // method that computes it. The pipeline (scene/pipeline.hpp) evaluates exactly those effects.
 #include <map>
@@ -12,7 +12,7 @@
 
 #include "rayint/integrators/integrator.hpp"  // MethodSpec
 #include "rayint/optics/phase.hpp"
-#include "rayint/render/camera.hpp"
+#include "rayint/geometry/camera.hpp"
 #include "rayint/render/image.hpp"
 #include "rayint/scene/light.hpp"
 #include "rayint/scene/medium.hpp"

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "rayint/scene/cpu_clock.hpp"
-#include "rayint/scene/parallel.hpp"
+#include "rayint/core/cpu_clock.hpp"
+#include "rayint/core/parallel.hpp"
 
 namespace rayint {
 namespace {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "rayint/scene/cpu_clock.hpp"
-#include "rayint/scene/parallel.hpp"
+#include "rayint/core/cpu_clock.hpp"
+#include "rayint/core/parallel.hpp"
 
 namespace rayint {
 namespace {

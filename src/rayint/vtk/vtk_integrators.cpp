@@ -46,7 +46,7 @@
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
-#include "rayint/accuracy/sweep.hpp"
+#include "rayint/studies/sweep.hpp"
 #include "rayint/integrators/integrator.hpp"
 
 namespace rayint {

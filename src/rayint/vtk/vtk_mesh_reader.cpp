@@ -18,8 +18,8 @@
 #include <vtkXMLPUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
-#include "rayint/io/case_reader.hpp"
-#include "rayint/io/mesh_case_reader.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
 
 namespace rayint {
 namespace {

@@ -1,0 +1,127 @@
+// Reading and validating case files (format: cases/README.md).
+//
+// Two stages:
+//  1. json_source::parse (input/json_source.hpp) turns the text into a nlohmann::json tree,
+//     reporting duplicate keys, overflowing numbers and syntax errors at their field or line.
+//  2. A strict schema walk over the tree: required fields, types, finite and non-negative
+//     values, strictly increasing breakpoints, non-empty arrays, and no unknown fields.
+//
+// Every problem is thrown as one InputError line `<source>: <field path>: <what>`.
+#include "rayint/input/case_reader.hpp"
+
+#include "rayint/input/json_schema.hpp"
+#include "rayint/input/json_source.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
+
+namespace rayint {
+namespace {
+
+using nlohmann::json;
+
+using namespace json_source;  // parse, fail, paths, format_number
+
+// ---------------------------------------------------------------------------------------------
+// Stage 2: schema.
+
+class CaseSchema {
+ public:
+  explicit CaseSchema(const std::string& source) : s_(source) {}
+
+  Case read(const json& root) const {
+    const std::string path;
+    s_.require_object(root, path);
+    s_.check_fields(root, path, {"name", "description", "transfer_function", "rays"});
+    Case c;
+    c.source = s_.source();
+    c.name = s_.non_empty_string(s_.required(root, path, "name"), "name");
+    if (const json* d = s_.optional(root, "description")) c.description = s_.string_value(*d, "description");
+    c.transfer = s_.transfer_functions(s_.required(root, path, "transfer_function"), "transfer_function");
+    c.rays = rays(s_.required(root, path, "rays"), "rays");
+    return c;
+  }
+
+ private:
+  Segment segment(const json& j, const std::string& path) const {
+    s_.require_object(j, path);
+    s_.check_fields(j, path, {"length", "scalar"});
+    Segment seg;
+    seg.length = s_.non_negative(s_.required(j, path, "length"), member_path(path, "length"));
+    const std::string spath = member_path(path, "scalar");
+    const json& s = s_.required(j, path, "scalar");
+    s_.array_of_size(s, spath, 2, "a [far, near] pair of numbers");
+    seg.scalar_far = s_.finite_number(s[0], index_path(spath, 0));
+    seg.scalar_near = s_.finite_number(s[1], index_path(spath, 1));
+    return seg;
+  }
+
+  Ray ray(const json& j, const std::string& path) const {
+    s_.require_object(j, path);
+    s_.check_fields(j, path, {"background", "segments"});
+    Ray r;
+    if (const json* b = s_.optional(j, "background"))
+      r.background = s_.rgb(*b, member_path(path, "background"));
+    const std::string spath = member_path(path, "segments");
+    const json& segs = s_.required(j, path, "segments");
+    s_.non_empty_array(segs, spath, "");
+    r.segments.reserve(segs.size());
+    for (std::size_t i = 0; i < segs.size(); ++i)
+      r.segments.push_back(segment(segs[i], index_path(spath, i)));
+    return r;
+  }
+
+  std::vector<Ray> rays(const json& j, const std::string& path) const {
+    s_.non_empty_array(j, path, "");
+    std::vector<Ray> out;
+    out.reserve(j.size());
+    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(ray(j[i], index_path(path, i)));
+    return out;
+  }
+
+  JsonSchema s_;
+};
+
+}  // namespace
+
+Case parse_case_text(std::string_view text, const std::string& source) {
+  const json root = json_source::parse(text, source);
+  if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
+    MeshCase mc = parse_mesh_case(root, source);
+    const TetTraversal mesh(mc.mesh, mc.mesh_source);
+    return trace_mesh_case(mc, mesh);
+  }
+  return CaseSchema(source).read(root);
+}
+
+Case read_case_file(const std::string& path) {
+  const std::string text = json_source::read_text_file(path);
+  return parse_case_text(text, path);
+}
+
+std::vector<std::string> list_case_files(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<std::string> files;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() == ".json" && p.filename() != kGateConfigName && it->is_regular_file(ec))
+      files.push_back(p.string());
+  }
+  if (ec) throw InputError(dir + ": cannot list folder (" + ec.message() + ")");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace rayint

@@ -1,0 +1,26 @@
+#pragma once
+// Reading and validating case files (format: cases/README.md). Every problem is reported as an
+// InputError whose message is one line naming the file and the JSON field.
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rayint/core/error.hpp"
+#include "rayint/model/ray.hpp"
+
+namespace rayint {
+
+// `source` is the file name used in messages. Throws InputError.
+Case parse_case_text(std::string_view text, const std::string& source);
+Case read_case_file(const std::string& path);
+
+// The name of the gate configuration that lives beside the cases (cases/gates.json); it is the
+// one .json file in a case folder that is not a case.
+inline constexpr const char* kGateConfigName = "gates.json";
+
+// Every case file in `dir`: the *.json files except kGateConfigName, sorted by name.
+// Throws InputError if `dir` cannot be listed.
+std::vector<std::string> list_case_files(const std::string& dir);
+
+}  // namespace rayint

@@ -1,0 +1,221 @@
+#include "rayint/input/json_schema.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "rayint/input/json_source.hpp"
+
+namespace rayint {
+
+using json_source::format_number;
+using json_source::index_path;
+using json_source::member_path;
+
+namespace {
+std::string join(std::initializer_list<const char*> names) {
+  std::string s;
+  for (const char* n : names) s += (s.empty() ? "" : ", ") + std::string(n);
+  return s;
+}
+std::string type_of(const nlohmann::json& j) { return j.type_name(); }
+}  // namespace
+
+void JsonSchema::fail(const std::string& path, const std::string& what) const {
+  json_source::fail(source_, path, what);
+}
+
+void JsonSchema::require_object(const json& j, const std::string& path) const {
+  if (!j.is_object()) fail(path, "must be an object, got " + type_of(j));
+}
+
+void JsonSchema::check_fields(const json& object, const std::string& path,
+                              std::initializer_list<const char*> allowed) const {
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (const char* a : allowed) known = known || item.key() == a;
+    if (!known)
+      fail(member_path(path, item.key()), "unknown field (expected " + join(allowed) + ")");
+  }
+}
+
+const nlohmann::json& JsonSchema::required(const json& object, const std::string& path,
+                                           const char* key) const {
+  const auto it = object.find(key);
+  if (it == object.end()) fail(member_path(path, key), "missing required field");
+  return *it;
+}
+
+const nlohmann::json* JsonSchema::optional(const json& object, const char* key) const {
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+std::string JsonSchema::non_empty_string(const json& j, const std::string& path) const {
+  if (!j.is_string() || j.get_ref<const std::string&>().empty())
+    fail(path, "must be a non-empty string, got " +
+                   (j.is_string() ? std::string("\"\"") : type_of(j)));
+  return j.get<std::string>();
+}
+
+std::string JsonSchema::string_value(const json& j, const std::string& path) const {
+  if (!j.is_string()) fail(path, "must be a string, got " + type_of(j));
+  return j.get<std::string>();
+}
+
+bool JsonSchema::boolean(const json& j, const std::string& path) const {
+  if (!j.is_boolean()) fail(path, "must be true or false, got " + type_of(j));
+  return j.get<bool>();
+}
+
+double JsonSchema::finite_number(const json& j, const std::string& path) const {
+  if (!j.is_number()) fail(path, "must be a number, got " + type_of(j));
+  const double x = j.get<double>();
+  if (!std::isfinite(x)) fail(path, "must be finite, got " + format_number(x));
+  return x;
+}
+
+double JsonSchema::non_negative(const json& j, const std::string& path) const {
+  if (!j.is_number()) fail(path, "must be a number, got " + type_of(j));
+  const double x = j.get<double>();
+  if (!(std::isfinite(x) && x >= 0.0))
+    fail(path, "must be finite and >= 0, got " + format_number(x));
+  return x + 0.0;  // -0 becomes +0
+}
+
+double JsonSchema::positive(const json& j, const std::string& path) const {
+  if (!j.is_number()) fail(path, "must be a number, got " + type_of(j));
+  const double x = j.get<double>();
+  if (!(std::isfinite(x) && x > 0.0)) fail(path, "must be finite and > 0, got " + format_number(x));
+  return x;
+}
+
+double JsonSchema::in_range(const json& j, const std::string& path, double lo, double hi,
+                            bool open) const {
+  const double x = finite_number(j, path);
+  const bool ok = open ? (x > lo && x < hi) : (x >= lo && x <= hi);
+  if (!ok)
+    fail(path, "must be in " + std::string(open ? "(" : "[") + format_number(lo) + ", " +
+                   format_number(hi) + (open ? ")" : "]") + ", got " + format_number(x));
+  return x;
+}
+
+long long JsonSchema::integer(const json& j, const std::string& path, long long lo,
+                              long long hi) const {
+  if (!j.is_number_integer() && !(j.is_number_float() && std::floor(j.get<double>()) == j.get<double>()))
+    fail(path, "must be an integer, got " + (j.is_number() ? format_number(j.get<double>()) : type_of(j)));
+  const double x = j.get<double>();
+  if (!(x >= static_cast<double>(lo) && x <= static_cast<double>(hi)))
+    fail(path, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                   "], got " + format_number(x));
+  return static_cast<long long>(x);
+}
+
+void JsonSchema::non_empty_array(const json& j, const std::string& path, const std::string& of) const {
+  if (!j.is_array() || j.empty())
+    fail(path, "must be a non-empty array" + of + ", got " +
+                   (j.is_array() ? std::string("[]") : type_of(j)));
+}
+
+void JsonSchema::array_of_size(const json& j, const std::string& path, std::size_t n,
+                               const std::string& what) const {
+  if (!j.is_array() || j.size() != n)
+    fail(path, "must be " + what + ", got " +
+                   (j.is_array() ? "an array of " + std::to_string(j.size()) : type_of(j)));
+}
+
+Vec3 JsonSchema::vec3(const json& j, const std::string& path) const {
+  array_of_size(j, path, 3, "an array of 3 numbers [x, y, z]");
+  return Vec3(finite_number(j[0], index_path(path, 0)), finite_number(j[1], index_path(path, 1)),
+              finite_number(j[2], index_path(path, 2)));
+}
+
+Vec3 JsonSchema::direction(const json& j, const std::string& path) const {
+  const Vec3 v = vec3(j, path);
+  const double n = v.norm();
+  if (!(n > 0.0) || !std::isfinite(n)) fail(path, "must be a non-zero finite direction");
+  return v / n;
+}
+
+Rgb JsonSchema::rgb(const json& j, const std::string& path) const {
+  array_of_size(j, path, 3, "an array of 3 numbers [r, g, b]");
+  Rgb out{};
+  for (std::size_t c = 0; c < 3; ++c) out[c] = non_negative(j[c], index_path(path, c));
+  return out;
+}
+
+PiecewiseLinear JsonSchema::points(const json& j, const std::string& path) const {
+  non_empty_array(j, path, " of [scalar, value] points");
+  PiecewiseLinear f;
+  f.scalar.reserve(j.size());
+  f.value.reserve(j.size());
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const json& p = j[i];
+    const std::string ppath = index_path(path, i);
+    array_of_size(p, ppath, 2, "a [scalar, value] pair");
+    const double s = finite_number(p[0], index_path(ppath, 0));
+    const double v = non_negative(p[1], index_path(ppath, 1));
+    if (i > 0 && !(s > f.scalar.back()))
+      fail(index_path(ppath, 0), "scalar points must be strictly increasing (" +
+                                     format_number(s) + " after " +
+                                     format_number(f.scalar.back()) + ")");
+    f.scalar.push_back(s);
+    f.value.push_back(v);
+  }
+  return f;
+}
+
+std::array<PiecewiseLinear, kChannels> JsonSchema::channels(const json& j,
+                                                            const std::string& path) const {
+  if (j.is_array()) {
+    const PiecewiseLinear f = points(j, path);
+    return {f, f, f};
+  }
+  if (!j.is_object())
+    fail(path, "must be a list of [scalar, value] points or an object with keys r, g, b, got " +
+                   type_of(j));
+  check_fields(j, path, {"r", "g", "b"});
+  std::array<PiecewiseLinear, kChannels> out;
+  const char* keys[kChannels] = {"r", "g", "b"};
+  for (int c = 0; c < kChannels; ++c)
+    out[c] = points(required(j, path, keys[c]), member_path(path, keys[c]));
+  return out;
+}
+
+TransferFunctions JsonSchema::transfer_functions(const json& j, const std::string& path) const {
+  require_object(j, path);
+  check_fields(j, path, {"density", "color"});
+  TransferFunctions tf;
+  tf.density = channels(required(j, path, "density"), member_path(path, "density"));
+  tf.color = channels(required(j, path, "color"), member_path(path, "color"));
+  return tf;
+}
+
+Camera JsonSchema::camera(const json& j, const std::string& path) const {
+  require_object(j, path);
+  check_fields(j, path, {"position", "look_at", "up", "fov_deg", "ortho_height", "width", "height"});
+  Camera cam;
+  cam.position = vec3(required(j, path, "position"), member_path(path, "position"));
+  cam.look_at = vec3(required(j, path, "look_at"), member_path(path, "look_at"));
+  if (const json* up = optional(j, "up")) cam.up = vec3(*up, member_path(path, "up"));
+  const json* fov = optional(j, "fov_deg");
+  const json* ortho = optional(j, "ortho_height");
+  if ((fov != nullptr) == (ortho != nullptr))
+    fail(path, "give exactly one of fov_deg (perspective) or ortho_height (orthographic)");
+  if (fov != nullptr) {
+    cam.projection = Camera::Projection::perspective;
+    cam.fov_deg = in_range(*fov, member_path(path, "fov_deg"), 0.0, 180.0, /*open=*/true);
+  } else {
+    cam.projection = Camera::Projection::orthographic;
+    cam.ortho_height = positive(*ortho, member_path(path, "ortho_height"));
+  }
+  cam.width = static_cast<int>(integer(required(j, path, "width"), member_path(path, "width"), 1, 16384));
+  cam.height = static_cast<int>(integer(required(j, path, "height"), member_path(path, "height"), 1, 16384));
+  try {
+    cam.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(path, e.what());
+  }
+  return cam;
+}
+
+}  // namespace rayint

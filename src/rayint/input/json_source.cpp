@@ -1,0 +1,162 @@
+#include "rayint/input/json_source.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace rayint::json_source {
+
+using nlohmann::json;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Stage 1: SAX builder with field paths.
+
+class PathTrackingBuilder final : public json::json_sax_t {
+ public:
+  PathTrackingBuilder(std::string_view text, const std::string& source)
+      : text_(text), source_(source) {}
+
+  json take_root() { return std::move(root_); }
+
+  bool null() override { return add(json(nullptr)); }
+  bool boolean(bool val) override { return add(json(val)); }
+  bool number_integer(number_integer_t val) override { return add(json(val)); }
+  bool number_unsigned(number_unsigned_t val) override { return add(json(val)); }
+  bool number_float(number_float_t val, const string_t& /*token*/) override {
+    return add(json(val));
+  }
+  bool string(string_t& val) override { return add(json(std::move(val))); }
+  bool binary(binary_t& val) override { return add(json(std::move(val))); }
+
+  bool start_object(std::size_t /*elements*/) override {
+    open(json(json::value_t::object), false);
+    return true;
+  }
+  bool key(string_t& val) override {
+    frames_.back().key = val;
+    json& object = *frames_.back().container;
+    if (object.contains(val)) fail(source_, path(), "duplicate field");
+    member_ = &object[val];
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t /*elements*/) override {
+    open(json(json::value_t::array), true);
+    return true;
+  }
+  bool end_array() override { return close(); }
+
+  bool parse_error(std::size_t position, const std::string& last_token,
+                   const json::exception& ex) override {
+    // out_of_range.406: a number that overflows a double; the path of the value is current.
+    if (ex.id == 406) fail(source_, path(), "must be finite, got " + last_token);
+    fail(source_, "", syntax_message(position, ex.what()));
+  }
+
+ private:
+  struct Frame {
+    json* container;
+    bool is_array;
+    std::string key;        // object: key of the value being read
+    std::size_t index = 0;  // array: index of the value being read
+  };
+
+  // "invalid JSON at line L, column C: <nlohmann's reason>"; `position` counts the characters
+  // read, the last of which is the offending one.
+  std::string syntax_message(std::size_t position, const std::string& what) const {
+    const std::size_t at = std::min(position > 0 ? position - 1 : 0, text_.size());
+    const auto line = 1 + std::count(text_.begin(), text_.begin() + static_cast<long>(at), '\n');
+    const std::size_t newline = at == 0 ? std::string_view::npos : text_.rfind('\n', at - 1);
+    const std::size_t column = at - (newline == std::string_view::npos ? 0 : newline + 1) + 1;
+    std::string reason = what;
+    const auto col = what.find("column ");
+    const auto colon = col == std::string::npos ? std::string::npos : what.find(": ", col);
+    if (colon != std::string::npos)
+      reason = what.substr(colon + 2);
+    else if (const auto bracket = what.find("] "); bracket != std::string::npos)
+      reason = what.substr(bracket + 2);
+    return "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+           ": " + reason;
+  }
+
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_) p = f.is_array ? index_path(p, f.index) : member_path(p, f.key);
+    return p;
+  }
+
+  // Stores `value` where the parser is and returns its address.
+  json* place(json value) {
+    if (frames_.empty()) {
+      root_ = std::move(value);
+      return &root_;
+    }
+    Frame& f = frames_.back();
+    if (f.is_array) {
+      f.container->push_back(std::move(value));
+      return &f.container->back();
+    }
+    *member_ = std::move(value);
+    return member_;
+  }
+
+  void open(json value, bool is_array) {
+    json* where = place(std::move(value));
+    frames_.push_back(Frame{where, is_array, {}, 0});
+  }
+
+  // A value is complete: an enclosing array moves on to its next index.
+  bool add(json value) {
+    place(std::move(value));
+    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
+    return true;
+  }
+
+  bool close() {
+    frames_.pop_back();
+    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
+    return true;
+  }
+
+  std::string_view text_;
+  const std::string& source_;
+  json root_;
+  std::vector<Frame> frames_;  // containers being filled; pointers stay valid (see place)
+  json* member_ = nullptr;
+};
+
+
+}  // namespace
+
+json parse(std::string_view text, const std::string& source) {
+  PathTrackingBuilder builder(text, source);
+  json::sax_parse(text.begin(), text.end(), &builder, json::input_format_t::json, /*strict=*/true,
+                  /*ignore_comments=*/false);
+  return builder.take_root();
+}
+
+std::string read_text_file(const std::string& path) {
+  errno = 0;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                       &std::fclose);
+  auto cannot_read = [&path]() {
+    const int err = errno;
+    throw InputError(one_line(path + ": cannot read file (" +
+                              (err != 0 ? std::strerror(err) : "read error") + ")"));
+  };
+  if (!file) cannot_read();
+  std::string text;
+  char buf[1 << 16];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, n);
+  if (std::ferror(file.get())) cannot_read();
+  return text;
+}
+
+}  // namespace rayint::json_source

@@ -1,0 +1,32 @@
+#pragma once
+// JSON input with field paths: the one place where rayint's input files (cases, candidates) are
+// parsed into nlohmann::json, so that every problem can be reported as one line
+// `<source>: <field path>: <what>` (InputError). Duplicate keys, which nlohmann's DOM parser
+// silently resolves to the last one, and numbers that overflow a double (1e999, nlohmann's
+// out_of_range.406) are reported at their field; syntax errors carry the 1-based line and column
+// of the offending character and nlohmann's reason. Parsing is strict: no comments, nothing but
+// whitespace after the document.
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
+
+namespace rayint::json_source {
+
+nlohmann::json parse(std::string_view text, const std::string& source);
+
+// The whole file as text; InputError "<path>: cannot read file (<reason>)".
+std::string read_text_file(const std::string& path);
+
+// The message helpers (core/error.hpp, core/format.hpp), named here for the readers' schema walks.
+using field::fail;
+using field::index_path;
+using field::member_path;
+using field::one_line;
+using field::quoted;
+using rayint::format_number;
+
+}  // namespace rayint::json_source

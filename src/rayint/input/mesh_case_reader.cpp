@@ -1,0 +1,170 @@
+// Mesh case reader (see mesh_case_reader.hpp; format in cases/README.md).
+#include "rayint/input/mesh_case_reader.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "rayint/input/json_schema.hpp"
+#include "rayint/input/json_source.hpp"
+#include "rayint/input/vtk_legacy_reader.hpp"
+
+namespace rayint {
+namespace {
+
+std::map<std::string, MeshFileReader>& extra_mesh_readers() {
+  static std::map<std::string, MeshFileReader> readers;
+  return readers;
+}
+
+std::string extra_mesh_extensions() {
+  std::string out;
+  for (const auto& [ext, read] : extra_mesh_readers()) out += ", " + ext;
+  return out;
+}
+
+using nlohmann::json;
+using json_source::index_path;
+using json_source::member_path;
+
+TetMesh inline_mesh(const JsonSchema& s, const json& j, const std::string& path) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"points", "scalars", "tets"});
+  TetMesh m;
+  const std::string pp = member_path(path, "points"), sp = member_path(path, "scalars"),
+                    tp = member_path(path, "tets");
+  const json& pts = s.required(j, path, "points");
+  s.non_empty_array(pts, pp, "");
+  m.points.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) m.points.push_back(s.vec3(pts[i], index_path(pp, i)));
+  const json& sc = s.required(j, path, "scalars");
+  s.non_empty_array(sc, sp, "");
+  m.scalars.reserve(sc.size());
+  for (std::size_t i = 0; i < sc.size(); ++i) m.scalars.push_back(s.finite_number(sc[i], index_path(sp, i)));
+  const json& tets = s.required(j, path, "tets");
+  s.non_empty_array(tets, tp, "");
+  m.tets.reserve(tets.size());
+  for (std::size_t i = 0; i < tets.size(); ++i) {
+    const std::string ti = index_path(tp, i);
+    s.array_of_size(tets[i], ti, 4, "[i, j, k, l] point indices");
+    std::array<std::int32_t, 4> t{};
+    for (std::size_t k = 0; k < 4; ++k)
+      t[k] = static_cast<std::int32_t>(s.integer(tets[i][k], index_path(ti, k), INT32_MIN, INT32_MAX));
+    m.tets.push_back(t);
+  }
+  validate_tet_mesh(m, s.source(), MeshFieldNames{pp, sp, tp});
+  return m;
+}
+
+SurfaceShading shading(const JsonSchema& s, const json& j, const std::string& path) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"enabled", "surfaces", "gradient", "light_direction", "ambient", "diffuse"});
+  SurfaceShading sh;
+  sh.enabled = true;
+  if (const json* e = s.optional(j, "enabled")) sh.enabled = s.boolean(*e, member_path(path, "enabled"));
+  const std::string sp = member_path(path, "surfaces");
+  const json& surf = s.required(j, path, "surfaces");
+  s.non_empty_array(surf, sp, "");
+  for (std::size_t i = 0; i < surf.size(); ++i) {
+    const std::string ip = index_path(sp, i);
+    s.array_of_size(surf[i], ip, 2, "a [lo, hi] scalar interval");
+    const double lo = s.finite_number(surf[i][0], index_path(ip, 0));
+    const double hi = s.finite_number(surf[i][1], index_path(ip, 1));
+    if (!(lo < hi)) s.fail(ip, "need lo < hi");
+    sh.surfaces.push_back({lo, hi});
+  }
+  if (const json* g = s.optional(j, "gradient")) {
+    const std::string gp = member_path(path, "gradient");
+    try {
+      sh.gradient = parse_gradient_mode(s.string_value(*g, gp));
+    } catch (const std::invalid_argument& e) {
+      s.fail(gp, e.what());
+    }
+  }
+  if (const json* l = s.optional(j, "light_direction")) {
+    sh.headlight = false;
+    sh.light_direction = s.direction(*l, member_path(path, "light_direction"));
+  }
+  if (const json* a = s.optional(j, "ambient")) sh.ambient = s.non_negative(*a, member_path(path, "ambient"));
+  if (const json* d = s.optional(j, "diffuse")) sh.diffuse = s.non_negative(*d, member_path(path, "diffuse"));
+  return sh;
+}
+
+}  // namespace
+
+bool is_mesh_case(const json& root) {
+  return root.is_object() && (root.contains("mesh") || root.contains("mesh_file"));
+}
+
+MeshCase parse_mesh_case(const json& root, const std::string& source) {
+  const JsonSchema s(source);
+  const std::string path;
+  s.require_object(root, path);
+  s.check_fields(root, path, {"name", "description", "transfer_function", "mesh", "mesh_file",
+                              "scalar_field", "rays", "camera", "background", "shading"});
+  MeshCase mc;
+  mc.source = source;
+  mc.name = s.non_empty_string(s.required(root, path, "name"), "name");
+  if (const json* d = s.optional(root, "description")) mc.description = s.string_value(*d, "description");
+  mc.transfer = s.transfer_functions(s.required(root, path, "transfer_function"), "transfer_function");
+  const json* inline_m = s.optional(root, "mesh");
+  const json* file = s.optional(root, "mesh_file");
+  if ((inline_m != nullptr) == (file != nullptr))
+    s.fail(path, "give exactly one of \"mesh\" (inline) or \"mesh_file\" (a .vtk file)");
+  const json* scalar_field = s.optional(root, "scalar_field");
+  if (inline_m) {
+    if (scalar_field) s.fail("scalar_field", "only with \"mesh_file\"");
+    mc.mesh = inline_mesh(s, *inline_m, "mesh");
+    mc.mesh_source = source;
+  } else {
+    const std::string rel = s.non_empty_string(*file, "mesh_file");
+    namespace fs = std::filesystem;
+    const fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(source).parent_path() / rel;
+    mc.mesh_source = p.string();
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) s.fail("mesh_file", "no such file: " + mc.mesh_source);
+    const std::string name = scalar_field ? s.non_empty_string(*scalar_field, "scalar_field") : "";
+    // One reader per format, chosen by extension (other mesh formats plug in here).
+    const auto extra = extra_mesh_readers().find(p.extension().string());
+    if (p.extension() == ".vtk")
+      mc.mesh = read_vtk_legacy(mc.mesh_source, name);
+    else if (extra != extra_mesh_readers().end())
+      mc.mesh = extra->second(mc.mesh_source, name);
+    else
+      s.fail("mesh_file", "unsupported mesh format \"" + p.extension().string() +
+                              "\" (read: .vtk, VTK legacy unstructured grid" +
+                              extra_mesh_extensions() + ")");
+  }
+  if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
+  const json* rays = s.optional(root, "rays");
+  if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");
+  if (!rays && !mc.camera) s.fail(path, "a mesh case needs \"rays\" or a \"camera\"");
+  if (rays) {
+    s.non_empty_array(*rays, "rays", "");
+    for (std::size_t i = 0; i < rays->size(); ++i) {
+      const std::string rp = index_path("rays", i);
+      const json& r = (*rays)[i];
+      s.require_object(r, rp);
+      s.check_fields(r, rp, {"origin", "direction", "background"});
+      MeshViewRay v;
+      v.ray.origin = s.vec3(s.required(r, rp, "origin"), member_path(rp, "origin"));
+      v.ray.direction = s.direction(s.required(r, rp, "direction"), member_path(rp, "direction"));
+      v.background = mc.background;
+      if (const json* b = s.optional(r, "background")) v.background = s.rgb(*b, member_path(rp, "background"));
+      mc.rays.push_back(v);
+    }
+  }
+  if (const json* sh = s.optional(root, "shading")) mc.shading = shading(s, *sh, "shading");
+  return mc;
+}
+
+MeshCase read_mesh_case_file(const std::string& path) {
+  return parse_mesh_case(json_source::parse(json_source::read_text_file(path), path), path);
+}
+
+void register_mesh_reader(const std::string& extension, MeshFileReader read) {
+  extra_mesh_readers()[extension] = read;
+}
+
+}  // namespace rayint

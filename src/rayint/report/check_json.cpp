@@ -1,0 +1,66 @@
+// The JSON diff `rayint check` writes (format: docs/candidate-format.md).
+#include "rayint/report/check_json.hpp"
+
+#include <cmath>
+
+namespace rayint {
+
+namespace {
+
+constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
+
+using ojson = nlohmann::ordered_json;
+
+ojson number_or_null(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+
+ojson channel_json(const ChannelCheck& ch, int k, bool with_reference) {
+  ojson j = {{"channel", kChannelNames[k]},
+             {"pass", ch.pass},
+             {"expected", number_or_null(ch.expected)},
+             {"got", number_or_null(ch.got)},
+             {"abs_error", number_or_null(ch.abs_error)},
+             {"rel_error", number_or_null(ch.rel_error)},
+             {"allowed", number_or_null(ch.allowed)}};
+  if (with_reference) {
+    j["reference"] = number_or_null(ch.reference);
+    j["expected_error"] = number_or_null(ch.expected_error);
+  }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::ordered_json check_report_json(const CheckResult& r) {
+  const CheckSummary& s = r.summary;
+  const bool with_ref = r.options.with_reference;
+  ojson summary = {{"rays", s.rays},
+                   {"failed_rays", s.failed_rays},
+                   {"channels", s.channels},
+                   {"failed_channels", s.failed_channels},
+                   {"max_abs_error", number_or_null(s.max_abs_error)},
+                   {"max_rel_error", number_or_null(s.max_rel_error)},
+                   {"worst", {{"ray", s.worst_ray}, {"channel", kChannelNames[s.worst_channel]}}}};
+  if (with_ref)
+    summary["expected_max_rel_uncertainty"] = number_or_null(s.expected_max_rel_uncertainty);
+  ojson rays = ojson::array();
+  for (std::size_t i = 0; i < r.rays.size(); ++i) {
+    ojson channels = ojson::array();
+    for (int k = 0; k < kChannels; ++k)
+      channels.push_back(channel_json(r.rays[i].channel[static_cast<std::size_t>(k)], k, with_ref));
+    rays.push_back({{"index", i}, {"pass", r.rays[i].pass}, {"channels", channels}});
+  }
+  return {{"tool", "rayint"},
+          {"report", "check"},
+          {"pass", r.pass},
+          {"case", {{"name", r.case_name}, {"file", r.case_source}}},
+          {"candidate", {{"file", r.candidate_source}, {"renderer", r.renderer}}},
+          {"expected", "exact"},
+          {"rule",
+           "pass if |got - expected| <= max(abs_tol, rel_tol * |expected|) "
+           "for every channel of every ray"},
+          {"tolerance", {{"rel", r.options.rel_tol}, {"abs", r.options.abs_tol}}},
+          {"summary", summary},
+          {"rays", rays}};
+}
+
+}  // namespace rayint

@@ -1,0 +1,72 @@
+#include "rayint/report/evaluation_json.hpp"
+
+#include <cmath>
+
+namespace rayint {
+
+nlohmann::json number_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
+
+nlohmann::json rgb_json(const Rgb& v) {
+  return nlohmann::json::array({number_or_null(v[0]), number_or_null(v[1]), number_or_null(v[2])});
+}
+
+nlohmann::json to_json(const Diagnostics& d) {
+  nlohmann::json j = nlohmann::json::object();
+  j["branches"] = d.branches;
+  nlohmann::json stats = nlohmann::json::object();
+  for (const auto& [k, v] : d.stats) stats[k] = number_or_null(v);
+  j["stats"] = stats;
+  return j;
+}
+
+nlohmann::json to_json(const ReferenceRay& ref) {
+  Rgb intensity{}, transmittance{}, rel{};
+  for (int c = 0; c < kChannels; ++c) {
+    intensity[c] = ref.intensity[c].hi;
+    transmittance[c] = ref.transmittance[c].hi;
+    const double mag = std::fabs(ref.intensity[c].hi);
+    rel[c] = mag > 0 ? ref.error_bound[c] / mag : (ref.error_bound[c] > 0 ? INFINITY : 0.0);
+  }
+  return {{"intensity", rgb_json(intensity)},
+          {"transmittance", rgb_json(transmittance)},
+          {"error_estimate", {{"abs", rgb_json(ref.error_bound)}, {"rel", rgb_json(rel)}}},
+          {"precision_digits", 50},
+          {"pieces", ref.pieces},
+          {"quadrature_subintervals", ref.subintervals}};
+}
+
+nlohmann::json to_json(const MethodOutcome& o) {
+  nlohmann::json j = {{"intensity", rgb_json(o.result.intensity)},
+                      {"transmittance", rgb_json(o.result.transmittance)},
+                      {"abs_error", rgb_json(o.abs_error)},
+                      {"rel_error", rgb_json(o.rel_error)},
+                      {"ulp_error", rgb_json(o.ulp_error)},
+                      {"transmittance_rel_error", rgb_json(o.transmittance_rel_error)},
+                      {"seconds_per_ray", o.seconds_per_ray},
+                      {"finite", o.finite}};
+  const nlohmann::json d = to_json(o.diagnostics);
+  j["branches"] = d["branches"];
+  j["stats"] = d["stats"];
+  if (!o.failure.empty()) j["failure"] = o.failure;
+  return j;
+}
+
+nlohmann::json to_json(const CaseEvaluation& c) {
+  nlohmann::json rays = nlohmann::json::array();
+  for (std::size_t i = 0; i < c.rays.size(); ++i) {
+    nlohmann::json methods = nlohmann::json::object();
+    for (const auto& m : c.rays[i].methods) methods[m.method] = to_json(m);
+    rays.push_back({{"index", i}, {"reference", to_json(c.rays[i].reference)}, {"methods", methods}});
+  }
+  return {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
+}
+
+nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases) {
+  nlohmann::json arr = nlohmann::json::array();
+  for (const auto& c : cases) arr.push_back(to_json(c));
+  return {{"tool", "rayint"}, {"report", "eval"}, {"cases", arr}};
+}
+
+}  // namespace rayint

@@ -1,0 +1,114 @@
+#include "rayint/studies/evaluate.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <thread>
+
+#include "rayint/metrics/error_metrics.hpp"
+
+namespace rayint {
+
+void score_against_reference(MethodOutcome& o, const ReferenceRay& ref) {
+  o.finite = true;
+  for (int c = 0; c < kChannels; ++c) {
+    const double I = o.result.intensity[c];
+    const double tr = o.result.transmittance[c];
+    if (!std::isfinite(I) || !std::isfinite(tr)) o.finite = false;
+    o.abs_error[c] = absolute_error(I, ref.intensity[c]);
+    o.rel_error[c] = relative_error(I, ref.intensity[c]);
+    o.ulp_error[c] = ulp_error(I, ref.intensity[c]);
+    o.transmittance_rel_error[c] = relative_error(tr, ref.transmittance[c]);
+  }
+}
+
+double time_per_ray(const RayIntegrator& integrator, const Ray& ray, const EvalOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  std::vector<double> samples;
+  volatile double sink = 0.0;
+  for (int batch = 0; batch < std::max(1, opt.timing_batches); ++batch) {
+    long reps = 0;
+    const auto start = clock::now();
+    double elapsed = 0.0;
+    do {
+      sink = sink + integrator.integrate(ray, nullptr).intensity[0];
+      ++reps;
+      elapsed = std::chrono::duration<double>(clock::now() - start).count();
+    } while (elapsed < opt.timing_batch_seconds);
+    samples.push_back(elapsed / static_cast<double>(reps));
+  }
+  std::nth_element(samples.begin(), samples.begin() + static_cast<long>(samples.size() / 2),
+                   samples.end());
+  return samples[samples.size() / 2];
+}
+
+std::vector<ReferenceRay> reference_rays(const Case& c, int threads) {
+  std::vector<ReferenceRay> refs(c.rays.size());
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned n = std::min<unsigned>(threads > 0 ? static_cast<unsigned>(threads) : hw,
+                                        static_cast<unsigned>(c.rays.size()));
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < c.rays.size();) {
+      try {
+        refs[i] = reference_ray(c.transfer, c.rays[i]);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return refs;
+}
+
+CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& methods,
+                             const EvalOptions& opt) {
+  CaseEvaluation out{c.name, c.description, c.source, {}};
+  const std::vector<ReferenceRay> refs = reference_rays(c, opt.threads);
+  std::vector<std::unique_ptr<RayIntegrator>> integrators;
+  std::vector<std::string> build_errors;
+  for (const auto& spec : methods) {
+    try {
+      integrators.push_back(make_integrator(spec, c.transfer));
+      build_errors.emplace_back();
+    } catch (const std::exception& e) {
+      integrators.push_back(nullptr);
+      build_errors.emplace_back(e.what());
+    }
+  }
+  for (std::size_t r = 0; r < c.rays.size(); ++r) {
+    RayEvaluation ev;
+    ev.reference = refs[r];
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      MethodOutcome o;
+      o.method = methods[m].label();
+      if (!integrators[m]) {
+        o.failure = build_errors[m];
+        o.finite = false;
+        ev.methods.push_back(std::move(o));
+        continue;
+      }
+      try {
+        o.result = integrators[m]->integrate(c.rays[r], &o.diagnostics);
+        score_against_reference(o, ev.reference);
+        if (opt.measure_time) o.seconds_per_ray = time_per_ray(*integrators[m], c.rays[r], opt);
+      } catch (const std::exception& e) {
+        o.failure = e.what();
+        o.finite = false;
+      }
+      ev.methods.push_back(std::move(o));
+    }
+    out.rays.push_back(std::move(ev));
+  }
+  return out;
+}
+
+}  // namespace rayint

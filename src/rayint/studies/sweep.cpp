@@ -1,0 +1,383 @@
+// sweep.cpp -- the accuracy/cost sweep (definitions of every number in sweep.hpp's comment).
+//
+// Order of work: (1) the 50-digit reference of every ray of every case, in parallel
+// (reference_rays), once; (2) for each setting of each axis, for each case: build the integrator,
+// then for each ray integrate once (diag = nullptr) to score it against the stored reference and
+// time it with time_per_ray (single thread, no reference, no diagnostics). Budgets are checked
+// before every ray; a setting interrupted by a budget is dropped whole.
+#include "rayint/studies/sweep.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <thread>
+
+#include "rayint/metrics/error_metrics.hpp"
+#include "rayint/model/pieces.hpp"
+
+namespace rayint {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::vector<std::string> powers_of_two(int lo_exp, int hi_exp) {
+  std::vector<std::string> v;
+  for (int e = lo_exp; e <= hi_exp; ++e) v.push_back(std::to_string(1L << e));
+  return v;
+}
+
+std::vector<std::string> decades(int from_exp, int to_exp) {  // 1e-<from> .. 1e-<to>
+  std::vector<std::string> v;
+  for (int e = from_exp; e <= to_exp; ++e) v.push_back("1e-" + std::to_string(e));
+  return v;
+}
+
+// Median of v (mean of the two middle values for an even count); 0 for an empty v.
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
+  const double upper = v[mid];
+  if (v.size() % 2 == 1) return upper;
+  const double lower = *std::max_element(v.begin(), v.begin() + static_cast<long>(mid));
+  return 0.5 * (lower + upper);
+}
+
+double mean_of(const std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+std::array<double, 3> load_average() {
+  std::array<double, 3> out{-1.0, -1.0, -1.0};
+  double l[3];
+  if (getloadavg(l, 3) == 3) out = {l[0], l[1], l[2]};
+  return out;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// Which budget, if any, has run out.
+struct Budget {
+  Clock::time_point sweep_start, method_start;
+  double max_seconds = 0.0, method_max_seconds = 0.0;
+  bool exempt = false;  // exact: the unit of cost always runs in full
+  std::string exhausted() const {
+    if (exempt) return {};
+    char buf[96];
+    if (max_seconds > 0 && seconds_since(sweep_start) > max_seconds) {
+      std::snprintf(buf, sizeof buf, "sweep budget of %g s (--max-seconds) ran out", max_seconds);
+      return buf;
+    }
+    if (method_max_seconds > 0 && seconds_since(method_start) > method_max_seconds) {
+      std::snprintf(buf, sizeof buf, "per-method budget of %g s (--method-seconds) ran out",
+                    method_max_seconds);
+      return buf;
+    }
+    return {};
+  }
+};
+
+// Scores and times one setting over all cases. Returns false (and the reason) if a budget ran
+// out before it finished.
+bool measure_setting(const MethodSpec& spec, const std::vector<Case>& cases,
+                     const std::vector<std::vector<ReferenceRay>>& refs, const SweepOptions& opt,
+                     const Budget& budget, SettingResult& out, std::string& stopped) {
+  const auto t0 = Clock::now();
+  std::vector<double> all_errors, all_times;
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    CaseScore cs;
+    cs.name = c.name;
+    cs.rays = c.rays.size();
+    out.rays += c.rays.size();
+    std::unique_ptr<RayIntegrator> integrator;
+    try {
+      const auto setup_start = Clock::now();
+      integrator = make_integrator(spec, c.transfer);
+      out.setup_seconds += seconds_since(setup_start);
+    } catch (const std::exception& e) {
+      cs.failed_rays = c.rays.size();
+      out.failed_rays += c.rays.size();
+      if (out.failure.empty()) out.failure = c.name + ": " + e.what();
+      out.per_case.push_back(std::move(cs));
+      continue;
+    }
+    std::vector<double> case_errors, case_times;
+    for (std::size_t r = 0; r < c.rays.size(); ++r) {
+      stopped = budget.exhausted();
+      if (!stopped.empty()) return false;
+      RayResult result;
+      try {
+        result = integrator->integrate(c.rays[r], nullptr);
+      } catch (const std::exception& e) {
+        ++cs.failed_rays;
+        ++out.failed_rays;
+        if (out.failure.empty())
+          out.failure = c.name + " ray " + std::to_string(r) + ": " + e.what();
+        continue;
+      }
+      for (int ch = 0; ch < kChannels; ++ch) {
+        const double e = scored_error(result.intensity[ch], refs[ci][r].intensity[ch]);
+        if (!std::isfinite(result.intensity[ch])) {
+          ++cs.nonfinite;
+          ++out.nonfinite;
+        }
+        if (case_errors.empty() || e > cs.max_error) cs.max_error = e;
+        if (all_errors.empty() || e > out.max_error) {
+          out.max_error = e;
+          out.worst_case = c.name;
+          out.worst_ray = r;
+          out.worst_channel = ch;
+        }
+        case_errors.push_back(e);
+        all_errors.push_back(e);
+      }
+      if (opt.timing.measure_time) {
+        const double t = time_per_ray(*integrator, c.rays[r], opt.timing);
+        case_times.push_back(t);
+        all_times.push_back(t);
+      }
+    }
+    cs.median_error = median_of(case_errors);
+    cs.seconds_per_ray = mean_of(case_times);
+    out.per_case.push_back(std::move(cs));
+  }
+  out.channels = all_errors.size();
+  out.median_error = median_of(all_errors);
+  out.seconds_per_ray = mean_of(all_times);
+  out.median_seconds_per_ray = median_of(all_times);
+  out.wall_seconds = seconds_since(t0);
+  return true;
+}
+
+}  // namespace
+
+double scored_error(double x, const ExtendedValue& ref) {
+  if (!std::isfinite(x)) return std::numeric_limits<double>::infinity();
+  const double err = absolute_error(x, ref);
+  if (err == 0.0) return 0.0;
+  return err / std::max(std::fabs(ref.hi), kSweepUnderflowFloor);
+}
+
+std::vector<MethodSpec> SweepAxis::settings() const {
+  if (knob.empty()) return {parse_method_spec(method)};
+  std::vector<MethodSpec> out;
+  for (const auto& v : values) out.push_back(parse_method_spec(method + ":" + knob + "=" + v));
+  return out;
+}
+
+namespace {
+std::vector<SweepAxis>& mutable_sweep_table() {
+  static std::vector<SweepAxis> table = {
+      {"exact", "", {}},
+      {"paper", "", {}},
+      {"eq5", "", {}},
+      {"eq6", "", {}},
+      {"eq7", "", {}},
+      {"eq8", "", {}},
+      {"particle", "", {}},
+      {"riemann", "n", powers_of_two(0, 16)},           // 1 .. 65536 samples per segment
+      {"rk4", "n", powers_of_two(0, 16)},               // 1 .. 65536 steps per segment
+      {"ode", "rtol", decades(2, 13)},                  // 1e-2 .. 1e-13
+      {"preintegrated", "size", powers_of_two(5, 11)},  // 32 .. 2048 entries per axis
+      {"psi_table", "size", powers_of_two(5, 11)},      // 32 .. 2048 entries
+  };
+  return table;
+}
+}  // namespace
+
+const std::vector<SweepAxis>& sweep_table() { return mutable_sweep_table(); }
+
+void register_sweep_axis(const SweepAxis& axis) { mutable_sweep_table().push_back(axis); }
+
+std::vector<SweepAxis> select_sweep_axes(const std::vector<std::string>& methods) {
+  const auto& table = sweep_table();
+  for (const auto& name : methods) {
+    const bool known = std::any_of(table.begin(), table.end(),
+                                   [&](const SweepAxis& a) { return a.method == name; });
+    if (!known) {
+      std::string list;
+      for (const auto& a : table) list += (list.empty() ? "" : ", ") + a.method;
+      throw std::invalid_argument("bench: unknown method '" + name +
+                                  "' (the sweep table has: " + list + ")");
+    }
+  }
+  std::vector<SweepAxis> out;
+  for (const auto& a : table) {
+    const bool wanted = methods.empty() || a.method == "exact" ||
+                        std::find(methods.begin(), methods.end(), a.method) != methods.end();
+    if (wanted) out.push_back(a);
+  }
+  return out;
+}
+
+const char* statistic_name(ErrorStatistic s) { return s == ErrorStatistic::max ? "max" : "median"; }
+
+std::optional<std::size_t> cheapest_setting(const MethodSweep& m, double target,
+                                            ErrorStatistic statistic) {
+  const auto qualifies = [&](const SettingResult& s) {
+    const double e = statistic == ErrorStatistic::max ? s.max_error : s.median_error;
+    return s.complete() && e <= target;
+  };
+  std::optional<std::size_t> fastest;
+  for (std::size_t i = 0; i < m.settings.size(); ++i)
+    if (qualifies(m.settings[i]) &&
+        (!fastest || m.settings[i].seconds_per_ray < m.settings[*fastest].seconds_per_ray))
+      fastest = i;
+  if (!fastest) return fastest;
+  // Ties within timing noise go to the earliest (smallest-knob) setting.
+  const double limit = m.settings[*fastest].seconds_per_ray * (1.0 + kSweepTimeTieBand);
+  for (std::size_t i = 0; i < m.settings.size(); ++i)
+    if (qualifies(m.settings[i]) && m.settings[i].seconds_per_ray <= limit) return i;
+  return fastest;
+}
+
+std::vector<TargetChoice> target_table(const std::vector<MethodSweep>& methods,
+                                       double exact_seconds_per_ray,
+                                       const std::vector<double>& targets) {
+  std::vector<TargetChoice> out;
+  for (double target : targets)
+    for (ErrorStatistic stat : {ErrorStatistic::max, ErrorStatistic::median})
+      for (const MethodSweep& m : methods) {
+        TargetChoice t;
+        t.target = target;
+        t.statistic = stat;
+        t.method = m.method;
+        t.truncated = m.truncated;
+        if (const auto i = cheapest_setting(m, target, stat)) {
+          const SettingResult& s = m.settings[*i];
+          t.reached = true;
+          t.label = s.label;
+          t.error = stat == ErrorStatistic::max ? s.max_error : s.median_error;
+          t.seconds_per_ray = s.seconds_per_ray;
+          t.cost_vs_exact =
+              exact_seconds_per_ray > 0 ? s.seconds_per_ray / exact_seconds_per_ray : 0.0;
+        }
+        out.push_back(t);
+      }
+  return out;
+}
+
+SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
+                      const SweepOptions& opt) {
+  SweepResult res;
+  res.timing = opt.timing;
+  res.max_seconds = opt.max_seconds;
+  res.method_max_seconds = opt.method_max_seconds;
+  res.hardware_threads = std::thread::hardware_concurrency();
+  res.started_at = utc_now();
+  res.load_start = load_average();
+  const auto start = Clock::now();
+
+  // (1) references, once per ray, parallel over the rays of each case.
+  std::vector<std::vector<ReferenceRay>> refs;
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    refs.push_back(reference_rays(c, opt.timing.threads));
+    std::size_t pieces = 0;
+    for (const Ray& ray : c.rays) pieces += split_ray(c.transfer, ray).size();
+    res.case_names.push_back(c.name);
+    res.case_files.push_back(c.source);
+    res.case_rays.push_back(c.rays.size());
+    res.case_pieces.push_back(pieces);
+    res.rays += c.rays.size();
+    res.pieces += pieces;
+    if (opt.progress) {
+      SweepProgress p;
+      p.stage = SweepProgress::Stage::reference;
+      p.what = c.name;
+      p.done = ci + 1;
+      p.total = cases.size();
+      p.elapsed_seconds = seconds_since(start);
+      opt.progress(p);
+    }
+  }
+  res.reference_seconds = seconds_since(start);
+
+  // (2) every setting, scored against the stored references and timed.
+  std::size_t total = 0, done = 0;
+  for (const auto& a : axes) total += a.knob.empty() ? 1 : a.values.size();
+  Budget budget;
+  budget.sweep_start = Clock::now();
+  budget.max_seconds = opt.max_seconds;
+  budget.method_max_seconds = opt.method_max_seconds;
+  for (const SweepAxis& axis : axes) {
+    MethodSweep m;
+    m.method = axis.method;
+    m.knob = axis.knob;
+    budget.method_start = Clock::now();
+    budget.exempt = axis.method == "exact";
+    const std::vector<MethodSpec> specs = axis.settings();
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      SettingResult s;
+      s.label = specs[k].label();
+      s.knob_value = axis.knob.empty() ? "" : axis.values[k];
+      std::string stopped = m.truncated ? m.truncation : budget.exhausted();
+      if (stopped.empty() && measure_setting(specs[k], cases, refs, opt, budget, s, stopped)) {
+        m.settings.push_back(std::move(s));
+        ++done;
+        if (opt.progress) {
+          SweepProgress p;
+          p.stage = SweepProgress::Stage::setting;
+          p.what = m.settings.back().label;
+          p.done = done;
+          p.total = total;
+          p.elapsed_seconds = seconds_since(start);
+          p.setting = &m.settings.back();
+          opt.progress(p);
+        }
+        continue;
+      }
+      // A budget ran out: this and every later setting of the method are skipped.
+      m.truncated = true;
+      m.truncation = stopped;
+      m.skipped.push_back(s.label);
+      ++done;
+      if (!res.truncated) {
+        res.truncated = true;
+        res.truncation = axis.method + ": " + stopped;
+      }
+      if (opt.progress) {
+        SweepProgress p;
+        p.stage = SweepProgress::Stage::skipped;
+        p.what = s.label;
+        p.done = done;
+        p.total = total;
+        p.elapsed_seconds = seconds_since(start);
+        p.reason = stopped;
+        opt.progress(p);
+      }
+    }
+    res.methods.push_back(std::move(m));
+  }
+  res.measure_seconds = seconds_since(budget.sweep_start);
+  res.load_end = load_average();
+
+  for (const MethodSweep& m : res.methods)
+    if (m.method == "exact" && !m.settings.empty() && m.settings.front().complete())
+      res.exact_seconds_per_ray = m.settings.front().seconds_per_ray;
+  res.targets = target_table(res.methods, res.exact_seconds_per_ray, sweep_targets());
+  return res;
+}
+
+}  // namespace rayint
