@@ -45,7 +45,11 @@ Stencil stencil(const CellGrid& g, const Vec3& x) {
   return s;
 }
 
-// int_0^s exp(-sigma t) dt, stable for sigma s -> 0.
+// int_0^s exp(-sigma t) dt, stable for sigma s -> 0. Domain x = sigma s >= 0. Above x = 1e-8,
+// -expm1(-x) / sigma, accurate at every x > 0; below, the series s (1 - x/2), whose truncation
+// x^2/6 <= 1.7e-17 is under half an ulp, so the switch costs nothing; the branch exists for
+// sigma = 0 (0/0). Measured against long double over x in [1e-12, 1e-4]: <= 1.0e-16 relative
+// below the switch, <= 1.6e-16 above.
 double one_minus_exp_over(double sigma, double s) {
   const double x = sigma * s;
   return x < 1e-8 ? s * (1 - 0.5 * x) : -std::expm1(-x) / sigma;
@@ -81,7 +85,7 @@ CellGrid make_cell_grid(const ScatteringVolume& v, int n) {
 std::vector<double> first_pass_irradiance(const ScatteringVolume& v, const CellGrid& g, int threads) {
   std::vector<double> E(g.size());
   const Vec3 to_light = -v.light.direction;
-  const double step = 0.25 * g.h.minCoeff();
+  const double step = 0.25 * g.h.minCoeff();  // h/4: measured effect in discrete_ordinates.hpp
   parallel_for_blocks(static_cast<std::size_t>(g.n), threads, [&](std::size_t kk) {
     const int k = static_cast<int>(kk);
     for (int j = 0; j < g.n; ++j)
@@ -175,7 +179,12 @@ DiscreteOrdinatesSolution solve_discrete_ordinates(const ScatteringVolume& v,
             const double a1 = one_minus_exp_over(sigma, chord);  // int_0^s e^{-sigma t} dt
             const double trans = 1 - sigma * a1;                  // e^{-sigma s}
             out[c] = Lin * trans + J * a1;
-            // Cell average over the chord: (1/s) int_0^s L(t) dt.
+            // Cell average over the chord: (1/s) int_0^s L(t) dt. Domain x = sigma s >= 0. The
+            // closed form cancels for small x (J/sigma against itself; error ~ eps/x in the
+            // source part); the first-order series Lin + J s/2 has truncation <= x/2. The switch
+            // at 1e-8 is near sqrt(eps), where the two meet: measured against long double
+            // (Lin 0..10, J 0..1000), <= 5.0e-9 relative below it, <= 2.7e-8 just above, <= 3.2e-9
+            // above x = 1e-7; both under the float rounding (6e-8) of the stored radiance.
             double avg;
             if (sigma * chord < 1e-8) {
               avg = Lin + 0.5 * J * chord;
@@ -219,7 +228,7 @@ double gather_discrete_ordinates(const ScatteringVolume& v, const DiscreteOrdina
   for (std::size_t b = 0; b < m; ++b)
     for (std::size_t j = 0; j < sol.bins[b].sub_directions.size(); ++j)
       Q[b] += sol.bins[b].sub_solid_angles[j] * v.phase.eval(sol.bins[b].sub_directions[j].dot(w_out));
-  const double step = 0.25 * g.h.minCoeff();
+  const double step = 0.25 * g.h.minCoeff();  // h/4: measured effect in discrete_ordinates.hpp
   const double len = iv.t_exit - iv.t_enter;
   const int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
   const double dt = len / steps;
