@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "rayint/scene/absorption_emission.hpp"
 #include "rayint/scene/effect.hpp"
