@@ -7,6 +7,7 @@
 #include "rayint/vtk/vtk_mesh_reader.hpp"
 #endif
 #include "rayint/core/atomic_file.hpp"
+#include "rayint/effects/standard_effects.hpp"
 #include "rayint/input/case_reader.hpp"
 
 namespace rayint::cli {
@@ -23,6 +24,7 @@ void emit(const std::string& text, const std::string& path) {
 }  // namespace rayint::cli
 
 int main(int argc, char** argv) {
+  rayint::register_standard_effects();  // multiple_scattering (scene/effect.hpp)
 #ifdef RAYINT_WITH_VTK
   rayint::register_vtk_methods();  // vtk_linear, vtk_partial_preint, vtk_preint, vtk_homogeneous
   rayint::register_vtk_mesh_readers();  // mesh_file .vtu, .pvtu

@@ -13,7 +13,6 @@
 #include "commands.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/render/image.hpp"
-#include "rayint/scene/scene_volume.hpp"
 #include "rayint/scattering/volume_comparison.hpp"
 
 namespace rayint::cli {
@@ -73,12 +72,12 @@ void set_scatter_command(CLI::App& app) {
       if (g < 2 || g > 20) throw std::invalid_argument("--zonal-grids: each must be in [2, 20]");
     const Scene scene = read_scene_file(s->scene);
     if (!scene.camera) throw std::invalid_argument(s->scene + ": rayint scatter needs a camera");
-    if (!scene_is_grey(scene))
+    if (!is_grey(scene.medium, scene.lights))
       throw std::invalid_argument(s->scene + ": rayint scatter needs the same extinction, albedo and light in r, g, b");
     Camera cam = *scene.camera;
     cam.width = s->width;
     cam.height = s->height;
-    ScatteringVolume v = volume_from_scene(scene, 0, s->points);
+    ScatteringVolume v = volume_from_medium(scene.medium, scene.lights, scene.phase, 0, s->points);
     v.background = 0.0;
     ComparisonOptions o;
     o.reference.samples_per_pixel = s->spp;

@@ -56,7 +56,7 @@ lines = ["# Max's (1995) cloud figures, rendered by `rayint render`", "",
          "clocks around each effect's per-ray work, summed over both workers, plus its set-up) where the",
          "stats file has it, else wall time summed over the workers (the six figure files were written",
          "before CPU clocks were added and give wall time under that load). Errors are against each term's reference (adaptive Gauss–Kronrod along the ray,",
-         "rtol 1e-9, nested over the light's optical depth with shadows; `src/rayint/scene/ray_quadrature.hpp`)",
+         "rtol 1e-9, nested over the light's optical depth with shadows; `src/rayint/scene/term_references.hpp`)",
          "on 8 × 8 pixels spread over the image; `rel to peak` is the largest absolute error over those",
          "pixels and channels divided by the largest reference value of that term. The cloud is",
          "`preset: max1995`, seed 7 (`src/rayint/scene/cloud.cpp`).", ""]

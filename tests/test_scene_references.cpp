@@ -9,7 +9,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "rayint/scene/ray_quadrature.hpp"
+#include "rayint/scene/term_references.hpp"
 #include "scene_builders.hpp"
 
 using namespace rayint;
@@ -49,10 +49,10 @@ TEST_CASE("scene references: the cloud's transmittance on rays clipping its edge
     REQUIRE(span.hit);
     // Brute force: 400,000 midpoint samples, error O(h^2) on a Lipschitz density.
     const long n = 400000;
-    const double h = (span.t_far - span.t_near) / n;
+    const double h = (span.t_exit - span.t_enter) / n;
     double tau = 0.0;
     for (long m = 0; m < n; ++m)
-      tau += scene.medium.extinction(ray.origin + ray.direction * (span.t_near + (static_cast<double>(m) + 0.5) * h))[0] * h;
+      tau += scene.medium.extinction(ray.origin + ray.direction * (span.t_enter + (static_cast<double>(m) + 0.5) * h))[0] * h;
     const ReferenceValue ref = reference_transmittance(scene, ray);
     CHECK(ref.converged);
     CHECK(ref.value[0] == Approx(std::exp(-tau)).epsilon(1e-6));

@@ -68,7 +68,7 @@ double total_length(const Ray& r) {
 // interpolant is linear on each (random interior points). Returns the max deviation.
 double check_segments(const VoxelGrid& g, const ViewRay& ray, std::mt19937_64& rng) {
   const Ray r = ray_segments(g, ray);
-  const RayInterval span = g.clip(ray);
+  const RaySpan span = g.clip(ray);
   const double speed = ray.direction.norm();
   double t_far = span.t_exit, worst = 0.0;
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -252,7 +252,7 @@ TEST_CASE("grid: exact on the Kuhn segments of a linear field equals one segment
   for (int n = 0; n < 50; ++n) {
     const Vec3 dir = Vec3(nd(rng), nd(rng), nd(rng)).normalized();
     const ViewRay ray{centre - 4.0 * dir + 0.2 * Vec3(nd(rng), nd(rng), nd(rng)), dir};
-    const RayInterval span = g.clip(ray);
+    const RaySpan span = g.clip(ray);
     if (!span.hit) continue;
     const Rgb bg{0.3, 0.5, 0.7};
     Ray one;

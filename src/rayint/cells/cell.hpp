@@ -57,7 +57,7 @@ Vec3 to_world(const HigherOrderCell& cell, const Vec3& xi);
 double cell_value(const HigherOrderCell& cell, const Vec3& world);
 
 struct CellChord {
-  RayInterval span;     // t range of the ray inside the closed cell (t >= 0)
+  RaySpan span;     // t range of the ray inside the closed cell (t >= 0)
   PolySegment segment;  // length = world length; scalar(s), s from the far end (t_exit)
 };
 CellChord cell_chord(const HigherOrderCell& cell, const ViewRay& ray);

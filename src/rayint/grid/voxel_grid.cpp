@@ -126,34 +126,16 @@ double VoxelGrid::kuhn_value(const Vec3& p) const {
   return f;
 }
 
-RayInterval VoxelGrid::clip(const ViewRay& ray) const {
-  const Vec3 lo = lower(), hi = upper();
-  double t_enter = 0.0, t_exit = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 3; ++i) {
-    const double o = ray.origin[i], d = ray.direction[i];
-    if (d == 0.0) {
-      if (o < lo[i] || o > hi[i]) return {};
-      continue;
-    }
-    double ta = (lo[i] - o) / d, tb = (hi[i] - o) / d;
-    if (ta > tb) std::swap(ta, tb);
-    t_enter = std::max(t_enter, ta);
-    t_exit = std::min(t_exit, tb);
-  }
-  if (!(t_exit > t_enter) || !std::isfinite(t_exit)) return {};
-  return {t_enter, t_exit, true};
-}
-
 Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background) {
-  return ray_segments(grid, ray, RayInterval{0.0, std::numeric_limits<double>::infinity(), true},
+  return ray_segments(grid, ray, RaySpan{0.0, std::numeric_limits<double>::infinity(), true},
                       background);
 }
 
-Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RayInterval& within,
+Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RaySpan& within,
                  const Rgb& background) {
   Ray out;
   out.background = background;
-  RayInterval span = grid.clip(ray);
+  RaySpan span = grid.clip(ray);
   if (!span.hit || !within.hit) return out;
   span.t_enter = std::max(span.t_enter, within.t_enter);
   span.t_exit = std::min(span.t_exit, within.t_exit);
@@ -173,7 +155,7 @@ Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RayInterval& w
 
 std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRay& ray) {
   std::vector<TrilinearPiece> out;
-  const RayInterval span = grid.clip(ray);
+  const RaySpan span = grid.clip(ray);
   if (!span.hit) return out;
   const IndexRay r = to_index(grid, ray);
   std::vector<double> t = breakpoints(r, span.t_enter, span.t_exit, false);

@@ -36,19 +36,16 @@
 #include <cstddef>
 #include <vector>
 
+#include "rayint/geometry/bounds.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/model/poly_ray.hpp"
 #include "rayint/model/ray.hpp"
 
 namespace rayint {
 
-// [t_enter, t_exit] of a ray parameter t (point = origin + t * direction).
-struct RayInterval {
-  double t_enter = 0.0;
-  double t_exit = 0.0;
-  bool hit = false;  // false: the ray misses (t_enter, t_exit are then 0)
-  double length() const { return hit ? t_exit - t_enter : 0.0; }
-};
+// The ray span of geometry/bounds.hpp under the name grid/ gave it first (discrete_ordinates.cpp
+// still spells it so); one type.
+using RayInterval = RaySpan;
 
 class VoxelGrid {
  public:
@@ -78,11 +75,9 @@ class VoxelGrid {
   // The piecewise linear (Kuhn, 6 tets per cube) interpolant at a world point; clamped likewise.
   double kuhn_value(const Vec3& p) const;
 
-  // Where the ray is inside the closed box, restricted to t >= 0 (in front of the eye). Slab
-  // method; a direction component of 0 leaves that slab unrestricted when the origin lies in it
-  // (a ray in a boundary plane counts as inside). hit == false when the intersection is empty
-  // or a single point.
-  RayInterval clip(const ViewRay& ray) const;
+  Bounds bounds() const { return {lower(), upper()}; }
+  // Where the ray is inside the closed box, t >= 0: bounds().clip(ray) (geometry/bounds.hpp).
+  RaySpan clip(const ViewRay& ray) const { return bounds().clip(ray); }
 
  private:
   std::array<int, 3> dims_{{2, 2, 2}};
@@ -100,7 +95,7 @@ class VoxelGrid {
 Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background = Rgb{});
 // The same restricted to t in `within` (e.g. the part of the ray inside a cell whose faces are
 // planes of the Kuhn arrangement, as cells/cell.cpp uses it); within.hit == false gives none.
-Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RayInterval& within,
+Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RaySpan& within,
                  const Rgb& background);
 
 // One cube of the trilinear interpolant along a ray: the scalar is the cubic

@@ -54,34 +54,18 @@ namespace rayint {
 namespace {
 
 // Opacity and transparency of one sample of one channel (see the file comment).
-struct SampleOptics {
-  double alpha;
-  double transparency;
-};
-
-// alpha = 1 - e^{-x} and e^{-x} for optical depth x >= 0 with one transcendental call: the
-// smaller of the two is computed directly (expm1 below ln 2, exp above) and the larger as 1 minus
-// it, which is then >= 1/2 and so carries at most ~1 ulp relative error.
-inline SampleOptics optics_of_depth(double x) {
-  constexpr double kLn2 = 0.69314718055994530942;
-  if (x < kLn2) {
-    const double alpha = -std::expm1(-x);
-    return {alpha, 1.0 - alpha};
-  }
-  const double transparency = std::exp(-x);
-  return {1.0 - transparency, transparency};
-}
+using SampleOptics = StepOpacity;
 
 inline SampleOptics sample_optics(const RiemannOptions& opt, double rho, double h) {
   switch (opt.opacity) {
     case OpacityRule::exact:
-      return optics_of_depth(rho * h);
+      return step_opacity(rho * h);
     case OpacityRule::corrected: {
       const double alpha_ref = -std::expm1(-rho * opt.ref_dt);  // the table entry
-      return optics_of_depth(-(h / opt.ref_dt) * std::log1p(-alpha_ref));
+      return step_opacity(-(h / opt.ref_dt) * std::log1p(-alpha_ref));
     }
     case OpacityRule::none:
-      return optics_of_depth(rho * opt.ref_dt);
+      return step_opacity(rho * opt.ref_dt);
     case OpacityRule::linear: {
       const double alpha = std::min(1.0, rho * h);
       return {alpha, 1.0 - alpha};

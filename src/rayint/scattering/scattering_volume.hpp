@@ -15,15 +15,18 @@
 //   L = background T(ray) + int T(t) sigma_s(x) [ E(x) p(light.direction . -d) + int L(x, w) p(w . -d) dw ] dt,
 //   E(x) = light.irradiance * exp(-int sigma_t along the ray from x toward the light).
 // Truncating the inner integral (max_order = 1) leaves single scattering with shadows.
+//
+// A volume is one colour channel of a medium and its light (media/medium.hpp, media/light.hpp):
+// volume_from_medium() resamples it, so scenes and these methods describe one medium and one
+// light; the light is media's DirectionalLight.
+#include <vector>
+
 #include "rayint/grid/voxel_grid.hpp"
+#include "rayint/media/light.hpp"
+#include "rayint/media/medium.hpp"
 #include "rayint/optics/phase.hpp"
 
 namespace rayint {
-
-struct DirectionalLight {
-  Vec3 direction = Vec3(0, 0, -1);  // direction of propagation (unit)
-  double irradiance = 1.0;
-};
 
 struct ScatteringVolume {
   VoxelGrid density;
@@ -37,5 +40,21 @@ struct ScatteringVolume {
   double majorant() const;              // extinction_per_density * max(density), >= sigma_t
   void validate() const;                // std::invalid_argument naming the field
 };
+
+// Channel `channel` of `medium` lit by `lights` as a ScatteringVolume: the medium's extinction
+// sampled on a VoxelGrid of points^3 points over its (finite) bounds, trilinear in between, with
+// extinction_per_density = 1; the albedo, which must be constant over the medium's densities; the
+// single directional light (Light::channel); `phase`; background 0 (the multiple-scattering term
+// has no background). Resampling is a stated approximation of these methods (a scene's
+// single-scattering effect uses the exact medium); its size is part of the reported error of
+// each method. Throws std::invalid_argument (one line, "multiple_scattering: ...") for what the
+// methods cannot do: unbounded media (slabs: use `rayint slab`), no or several lights, point
+// lights, density-dependent albedo, points < 2.
+ScatteringVolume volume_from_medium(const Medium& medium, const std::vector<Light>& lights,
+                                    const PhaseFunction& phase, int channel, int points);
+
+// True when the three channels give the same volume (same extinction, albedo, light
+// irradiance): then one solve serves all three.
+bool is_grey(const Medium& medium, const std::vector<Light>& lights);
 
 }  // namespace rayint

@@ -15,7 +15,7 @@ constexpr double kRouletteWeight = 0.1;
 // Ratio-tracking transmittance from x along unit direction w to the box boundary.
 double ratio_tracking(const ScatteringVolume& v, const Vec3& x, const Vec3& w, double sigma_maj,
                       Rng& rng, PathTraceStats& s) {
-  const RayInterval iv = v.density.clip(ViewRay{x, w});
+  const RaySpan iv = v.density.clip(ViewRay{x, w});
   if (!iv.hit || sigma_maj <= 0) return 1.0;
   double t = iv.t_enter, T = 1.0;
   for (;;) {
@@ -40,7 +40,7 @@ double trace_path(const ScatteringVolume& v, const ViewRay& ray, Rng& rng, int m
   double L = 0, throughput = 1;
   int order = 0;
   for (;;) {
-    const RayInterval iv = v.density.clip(ViewRay{x, d});
+    const RaySpan iv = v.density.clip(ViewRay{x, d});
     bool collided = false;
     if (iv.hit && sigma_maj > 0) {
       double t = iv.t_enter;

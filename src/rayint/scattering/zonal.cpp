@@ -170,7 +170,7 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
 
 double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const ViewRay& ray, bool include_single) {
   const Vec3 d = ray.direction.normalized();
-  const RayInterval iv = v.density.clip(ViewRay{ray.origin, d});
+  const RaySpan iv = v.density.clip(ViewRay{ray.origin, d});
   const double background = include_single ? v.background : 0.0;
   if (!iv.hit) return background;
   const CellGrid& g = sol.cells;

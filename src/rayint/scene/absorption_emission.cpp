@@ -5,8 +5,8 @@
 #include "rayint/integrators/exact.hpp"
 #include "rayint/model/pieces.hpp"
 #include "rayint/reference/reference.hpp"
-#include "rayint/scene/ray_quadrature.hpp"
-#include "rayint/scene/riemann_march.hpp"
+#include "rayint/scene/term_references.hpp"
+#include "rayint/media/riemann_march.hpp"
 
 namespace rayint {
 namespace {

@@ -7,9 +7,9 @@
 //                segments go to integrators/exact (Williams & Max Sec. 3.3); emission without
 //                absorption is int kappa*rho over each piece, a quadratic, integrated exactly
 //                (Simpson's rule). Refused for other media.
-//   riemann:n  - n midpoint samples over the span (scene/riemann_march.hpp).
+//   riemann:n  - n midpoint samples over the span (media/riemann_march.hpp).
 // References: reference/ (50-digit Gauss-Kronrod) on piecewise-linear media with absorption;
-// otherwise the adaptive quadrature of scene/ray_quadrature.hpp.
+// otherwise the adaptive quadrature of scene/term_references.hpp.
 #include <memory>
 
 #include "rayint/scene/effect.hpp"

@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rayint/scene/medium.hpp"
+#include "rayint/media/medium.hpp"
 
 namespace rayint {
 

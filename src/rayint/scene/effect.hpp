@@ -13,9 +13,13 @@
 // A term no named effect asks for is never evaluated; adding a term effect never changes
 // another's term (each is integrated on its own samples; tests/test_scene_pipeline.cpp).
 //
-// To add an effect (e.g. `multiple_scattering`, issue 7): implement Effect in its own file under
-// src/rayint/scene/ (or your own folder), and add one EffectInfo line to effect_registry() in
-// scene/effect_registry.cpp. docs/scenes.md describes the contract.
+// To add an effect: implement Effect in its own file and describe it by an EffectInfo. An effect
+// that needs only scene/ and the areas below it is built in: one EffectInfo line in registry() in
+// scene/effect_registry.cpp. An effect implemented by an area scene/ does not link (as
+// `multiple_scattering` by scattering/) lives in src/rayint/effects/ and registers itself with
+// register_effect() from register_standard_effects() (effects/standard_effects.hpp), the one
+// registration call that the CLI's main and the tests' main make before any scene is read, so
+// both see the same registry. docs/scenes.md describes the contract.
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -94,7 +98,13 @@ struct EffectInfo {
   std::function<std::unique_ptr<Effect>(const EffectContext&)> make;
 };
 
-const std::vector<EffectInfo>& effect_registry();  // scene/effect_registry.cpp
+// The built-in effects, then the registered ones, in the order the pipeline evaluates them
+// (scene/effect_registry.cpp).
+const std::vector<EffectInfo>& effect_registry();
+// Adds an effect after the built-in ones, or replaces the effect of the same name (so registering
+// twice is harmless). Call before scenes are read and pipelines built (not thread-safe; it may
+// invalidate what effect_registry() and find_effect() returned before).
+void register_effect(EffectInfo info);
 const EffectInfo* find_effect(const std::string& name);  // null if unknown
 // Throws std::invalid_argument when `spec` names no method of `effect` or an unknown parameter.
 void check_effect_method(const EffectInfo& effect, const MethodSpec& spec);

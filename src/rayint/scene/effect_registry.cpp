@@ -1,10 +1,10 @@
-// The effects a scene may name, in the order the pipeline evaluates them. To add an effect, add
-// one line here (see scene/effect.hpp and docs/scenes.md).
+// The effects a scene may name, in the order the pipeline evaluates them: the built-in effects of
+// scene/, then those registered with register_effect() (see scene/effect.hpp and docs/scenes.md).
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
-#include "rayint/scene/multiple_scattering_effect.hpp"
 #include "rayint/scene/absorption_emission.hpp"
 #include "rayint/scene/effect.hpp"
 #include "rayint/scene/scattering_terms.hpp"
@@ -23,9 +23,11 @@ void EffectWork::add(const EffectWork& o) {
   lookups += o.lookups;
 }
 
-const std::vector<EffectInfo>& effect_registry() {
+namespace {
+
+std::vector<EffectInfo>& registry() {
   using Role = EffectInfo::Role;
-  static const std::vector<EffectInfo> registry = {
+  static std::vector<EffectInfo> effects = {
       {"absorption", Role::attenuation_term,
        "extinction along the viewing ray: the background seen through the medium, B*T; attenuates "
        "every other term",
@@ -49,16 +51,21 @@ const std::vector<EffectInfo>& effect_registry() {
        nullptr},
       {"shading", Role::term, "Max's gradient-strength surface shading (Lambert/Phong)",
        "riemann:n=128", {{"riemann", {"n"}, "n midpoint samples"}}, make_shading_effect},
-      {"multiple_scattering", Role::term,
-       "light scattered two or more times (orders >= 2; src/rayint/scattering/, "
-       "docs/multiple-scattering.md)",
-       "discrete_ordinates:grid=32:bins=3",
-       {{"discrete_ordinates", {"grid", "bins", "points"}, "Max's direction bins on a grid^3 cell grid"},
-        {"zonal", {"grid", "points"}, "zonal method, isotropic scattering only"},
-        {"monte_carlo", {"spp", "seed", "points"}, "path tracing of orders >= 2"}},
-       make_multiple_scattering_effect},
   };
-  return registry;
+  return effects;
+}
+
+}  // namespace
+
+const std::vector<EffectInfo>& effect_registry() { return registry(); }
+
+void register_effect(EffectInfo info) {
+  for (EffectInfo& e : registry())
+    if (e.name == info.name) {
+      e = std::move(info);
+      return;
+    }
+  registry().push_back(std::move(info));
 }
 
 const EffectInfo* find_effect(const std::string& name) {

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "rayint/grid/voxel_grid.hpp"
-#include "rayint/scene/medium.hpp"
+#include "rayint/media/medium.hpp"
 
 namespace rayint {
 
@@ -14,7 +14,7 @@ class GridField final : public DensityField {
  public:
   explicit GridField(VoxelGrid grid);
   std::string kind() const override { return "voxel grid"; }
-  Bounds bounds() const override { return {grid_.lower(), grid_.upper()}; }
+  Bounds bounds() const override { return grid_.bounds(); }
   double density(const Vec3& p) const override;
   double max_density() const override { return max_; }
   double gradient_step() const override { return 0.25 * grid_.spacing().minCoeff(); }

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "rayint/scene/ray_quadrature.hpp"
-#include "rayint/scene/riemann_march.hpp"
+#include "rayint/scene/term_references.hpp"
+#include "rayint/media/riemann_march.hpp"
 #include "rayint/scene/shadowing.hpp"
 
 namespace rayint {

@@ -5,8 +5,8 @@
 //     with w_L the light's propagation direction, w_eye = -view direction (toward the eye), p the
 //     phase function, E_L the unshadowed irradiance and T_L the shadowing (scene/shadowing.hpp);
 //   shading: Max's gradient-strength surface shading (scene.hpp ShadingParams), times E_L T_L.
-// Method: riemann:n (scene/riemann_march.hpp) with the scene's Shadowing; reference:
-// scene/ray_quadrature.hpp, nested over the light depth when shadowed.
+// Method: riemann:n (media/riemann_march.hpp) with the scene's Shadowing; reference:
+// scene/term_references.hpp, nested over the light depth when shadowed.
 #include <memory>
 
 #include "rayint/scene/effect.hpp"

@@ -14,8 +14,8 @@
 #include "rayint/optics/phase.hpp"
 #include "rayint/geometry/camera.hpp"
 #include "rayint/render/image.hpp"
-#include "rayint/scene/light.hpp"
-#include "rayint/scene/medium.hpp"
+#include "rayint/media/light.hpp"
+#include "rayint/media/medium.hpp"
 
 namespace rayint {
 

@@ -6,6 +6,7 @@
 
 #include "rayint/core/cpu_clock.hpp"
 #include "rayint/core/parallel.hpp"
+#include "rayint/media/riemann_march.hpp"
 
 namespace rayint {
 namespace {
@@ -23,7 +24,7 @@ double light_path_length(const Scene& scene, const Vec3& p, const LightArrival& 
   const ViewRay toward{p, -arrival.propagation};
   const RaySpan span = scene.medium.bounds().clip(toward);
   if (!span.hit) return 0.0;
-  return std::max(0.0, std::min(span.t_far, arrival.distance) - span.t_near);
+  return std::max(0.0, std::min(span.t_exit, arrival.distance) - span.t_enter);
 }
 
 ShadowRays::ShadowRays(const Scene& scene, int n) : scene_(scene), n_(n) {
@@ -39,14 +40,9 @@ Rgb ShadowRays::transmittance(std::size_t light, const Vec3& p, EffectWork& work
   const RaySpan span = scene_.medium.bounds().clip(toward);
   Rgb tau{};
   if (span.hit) {
-    const double t_end = std::min(span.t_far, arrival.distance);
-    const double len = t_end - span.t_near;
-    if (len > 0.0) {
-      const double h = len / n_;
-      for (int i = 0; i < n_; ++i) {
-        const Rgb s = scene_.medium.extinction(p + u * (span.t_near + (i + 0.5) * h));
-        for (int c = 0; c < kChannels; ++c) tau[c] += s[c] * h;
-      }
+    const double t_end = std::min(span.t_exit, arrival.distance);
+    if (t_end - span.t_enter > 0.0) {
+      tau = riemann_optical_depth(scene_.medium, toward, span.t_enter, t_end, n_);
       work.shadow_samples += n_;
     }
   }
@@ -155,12 +151,7 @@ void LightGrid::march_point(std::size_t l, unsigned threads) {
         const LightArrival arrival = scene_.lights[l].at(v);
         const double len = light_path_length(scene_, v, arrival);
         const int n = std::max(1, static_cast<int>(std::ceil(len / hmin)));
-        const double h = len / n;
-        Rgb tau{};
-        for (int s = 0; s < n; ++s) {
-          const Rgb e = scene_.medium.extinction(v - arrival.propagation * ((s + 0.5) * h));
-          for (int c = 0; c < kChannels; ++c) tau[c] += e[c] * h;
-        }
+        const Rgb tau = riemann_optical_depth(scene_.medium, {v, -arrival.propagation}, 0.0, len, n);
         samples[worker] += n;
         grids_[l][index(i, j, static_cast<int>(k))] = exp_neg(tau);
       }

@@ -14,7 +14,7 @@
 //     previous layer where its light path crosses it, times exp(-h (sigma(q) + sigma(v)) / 2)
 //     (trapezoid over the step h between the layers): O(R^3) work. A point light gets one
 //     shadow ray per vertex with steps of the grid spacing (O(R^4)).
-// The reference (nested adaptive quadrature of the light depth) is in scene/ray_quadrature.hpp.
+// The reference (nested adaptive quadrature of the light depth) is in scene/term_references.hpp.
 #include <memory>
 #include <string>
 #include <vector>

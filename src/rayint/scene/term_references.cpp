@@ -1,4 +1,5 @@
-#include "rayint/scene/ray_quadrature.hpp"
+// The references of the scene terms; see term_references.hpp.
+#include "rayint/scene/term_references.hpp"
 
 #include <algorithm>
 #include <boost/math/quadrature/gauss.hpp>
@@ -52,7 +53,7 @@ Panel gk15(const std::function<Rgb(double)>& f, double a, double b, long long& e
 
 Rgb exp_neg(const Rgb& tau) { return {std::exp(-tau[0]), std::exp(-tau[1]), std::exp(-tau[2])}; }
 
-// tau(t) from t_near along a ray, from cached knots.
+// tau(t) from t_enter along a ray, from cached knots.
 class ViewDepth {
  public:
   ViewDepth(const Medium& m, const ViewRay& ray, double t0, double t1, const QuadratureOptions& opt,
@@ -173,14 +174,14 @@ Rgb reference_light_transmittance(const Scene& scene, std::size_t light, const V
   const Vec3 u = -arrival.propagation;
   const RaySpan span = scene.medium.bounds().clip({p, u});
   if (!span.hit) return {1.0, 1.0, 1.0};
-  const double t_end = std::min(span.t_far, arrival.distance);
-  if (!(t_end > span.t_near)) return {1.0, 1.0, 1.0};
+  const double t_end = std::min(span.t_exit, arrival.distance);
+  if (!(t_end > span.t_enter)) return {1.0, 1.0, 1.0};
   QuadratureOptions opt = options;
   opt.rtol *= 0.1;
   opt.atol *= 0.1;
   opt.panel_length = scene.medium.field().feature_length();
   const QuadratureResult r = integrate_adaptive(
-      [&](double t) { return scene.medium.extinction(p + u * t); }, span.t_near, t_end, opt);
+      [&](double t) { return scene.medium.extinction(p + u * t); }, span.t_enter, t_end, opt);
   evaluations += r.evaluations;
   converged = converged && r.converged;
   return exp_neg(r.value);
@@ -196,7 +197,7 @@ ReferenceValue reference_source_term(const Scene& scene, const ViewRay& ray, con
   long long evals = 0;
   bool converged = true;
   std::unique_ptr<ViewDepth> depth;
-  if (absorption) depth = std::make_unique<ViewDepth>(scene.medium, ray, span.t_near, span.t_far, opt, evals, converged);
+  if (absorption) depth = std::make_unique<ViewDepth>(scene.medium, ray, span.t_enter, span.t_exit, opt, evals, converged);
   const LightTransmittanceFn light_fn = [&](std::size_t l, const Vec3& p) -> Rgb {
     if (!shadows) return {1.0, 1.0, 1.0};
     return reference_light_transmittance(scene, l, p, opt, evals, converged);
@@ -212,7 +213,7 @@ ReferenceValue reference_source_term(const Scene& scene, const ViewRay& ray, con
         }
         return s;
       },
-      span.t_near, span.t_far, opt);
+      span.t_enter, span.t_exit, opt);
   out.value = r.value;
   out.error_estimate = r.error;
   out.evaluations = evals + r.evaluations;
@@ -229,7 +230,7 @@ ReferenceValue reference_transmittance(const Scene& scene, const ViewRay& ray) {
   opt.panel_length = scene.medium.field().feature_length();
   const QuadratureResult r = integrate_adaptive(
       [&](double t) { return scene.medium.extinction(ray.origin + ray.direction * t); },
-      span.t_near, span.t_far, opt);
+      span.t_enter, span.t_exit, opt);
   out.value = exp_neg(r.value);
   for (int c = 0; c < kChannels; ++c) out.error_estimate[c] = out.value[c] * r.error[c];
   out.evaluations = r.evaluations;

@@ -1,38 +1,11 @@
-#include "rayint/scene/medium.hpp"
+// The medium of scenes and volumes; see medium.hpp.
+#include "rayint/media/medium.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace rayint {
-
-bool Bounds::contains(const Vec3& p) const {
-  for (int a = 0; a < 3; ++a)
-    if (!(p[a] >= lower[a] && p[a] <= upper[a])) return false;
-  return true;
-}
-
-bool Bounds::finite() const { return lower.allFinite() && upper.allFinite(); }
-
-RaySpan Bounds::clip(const ViewRay& ray) const {
-  double t0 = 0.0;
-  double t1 = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    const double o = ray.origin[a];
-    const double d = ray.direction[a];
-    if (d == 0.0) {
-      if (!(o >= lower[a] && o <= upper[a])) return {};
-      continue;
-    }
-    double ta = (lower[a] - o) / d;
-    double tb = (upper[a] - o) / d;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);  // std::max keeps t0 when ta is NaN (never: lower/upper finite or inf)
-    t1 = std::min(t1, tb);
-  }
-  if (!(t1 > t0) || !std::isfinite(t1)) return {};
-  return {t0, t1, true};
-}
 
 Vec3 DensityField::gradient(const Vec3& p) const {
   const double h = gradient_step();

@@ -10,7 +10,8 @@
 //   discrete_ordinates:grid=G:bins=B:points=P  Max's direction bins (6 B^2), G^3 cells (default G 32, B 3)
 //   zonal:grid=G:points=P                      isotropic only (default G 12)
 //   monte_carlo:spp=N:seed=S:points=P          path tracing of orders >= 2 (default spp 64)
-// points: the medium is resampled on P^3 points for every method (default 64; scene_volume.hpp).
+// points: the medium is resampled on P^3 points for every method (default 64;
+// scattering/scattering_volume.hpp, volume_from_medium).
 // reference(): the Monte Carlo with 1024 paths per ray (seed 1), error estimate 2 SE.
 #include <memory>
 
@@ -19,5 +20,8 @@
 namespace rayint {
 
 std::unique_ptr<Effect> make_multiple_scattering_effect(const EffectContext& context);
+// Its name, role, methods and parameters, and the factory above: what register_effect() takes
+// (effects/standard_effects.hpp).
+EffectInfo multiple_scattering_effect_info();
 
 }  // namespace rayint

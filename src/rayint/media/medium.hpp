@@ -1,5 +1,6 @@
 #pragma once
-// The participating medium of a scene (Max 1995, Sec. 2-6): a scalar density field in space and
+// The participating medium (Max 1995, Sec. 2-6) that scenes render and the multiple-scattering
+// methods resample (scattering/scattering_volume.hpp): a scalar density field in space and
 // the transfer functions that turn density into the optical properties every effect uses:
 //   extinction sigma_t(p) per unit length (Max's tau, Sec. 2),
 //   albedo a(p) in [0, 1], scattering sigma_s = a * sigma_t (Sec. 5),
@@ -15,30 +16,12 @@
 #include <memory>
 #include <string>
 
+#include "rayint/geometry/bounds.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/model/ray.hpp"
 #include "rayint/model/transfer_function.hpp"
 
 namespace rayint {
-
-// Where a viewing ray is inside a medium's bounds: t in [t_near, t_far], t >= 0.
-struct RaySpan {
-  double t_near = 0.0;
-  double t_far = 0.0;
-  bool hit = false;
-  double length() const { return hit ? t_far - t_near : 0.0; }
-};
-
-// An axis-aligned box; components may be infinite (a slab is infinite in x and y).
-struct Bounds {
-  Vec3 lower = Vec3::Zero();
-  Vec3 upper = Vec3::Ones();
-  bool contains(const Vec3& p) const;
-  bool finite() const;
-  // Slab method, restricted to t >= 0. A direction component of 0 leaves that axis unrestricted
-  // when the origin lies within it. hit == false for an empty or single-point intersection.
-  RaySpan clip(const ViewRay& ray) const;
-};
 
 class DensityField {
  public:

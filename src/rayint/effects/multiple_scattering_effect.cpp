@@ -1,11 +1,11 @@
 // The `multiple_scattering` scene effect; see multiple_scattering_effect.hpp.
-#include "rayint/scene/multiple_scattering_effect.hpp"
+#include "rayint/effects/multiple_scattering_effect.hpp"
 
 #include <cstring>
 #include <stdexcept>
 
 #include "rayint/scattering/discrete_ordinates.hpp"
-#include "rayint/scene/scene_volume.hpp"
+#include "rayint/scattering/scattering_volume.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
 #include "rayint/scattering/zonal.hpp"
 
@@ -19,9 +19,9 @@ class MultipleScatteringEffect final : public Effect {
  public:
   explicit MultipleScatteringEffect(const EffectContext& ctx) : spec_(ctx.method) {
     const int points = static_cast<int>(spec_.number("points", 64));
-    const int channels = scene_is_grey(ctx.scene) ? 1 : 3;
+    const int channels = is_grey(ctx.scene.medium, ctx.scene.lights) ? 1 : 3;
     for (int c = 0; c < channels; ++c) {
-      volumes_.push_back(volume_from_scene(ctx.scene, c, points));
+      volumes_.push_back(volume_from_medium(ctx.scene.medium, ctx.scene.lights, ctx.scene.phase, c, points));
       majorants_.push_back(volumes_.back().majorant());
     }
     if (spec_.name == "discrete_ordinates") {
@@ -109,6 +109,17 @@ class MultipleScatteringEffect final : public Effect {
 
 std::unique_ptr<Effect> make_multiple_scattering_effect(const EffectContext& ctx) {
   return std::make_unique<MultipleScatteringEffect>(ctx);
+}
+
+EffectInfo multiple_scattering_effect_info() {
+  return {"multiple_scattering", EffectInfo::Role::term,
+          "light scattered two or more times (orders >= 2; src/rayint/scattering/, "
+          "docs/multiple-scattering.md)",
+          "discrete_ordinates:grid=32:bins=3",
+          {{"discrete_ordinates", {"grid", "bins", "points"}, "Max's direction bins on a grid^3 cell grid"},
+           {"zonal", {"grid", "points"}, "zonal method, isotropic scattering only"},
+           {"monte_carlo", {"spp", "seed", "points"}, "path tracing of orders >= 2"}},
+          make_multiple_scattering_effect};
 }
 
 }  // namespace rayint

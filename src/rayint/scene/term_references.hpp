@@ -2,7 +2,7 @@
 // The references of the scene terms: adaptive quadrature along the viewing ray (and, with
 // shadows, nested along the light's path at every node), independent of every approximation.
 //
-//   term = int_{t_near}^{t_far} S(t) exp(-tau(t)) dt,  tau(t) = int_{t_near}^{t} sigma_t dt'
+//   term = int_{t_enter}^{t_exit} S(t) exp(-tau(t)) dt,  tau(t) = int_{t_enter}^{t} sigma_t dt'
 // (Max 1995 Eq. for absorption plus emission, with S the source of the effect: g for emission,
 // sigma_s sum_L p E T_L for single scattering, the shading source for shading), and T = exp(-tau)
 // over the whole span for absorption.

@@ -1,4 +1,7 @@
-#include "rayint/scene/light.hpp"
+// Light sources; see light.hpp.
+#include "rayint/media/light.hpp"
+
+#include <cmath>
 
 namespace rayint {
 
@@ -15,6 +18,10 @@ LightArrival Light::at(const Vec3& p) const {
   a.propagation = a.distance > 0.0 ? Vec3(d / a.distance) : Vec3::UnitZ();
   for (int c = 0; c < kChannels; ++c) a.irradiance[c] = r2 > 0.0 ? intensity[c] / r2 : 0.0;
   return a;
+}
+
+DirectionalLight Light::channel(int c) const {
+  return {direction.normalized(), intensity[static_cast<std::size_t>(c)]};
 }
 
 }  // namespace rayint

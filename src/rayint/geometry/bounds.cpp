@@ -1,0 +1,38 @@
+// The ray/box clip; see bounds.hpp.
+#include "rayint/geometry/bounds.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rayint {
+
+bool Bounds::contains(const Vec3& p) const {
+  for (int a = 0; a < 3; ++a)
+    if (!(p[a] >= lower[a] && p[a] <= upper[a])) return false;
+  return true;
+}
+
+bool Bounds::finite() const { return lower.allFinite() && upper.allFinite(); }
+
+RaySpan Bounds::clip(const ViewRay& ray) const {
+  double t_enter = 0.0;
+  double t_exit = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const double o = ray.origin[a];
+    const double d = ray.direction[a];
+    if (d == 0.0) {
+      if (!(o >= lower[a] && o <= upper[a])) return {};
+      continue;
+    }
+    double ta = (lower[a] - o) / d;
+    double tb = (upper[a] - o) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t_enter = std::max(t_enter, ta);  // keeps t_enter when ta is NaN (never: lower/upper finite or inf)
+    t_exit = std::min(t_exit, tb);
+  }
+  if (!(t_exit > t_enter) || !std::isfinite(t_exit)) return {};
+  return {t_enter, t_exit, true};
+}
+
+}  // namespace rayint
