@@ -51,7 +51,8 @@ void set_scatter_command(CLI::App& app) {
   cmd->add_option("--points", s->points, "medium resampled on points^3 grid points (default 64)");
   cmd->add_option("--spp", s->spp, "Monte Carlo paths per pixel (default 256)");
   cmd->add_option("--seed", s->seed, "Monte Carlo seed (default 1)");
-  cmd->add_option("--threads", s->threads, "threads (default all cores); results do not depend on it");
+  cmd->add_option("--threads", s->threads, "threads (default all cores); results do not depend on it")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--grids", s->grids, "discrete-ordinates cells per axis (default 8,16,24,32)")->delimiter(',');
   cmd->add_option("--bins", s->bins, "bins per cube-face edge, 6 b^2 bins (default 1,2,3,4)")->delimiter(',');
   cmd->add_option("--zonal-grids", s->zonal, "zonal cells per axis (default 6,8,10; isotropic only)")->delimiter(',');

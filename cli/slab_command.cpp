@@ -295,7 +295,8 @@ void set_slab_command(CLI::App& app) {
   cmd->add_option("--method", s->method, "doubling, monte_carlo or both (default)");
   cmd->add_option("--photons", s->photons, "Monte Carlo photons per problem (default 1e6)");
   cmd->add_option("--seed", s->seed, "Monte Carlo seed (default 1)");
-  cmd->add_option("--threads", s->threads, "threads (default: all cores); results do not depend on it");
+  cmd->add_option("--threads", s->threads, "threads (default: all cores); results do not depend on it")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--streams", s->streams, "doubling: Gauss cosines per hemisphere (default 64)");
   cmd->add_option("--start-thickness", s->start_thickness,
                   "doubling: largest optical thickness of the single-scattering start layer (1e-8)");

@@ -80,13 +80,12 @@
 #include "rayint/integrators/preintegrated.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/factories.hpp"
 #include "rayint/model/pieces.hpp"
@@ -163,8 +162,8 @@ PreintegratedIntegrator::PreintegratedIntegrator(const TransferFunctions& tf,
   for (auto& r : rate_) r.assign(entries, 0.0);
   q_.assign(plane_length_.size() * kChannels, std::vector<double>(entries, 0.0));
 
-  // Rows are independent; they are shared out over the hardware threads (each entry is
-  // written by exactly one thread).
+  // Rows are independent; they are shared out over the hardware threads by parallel_for (each
+  // entry is written by exactly one worker, so the table does not depend on the thread count).
   const auto build_row = [&](int i, std::vector<Piece>& pieces) {
     for (int j = 0; j < n; ++j) {
       const std::size_t e = static_cast<std::size_t>(i) * n + j;
@@ -199,17 +198,9 @@ PreintegratedIntegrator::PreintegratedIntegrator(const TransferFunctions& tf,
     }
   };
   const unsigned threads = std::max(
-      1u, std::min(std::thread::hardware_concurrency(),
-                   static_cast<unsigned>(entries * plane_length_.size() / 16384)));
-  std::atomic<int> next_row{0};
-  const auto worker = [&] {
-    std::vector<Piece> pieces;
-    for (int i; (i = next_row++) < n;) build_row(i, pieces);
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+      1u, std::min(resolve_threads(0), static_cast<unsigned>(entries * plane_length_.size() / 16384)));
+  std::vector<std::vector<Piece>> pieces(parallel_workers(n, threads));  // scratch per worker
+  parallel_for(n, threads, [&](long long i, unsigned w) { build_row(static_cast<int>(i), pieces[w]); });
   build_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -1,5 +1,7 @@
 #include "rayint/metrics/error_metrics.hpp"
 
+#include <algorithm>
+
 namespace rayint {
 
 double ulp_of(double x) {
@@ -31,5 +33,14 @@ double ulp_error(double x, const ExtendedValue& ref) {
 }
 
 double relative_error(double x, double ref) { return relative_error(x, ExtendedValue{ref, 0.0}); }
+
+bool underflowed(const ExtendedValue& ref) { return std::fabs(ref.hi) < kUnderflowFloor; }
+
+double scored_error(double x, const ExtendedValue& ref) {
+  if (!std::isfinite(x)) return std::numeric_limits<double>::infinity();
+  const double err = absolute_error(x, ref);
+  if (err == 0.0) return 0.0;
+  return err / std::max(std::fabs(ref.hi), kUnderflowFloor);
+}
 
 }  // namespace rayint

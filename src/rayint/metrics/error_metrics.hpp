@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rayint/core/statistics.hpp"  // kUnderflowFloor
 #include "rayint/reference/reference.hpp"
 
 namespace rayint {
@@ -19,5 +20,12 @@ double ulp_of(double x);
 
 // Relative error of a plain double against a plain double (for tests of limits etc.).
 double relative_error(double x, double ref);
+
+// Scoring with the underflow floor (core/statistics.hpp kUnderflowFloor), the one definition
+// stress, gate and sweep use. A reference below the floor in magnitude has underflowed:
+bool underflowed(const ExtendedValue& ref);  // |ref.hi| < kUnderflowFloor
+// |x - ref| / max(|ref|, kUnderflowFloor): the relative error where the reference has not
+// underflowed, else the absolute error in units of the floor; +inf for non-finite x.
+double scored_error(double x, const ExtendedValue& ref);
 
 }  // namespace rayint

@@ -7,8 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"
+#include "rayint/core/statistics.hpp"
 #include "rayint/mesh/gradients.hpp"
 #include "rayint/model/pieces.hpp"
 
@@ -35,8 +36,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: a mesh case needs a \"camera\" to render");
   const Camera& cam = *mc.camera;
   const int width = cam.width, height = cam.height;
-  unsigned threads = settings.threads != 0 ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(height));
+  const unsigned threads = parallel_workers(height, settings.threads);
   MeshRender out;
   out.image = Image(width, height);
   if (compare) {
@@ -47,67 +47,54 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   if (mc.shading.enabled) gradients = std::make_unique<GradientField>(mesh, mc.shading.gradient);
   const std::vector<double> bps = mc.transfer.breakpoints();
 
-  std::atomic<int> next_row{0}, rows_done{0};
+  std::atomic<int> rows_done{0};
   std::vector<MeshRenderCost> per_thread(threads);
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto worker = [&](unsigned id) {
-    try {
-      MeshRenderCost& cost = per_thread[id];
-      RayTrace trace;
-      for (int y; !failed && (y = next_row.fetch_add(1)) < height;) {
-        for (int x = 0; x < width; ++x) {
-          const ViewRay vr = cam.ray_for_pixel(x, y);
-          const auto t0 = Clock::now();
-          mesh.trace(vr, trace, &cost.traversal);
-          const Ray ray = ray_from_trace(trace, mc.background);
-          const auto t1 = Clock::now();
-          const RayResult r = mc.shading.enabled
-                                  ? integrate_shaded(method, trace, mc.background, mc.shading, *gradients)
-                                  : method.integrate(ray, nullptr);
-          const auto t2 = Clock::now();
-          cost.traversal_seconds += seconds(t1 - t0);
-          cost.integration_seconds += seconds(t2 - t1);
-          ++cost.rays;
-          cost.segments += static_cast<long>(ray.segments.size());
-          for (const Segment& s : ray.segments) cost.pieces += count_pieces(bps, s);
-          out.image.at(x, y) = r.intensity;
-          if (compare) {
-            const RayResult c = mc.shading.enabled
-                                    ? integrate_shaded(*compare, trace, mc.background, mc.shading, *gradients)
-                                    : compare->integrate(ray, nullptr);
-            out.compared.at(x, y) = c.intensity;
-            double e = 0.0;
-            for (int ch = 0; ch < kChannels; ++ch) {
-              const double ref = r.intensity[ch], got = c.intensity[ch];
-              double rel;
-              if (!std::isfinite(got)) rel = std::numeric_limits<double>::infinity();
-              else if (ref == 0.0) rel = got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-              else rel = std::fabs(got - ref) / std::fabs(ref);
-              e = std::max(e, rel);
-            }
-            out.rel_error[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = e;
-          }
+  std::vector<RayTrace> traces(threads);  // scratch per worker
+  auto render_row = [&](long long row, unsigned id) {
+    const int y = static_cast<int>(row);
+    MeshRenderCost& cost = per_thread[id];
+    RayTrace& trace = traces[id];
+    for (int x = 0; x < width; ++x) {
+      const ViewRay vr = cam.ray_for_pixel(x, y);
+      const auto t0 = Clock::now();
+      mesh.trace(vr, trace, &cost.traversal);
+      const Ray ray = ray_from_trace(trace, mc.background);
+      const auto t1 = Clock::now();
+      const RayResult r = mc.shading.enabled
+                              ? integrate_shaded(method, trace, mc.background, mc.shading, *gradients)
+                              : method.integrate(ray, nullptr);
+      const auto t2 = Clock::now();
+      cost.traversal_seconds += seconds(t1 - t0);
+      cost.integration_seconds += seconds(t2 - t1);
+      ++cost.rays;
+      cost.segments += static_cast<long>(ray.segments.size());
+      for (const Segment& s : ray.segments) cost.pieces += count_pieces(bps, s);
+      out.image.at(x, y) = r.intensity;
+      if (compare) {
+        const RayResult c = mc.shading.enabled
+                                ? integrate_shaded(*compare, trace, mc.background, mc.shading, *gradients)
+                                : compare->integrate(ray, nullptr);
+        out.compared.at(x, y) = c.intensity;
+        double e = 0.0;
+        for (int ch = 0; ch < kChannels; ++ch) {
+          const double ref = r.intensity[ch], got = c.intensity[ch];
+          double rel;
+          if (!std::isfinite(got)) rel = std::numeric_limits<double>::infinity();
+          else if (ref == 0.0) rel = got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+          else rel = std::fabs(got - ref) / std::fabs(ref);
+          e = std::max(e, rel);
         }
-        rows_done.fetch_add(1);
+        out.rel_error[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = e;
       }
-    } catch (...) {
-      if (!failed.exchange(true)) failure = std::current_exception();
     }
+    rows_done.fetch_add(1);
   };
   const auto start = Clock::now();
-  std::vector<std::thread> pool;
-  for (unsigned i = 0; i < threads; ++i) pool.emplace_back(worker, i);
-  int reported = -1;
-  while (rows_done.load() < height && !failed.load()) {
-    // Poll (the callback runs on this thread only).
-    for (int i = 0; i < 20 && rows_done.load() < height && !failed.load(); ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    reported = rows_done.load();
+  // Progress every 0.2 s from this thread (the callback runs on this thread only).
+  parallel_for(height, settings.threads, render_row, 0.2, [&] {
+    const int reported = rows_done.load();
     if (settings.progress && reported < height) settings.progress(reported, height);
-  }
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  });
   if (settings.progress) settings.progress(height, height);  // always once at the end
   out.cost.wall_seconds = seconds(Clock::now() - start);
   out.cost.threads = threads;
@@ -121,21 +108,21 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   }
   if (compare) {
     ErrorSummary& s = out.error;
-    std::vector<double> sorted = out.rel_error;
-    s.pixels = static_cast<long>(sorted.size());
+    const std::vector<double>& rel = out.rel_error;
+    s.pixels = static_cast<long>(rel.size());
     double sum = 0.0;
-    for (std::size_t i = 0; i < sorted.size(); ++i) {
-      if (!std::isfinite(sorted[i])) ++s.non_finite;
-      else sum += sorted[i];
+    for (std::size_t i = 0; i < rel.size(); ++i) {
+      if (!std::isfinite(rel[i])) ++s.non_finite;
+      else sum += rel[i];
       const Rgb& a = out.image.pixels[i];
       const Rgb& b = out.compared.pixels[i];
       for (int ch = 0; ch < kChannels; ++ch) s.max_abs = std::max(s.max_abs, std::fabs(a[ch] - b[ch]));
     }
-    std::sort(sorted.begin(), sorted.end());
-    if (!sorted.empty()) {
-      s.max_rel = sorted.back();
-      s.median_rel = sorted[sorted.size() / 2];
-      s.p99_rel = sorted[std::min(sorted.size() - 1, sorted.size() * 99 / 100)];
+    if (!rel.empty()) {
+      const ErrorStats st = error_stats(rel);
+      s.max_rel = st.max;
+      s.median_rel = st.median;
+      s.p99_rel = st.p99;
       const long finite = s.pixels - s.non_finite;
       s.mean_rel = finite > 0 ? sum / static_cast<double>(finite) : 0.0;
     }

@@ -1,10 +1,11 @@
 #pragma once
 // Rendering a mesh case's camera: one viewing ray per pixel traced through the mesh
 // (mesh/tet_traversal.hpp) and integrated by a method (normally `exact`), multithreaded over
-// image rows with std::thread. Optionally a second method is run on the same segments and
-// compared pixel by pixel with the first (relative error, the largest of the three channels).
-// Progress is reported through a callback from the calling thread only (it polls the workers),
-// so the callback needs no locking. Library code: nothing is printed.
+// image rows (core/parallel.hpp). Optionally a second method is run on the same segments and
+// compared pixel by pixel with the first (relative error, the largest of the three channels;
+// max, median and p99 as core/statistics.hpp defines them).
+// Progress is reported through a callback from the calling thread only (it monitors the
+// workers), so the callback needs no locking. Library code: nothing is printed.
 #include <functional>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@
 namespace rayint {
 
 struct MeshRenderSettings {
-  unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
+  unsigned threads = 0;  // 0: all cores
   // Called every ~0.2 s and once at the end with (rows done, rows total).
   std::function<void(int, int)> progress;
 };

@@ -83,7 +83,7 @@ nlohmann::ordered_json to_json(const StressReport& r) {
   j["seed"] = r.seed;
   j["count"] = r.count;
   j["methods"] = r.methods;
-  j["underflow_threshold"] = kUnderflowReference;
+  j["underflow_threshold"] = kUnderflowFloor;
   json regimes = json::array();
   for (const auto& reg : r.regimes) regimes.push_back(to_json(reg));
   j["regimes"] = std::move(regimes);

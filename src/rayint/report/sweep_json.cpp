@@ -85,7 +85,7 @@ nlohmann::json sweep_report_json(const SweepResult& r) {
        "per channel of each ray: |I - I_ref| / max(|I_ref|, underflow_floor) against the "
        "50-digit reference (relative error; absolute error in units of underflow_floor where the "
        "reference is below it); +inf (null) for a non-finite intensity"},
-      {"underflow_floor", kSweepUnderflowFloor},
+      {"underflow_floor", kUnderflowFloor},
       {"max_error", "maximum over all channels (3 per ray) of all rays the method ran on"},
       {"median_error", "median over the same channels (mean of the two middle values)"},
       {"time_per_ray",

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "rayint/scattering/block_runner.hpp"
+#include "rayint/core/parallel.hpp"
 
 namespace rayint {
 
@@ -82,11 +82,11 @@ CellGrid make_cell_grid(const ScatteringVolume& v, int n) {
   return g;
 }
 
-std::vector<double> first_pass_irradiance(const ScatteringVolume& v, const CellGrid& g, int threads) {
+std::vector<double> first_pass_irradiance(const ScatteringVolume& v, const CellGrid& g, unsigned threads) {
   std::vector<double> E(g.size());
   const Vec3 to_light = -v.light.direction;
   const double step = 0.25 * g.h.minCoeff();  // h/4: measured effect in discrete_ordinates.hpp
-  parallel_for_blocks(static_cast<std::size_t>(g.n), threads, [&](std::size_t kk) {
+  parallel_for(g.n, threads, [&](std::size_t kk) {
     const int k = static_cast<int>(kk);
     for (int j = 0; j < g.n; ++j)
       for (int i = 0; i < g.n; ++i) {
@@ -150,7 +150,7 @@ DiscreteOrdinatesSolution solve_discrete_ordinates(const ScatteringVolume& v,
     }
     std::vector<float> next(nc * m, 0.0f);
     // Upwind sweep per bin.
-    parallel_for_blocks(m, o.threads, [&](std::size_t b) {
+    parallel_for(static_cast<long long>(m), o.threads, [&](std::size_t b) {
       const Vec3 d = sol.bins[b].center;
       double wgt[3], sum = 0;
       for (int a = 0; a < 3; ++a) {

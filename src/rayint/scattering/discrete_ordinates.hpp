@@ -63,7 +63,7 @@ struct DiscreteOrdinatesOptions {
   int max_iterations = 300;
   double tolerance = 1e-5;
   int max_order = 0;        // 0: iterate to convergence; 1: single scattering only
-  int threads = 0;
+  unsigned threads = 0;  // 0: all cores
 };
 
 // Cell-centred fields on n^3 cells over the volume's box, x fastest.
@@ -87,7 +87,7 @@ CellGrid make_cell_grid(const ScatteringVolume& volume, int n);
 
 // Light irradiance at every cell centre (step 2); shared with the zonal method.
 std::vector<double> first_pass_irradiance(const ScatteringVolume& volume, const CellGrid& cells,
-                                          int threads);
+                                          unsigned threads);
 
 struct DiscreteOrdinatesSolution {
   CellGrid cells;

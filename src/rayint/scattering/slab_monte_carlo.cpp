@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "rayint/scattering/azimuthal_phase.hpp"
-#include "rayint/scattering/block_runner.hpp"
+#include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/slab_single_scattering.hpp"
 
 namespace rayint {
@@ -93,7 +93,7 @@ SlabEstimates solve_slab_monte_carlo(const SlabProblem& p, const SlabMonteCarloO
   };
 
   const auto start = std::chrono::steady_clock::now();
-  const ScoreSums total = run_blocks(blocks, o.threads, run_block);
+  const ScoreSums total = sum_sample_blocks(blocks, o.threads, run_block);
   const auto stop = std::chrono::steady_clock::now();
 
   SlabEstimates e;

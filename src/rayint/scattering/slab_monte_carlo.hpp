@@ -37,7 +37,7 @@ namespace rayint {
 struct SlabMonteCarloOptions {
   long long photons = 1000000;  // rounded up to whole blocks
   std::uint64_t seed = 1;
-  int threads = 0;    // 0: all cores
+  unsigned threads = 0;  // 0: all cores
   int max_order = 0;  // 0: no truncation
   int min_order = 0;  // score only light scattered at least this often (0: everything)
 };

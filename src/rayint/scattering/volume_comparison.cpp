@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "rayint/scattering/block_runner.hpp"
+#include "rayint/core/parallel.hpp"
 #include "rayint/scattering/discrete_ordinates.hpp"
 #include "rayint/scattering/zonal.hpp"
 
@@ -23,9 +23,9 @@ double mean_of(const std::vector<double>& v) {
 }
 
 template <class Gather>
-std::vector<double> gather_image(const Camera& cam, int threads, Gather gather) {
+std::vector<double> gather_image(const Camera& cam, unsigned threads, Gather gather) {
   std::vector<double> img(static_cast<std::size_t>(cam.width) * cam.height);
-  parallel_for_blocks(static_cast<std::size_t>(cam.height), threads, [&](std::size_t y) {
+  parallel_for(cam.height, threads, [&](std::size_t y) {
     for (int x = 0; x < cam.width; ++x)
       img[y * static_cast<std::size_t>(cam.width) + static_cast<std::size_t>(x)] =
           gather(cam.ray_for_pixel(x, static_cast<int>(y)));

@@ -19,7 +19,7 @@ struct ComparisonOptions {
   std::vector<int> do_grids{8, 16, 24, 32};
   std::vector<int> do_bins{1, 2, 3, 4};    // bins per cube-face edge: 6 b^2 bins
   std::vector<int> zonal_grids{6, 8, 10};  // isotropic phase only
-  int threads = 0;
+  unsigned threads = 0;  // 0: all cores
 };
 
 struct ImageError {

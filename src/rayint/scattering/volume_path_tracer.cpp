@@ -5,7 +5,7 @@
 #include <cmath>
 #include <mutex>
 
-#include "rayint/scattering/block_runner.hpp"
+#include "rayint/core/parallel.hpp"
 
 namespace rayint {
 
@@ -113,7 +113,7 @@ EstimateImage path_trace_image(const ScatteringVolume& v, const Camera& camera,
   std::mutex stats_mutex;
   const double sigma_maj = v.majorant();
   const auto start = std::chrono::steady_clock::now();
-  parallel_for_blocks(static_cast<std::size_t>(camera.height), o.threads, [&](std::size_t row) {
+  parallel_for(camera.height, o.threads, [&](std::size_t row) {
     PathTraceStats s;
     for (int x = 0; x < camera.width; ++x) {
       const std::size_t i = row * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);

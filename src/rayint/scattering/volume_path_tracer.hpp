@@ -27,7 +27,7 @@ namespace rayint {
 struct PathTracerOptions {
   int samples_per_pixel = 64;
   std::uint64_t seed = 1;
-  int threads = 0;
+  unsigned threads = 0;  // 0: all cores
   int max_order = 0;  // 0: every order; 1: single scattering with shadows
   int min_order = 0;  // 2: multiple scattering only
 };

@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "rayint/scattering/block_runner.hpp"
+#include "rayint/core/parallel.hpp"
 #include "rayint/scattering/estimate.hpp"
 
 namespace rayint {
@@ -108,7 +108,7 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
   std::vector<double> F(nc * nc, 0.0);
   sol.escape.assign(nc, 0.0);
   const double w = 1.0 / o.rays_per_cell;
-  parallel_for_blocks(nc, o.threads, [&](std::size_t jc) {
+  parallel_for(static_cast<long long>(nc), o.threads, [&](std::size_t jc) {
     if (sig[jc] <= 0) {  // a zone that scatters nothing emits nothing; its column is unused
       sol.escape[jc] = 1;
       return;

@@ -42,7 +42,7 @@ struct ZonalOptions {
   int rays_per_cell = 1024;      // exchange-factor rays from each zone
   int light_rays_per_face = 4;   // per cell face and axis on the lit faces
   std::uint64_t seed = 1;
-  int threads = 0;
+  unsigned threads = 0;  // 0: all cores
 };
 
 struct ZonalSolution {

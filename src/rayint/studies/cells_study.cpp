@@ -11,8 +11,8 @@
 #include <mutex>
 #include <random>
 #include <stdexcept>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 #include "rayint/cells/poly_ode.hpp"
 #include "rayint/grid/voxel_grid.hpp"
@@ -68,19 +68,6 @@ double fitted_order(const std::vector<double>& x, const std::vector<double>& y) 
   return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-// Runs body(i) for i in [0, n) on `threads` threads.
-template <class Body>
-void parallel_for(int n, int threads, Body body) {
-  std::atomic<int> next{0};
-  auto worker = [&]() {
-    for (int i = next++; i < n; i = next++) body(i);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-}
-
 struct CellSample {  // one ray
   std::vector<double> level_error, level_segments, level_decompose_s, level_exact_s;
   double ode_error = 0, ode_s = 0, ode_steps = 0, reference_s = 0, pieces = 0, bound_rel = 0;
@@ -130,7 +117,8 @@ CellTypeResult study_cell_type(CellType type, const CellsStudyOptions& o, std::m
   std::vector<CellSample> samples(static_cast<std::size_t>(n_rays));
   std::atomic<int> done{0};
   const auto kind = static_cast<std::uint64_t>(type);
-  parallel_for(o.count, o.threads, [&](int i) {
+  parallel_for(o.count, o.threads, [&](long long item) {
+    const auto i = static_cast<int>(item);
     std::mt19937_64 rng = sample_rng(o.seed, kind, static_cast<std::uint64_t>(i));
     const HigherOrderCell cell = random_cell(type, rng());
     const TransferFunctions tf = random_transfer_functions(rng());
@@ -208,7 +196,8 @@ VoxelResult study_voxels(bool random_values, int n, std::uint64_t kind, const Ce
                                          0.5 * Eigen::Matrix3d::Identity(), std::vector<double>(8, 0.0));
   struct Sample { double error = 0, segments = 0, exact_s = 0, reference_s = 0; };
   std::vector<Sample> samples(static_cast<std::size_t>(o.voxel_rays));
-  parallel_for(o.voxel_rays, o.threads, [&](int i) {
+  parallel_for(o.voxel_rays, o.threads, [&](long long item) {
+    const auto i = static_cast<int>(item);
     std::mt19937_64 rng = sample_rng(o.seed, kind, static_cast<std::uint64_t>(i) + 1);
     const TransferFunctions tf = random_transfer_functions(rng());
     const ViewRay ray = random_ray_through(box, rng());
@@ -311,8 +300,8 @@ ViewRay random_ray_through(const HigherOrderCell& cell, std::uint64_t seed) {
 
 CellsReport run_cells_study(const CellsStudyOptions& o) {
   if (o.count < 1 || o.rays_per_cell < 1 || o.levels.empty() || o.voxel_rays < 1 ||
-      o.voxel_random_points < 2 || o.threads < 1)
-    throw std::invalid_argument("cells study: count, rays, levels, voxel rays, threads must be >= 1");
+      o.voxel_random_points < 2)
+    throw std::invalid_argument("cells study: count, rays, levels, voxel rays must be >= 1");
   for (int l : o.levels)
     if (l < 1 || l > 64) throw std::invalid_argument("cells study: levels must be in [1, 64]");
   for (int n : o.voxel_sizes)

@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "rayint/studies/stress.hpp"  // ErrorStats, error_stats
 #include "rayint/cells/cell.hpp"
+#include "rayint/core/statistics.hpp"  // ErrorStats, error_stats
 #include "rayint/model/transfer_function.hpp"
 
 namespace rayint {
@@ -36,7 +36,7 @@ struct CellsStudyOptions {
   int voxel_random_points = 8;
   std::vector<int> voxel_sizes{4, 8, 16};
   int voxel_rays = 20;
-  int threads = 1;
+  unsigned threads = 1;  // 0: all cores
   std::function<void(const std::string&)> progress;  // may be empty; called from one thread
 };
 

@@ -31,7 +31,7 @@ struct CheckOptions {
   double rel_tol = 1e-6;       // relative to |expected|; 1e-6 ~ 8 ulps of a float32 result
   double abs_tol = 0.0;        // absolute; 0 = relative only (expected 0 needs got == 0)
   bool with_reference = true;  // also compute the 50-digit reference (context, not the rule)
-  int threads = 0;             // threads for the reference; 0 = all cores
+  unsigned threads = 0;        // threads for the reference; 0 = all cores
 };
 
 struct ChannelCheck {

@@ -1,12 +1,11 @@
 #include "rayint/studies/evaluate.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"
+#include "rayint/core/statistics.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 
 namespace rayint {
@@ -39,33 +38,15 @@ double time_per_ray(const RayIntegrator& integrator, const Ray& ray, const EvalO
     } while (elapsed < opt.timing_batch_seconds);
     samples.push_back(elapsed / static_cast<double>(reps));
   }
-  std::nth_element(samples.begin(), samples.begin() + static_cast<long>(samples.size() / 2),
-                   samples.end());
-  return samples[samples.size() / 2];
+  return median(samples);
 }
 
-std::vector<ReferenceRay> reference_rays(const Case& c, int threads) {
+std::vector<ReferenceRay> reference_rays(const Case& c, unsigned threads) {
   std::vector<ReferenceRay> refs(c.rays.size());
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned n = std::min<unsigned>(threads > 0 ? static_cast<unsigned>(threads) : hw,
-                                        static_cast<unsigned>(c.rays.size()));
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto worker = [&] {
-    for (std::size_t i; (i = next++) < c.rays.size();) {
-      try {
-        refs[i] = reference_ray(c.transfer, c.rays[i]);
-      } catch (...) {
-        if (!failed.exchange(true)) failure = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < n; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  parallel_for(static_cast<long long>(c.rays.size()), threads, [&](long long i) {
+    const auto r = static_cast<std::size_t>(i);
+    refs[r] = reference_ray(c.transfer, c.rays[r]);
+  });
   return refs;
 }
 

@@ -13,7 +13,7 @@ struct EvalOptions {
   double timing_batch_seconds = 1e-3;  // each timing batch repeats the ray until this long
   int timing_batches = 5;              // seconds_per_ray is the median over batches
   bool measure_time = true;
-  int threads = 0;                     // for the reference; 0 = all cores
+  unsigned threads = 0;                // for the reference; 0 = all cores
 };
 
 struct MethodOutcome {
@@ -40,11 +40,11 @@ struct CaseEvaluation {
 // Fills the error fields of `outcome` from its result against `ref`.
 void score_against_reference(MethodOutcome& outcome, const ReferenceRay& ref);
 
-// Median seconds per call of integrator.integrate(ray) (no diagnostics, no reference in loop).
+// Median (core/statistics.hpp) over the batches of the seconds per call of integrator.integrate(ray) (no diagnostics, no reference in loop).
 double time_per_ray(const RayIntegrator& integrator, const Ray& ray, const EvalOptions& opt);
 
-// References for all rays, computed in parallel over `threads` threads.
-std::vector<ReferenceRay> reference_rays(const Case& c, int threads);
+// References for all rays, computed in parallel over `threads` threads (0: all cores).
+std::vector<ReferenceRay> reference_rays(const Case& c, unsigned threads);
 
 CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& methods,
                              const EvalOptions& opt);

@@ -8,11 +8,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <stdexcept>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"
 #include "rayint/studies/evaluate.hpp"
 
 namespace rayint {
@@ -100,48 +99,33 @@ void run_corpus(const GateConfig& cfg, GateReport& report,
     return cases[a].rays.size() > cases[b].rays.size();
   });
 
-  std::atomic<std::size_t> next{0};
   std::atomic<long> done{0};
   EvalOptions eo;
   eo.measure_time = false;
   eo.threads = 1;
-  auto worker = [&] {
-    for (std::size_t k; (k = next++) < order.size();) {
-      const std::size_t i = order[k];
-      Outcome& out = outcomes[i];
-      std::vector<MethodSpec> specs;
-      for (std::size_t m = 0; m < cfg.corpus_methods.size(); ++m)
-        if (applies(cfg.corpus_methods[m], cases[i].name)) {
-          out.methods.push_back(m);
-          out.spec.push_back(index_of(specs, cfg.corpus_methods[m].spec));
-        }
-      try {
-        if (!specs.empty()) out.evaluation = evaluate_case(cases[i], specs, eo);
-      } catch (const std::exception& e) {
-        out.failure = e.what();
+  auto run_case = [&](long long k) {
+    const std::size_t i = order[static_cast<std::size_t>(k)];
+    Outcome& out = outcomes[i];
+    std::vector<MethodSpec> specs;
+    for (std::size_t m = 0; m < cfg.corpus_methods.size(); ++m)
+      if (applies(cfg.corpus_methods[m], cases[i].name)) {
+        out.methods.push_back(m);
+        out.spec.push_back(index_of(specs, cfg.corpus_methods[m].spec));
       }
-      ++done;
+    try {
+      if (!specs.empty()) out.evaluation = evaluate_case(cases[i], specs, eo);
+    } catch (const std::exception& e) {
+      out.failure = e.what();
     }
+    ++done;
   };
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned n = static_cast<unsigned>(std::max<std::size_t>(
-      1, std::min<std::size_t>(cfg.threads > 0 ? static_cast<unsigned>(cfg.threads) : hw, cases.size())));
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < n; ++t) pool.emplace_back(worker);
   auto report_progress = [&] {
     if (progress)
       progress({"corpus", done.load(), static_cast<long>(cases.size()),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   };
-  auto last = std::chrono::steady_clock::now();
-  while (done < static_cast<long>(cases.size())) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (std::chrono::steady_clock::now() - last >= std::chrono::seconds(2)) {
-      report_progress();
-      last = std::chrono::steady_clock::now();
-    }
-  }
-  for (auto& t : pool) t.join();
+  // Progress every 2 s from this thread, while the workers run.
+  parallel_for(static_cast<long long>(order.size()), cfg.threads, run_case, 2.0, report_progress);
   report_progress();
 
   for (std::size_t i = 0; i < cases.size(); ++i) {

@@ -16,7 +16,7 @@ namespace rayint {
 // The metrics a limit can bound (each an upper limit, measured per case or per regime):
 //   max_rel_error, p99_rel_error, median_rel_error   relative error of the intensity
 //   max_ulp_error, p99_ulp_error, median_ulp_error   the same in ulps
-//   max_abs_error_underflow   absolute error where |reference| < kUnderflowReference
+//   max_abs_error_underflow   absolute error where |reference| < kUnderflowFloor
 //   max_non_finite            count of non-finite results (or failures)
 // A non-finite result makes every error metric +inf, so an error limit alone also catches it.
 const std::vector<std::string>& gate_metrics();
@@ -40,7 +40,7 @@ struct GateConfig {
   std::uint64_t stress_seed = 1;
   std::vector<Regime> stress_regimes;   // empty: all
   std::vector<GateMethod> stress_methods;
-  int threads = 0;                      // 0: all cores
+  unsigned threads = 0;                 // 0: all cores
 };
 
 struct GateCheck {

@@ -4,26 +4,24 @@
 // Plan: every regime gets an equal share of the piece budget; a piece-level regime draws that
 // many samples, a ray-level one draws rays (here, once, only to count their pieces) until their
 // pieces reach the share. Work: a flat list of (regime, index) items, most expensive first (the
-// long rays), handed out by an atomic counter. Each item regenerates its sample from its own
-// seed, computes the reference once and runs every method on it. Per-sample errors go to
-// pre-sized slots; counts, maxima and branch histograms go to per-thread accumulators that are
-// merged after the join (integer sums and maxima are order independent); the worst sample is a
-// maximum under a total order (severity, then lower index), so merging is order independent too.
+// long rays), handed out by parallel_for (core/parallel.hpp). Each item regenerates its sample
+// from its own seed, computes the reference once and runs every method on it. Per-sample errors
+// go to pre-sized slots; counts, maxima and branch histograms go to per-worker accumulators that
+// are merged after the run (integer sums and maxima are order independent); the worst sample is
+// a maximum under a total order (severity, then lower index), so merging is order independent
+// too.
 #include "rayint/studies/stress.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
-#include <exception>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 #include "rayint/model/pieces.hpp"
 
@@ -80,7 +78,7 @@ struct Candidate {
   WorstSample worst;
 };
 
-// Per-thread accumulator for one (regime, method).
+// Per-worker accumulator for one (regime, method).
 struct MethodAccumulator {
   long scored = 0, non_finite = 0, failures = 0, underflow = 0, negative = 0;
   double max_abs_underflow = 0.0;
@@ -260,10 +258,10 @@ MethodStress to_method_stress(const std::string& label, MethodAccumulator& acc,
 ValueScore score_value(double x, const ExtendedValue& ref) {
   ValueScore s;
   s.finite = std::isfinite(x);
-  s.underflow = std::fabs(ref.hi) < kUnderflowReference;
+  s.underflow = underflowed(ref);
   s.abs = absolute_error(x, ref);
   if (!s.underflow) {
-    s.rel = relative_error(x, ref);
+    s.rel = scored_error(x, ref);  // the relative error, above the floor
     s.ulp = ulp_error(x, ref);
   }
   return s;
@@ -289,20 +287,6 @@ SampleScore score_sample(const RayResult& result, const std::array<ExtendedValue
     }
   }
   return out;
-}
-
-ErrorStats error_stats(std::vector<double> v) {
-  ErrorStats s;
-  if (v.empty()) return s;
-  std::sort(v.begin(), v.end());
-  const auto rank = [&](double q) {  // nearest rank: the ceil(q n)-th smallest, 1-based
-    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-    return v[std::min(v.size(), std::max<std::size_t>(k, 1)) - 1];
-  };
-  s.max = v.back();
-  s.p99 = rank(0.99);
-  s.median = rank(0.5);
-  return s;
 }
 
 std::uint64_t sample_seed(std::uint64_t seed, Regime regime, long index) {
@@ -356,77 +340,55 @@ StressReport run_stress(const StressOptions& opt) {
     ulp[r] = rel[r];
   }
 
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned n_threads = static_cast<unsigned>(std::max<std::size_t>(
-      1, std::min<std::size_t>(opt.threads > 0 ? static_cast<unsigned>(opt.threads) : hw, items.size())));
-  std::vector<std::vector<RegimeAccumulator>> acc(n_threads);
-  for (auto& per_thread : acc) {
-    per_thread.resize(plans.size());
-    for (auto& ra : per_thread) ra.methods.resize(n_methods);
+  const unsigned n_workers = parallel_workers(static_cast<long long>(items.size()), opt.threads);
+  std::vector<std::vector<RegimeAccumulator>> acc(n_workers);
+  for (auto& per_worker : acc) {
+    per_worker.resize(plans.size());
+    for (auto& ra : per_worker) ra.methods.resize(n_methods);
   }
 
-  std::atomic<std::size_t> next{0};
   std::atomic<long> samples_done{0}, pieces_done{0};
-  std::atomic<unsigned> running{n_threads};
-  std::mutex mutex;
-  std::condition_variable finished;
-  std::exception_ptr fatal;
-  std::atomic<bool> failed{false};
-
-  auto worker = [&](unsigned t) {
+  auto run_item = [&](long long k, unsigned w) {
+    const WorkItem& item = items[static_cast<std::size_t>(k)];
+    const Regime regime = plans[item.regime].regime;
+    RegimeAccumulator& ra = acc[w][item.regime];
+    const std::uint64_t s_seed = sample_seed(opt.seed, regime, item.index);
+    std::mt19937_64 rng(s_seed);
+    RaySample sample;
+    std::array<ExtendedValue, kChannels> ref{};
+    Rgb bound{};
     try {
-      for (std::size_t k; !failed && (k = next++) < items.size();) {
-        const WorkItem& item = items[k];
-        const Regime regime = plans[item.regime].regime;
-        RegimeAccumulator& ra = acc[t][item.regime];
-        const std::uint64_t s_seed = sample_seed(opt.seed, regime, item.index);
-        std::mt19937_64 rng(s_seed);
-        RaySample sample;
-        std::array<ExtendedValue, kChannels> ref{};
-        Rgb bound{};
-        try {
-          if (is_ray_regime(regime)) {
-            sample = sample_ray(regime, rng);
-            const ReferenceRay rr = reference_ray(sample.transfer, sample.ray);
-            ref = rr.intensity;
-            bound = rr.error_bound;
-          } else {
-            const RegimeSample ps = sample_piece(regime, rng);
-            sample = piece_as_ray(ps);
-            const ReferencePiece rp = reference_piece(ps.piece, ps.incoming);
-            ref = {rp.intensity, rp.intensity, rp.intensity};
-            bound = {rp.error_bound, rp.error_bound, rp.error_bound};
-          }
-        } catch (const std::exception& e) {
-          ++ra.reference_failures;
-          if (ra.first_reference_failure < 0 || item.index < ra.first_reference_failure) {
-            ra.first_reference_failure = item.index;
-            ra.reference_failure = "sample " + std::to_string(item.index) + ": " + e.what();
-          }
-          ++samples_done;
-          pieces_done += item.pieces;
-          continue;
-        }
-        for (int c = 0; c < kChannels; ++c) {
-          const double mag = std::fabs(ref[c].hi);
-          if (mag >= kUnderflowReference)
-            ra.max_reference_rel_bound = std::max(ra.max_reference_rel_bound, bound[c] / mag);
-        }
-        const auto idx = static_cast<std::size_t>(item.index);
-        for (std::size_t m = 0; m < n_methods; ++m)
-          run_method(methods[m], sample, ref, item.index, s_seed, ra.methods[m],
-                     rel[item.regime][m][idx], ulp[item.regime][m][idx]);
-        ++samples_done;
-        pieces_done += item.pieces;
+      if (is_ray_regime(regime)) {
+        sample = sample_ray(regime, rng);
+        const ReferenceRay rr = reference_ray(sample.transfer, sample.ray);
+        ref = rr.intensity;
+        bound = rr.error_bound;
+      } else {
+        const RegimeSample ps = sample_piece(regime, rng);
+        sample = piece_as_ray(ps);
+        const ReferencePiece rp = reference_piece(ps.piece, ps.incoming);
+        ref = {rp.intensity, rp.intensity, rp.intensity};
+        bound = {rp.error_bound, rp.error_bound, rp.error_bound};
       }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!failed.exchange(true)) fatal = std::current_exception();
+    } catch (const std::exception& e) {
+      ++ra.reference_failures;
+      if (ra.first_reference_failure < 0 || item.index < ra.first_reference_failure) {
+        ra.first_reference_failure = item.index;
+        ra.reference_failure = "sample " + std::to_string(item.index) + ": " + e.what();
+      }
+      ++samples_done;
+      pieces_done += item.pieces;
+      return;
     }
-    if (--running == 0) {
-      std::lock_guard<std::mutex> lock(mutex);
-      finished.notify_all();
-    }
+    for (int c = 0; c < kChannels; ++c)
+      if (!underflowed(ref[c]))
+        ra.max_reference_rel_bound = std::max(ra.max_reference_rel_bound, bound[c] / std::fabs(ref[c].hi));
+    const auto idx = static_cast<std::size_t>(item.index);
+    for (std::size_t m = 0; m < n_methods; ++m)
+      run_method(methods[m], sample, ref, item.index, s_seed, ra.methods[m],
+                 rel[item.regime][m][idx], ulp[item.regime][m][idx]);
+    ++samples_done;
+    pieces_done += item.pieces;
   };
 
   long total_samples = 0;
@@ -442,25 +404,11 @@ StressReport run_stress(const StressOptions& opt) {
     opt.progress(p);
   };
 
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < n_threads; ++t) pool.emplace_back(worker, t);
-  {
-    std::unique_lock<std::mutex> lock(mutex);
-    const auto interval = std::chrono::duration<double>(std::max(0.05, opt.progress_interval_seconds));
-    while (running > 0) {
-      finished.wait_for(lock, interval, [&] { return running == 0; });
-      if (running > 0) {
-        lock.unlock();
-        report_progress();
-        lock.lock();
-      }
-    }
-  }
-  for (auto& th : pool) th.join();
-  if (fatal) std::rethrow_exception(fatal);
+  parallel_for(static_cast<long long>(items.size()), opt.threads, run_item,
+               std::max(0.05, opt.progress_interval_seconds), report_progress);
   report_progress();
 
-  // Merge the per-thread accumulators (thread 0 collects).
+  // Merge the per-worker accumulators (worker 0 collects).
   StressReport report;
   report.seed = opt.seed;
   report.count = opt.count;
@@ -469,7 +417,7 @@ StressReport run_stress(const StressOptions& opt) {
   std::vector<std::vector<double>> pooled_rel(n_methods), pooled_ulp(n_methods);
   for (std::size_t r = 0; r < plans.size(); ++r) {
     RegimeAccumulator& into = acc[0][r];
-    for (unsigned t = 1; t < n_threads; ++t) {
+    for (unsigned t = 1; t < n_workers; ++t) {
       RegimeAccumulator& from = acc[t][r];
       into.max_reference_rel_bound = std::max(into.max_reference_rel_bound, from.max_reference_rel_bound);
       into.reference_failures += from.reference_failures;

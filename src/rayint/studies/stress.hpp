@@ -17,20 +17,19 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/statistics.hpp"  // ErrorStats, error_stats, kUnderflowFloor
 #include "rayint/generators/regimes.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/reference/reference.hpp"
 
 namespace rayint {
 
-// A reference value below this in magnitude counts as underflowed: the value is scored by its
-// absolute error (target 1e-300) instead of the relative error, which is meaningless there.
-inline constexpr double kUnderflowReference = 1e-290;
-
-// One value against its reference.
+// One value against its reference. A reference below kUnderflowFloor (core/statistics.hpp) in
+// magnitude counts as underflowed: the value is scored by its absolute error (target 1e-300)
+// instead of the relative error, which is meaningless there.
 struct ValueScore {
   bool finite = true;
-  bool underflow = false;  // |reference| < kUnderflowReference
+  bool underflow = false;  // |reference| < kUnderflowFloor
   double abs = 0.0;        // absolute error (+inf if not finite)
   double rel = 0.0;        // relative error; 0 where underflow
   double ulp = 0.0;        // error in ulps of the reference; 0 where underflow
@@ -49,15 +48,6 @@ struct SampleScore {
 SampleScore score_sample(const RayResult& result, const std::array<ExtendedValue, kChannels>& ref,
                          bool failed);
 
-// Order statistics of a set of errors: the largest, the 99th percentile and the median, each
-// by nearest rank (the ceil(q n)-th smallest). All 0 for an empty set.
-struct ErrorStats {
-  double max = 0.0;
-  double p99 = 0.0;
-  double median = 0.0;
-};
-ErrorStats error_stats(std::vector<double> values);
-
 struct StressProgress {
   long samples_done = 0, samples_total = 0;
   long pieces_done = 0, pieces_total = 0;
@@ -72,7 +62,7 @@ struct StressOptions {
   std::uint64_t seed = 1;
   std::vector<Regime> regimes;      // empty: stress_regimes()
   std::vector<MethodSpec> methods;  // empty: exact
-  int threads = 0;                  // 0: all cores
+  unsigned threads = 0;             // 0: all cores
   // Called on the thread that called run_stress, every progress_interval_seconds and once at
   // the end; may be empty.
   std::function<void(const StressProgress&)> progress;

@@ -13,11 +13,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <limits>
 #include <memory>
 #include <stdexcept>
-#include <thread>
 
+#include "rayint/core/parallel.hpp"     // hardware_threads
+#include "rayint/core/statistics.hpp"  // median
 #include "rayint/metrics/error_metrics.hpp"
 #include "rayint/model/pieces.hpp"
 
@@ -40,17 +40,6 @@ std::vector<std::string> decades(int from_exp, int to_exp) {  // 1e-<from> .. 1e
   std::vector<std::string> v;
   for (int e = from_exp; e <= to_exp; ++e) v.push_back("1e-" + std::to_string(e));
   return v;
-}
-
-// Median of v (mean of the two middle values for an even count); 0 for an empty v.
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
-  const double upper = v[mid];
-  if (v.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(v.begin(), v.begin() + static_cast<long>(mid));
-  return 0.5 * (lower + upper);
 }
 
 double mean_of(const std::vector<double>& v) {
@@ -158,26 +147,19 @@ bool measure_setting(const MethodSpec& spec, const std::vector<Case>& cases,
         all_times.push_back(t);
       }
     }
-    cs.median_error = median_of(case_errors);
+    cs.median_error = median(case_errors);
     cs.seconds_per_ray = mean_of(case_times);
     out.per_case.push_back(std::move(cs));
   }
   out.channels = all_errors.size();
-  out.median_error = median_of(all_errors);
+  out.median_error = median(all_errors);
   out.seconds_per_ray = mean_of(all_times);
-  out.median_seconds_per_ray = median_of(all_times);
+  out.median_seconds_per_ray = median(all_times);
   out.wall_seconds = seconds_since(t0);
   return true;
 }
 
 }  // namespace
-
-double scored_error(double x, const ExtendedValue& ref) {
-  if (!std::isfinite(x)) return std::numeric_limits<double>::infinity();
-  const double err = absolute_error(x, ref);
-  if (err == 0.0) return 0.0;
-  return err / std::max(std::fabs(ref.hi), kSweepUnderflowFloor);
-}
 
 std::vector<MethodSpec> SweepAxis::settings() const {
   if (knob.empty()) return {parse_method_spec(method)};
@@ -284,7 +266,7 @@ SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxi
   res.timing = opt.timing;
   res.max_seconds = opt.max_seconds;
   res.method_max_seconds = opt.method_max_seconds;
-  res.hardware_threads = std::thread::hardware_concurrency();
+  res.hardware_threads = hardware_threads();
   res.started_at = utc_now();
   res.load_start = load_average();
   const auto start = Clock::now();

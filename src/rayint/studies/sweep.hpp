@@ -6,14 +6,15 @@
 //
 // Definitions (reports/README.md quotes them):
 //  - Error of one channel of one ray: the scored error
-//        e = |I - I_ref| / max(|I_ref|, kSweepUnderflowFloor),
+//        e = |I - I_ref| / max(|I_ref|, kUnderflowFloor)   (scored_error, metrics/error_metrics.hpp),
 //    i.e. the relative error, except where the reference intensity is below 1e-290 (at and past
 //    double underflow, e.g. thick-absorber-background), where the absolute error is measured in
 //    units of 1e-290 -- the same threshold tests/test_exact.cpp uses to switch from its relative
 //    to its absolute criterion. A non-finite I has e = +inf. |I - I_ref| uses the reference's
 //    hi + lo (error_metrics.hpp), so errors far below one ulp are resolved.
 //  - max_error / median_error of a setting: over all channels of all rays of the case set that the
-//    method ran on (3 per ray). The median of an even count is the mean of the two middle values.
+//    method ran on (3 per ray). The median of an even count is the mean of the two middle values
+//    (median, core/statistics.hpp).
 //  - Time of one ray: time_per_ray (studies/evaluate.hpp): median over `timing_batches` batches,
 //    each repeating integrate(ray, nullptr) for at least `timing_batch_seconds` -- single thread,
 //    no diagnostics, no reference in the loop (references are computed once, before any timing).
@@ -37,15 +38,11 @@
 
 #include "rayint/studies/evaluate.hpp"
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/metrics/error_metrics.hpp"  // scored_error, the error of one channel
 #include "rayint/model/ray.hpp"
 #include "rayint/reference/reference.hpp"
 
 namespace rayint {
-
-// Reference magnitudes below this are scored by absolute error (see the file comment); the same
-// 1e-290 as tests/test_exact.cpp, chosen ~18 decades above the smallest normal double so that the
-// reference's hi + lo is still resolved relative to it.
-inline constexpr double kSweepUnderflowFloor = 1e-290;
 
 // Relative time difference below which two settings' costs count as equal (timing noise on a
 // shared machine: repeated runs of one setting differ by a few percent to ~10%).
@@ -56,9 +53,6 @@ inline const std::vector<double>& sweep_targets() {
   static const std::vector<double> targets = {1e-3, 1e-6, 1e-10};
   return targets;
 }
-
-// |x - ref| / max(|ref|, kSweepUnderflowFloor); +inf for non-finite x.
-double scored_error(double x, const ExtendedValue& ref);
 
 // One row of the sweep table: a method and the values of its accuracy knob, cheapest first.
 struct SweepAxis {
