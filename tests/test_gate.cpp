@@ -144,7 +144,7 @@ TEST_CASE("gate: config errors are one line naming the file and the field", "[ga
   const std::string ok_methods = R"("methods": {"exact": {"max_rel_error": 1e-13}})";
 
   CHECK(error(R"({"corpus": {"cases": ["*.json"], )" + ok_methods + "}}").empty());
-  CHECK(error("{") .rfind(src + ": (root): invalid JSON: ", 0) == 0);
+  CHECK(error("{").rfind(src + ": (root): invalid JSON at line 1, column 2: ", 0) == 0);
   CHECK(error("[]") == src + ": (root): must be an object, got array");
   CHECK(error("{}") == src + R"(: (root): needs a "corpus" or a "stress" section (or both))");
   CHECK(error(R"({"corpus": {}, "extra": 1})") ==
@@ -152,6 +152,8 @@ TEST_CASE("gate: config errors are one line naming the file and the field", "[ga
   CHECK(error(R"({"corpus": {"methods": {}}})") == src + ": corpus.cases: missing required field");
   CHECK(error(R"({"corpus": {"cases": [], )" + ok_methods + "}}") ==
         src + ": corpus.cases: must be a non-empty array of strings, got []");
+  CHECK(error(R"({"corpus": {"cases": [""], )" + ok_methods + "}}") ==
+        src + R"(: corpus.cases[0]: must be a non-empty string, got "")");
   CHECK(error(R"({"corpus": {"cases": ["nope.json"], )" + ok_methods + "}}") ==
         src + ": corpus.cases[0]: no such case file: " + (dir.path / "nope.json").string());
   CHECK(error(R"({"corpus": {"cases": ["*.nomatch"], )" + ok_methods + "}}") ==
@@ -164,6 +166,9 @@ TEST_CASE("gate: config errors are one line naming the file and the field", "[ga
             .rfind(src + ": corpus.methods.exact.max_rel_eror: unknown field (expected max_rel_error, ", 0) == 0);
   CHECK(error(R"({"corpus": {"cases": ["*.json"], "methods": {"exact": {"max_rel_error": -1}}}})") ==
         src + ": corpus.methods.exact.max_rel_error: must be a finite number >= 0, got -1");
+  // A number that overflows a double is named at its field, as in case files (json_source).
+  CHECK(error(R"({"corpus": {"cases": ["*.json"], "methods": {"exact": {"max_rel_error": 1e999}}}})") ==
+        src + ": corpus.methods.exact.max_rel_error: must be finite, got 1e999");
   CHECK(error(R"({"corpus": {"cases": ["*.json"], "methods": {"exact": {"max_rel_error": "1"}}}})") ==
         src + R"(: corpus.methods.exact.max_rel_error: must be a finite number >= 0, got "1")");
   CHECK(error(R"({"corpus": {"cases": ["*.json"], "methods": {"exact": {"cases": ["paper-figure-2"]}}}})") ==

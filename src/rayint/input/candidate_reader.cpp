@@ -1,137 +1,79 @@
-// Candidate files for `rayint check` and the check's JSON diff (docs/candidate-format.md).
+// Candidate files for `rayint check` (docs/candidate-format.md).
 //
 // Reading has the same two stages as the case reader (input/case_reader.cpp):
-//  1. a SAX pass builds a nlohmann::json tree while tracking the field path of the value being
-//     read, so that duplicate keys (which nlohmann's DOM parser resolves silently to the last)
-//     and numbers that overflow a double (1e999, nlohmann's out_of_range.406) are reported at
-//     their field, and syntax errors keep nlohmann's line, column and reason;
-//  2. a strict schema walk: known fields only, types, three finite numbers per ray.
+//  1. json_source::parse (input/json_source.hpp) turns the text into a nlohmann::json tree,
+//     reporting duplicate keys, overflowing numbers and syntax errors at their field or line;
+//  2. a strict schema walk with JsonSchema (input/json_schema.hpp): known fields only, types,
+//     three finite numbers per ray.
 // Matching against the case (name, ray count) is a separate step, require_candidate_matches.
 // Every problem is one InputError line `<source>: <field path>: <what>`.
 #include "rayint/input/candidate_reader.hpp"
 
+#include <cmath>
+#include <utility>
+
+#include "rayint/input/json_schema.hpp"
 #include "rayint/input/json_source.hpp"
 
-#include <algorithm>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <initializer_list>
-#include <memory>
-#include <utility>
-#include <vector>
-
 namespace rayint {
+
+using json_source::fail;
+using json_source::quoted;
+
 namespace {
 
 using nlohmann::json;
+using json_source::format_number;
+using json_source::index_path;
+using json_source::member_path;
 
-constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
+// One channel of an intensity. The message says why JSON cannot carry a NaN or Inf, since a
+// renderer's non-finite result usually arrives here as null.
+double channel(const JsonSchema& s, const json& x, const std::string& path) {
+  if (x.is_null()) s.fail(path, "must be a finite number, got null (JSON has no NaN or Inf)");
+  if (!x.is_number()) s.fail(path, "must be a finite number, got " + std::string(x.type_name()));
+  const double v = x.get<double>();
+  if (!std::isfinite(v)) s.fail(path, "must be a finite number, got " + format_number(v));
+  return v;
+}
 
-using namespace json_source;  // parse, fail, paths, quoted, format_number
-
-// ---------------------------------------------------------------------------------------------
-// Stage 2: schema.
-
-class CandidateSchema {
- public:
-  explicit CandidateSchema(const std::string& source) : source_(source) {}
-
-  Candidate read(const json& root) const {
-    require_object(root, "");
-    check_fields(root, "", {"case", "renderer", "rays"});
-    Candidate c;
-    c.source = source_;
-    c.case_name = non_empty_string(required(root, "", "case"), "case");
-    if (const auto it = root.find("renderer"); it != root.end()) {
-      if (!it->is_string())
-        fail(source_, "renderer", "must be a string, got " + std::string(it->type_name()));
-      c.renderer = it->get<std::string>();
-    }
-    const json& rays = required(root, "", "rays");
-    if (!rays.is_array() || rays.empty())
-      fail(source_, "rays",
-           "must be a non-empty array of {\"intensity\": [r, g, b]}, one per ray of the case, "
-           "got " +
-               (rays.is_array() ? std::string("[]") : std::string(rays.type_name())));
-    c.intensity.reserve(rays.size());
-    for (std::size_t i = 0; i < rays.size(); ++i)
-      c.intensity.push_back(ray(rays[i], index_path("rays", i), i));
-    return c;
-  }
-
- private:
-  void require_object(const json& j, const std::string& path) const {
-    if (!j.is_object()) fail(source_, path, "must be an object, got " + std::string(j.type_name()));
-  }
-
-  void check_fields(const json& object, const std::string& path,
-                    std::initializer_list<const char*> allowed) const {
-    for (const auto& item : object.items()) {
-      if (std::none_of(allowed.begin(), allowed.end(),
-                       [&](const char* a) { return item.key() == a; })) {
-        std::string names;
-        for (const char* a : allowed) names += (names.empty() ? "" : ", ") + std::string(a);
-        fail(source_, member_path(path, item.key()), "unknown field (expected " + names + ")");
-      }
-    }
-  }
-
-  const json& required(const json& object, const std::string& path, const char* key) const {
-    const auto it = object.find(key);
-    if (it == object.end()) fail(source_, member_path(path, key), "missing required field");
-    return *it;
-  }
-
-  std::string non_empty_string(const json& j, const std::string& path) const {
-    if (!j.is_string() || j.get_ref<const std::string&>().empty())
-      fail(source_, path,
-           "must be a non-empty string, got " +
-               (j.is_string() ? std::string("\"\"") : std::string(j.type_name())));
-    return j.get<std::string>();
-  }
-
-  Rgb ray(const json& j, const std::string& path, std::size_t position) const {
-    require_object(j, path);
-    check_fields(j, path, {"index", "intensity"});
-    if (const auto it = j.find("index"); it != j.end()) {
-      const bool ok = it->is_number_unsigned() && it->get<std::size_t>() == position;
-      if (!ok)
-        fail(source_, member_path(path, "index"),
+// rays[position]: {"index"?: position, "intensity": [r, g, b]}.
+Rgb ray(const JsonSchema& s, const json& j, const std::string& path, std::size_t position) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"index", "intensity"});
+  if (const json* index = s.optional(j, "index")) {
+    if (!(index->is_number_unsigned() && index->get<std::size_t>() == position))
+      s.fail(member_path(path, "index"),
              "must be " + std::to_string(position) +
-                 " (entries follow the case's rays in order), got " + it->dump());
-    }
-    const std::string ipath = member_path(path, "intensity");
-    const json& v = required(j, path, "intensity");
-    if (!v.is_array() || v.size() != kChannels)
-      fail(source_, ipath,
-           "must be an array of 3 numbers [r, g, b], got " +
-               (v.is_array() ? "an array of " + std::to_string(v.size())
-                             : std::string(v.type_name())));
-    Rgb out{};
-    for (std::size_t k = 0; k < kChannels; ++k) {
-      const json& x = v[k];
-      const std::string xpath = index_path(ipath, k);
-      if (x.is_null())
-        fail(source_, xpath, "must be a finite number, got null (JSON has no NaN or Inf)");
-      if (!x.is_number())
-        fail(source_, xpath, "must be a finite number, got " + std::string(x.type_name()));
-      out[k] = x.get<double>();
-      if (!std::isfinite(out[k]))
-        fail(source_, xpath, "must be a finite number, got " + format_number(out[k]));
-    }
-    return out;
+                 " (entries follow the case's rays in order), got " + index->dump());
   }
+  const std::string ipath = member_path(path, "intensity");
+  const json& v = s.required(j, path, "intensity");
+  s.array_of_size(v, ipath, kChannels, "an array of 3 numbers [r, g, b]");
+  Rgb out{};
+  for (std::size_t k = 0; k < kChannels; ++k) out[k] = channel(s, v[k], index_path(ipath, k));
+  return out;
+}
 
-  const std::string& source_;
-};
+Candidate read_candidate(const JsonSchema& s, const json& root) {
+  s.require_object(root, "");
+  s.check_fields(root, "", {"case", "renderer", "rays"});
+  Candidate c;
+  c.source = s.source();
+  c.case_name = s.non_empty_string(s.required(root, "", "case"), "case");
+  if (const json* r = s.optional(root, "renderer")) c.renderer = s.string_value(*r, "renderer");
+  const json& rays = s.required(root, "", "rays");
+  s.non_empty_array(rays, "rays", " of {\"intensity\": [r, g, b]}, one per ray of the case");
+  c.intensity.reserve(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    c.intensity.push_back(ray(s, rays[i], index_path("rays", i), i));
+  return c;
+}
 
 }  // namespace
 
 Candidate parse_candidate_text(std::string_view text, const std::string& source) {
-  return CandidateSchema(source).read(json_source::parse(text, source));
+  return read_candidate(JsonSchema(source), json_source::parse(text, source));
 }
 
 void require_candidate_matches(const Candidate& candidate, const Case& c) {

@@ -36,62 +36,51 @@ using namespace json_source;  // parse, fail, paths, format_number
 // ---------------------------------------------------------------------------------------------
 // Stage 2: schema.
 
-class CaseSchema {
- public:
-  explicit CaseSchema(const std::string& source) : s_(source) {}
+// {"length": >= 0, "scalar": [far, near]}.
+Segment segment(const JsonSchema& s, const json& j, const std::string& path) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"length", "scalar"});
+  Segment seg;
+  seg.length = s.non_negative(s.required(j, path, "length"), member_path(path, "length"));
+  const std::string spath = member_path(path, "scalar");
+  const json& sc = s.required(j, path, "scalar");
+  s.array_of_size(sc, spath, 2, "a [far, near] pair of numbers");
+  seg.scalar_far = s.finite_number(sc[0], index_path(spath, 0));
+  seg.scalar_near = s.finite_number(sc[1], index_path(spath, 1));
+  return seg;
+}
 
-  Case read(const json& root) const {
-    const std::string path;
-    s_.require_object(root, path);
-    s_.check_fields(root, path, {"name", "description", "transfer_function", "rays"});
-    Case c;
-    c.source = s_.source();
-    c.name = s_.non_empty_string(s_.required(root, path, "name"), "name");
-    if (const json* d = s_.optional(root, "description")) c.description = s_.string_value(*d, "description");
-    c.transfer = s_.transfer_functions(s_.required(root, path, "transfer_function"), "transfer_function");
-    c.rays = rays(s_.required(root, path, "rays"), "rays");
-    return c;
-  }
+// {"background"?: [r, g, b], "segments": [segment, ...]}.
+Ray ray(const JsonSchema& s, const json& j, const std::string& path) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"background", "segments"});
+  Ray r;
+  if (const json* b = s.optional(j, "background"))
+    r.background = s.rgb(*b, member_path(path, "background"));
+  const std::string spath = member_path(path, "segments");
+  const json& segs = s.required(j, path, "segments");
+  s.non_empty_array(segs, spath, "");
+  r.segments.reserve(segs.size());
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    r.segments.push_back(segment(s, segs[i], index_path(spath, i)));
+  return r;
+}
 
- private:
-  Segment segment(const json& j, const std::string& path) const {
-    s_.require_object(j, path);
-    s_.check_fields(j, path, {"length", "scalar"});
-    Segment seg;
-    seg.length = s_.non_negative(s_.required(j, path, "length"), member_path(path, "length"));
-    const std::string spath = member_path(path, "scalar");
-    const json& s = s_.required(j, path, "scalar");
-    s_.array_of_size(s, spath, 2, "a [far, near] pair of numbers");
-    seg.scalar_far = s_.finite_number(s[0], index_path(spath, 0));
-    seg.scalar_near = s_.finite_number(s[1], index_path(spath, 1));
-    return seg;
-  }
-
-  Ray ray(const json& j, const std::string& path) const {
-    s_.require_object(j, path);
-    s_.check_fields(j, path, {"background", "segments"});
-    Ray r;
-    if (const json* b = s_.optional(j, "background"))
-      r.background = s_.rgb(*b, member_path(path, "background"));
-    const std::string spath = member_path(path, "segments");
-    const json& segs = s_.required(j, path, "segments");
-    s_.non_empty_array(segs, spath, "");
-    r.segments.reserve(segs.size());
-    for (std::size_t i = 0; i < segs.size(); ++i)
-      r.segments.push_back(segment(segs[i], index_path(spath, i)));
-    return r;
-  }
-
-  std::vector<Ray> rays(const json& j, const std::string& path) const {
-    s_.non_empty_array(j, path, "");
-    std::vector<Ray> out;
-    out.reserve(j.size());
-    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(ray(j[i], index_path(path, i)));
-    return out;
-  }
-
-  JsonSchema s_;
-};
+Case read_case(const JsonSchema& s, const json& root) {
+  const std::string path;
+  s.require_object(root, path);
+  s.check_fields(root, path, {"name", "description", "transfer_function", "rays"});
+  Case c;
+  c.source = s.source();
+  c.name = s.non_empty_string(s.required(root, path, "name"), "name");
+  if (const json* d = s.optional(root, "description")) c.description = s.string_value(*d, "description");
+  c.transfer = s.transfer_functions(s.required(root, path, "transfer_function"), "transfer_function");
+  const json& rays = s.required(root, path, "rays");
+  s.non_empty_array(rays, "rays", "");
+  c.rays.reserve(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) c.rays.push_back(ray(s, rays[i], index_path("rays", i)));
+  return c;
+}
 
 }  // namespace
 
@@ -102,7 +91,7 @@ Case parse_case_text(std::string_view text, const std::string& source) {
     const TetTraversal mesh(mc.mesh, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
   }
-  return CaseSchema(source).read(root);
+  return read_case(JsonSchema(source), root);
 }
 
 Case read_case_file(const std::string& path) {

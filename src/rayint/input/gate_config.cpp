@@ -1,26 +1,26 @@
-// Reading and validating a gate config (format: docs/gates.md). A strict walk over the JSON:
-// no duplicate keys, known fields only, required fields present, limits finite and >= 0,
-// methods that parse and can be built, regimes that exist, case patterns that match files, and
-// case names that are in the corpus.
+// Reading and validating a gate config (format: docs/gates.md). Parsed by json_source like every
+// input file (duplicate keys, overflowing numbers and syntax errors reported at their field or
+// line), then walked strictly with the one schema walker (input/json_schema.hpp): known fields
+// only, required fields present, limits finite and >= 0, methods that parse and can be built,
+// regimes that exist, case patterns that match files, and case names that are in the corpus.
 #include "rayint/input/gate_config.hpp"
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <initializer_list>
-#include <set>
+#include <nlohmann/json.hpp>
 #include <vector>
-#include <sstream>
 
 #include "rayint/input/case_reader.hpp"
+#include "rayint/input/json_schema.hpp"
+#include "rayint/input/json_source.hpp"
 
 namespace rayint {
 namespace {
 
 using json = nlohmann::ordered_json;  // keeps the config's order: checks are reported in it
+using json_source::index_path;
+using json_source::member_path;
 namespace fs = std::filesystem;
 
 // '*' (any run of characters) and '?' (one character) against a whole file name.
@@ -44,75 +44,42 @@ bool glob_match(const std::string& pattern, const std::string& name) {
   return p == pattern.size();
 }
 
-class GateSchema {
+class GateConfigReader {
  public:
-  explicit GateSchema(const std::string& source) : source_(source) {
+  explicit GateConfigReader(const std::string& source) : s_(source) {
     self_ = fs::absolute(fs::path(source)).lexically_normal();
     base_ = self_.parent_path();
   }
 
   GateConfig read(const json& root) const {
     GateConfig cfg;
-    cfg.source = source_;
-    require_object(root, "");
-    check_fields(root, "", {"corpus", "stress"});
-    if (!root.contains("corpus") && !root.contains("stress"))
-      fail("", "needs a \"corpus\" or a \"stress\" section (or both)");
-    if (root.contains("corpus")) corpus(root.at("corpus"), "corpus", cfg);
-    if (root.contains("stress")) stress(root.at("stress"), "stress", cfg);
+    cfg.source = s_.source();
+    s_.require_object(root, "");
+    s_.check_fields(root, "", {"corpus", "stress"});
+    const json* corpus_section = s_.optional(root, "corpus");
+    const json* stress_section = s_.optional(root, "stress");
+    if (corpus_section == nullptr && stress_section == nullptr)
+      s_.fail("", "needs a \"corpus\" or a \"stress\" section (or both)");
+    if (corpus_section != nullptr) corpus(*corpus_section, "corpus", cfg);
+    if (stress_section != nullptr) stress(*stress_section, "stress", cfg);
     // The corpus is read last, so that every problem of the config itself is reported first.
     for (const auto& f : cfg.case_files) cfg.cases.push_back(read_case_file(f));
     return cfg;
   }
 
  private:
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw InputError(source_ + ": " + (path.empty() ? "(root)" : path) + ": " + what);
-  }
-
-  static std::string member(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-  static std::string index(const std::string& path, std::size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-  }
-
-  void require_object(const json& j, const std::string& path) const {
-    if (!j.is_object()) fail(path, std::string("must be an object, got ") + j.type_name());
-  }
-
-  void check_fields(const json& j, const std::string& path,
-                    const std::vector<std::string>& allowed) const {
-    for (const auto& item : j.items())
-      if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end()) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(member(path, item.key()), "unknown field (expected " + list + ")");
-      }
-  }
-
-  const json& required(const json& j, const std::string& path, const std::string& key) const {
-    if (!j.contains(key)) fail(member(path, key), "missing required field");
-    return j.at(key);
-  }
-
-  std::vector<std::string> strings(const json& j, const std::string& path) const {
-    if (!j.is_array() || j.empty())
-      fail(path, std::string("must be a non-empty array of strings, got ") +
-                     (j.is_array() ? "[]" : j.type_name()));
-    std::vector<std::string> out;
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      if (!j[i].is_string() || j[i].get_ref<const std::string&>().empty())
-        fail(index(path, i), std::string("must be a non-empty string, got ") + j[i].type_name());
-      out.push_back(j[i].get<std::string>());
-    }
-    return out;
-  }
-
+  // stress.count: a JSON integer >= 1 (1.0 is refused).
   long positive_integer(const json& j, const std::string& path) const {
     if (!j.is_number_integer() || j.get<long long>() < 1)
-      fail(path, "must be an integer >= 1, got " + j.dump());
+      s_.fail(path, "must be an integer >= 1, got " + j.dump());
     return static_cast<long>(j.get<long long>());
+  }
+
+  // A limit: a finite number >= 0 (the message shows the value as written, strings quoted).
+  double limit_value(const json& j, const std::string& path) const {
+    if (!j.is_number() || !std::isfinite(j.get<double>()) || j.get<double>() < 0)
+      s_.fail(path, "must be a finite number >= 0, got " + j.dump());
+    return j.get<double>();
   }
 
   // Case files matching `pattern` (a path whose last component may hold * and ?), sorted;
@@ -124,7 +91,7 @@ class GateSchema {
     const std::string name = p.filename().string();
     std::vector<std::string> out;
     if (name.find_first_of("*?") == std::string::npos) {
-      if (!fs::is_regular_file(p)) fail(path, "no such case file: " + p.string());
+      if (!fs::is_regular_file(p)) s_.fail(path, "no such case file: " + p.string());
       out.push_back(p.string());
       return out;
     }
@@ -133,8 +100,8 @@ class GateSchema {
       if (entry.is_regular_file() && glob_match(name, entry.path().filename().string()) &&
           entry.path().lexically_normal() != self_)
         out.push_back(entry.path().lexically_normal().string());
-    if (ec) fail(path, "cannot list " + p.parent_path().string() + " (" + ec.message() + ")");
-    if (out.empty()) fail(path, "no file matches " + p.string());
+    if (ec) s_.fail(path, "cannot list " + p.parent_path().string() + " (" + ec.message() + ")");
+    if (out.empty()) s_.fail(path, "no file matches " + p.string());
     std::sort(out.begin(), out.end());
     return out;
   }
@@ -145,25 +112,23 @@ class GateSchema {
                        const std::vector<std::string>& known_names) const {
     std::vector<std::string> allowed = gate_metrics();
     allowed.push_back(only_key);
-    require_object(j, path);
-    check_fields(j, path, allowed);
+    s_.require_object(j, path);
+    s_.check_fields(j, path, allowed);
     GateMethod gm;
     gm.spec = spec;
     for (const auto& limit : j.items()) {
-      const std::string lpath = member(path, limit.key());
+      const std::string lpath = member_path(path, limit.key());
       if (limit.key() == only_key) {
-        gm.only = strings(limit.value(), lpath);
+        gm.only = s_.non_empty_strings(limit.value(), lpath);
         for (std::size_t i = 0; i < gm.only.size(); ++i)
           if (std::find(known_names.begin(), known_names.end(), gm.only[i]) == known_names.end())
-            fail(index(lpath, i), "'" + gm.only[i] + "' is not one of the " + only_key + " run here");
+            s_.fail(index_path(lpath, i),
+                    "'" + gm.only[i] + "' is not one of the " + only_key + " run here");
         continue;
       }
-      const json& v = limit.value();
-      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
-        fail(lpath, "must be a finite number >= 0, got " + v.dump());
-      gm.limits[limit.key()] = v.get<double>();
+      gm.limits[limit.key()] = limit_value(limit.value(), lpath);
     }
-    if (gm.limits.empty()) fail(path, "sets no limit");
+    if (gm.limits.empty()) s_.fail(path, "sets no limit");
     return gm;
   }
 
@@ -171,23 +136,23 @@ class GateSchema {
   // have different limits on different cases or regimes.
   std::vector<GateMethod> methods(const json& j, const std::string& path, const std::string& only_key,
                                   const std::vector<std::string>& known_names) const {
-    require_object(j, path);
-    if (j.empty()) fail(path, "must name at least one method");
+    s_.require_object(j, path);
+    if (j.empty()) s_.fail(path, "must name at least one method");
     std::vector<GateMethod> out;
     for (const auto& item : j.items()) {
-      const std::string mpath = member(path, item.key());
+      const std::string mpath = member_path(path, item.key());
       MethodSpec spec;
       try {
         spec = parse_method_spec(item.key());
         make_integrator(spec, probe_);  // parameter values are checked when a method is built
       } catch (const std::invalid_argument& e) {
-        fail(mpath, e.what());
+        s_.fail(mpath, e.what());
       }
       const json& v = item.value();
       if (v.is_array()) {
-        if (v.empty()) fail(mpath, "must be a limit set or a non-empty array of them, got []");
+        if (v.empty()) s_.fail(mpath, "must be a limit set or a non-empty array of them, got []");
         for (std::size_t i = 0; i < v.size(); ++i)
-          out.push_back(limit_set(spec, v[i], index(mpath, i), only_key, known_names));
+          out.push_back(limit_set(spec, v[i], index_path(mpath, i), only_key, known_names));
       } else {
         out.push_back(limit_set(spec, v, mpath, only_key, known_names));
       }
@@ -196,42 +161,45 @@ class GateSchema {
   }
 
   void corpus(const json& j, const std::string& path, GateConfig& cfg) const {
-    require_object(j, path);
-    check_fields(j, path, {"cases", "methods"});
-    const std::string cpath = member(path, "cases");
-    const std::vector<std::string> patterns = strings(required(j, path, "cases"), cpath);
+    s_.require_object(j, path);
+    s_.check_fields(j, path, {"cases", "methods"});
+    const std::string cpath = member_path(path, "cases");
+    const std::vector<std::string> patterns = s_.non_empty_strings(s_.required(j, path, "cases"), cpath);
     for (std::size_t i = 0; i < patterns.size(); ++i)
-      for (auto& f : expand(patterns[i], index(cpath, i)))
+      for (auto& f : expand(patterns[i], index_path(cpath, i)))
         if (std::find(cfg.case_files.begin(), cfg.case_files.end(), f) == cfg.case_files.end())
           cfg.case_files.push_back(f);
     // Case names are file names without .json (the corpus convention, checked by its tests).
     std::vector<std::string> names;
     for (const auto& f : cfg.case_files) names.push_back(fs::path(f).stem().string());
-    cfg.corpus_methods = methods(required(j, path, "methods"), member(path, "methods"), "cases", names);
+    cfg.corpus_methods =
+        methods(s_.required(j, path, "methods"), member_path(path, "methods"), "cases", names);
   }
 
   void stress(const json& j, const std::string& path, GateConfig& cfg) const {
-    require_object(j, path);
-    check_fields(j, path, {"count", "seed", "regimes", "methods"});
+    s_.require_object(j, path);
+    s_.check_fields(j, path, {"count", "seed", "regimes", "methods"});
     cfg.stress = true;
-    cfg.stress_count = positive_integer(required(j, path, "count"), member(path, "count"));
-    const json& seed = required(j, path, "seed");
-    if (!seed.is_number_unsigned()) fail(member(path, "seed"), "must be an integer >= 0, got " + seed.dump());
+    cfg.stress_count = positive_integer(s_.required(j, path, "count"), member_path(path, "count"));
+    const json& seed = s_.required(j, path, "seed");
+    if (!seed.is_number_unsigned())
+      s_.fail(member_path(path, "seed"), "must be an integer >= 0, got " + seed.dump());
     cfg.stress_seed = seed.get<std::uint64_t>();
     std::vector<std::string> names;
-    if (j.contains("regimes")) {
-      const std::string rpath = member(path, "regimes");
-      const std::vector<std::string> list = strings(j.at("regimes"), rpath);
+    if (const json* regimes = s_.optional(j, "regimes")) {
+      const std::string rpath = member_path(path, "regimes");
+      const std::vector<std::string> list = s_.non_empty_strings(*regimes, rpath);
       for (std::size_t i = 0; i < list.size(); ++i) {
         Regime r;
-        if (!parse_regime(list[i], r)) fail(index(rpath, i), "unknown regime '" + list[i] + "'");
+        if (!parse_regime(list[i], r)) s_.fail(index_path(rpath, i), "unknown regime '" + list[i] + "'");
         cfg.stress_regimes.push_back(r);
         names.push_back(list[i]);
       }
     } else {
       for (const Regime r : stress_regimes()) names.push_back(regime_name(r));
     }
-    cfg.stress_methods = methods(required(j, path, "methods"), member(path, "methods"), "regimes", names);
+    cfg.stress_methods =
+        methods(s_.required(j, path, "methods"), member_path(path, "methods"), "regimes", names);
   }
 
   // A small valid transfer-function set on which every method must build (linear density,
@@ -245,7 +213,7 @@ class GateSchema {
     return tf;
   }
 
-  std::string source_;
+  OrderedJsonSchema s_;
   fs::path self_;
   fs::path base_;
   TransferFunctions probe_ = probe_transfer();
@@ -254,69 +222,13 @@ class GateSchema {
 }  // namespace
 
 GateConfig parse_gate_config_text(std::string_view text, const std::string& source) {
-  // The DOM parser silently keeps the last of two equal keys; a gate whose limit was overridden
-  // by a later duplicate would check something else than it says, so duplicates are errors.
-  struct Frame {
-    bool object;
-    std::string path;
-    std::set<std::string> keys;
-    std::string key;  // last key seen (objects)
-    long next = 0;    // next index (arrays)
-  };
-  std::vector<Frame> stack;
-  std::string duplicate;  // field path of the first duplicate key
-  auto child = [&stack]() -> std::string {
-    if (stack.empty()) return "";
-    Frame& f = stack.back();
-    if (f.object) return f.path.empty() ? f.key : f.path + "." + f.key;
-    return f.path + "[" + std::to_string(f.next++) + "]";
-  };
-  const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-        stack.push_back({true, child(), {}, {}, 0});
-        break;
-      case json::parse_event_t::array_start:
-        stack.push_back({false, child(), {}, {}, 0});
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        if (!stack.empty()) stack.pop_back();
-        break;
-      case json::parse_event_t::key:
-        if (!stack.empty() && parsed.is_string()) {
-          Frame& f = stack.back();
-          f.key = parsed.get<std::string>();
-          if (!f.keys.insert(f.key).second && duplicate.empty())
-            duplicate = f.path.empty() ? f.key : f.path + "." + f.key;
-        }
-        break;
-      case json::parse_event_t::value:
-        if (!stack.empty() && !stack.back().object) child();
-        break;
-    }
-    return true;
-  };
-  json root;
-  try {
-    root = json::parse(text.begin(), text.end(), callback);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    throw InputError(source + ": (root): invalid JSON: " + what);
-  }
-  if (!duplicate.empty()) throw InputError(source + ": " + duplicate + ": duplicate field");
-  return GateSchema(source).read(root);
+  // Duplicate keys are errors (json_source): a gate whose limit was overridden by a later
+  // duplicate would check something else than it says.
+  return GateConfigReader(source).read(json_source::parse_ordered(text, source));
 }
 
 GateConfig read_gate_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read file");
-  return parse_gate_config_text(text.str(), path);
+  return parse_gate_config_text(json_source::read_text_file(path), path);
 }
 
 }  // namespace rayint

@@ -12,84 +12,112 @@ using json_source::index_path;
 using json_source::member_path;
 
 namespace {
-std::string join(std::initializer_list<const char*> names) {
+template <class Names>
+std::string join(const Names& names) {
   std::string s;
-  for (const char* n : names) s += (s.empty() ? "" : ", ") + std::string(n);
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + std::string(n);
   return s;
 }
-std::string type_of(const nlohmann::json& j) { return j.type_name(); }
+
+template <class Json>
+std::string type_of(const Json& j) { return j.type_name(); }
+
+// Every key of `object` must be one of `allowed` (the first that is not is reported).
+template <class Json, class Names>
+void check_keys(const BasicJsonSchema<Json>& s, const Json& object, const std::string& path,
+                const Names& allowed) {
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (const auto& a : allowed) known = known || item.key() == a;
+    if (!known)
+      s.fail(member_path(path, item.key()), "unknown field (expected " + join(allowed) + ")");
+  }
+}
 }  // namespace
 
-void JsonSchema::fail(const std::string& path, const std::string& what) const {
+template <class Json>
+void BasicJsonSchema<Json>::fail(const std::string& path, const std::string& what) const {
   json_source::fail(source_, path, what);
 }
 
-void JsonSchema::require_object(const json& j, const std::string& path) const {
+template <class Json>
+void BasicJsonSchema<Json>::require_object(const json& j, const std::string& path) const {
   if (!j.is_object()) fail(path, "must be an object, got " + type_of(j));
 }
 
-void JsonSchema::check_fields(const json& object, const std::string& path,
-                              std::initializer_list<const char*> allowed) const {
-  for (const auto& item : object.items()) {
-    bool known = false;
-    for (const char* a : allowed) known = known || item.key() == a;
-    if (!known)
-      fail(member_path(path, item.key()), "unknown field (expected " + join(allowed) + ")");
-  }
+template <class Json>
+void BasicJsonSchema<Json>::check_fields(const json& object, const std::string& path,
+                                         std::initializer_list<const char*> allowed) const {
+  check_keys(*this, object, path, allowed);
 }
 
-const nlohmann::json& JsonSchema::required(const json& object, const std::string& path,
+template <class Json>
+void BasicJsonSchema<Json>::check_fields(const json& object, const std::string& path,
+                                         const std::vector<std::string>& allowed) const {
+  check_keys(*this, object, path, allowed);
+}
+
+template <class Json>
+const Json& BasicJsonSchema<Json>::required(const json& object, const std::string& path,
                                            const char* key) const {
   const auto it = object.find(key);
   if (it == object.end()) fail(member_path(path, key), "missing required field");
   return *it;
 }
 
-const nlohmann::json* JsonSchema::optional(const json& object, const char* key) const {
+template <class Json>
+const Json* BasicJsonSchema<Json>::optional(const json& object, const char* key) const {
   const auto it = object.find(key);
   return it == object.end() ? nullptr : &*it;
 }
 
-std::string JsonSchema::non_empty_string(const json& j, const std::string& path) const {
-  if (!j.is_string() || j.get_ref<const std::string&>().empty())
+template <class Json>
+std::string BasicJsonSchema<Json>::non_empty_string(const json& j, const std::string& path) const {
+  if (!j.is_string() || j.template get_ref<const std::string&>().empty())
     fail(path, "must be a non-empty string, got " +
                    (j.is_string() ? std::string("\"\"") : type_of(j)));
-  return j.get<std::string>();
+  return j.template get<std::string>();
 }
 
-std::string JsonSchema::string_value(const json& j, const std::string& path) const {
+template <class Json>
+std::string BasicJsonSchema<Json>::string_value(const json& j, const std::string& path) const {
   if (!j.is_string()) fail(path, "must be a string, got " + type_of(j));
-  return j.get<std::string>();
+  return j.template get<std::string>();
 }
 
-bool JsonSchema::boolean(const json& j, const std::string& path) const {
+template <class Json>
+bool BasicJsonSchema<Json>::boolean(const json& j, const std::string& path) const {
   if (!j.is_boolean()) fail(path, "must be true or false, got " + type_of(j));
-  return j.get<bool>();
+  return j.template get<bool>();
 }
 
-double JsonSchema::finite_number(const json& j, const std::string& path) const {
+template <class Json>
+double BasicJsonSchema<Json>::finite_number(const json& j, const std::string& path) const {
   if (!j.is_number()) fail(path, "must be a number, got " + type_of(j));
-  const double x = j.get<double>();
+  const double x = j.template get<double>();
   if (!std::isfinite(x)) fail(path, "must be finite, got " + format_number(x));
   return x;
 }
 
-double JsonSchema::non_negative(const json& j, const std::string& path) const {
+template <class Json>
+double BasicJsonSchema<Json>::non_negative(const json& j, const std::string& path) const {
   if (!j.is_number()) fail(path, "must be a number, got " + type_of(j));
-  const double x = j.get<double>();
+  const double x = j.template get<double>();
   if (!(std::isfinite(x) && x >= 0.0))
     fail(path, "must be finite and >= 0, got " + format_number(x));
   return x + 0.0;  // -0 becomes +0
 }
 
-double JsonSchema::positive(const json& j, const std::string& path) const {
+template <class Json>
+double BasicJsonSchema<Json>::positive(const json& j, const std::string& path) const {
   if (!j.is_number()) fail(path, "must be a number, got " + type_of(j));
-  const double x = j.get<double>();
+  const double x = j.template get<double>();
   if (!(std::isfinite(x) && x > 0.0)) fail(path, "must be finite and > 0, got " + format_number(x));
   return x;
 }
 
-double JsonSchema::in_range(const json& j, const std::string& path, double lo, double hi,
+template <class Json>
+double BasicJsonSchema<Json>::in_range(const json& j, const std::string& path, double lo, double hi,
                             bool open) const {
   const double x = finite_number(j, path);
   const bool ok = open ? (x > lo && x < hi) : (x >= lo && x <= hi);
@@ -99,51 +127,68 @@ double JsonSchema::in_range(const json& j, const std::string& path, double lo, d
   return x;
 }
 
-long long JsonSchema::integer(const json& j, const std::string& path, long long lo,
+template <class Json>
+long long BasicJsonSchema<Json>::integer(const json& j, const std::string& path, long long lo,
                               long long hi) const {
-  if (!j.is_number_integer() && !(j.is_number_float() && std::floor(j.get<double>()) == j.get<double>()))
-    fail(path, "must be an integer, got " + (j.is_number() ? format_number(j.get<double>()) : type_of(j)));
-  const double x = j.get<double>();
+  const double x = j.is_number() ? j.template get<double>() : 0.0;
+  if (!j.is_number_integer() && !(j.is_number_float() && std::floor(x) == x))
+    fail(path, "must be an integer, got " + (j.is_number() ? format_number(x) : type_of(j)));
   if (!(x >= static_cast<double>(lo) && x <= static_cast<double>(hi)))
     fail(path, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
                    "], got " + format_number(x));
   return static_cast<long long>(x);
 }
 
-void JsonSchema::non_empty_array(const json& j, const std::string& path, const std::string& of) const {
+template <class Json>
+void BasicJsonSchema<Json>::non_empty_array(const json& j, const std::string& path, const std::string& of) const {
   if (!j.is_array() || j.empty())
     fail(path, "must be a non-empty array" + of + ", got " +
                    (j.is_array() ? std::string("[]") : type_of(j)));
 }
 
-void JsonSchema::array_of_size(const json& j, const std::string& path, std::size_t n,
+template <class Json>
+std::vector<std::string> BasicJsonSchema<Json>::non_empty_strings(const json& j,
+                                                                  const std::string& path) const {
+  non_empty_array(j, path, " of strings");
+  std::vector<std::string> out;
+  out.reserve(j.size());
+  for (std::size_t i = 0; i < j.size(); ++i) out.push_back(non_empty_string(j[i], index_path(path, i)));
+  return out;
+}
+
+template <class Json>
+void BasicJsonSchema<Json>::array_of_size(const json& j, const std::string& path, std::size_t n,
                                const std::string& what) const {
   if (!j.is_array() || j.size() != n)
     fail(path, "must be " + what + ", got " +
                    (j.is_array() ? "an array of " + std::to_string(j.size()) : type_of(j)));
 }
 
-Vec3 JsonSchema::vec3(const json& j, const std::string& path) const {
+template <class Json>
+Vec3 BasicJsonSchema<Json>::vec3(const json& j, const std::string& path) const {
   array_of_size(j, path, 3, "an array of 3 numbers [x, y, z]");
   return Vec3(finite_number(j[0], index_path(path, 0)), finite_number(j[1], index_path(path, 1)),
               finite_number(j[2], index_path(path, 2)));
 }
 
-Vec3 JsonSchema::direction(const json& j, const std::string& path) const {
+template <class Json>
+Vec3 BasicJsonSchema<Json>::direction(const json& j, const std::string& path) const {
   const Vec3 v = vec3(j, path);
   const double n = v.norm();
   if (!(n > 0.0) || !std::isfinite(n)) fail(path, "must be a non-zero finite direction");
   return v / n;
 }
 
-Rgb JsonSchema::rgb(const json& j, const std::string& path) const {
+template <class Json>
+Rgb BasicJsonSchema<Json>::rgb(const json& j, const std::string& path) const {
   array_of_size(j, path, 3, "an array of 3 numbers [r, g, b]");
   Rgb out{};
   for (std::size_t c = 0; c < 3; ++c) out[c] = non_negative(j[c], index_path(path, c));
   return out;
 }
 
-PiecewiseLinear JsonSchema::points(const json& j, const std::string& path) const {
+template <class Json>
+PiecewiseLinear BasicJsonSchema<Json>::points(const json& j, const std::string& path) const {
   non_empty_array(j, path, " of [scalar, value] points");
   PiecewiseLinear f;
   f.scalar.reserve(j.size());
@@ -164,7 +209,8 @@ PiecewiseLinear JsonSchema::points(const json& j, const std::string& path) const
   return f;
 }
 
-std::array<PiecewiseLinear, kChannels> JsonSchema::channels(const json& j,
+template <class Json>
+std::array<PiecewiseLinear, kChannels> BasicJsonSchema<Json>::channels(const json& j,
                                                             const std::string& path) const {
   if (j.is_array()) {
     const PiecewiseLinear f = points(j, path);
@@ -181,7 +227,8 @@ std::array<PiecewiseLinear, kChannels> JsonSchema::channels(const json& j,
   return out;
 }
 
-TransferFunctions JsonSchema::transfer_functions(const json& j, const std::string& path) const {
+template <class Json>
+TransferFunctions BasicJsonSchema<Json>::transfer_functions(const json& j, const std::string& path) const {
   require_object(j, path);
   check_fields(j, path, {"density", "color"});
   TransferFunctions tf;
@@ -190,7 +237,8 @@ TransferFunctions JsonSchema::transfer_functions(const json& j, const std::strin
   return tf;
 }
 
-Camera JsonSchema::camera(const json& j, const std::string& path) const {
+template <class Json>
+Camera BasicJsonSchema<Json>::camera(const json& j, const std::string& path) const {
   require_object(j, path);
   check_fields(j, path, {"position", "look_at", "up", "fov_deg", "ortho_height", "width", "height"});
   Camera cam;
@@ -217,5 +265,8 @@ Camera JsonSchema::camera(const json& j, const std::string& path) const {
   }
   return cam;
 }
+
+template class BasicJsonSchema<nlohmann::json>;
+template class BasicJsonSchema<nlohmann::ordered_json>;
 
 }  // namespace rayint

@@ -1,14 +1,19 @@
 #pragma once
-// The strict schema walk shared by every rayint input file (cases, mesh cases, scenes):
-// required fields, types, finite and non-negative numbers, no unknown fields. Each check throws
-// one InputError line `<source>: <field path>: <what>` (json_source::fail), so every reader
-// reports problems the same way. Readers compose these checks; they hold no state but the
-// source name.
+// The one strict schema walk of every rayint input file (cases, mesh cases, candidates, gate
+// configs, scenes, voxel grids, slab scenes, slab benchmarks): required fields, types, finite and
+// non-negative numbers, no unknown fields. Each check throws one InputError line
+// `<source>: <field path>: <what>` (json_source::fail), so every reader reports problems the
+// same way. Readers compose these checks; they hold no state but the source name.
+//
+// It walks the trees json_source parses: JsonSchema those of json_source::parse (keys sorted),
+// OrderedJsonSchema those of json_source::parse_ordered (keys in file order, so that an object's
+// unknown fields and items are met in the order the file gives them).
 #include <array>
 #include <cstddef>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/model/transfer_function.hpp"
@@ -16,10 +21,11 @@
 
 namespace rayint {
 
-class JsonSchema {
+template <class Json>
+class BasicJsonSchema {
  public:
-  using json = nlohmann::json;
-  explicit JsonSchema(std::string source) : source_(std::move(source)) {}
+  using json = Json;
+  explicit BasicJsonSchema(std::string source) : source_(std::move(source)) {}
   const std::string& source() const { return source_; }
 
   [[noreturn]] void fail(const std::string& path, const std::string& what) const;
@@ -29,6 +35,8 @@ class JsonSchema {
   // named as such.
   void check_fields(const json& object, const std::string& path,
                     std::initializer_list<const char*> allowed) const;
+  void check_fields(const json& object, const std::string& path,
+                    const std::vector<std::string>& allowed) const;
   const json& required(const json& object, const std::string& path, const char* key) const;
   const json* optional(const json& object, const char* key) const;  // nullptr when absent
 
@@ -43,6 +51,8 @@ class JsonSchema {
                   bool open = false) const;
   long long integer(const json& j, const std::string& path, long long lo, long long hi) const;
   void non_empty_array(const json& j, const std::string& path, const std::string& of) const;
+  // A non-empty array of non-empty strings.
+  std::vector<std::string> non_empty_strings(const json& j, const std::string& path) const;
   // An array of exactly n elements (message names `what`).
   void array_of_size(const json& j, const std::string& path, std::size_t n,
                      const std::string& what) const;
@@ -64,5 +74,10 @@ class JsonSchema {
  private:
   std::string source_;
 };
+
+using JsonSchema = BasicJsonSchema<nlohmann::json>;
+using OrderedJsonSchema = BasicJsonSchema<nlohmann::ordered_json>;
+extern template class BasicJsonSchema<nlohmann::json>;
+extern template class BasicJsonSchema<nlohmann::ordered_json>;
 
 }  // namespace rayint

@@ -10,15 +10,23 @@
 
 namespace rayint::json_source {
 
-using nlohmann::json;
-
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// Stage 1: SAX builder with field paths.
+// Stage 1: SAX builder with field paths. `Json` is nlohmann::json (keys sorted) or
+// nlohmann::ordered_json (keys in file order); both keep their elements where they are while a
+// nested value is filled (objects and arrays only grow at the end of the innermost container).
 
-class PathTrackingBuilder final : public json::json_sax_t {
+template <class Json>
+class PathTrackingBuilder final : public Json::json_sax_t {
  public:
+  using json = Json;
+  using typename Json::json_sax_t::number_integer_t;
+  using typename Json::json_sax_t::number_unsigned_t;
+  using typename Json::json_sax_t::number_float_t;
+  using typename Json::json_sax_t::string_t;
+  using typename Json::json_sax_t::binary_t;
+
   PathTrackingBuilder(std::string_view text, const std::string& source)
       : text_(text), source_(source) {}
 
@@ -53,7 +61,7 @@ class PathTrackingBuilder final : public json::json_sax_t {
   bool end_array() override { return close(); }
 
   bool parse_error(std::size_t position, const std::string& last_token,
-                   const json::exception& ex) override {
+                   const typename Json::exception& ex) override {
     // out_of_range.406: a number that overflows a double; the path of the value is current.
     if (ex.id == 406) fail(source_, path(), "must be finite, got " + last_token);
     fail(source_, "", syntax_message(position, ex.what()));
@@ -131,14 +139,22 @@ class PathTrackingBuilder final : public json::json_sax_t {
   json* member_ = nullptr;
 };
 
+template <class Json>
+Json parse_with_paths(std::string_view text, const std::string& source) {
+  PathTrackingBuilder<Json> builder(text, source);
+  Json::sax_parse(text.begin(), text.end(), &builder, Json::input_format_t::json, /*strict=*/true,
+                  /*ignore_comments=*/false);
+  return builder.take_root();
+}
 
 }  // namespace
 
-json parse(std::string_view text, const std::string& source) {
-  PathTrackingBuilder builder(text, source);
-  json::sax_parse(text.begin(), text.end(), &builder, json::input_format_t::json, /*strict=*/true,
-                  /*ignore_comments=*/false);
-  return builder.take_root();
+nlohmann::json parse(std::string_view text, const std::string& source) {
+  return parse_with_paths<nlohmann::json>(text, source);
+}
+
+nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& source) {
+  return parse_with_paths<nlohmann::ordered_json>(text, source);
 }
 
 std::string read_text_file(const std::string& path) {

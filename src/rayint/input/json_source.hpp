@@ -1,11 +1,11 @@
 #pragma once
-// JSON input with field paths: the one place where rayint's input files (cases, candidates) are
-// parsed into nlohmann::json, so that every problem can be reported as one line
-// `<source>: <field path>: <what>` (InputError). Duplicate keys, which nlohmann's DOM parser
-// silently resolves to the last one, and numbers that overflow a double (1e999, nlohmann's
-// out_of_range.406) are reported at their field; syntax errors carry the 1-based line and column
-// of the offending character and nlohmann's reason. Parsing is strict: no comments, nothing but
-// whitespace after the document.
+// JSON input with field paths: the one place where rayint's input files (cases, candidates,
+// gate configs, scenes, grids, slab scenes and benchmarks) are parsed into nlohmann::json, so
+// that every problem can be reported as one line `<source>: <field path>: <what>` (InputError).
+// Duplicate keys, which nlohmann's DOM parser silently resolves to the last one, and numbers that
+// overflow a double (1e999, nlohmann's out_of_range.406) are reported at their field; syntax
+// errors carry the 1-based line and column of the offending character and nlohmann's reason.
+// Parsing is strict: no comments, nothing but whitespace after the document.
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -17,6 +17,9 @@
 namespace rayint::json_source {
 
 nlohmann::json parse(std::string_view text, const std::string& source);
+// The same, keeping each object's keys in file order (for formats whose order means something:
+// a gate config's checks are run and reported in the order it lists them).
+nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& source);
 
 // The whole file as text; InputError "<path>: cannot read file (<reason>)".
 std::string read_text_file(const std::string& path);
