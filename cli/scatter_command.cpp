@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/report/volume_comparison_json.hpp"
-#include "rayint/scene/scene_volume.hpp"
+#include "rayint/scene/scene_volume_comparison.hpp"
 
 namespace rayint::cli {
 namespace {
@@ -57,21 +57,15 @@ void set_scatter_command(CLI::App& app) {
     for (int g : s->comparison.zonal_grids)
       if (g < 2 || g > 20) throw std::invalid_argument("--zonal-grids: each must be in [2, 20]");
     const Scene scene = read_scene_file(s->scene);
-    if (!scene.camera) throw std::invalid_argument(s->scene + ": rayint scatter needs a camera");
-    if (!scene_is_grey(scene))
-      throw std::invalid_argument(s->scene + ": rayint scatter needs the same extinction, albedo and light in r, g, b");
-    Camera cam = *scene.camera;
-    cam.width = s->width;
-    cam.height = s->height;
-    ScatteringVolume v = volume_from_scene(scene, 0, s->points);
-    v.background = 0.0;
     ComparisonOptions o = s->comparison;
     o.reference.threads = o.threads = s->threads;
     const bool quiet = s->quiet;
-    const VolumeComparison c = compare_volume_methods(v, cam, o, [quiet](const std::string& m) {
-      if (!quiet) std::cerr << "rayint scatter: " << m << "\n";
-    });
-    const nlohmann::json j = volume_comparison_json(s->scene, s->points, v, o, c);
+    const SceneVolumeComparison r = compare_volume_methods_on_scene(
+        scene, s->width, s->height, s->points, o, [quiet](const std::string& m) {
+          if (!quiet) std::cerr << "rayint scatter: " << m << "\n";
+        });
+    const VolumeComparison& c = r.comparison;
+    const nlohmann::json j = volume_comparison_json(s->scene, s->points, r.volume, o, c);
     if (!s->images.empty()) write_volume_comparison_images(c, s->images, s->exposure);
     emit(j.dump(2), s->output);
   });
