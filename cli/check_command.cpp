@@ -2,8 +2,6 @@
 // against the exact values; writes a JSON diff (docs/candidate-format.md). Exit 0 when every
 // channel of every ray is within tolerance, 1 when one is not, 2 on bad input.
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -12,6 +10,7 @@
 #include "rayint/studies/check.hpp"
 #include "rayint/input/candidate_reader.hpp"
 #include "rayint/report/check_json.hpp"
+#include "rayint/report/check_summary.hpp"
 #include "rayint/input/case_reader.hpp"
 
 namespace rayint::cli {
@@ -26,24 +25,6 @@ const CLI::Validator kTolerance(
       return {};
     },
     "TOL>=0");
-
-std::string g3(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
-
-// One status line for CI logs (stderr, so stdout stays the diff).
-std::string summary_line(const CheckResult& r) {
-  const char* channel_names[kChannels] = {"r", "g", "b"};
-  const CheckSummary& s = r.summary;
-  return "rayint check: " + std::string(r.pass ? "PASS" : "FAIL") + ": " + r.candidate_source +
-         " vs " + r.case_source + ": " + std::to_string(s.failed_channels) + " of " +
-         std::to_string(s.channels) + " channels in " + std::to_string(s.failed_rays) + " of " +
-         std::to_string(s.rays) + " rays outside tolerance; max rel error " + g3(s.max_rel_error) +
-         ", max abs error " + g3(s.max_abs_error) + " (worst: ray " + std::to_string(s.worst_ray) +
-         " channel " + channel_names[s.worst_channel] + ")";
-}
 
 }  // namespace
 
@@ -81,7 +62,7 @@ void set_check_command(CLI::App& app) {
     const CheckResult result = check_candidate(c, candidate, co);
     emit(check_report_json(result).dump(2), opt->output);
     std::cout.flush();
-    std::cerr << summary_line(result) << std::endl;
+    std::cerr << check_summary_line(result) << std::endl;
     // The callback cannot return an exit code and main() maps exceptions to 2 (bad input), so a
     // failed check ends here with 1, after its diff is written and flushed.
     if (!result.pass) throw ChecksFailed{};

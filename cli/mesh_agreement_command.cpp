@@ -4,10 +4,9 @@
 // same function with the defaults).
 #include <array>
 #include <memory>
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "rayint/studies/mesh_agreement.hpp"
+#include "rayint/report/mesh_agreement_json.hpp"
 
 namespace rayint::cli {
 
@@ -26,14 +25,7 @@ void set_mesh_agreement_command(CLI::App& app) {
   cmd->callback([opt, out, vertex] {
     const MeshAgreement a = measure_linear_field_agreement(*opt);
     const VertexRayChords v = measure_vertex_ray_chords((*vertex)[1], (*vertex)[0], opt->seed);
-    const nlohmann::json j = {
-        {"linear_field", {{"rays", a.rays}, {"seed", opt->seed}, {"n", opt->n}, {"tets", a.tets},
-                          {"hits", a.hits}, {"segments", a.segments}, {"max_rel_error", a.max_rel},
-                          {"max_length_error", a.max_length_abs}, {"budget_exhausted", a.budget_exhausted}}},
-        {"vertex_rays", {{"rays", v.rays}, {"seed", opt->seed}, {"grid", (*vertex)[1]}, {"tets", v.tets},
-                         {"max_length_error", v.max_length_abs}, {"zero_length_steps", v.zero_length_steps},
-                         {"star_searches", v.star_searches}, {"budget_exhausted", v.budget_exhausted}}}};
-    emit(j.dump(2), *out);
+    emit(mesh_agreement_json(*opt, a, (*vertex)[1], v).dump(2), *out);
   });
 }
 

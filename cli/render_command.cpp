@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "render_kinds.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
@@ -20,7 +21,7 @@ void set_render_command(CLI::App& app) {
   cmd->add_option("--stats", opts->stats_path, "write statistics / per-effect costs as JSON here");
   cmd->add_option("--exposure", opts->exposure, "radiance multiplier before 8-bit encoding")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--threads", opts->threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  add_threads_option(cmd, opts->threads, "worker threads (0: all cores)");
   cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");
   cmd->add_option("--method", opts->methods,
                   "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "

@@ -1,6 +1,5 @@
 // `rayint render SCENE.json -o image.png`: renders a scene (docs/scenes.md) with the effects it
 // names, and reports each effect's time, work and (with --errors K) error against its reference.
-#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 
@@ -9,6 +8,7 @@
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/scene_reader.hpp"
+#include "rayint/report/scene_render_table.hpp"
 #include "rayint/report/scene_report_json.hpp"
 #include "rayint/render/image.hpp"
 #include "rayint/scene/effect.hpp"
@@ -38,26 +38,6 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& overrides) {
       throw InputError("--method " + o + ": " + e.what());
     }
   }
-}
-
-std::string summary_table(const SceneRenderResult& r) {
-  std::string s;
-  char line[512];
-  std::snprintf(line, sizeof line, "%-18s %-26s %10s %12s %12s %12s %12s\n", "effect", "method", "seconds",
-                "samples", "shadow_rays", "max_abs_err", "rel_to_peak");
-  s += line;
-  for (const EffectReport& e : r.effects) {
-    std::snprintf(line, sizeof line, "%-18s %-26s %10.3f %12lld %12lld %12s %12s\n", e.effect.c_str(),
-                  e.method.c_str(), e.work.seconds + e.work.setup_seconds, e.work.samples,
-                  e.work.shadow_rays,
-                  e.has_error ? std::to_string(e.error.max_abs).c_str() : "-",
-                  e.has_error ? std::to_string(e.error.max_rel_to_peak).c_str() : "-");
-    s += line;
-  }
-  std::snprintf(line, sizeof line, "render %.3f s wall on %u threads, setup %.3f s, errors %.3f s\n",
-                r.render_seconds, r.threads, r.setup_seconds, r.error_seconds);
-  s += line;
-  return s;
 }
 
 }  // namespace
@@ -91,7 +71,7 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
   png.exposure = options.exposure;
   write_png(options.output, result.image, png);
   if (!options.stats_path.empty()) emit(scene_report_json(scene, result).dump(2) + "\n", options.stats_path);
-  if (!options.quiet) std::cerr << summary_table(result);
+  if (!options.quiet) std::cerr << scene_render_table(result);
 }
 
 }  // namespace rayint::cli

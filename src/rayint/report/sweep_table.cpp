@@ -1,0 +1,86 @@
+#include "rayint/report/sweep_table.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rayint {
+namespace {
+
+std::string format_error(double e) {
+  char buf[32];
+  if (!std::isfinite(e)) return "non-finite";
+  std::snprintf(buf, sizeof buf, "%.2e", e);
+  return buf;
+}
+
+std::string format_seconds(double s) {
+  char buf[32];
+  if (s >= 1e-3)
+    std::snprintf(buf, sizeof buf, "%.3g ms", s * 1e3);
+  else if (s >= 1e-6)
+    std::snprintf(buf, sizeof buf, "%.3g us", s * 1e6);
+  else
+    std::snprintf(buf, sizeof buf, "%.3g ns", s * 1e9);
+  return buf;
+}
+
+}  // namespace
+
+std::string sweep_progress_line(const SweepProgress& p) {
+  char line[320];
+  switch (p.stage) {
+    case SweepProgress::Stage::reference:
+      std::snprintf(line, sizeof line, "[reference %2zu/%zu] %-34s %7.1f s\n", p.done, p.total,
+                    p.what.c_str(), p.elapsed_seconds);
+      break;
+    case SweepProgress::Stage::setting: {
+      const SettingResult& s = *p.setting;
+      std::string note;
+      if (s.failed_rays > 0) note += "  failed on " + std::to_string(s.failed_rays) + " rays";
+      if (s.nonfinite > 0) note += "  " + std::to_string(s.nonfinite) + " non-finite";
+      if (s.setup_seconds >= 0.05) {
+        char setup[48];
+        std::snprintf(setup, sizeof setup, "  set-up %.1f s", s.setup_seconds);
+        note += setup;
+      }
+      std::snprintf(line, sizeof line,
+                    "[%3zu/%zu] %-26s max %-10s median %-10s %11s/ray %7.1f s%s\n", p.done, p.total,
+                    p.what.c_str(), format_error(s.max_error).c_str(),
+                    format_error(s.median_error).c_str(), format_seconds(s.seconds_per_ray).c_str(),
+                    p.elapsed_seconds, note.c_str());
+      break;
+    }
+    case SweepProgress::Stage::skipped:
+      std::snprintf(line, sizeof line, "[%3zu/%zu] %-26s skipped: %s\n", p.done, p.total,
+                    p.what.c_str(), p.reason.c_str());
+      break;
+  }
+  return line;
+}
+
+std::string sweep_targets_table(const SweepResult& r) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line, "exact: %s per ray (mean over %zu rays)\n",
+                format_seconds(r.exact_seconds_per_ray).c_str(), r.rays);
+  out += line;
+  std::snprintf(line, sizeof line, "%-8s %-14s %-28s %12s %10s\n", "max err", "method",
+                "cheapest setting", "time/ray", "x exact");
+  out += line;
+  for (const auto& t : r.targets) {
+    if (t.statistic != ErrorStatistic::max) continue;
+    char target[16];
+    std::snprintf(target, sizeof target, "%.0e", t.target);
+    if (t.reached)
+      std::snprintf(line, sizeof line, "%-8s %-14s %-28s %12s %10.3g\n", target, t.method.c_str(),
+                    t.label.c_str(), format_seconds(t.seconds_per_ray).c_str(), t.cost_vs_exact);
+    else
+      std::snprintf(line, sizeof line, "%-8s %-14s %-28s\n", target, t.method.c_str(),
+                    t.truncated ? "not reached (sweep truncated)" : "not reached");
+    out += line;
+  }
+  if (r.truncated) out += "truncated: " + r.truncation + "\n";
+  return out;
+}
+
+}  // namespace rayint

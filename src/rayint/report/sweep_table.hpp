@@ -1,0 +1,13 @@
+#pragma once
+// The text forms of `rayint bench` (studies/sweep.hpp): the progress line per reference and
+// setting on stderr, and the table of the cheapest setting that reaches each error target.
+#include <string>
+
+#include "rayint/studies/sweep.hpp"
+
+namespace rayint {
+
+std::string sweep_progress_line(const SweepProgress& progress);
+std::string sweep_targets_table(const SweepResult& result);
+
+}  // namespace rayint

@@ -1,0 +1,41 @@
+#pragma once
+// One plane-parallel slab problem solved by the methods asked for (what `rayint slab` runs on
+// one problem or a slab scene), and the bookkeeping of a benchmark run (slab_benchmark.hpp):
+// selecting problems by id, and the verdict counts and summed costs of a report.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayint/scattering/slab_benchmark.hpp"
+
+namespace rayint {
+
+// The methods and their knobs are those of a benchmark run (slab_benchmark.hpp); besides,
+// options.mc_options.max_order 1 runs single scattering only, by Monte Carlo and in closed form.
+// The doubling and the integral equation run only without a max_order.
+struct SlabRun {
+  BenchmarkRunOptions options;
+  std::optional<SlabValues> doubling;
+  std::optional<SlabIntegralEquationResult> integral_equation;
+  std::optional<SlabValues> single_scattering_closed_form;  // max_order 1
+  std::optional<SlabEstimates> monte_carlo;
+  bool mc_split = false;  // the Monte Carlo estimator that ran
+};
+
+SlabRun run_slab_problem(const SlabProblem& problem, const BenchmarkRunOptions& options);
+
+// Keeps the problems named in `ids`, in that order; an id not in the benchmark throws
+// std::invalid_argument "no problem 'ID' in <source_name>".
+void select_benchmark_problems(SlabBenchmark& benchmark, const std::vector<std::string>& ids,
+                               const std::string& source_name);
+
+struct BenchmarkTotals {
+  int reproduced = 0, disputed = 0, failed = 0;
+  long long mc_photons = 0, mc_collisions = 0;
+  double mc_seconds = 0, doubling_seconds = 0, ie_seconds = 0;
+  int ie_finest_segments = 0;  // the largest over the problems; 0 if the integral equation never ran
+};
+
+BenchmarkTotals benchmark_totals(const BenchmarkReport& report);
+
+}  // namespace rayint
