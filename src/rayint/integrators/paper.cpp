@@ -13,6 +13,7 @@
 #include <cmath>
 #include <complex>
 
+#include "rayint/core/math.hpp"
 #include "rayint/model/pieces.hpp"
 #include "rayint/special/special_functions.hpp"
 
@@ -20,7 +21,6 @@ namespace rayint {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 // Erfi for an argument that is either real or pure imaginary (paper, Sec. 3.3).
 Complex erfi_paper(Complex x) {

@@ -10,9 +10,10 @@
 //   breakpoint) on a step of unit length:
 //     rate = (1/l) * optical depth of the step = mean of rho along the scalar path (exact; it
 //            does not depend on l, so one array serves every length),
-//     q(L) = E(L) / (L phi(rate L)),  phi(t) = (1 - e^{-t})/t,  E(L) = emission of a step of
-//            length L, composited far -> near with exact_piece; q(0) = mean of kappa*rho along
-//            the path (the L -> 0 limit, from the per-piece closed form of the integral).
+//     q(L) = E(L) / (L phi(rate L)),  phi(t) = (1 - e^{-t})/t (step_weight, core/math.hpp),
+//            E(L) = emission of a step of length L, composited far -> near with exact_piece;
+//            q(0) = mean of kappa*rho along the path (the L -> 0 limit, from the per-piece
+//            closed form of the integral).
 //   q is "emission per unit length, corrected for self-absorption": for constant kappa,
 //   q = kappa * rate exactly, whatever the length. dims=2 stores one plane, L = D (`step`);
 //   dims=3 stores `lengths` planes L_k = k max_length/(lengths - 1), k = 0 .. lengths - 1.
@@ -87,15 +88,13 @@
 #include <string>
 #include <thread>
 
+#include "rayint/core/math.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/factories.hpp"
 #include "rayint/model/pieces.hpp"
 
 namespace rayint {
 namespace {
-
-// (1 - e^{-t})/t for t >= 0, 1 at t = 0; accurate to a few ulps (expm1 has no cancellation).
-double phi(double t) { return t > 0.0 ? -std::expm1(-t) / t : 1.0; }
 
 // Number of equal-length-`step` pieces a length is cut into: ceil(length/step), except that a
 // remainder below 1e-9 step (length/step an integer up to rounding) adds no step.
@@ -191,7 +190,7 @@ PreintegratedIntegrator::PreintegratedIntegrator(const TransferFunctions& tf,
               const PieceOptics o = exact_piece(cp);
               emission = emission * o.transmittance + o.emission;
             }
-            q = emission / (L * phi(rate * L));
+            q = emission / (L * step_weight(rate * L));
           }
           q_[k * kChannels + c][e] = q;
         }
@@ -238,7 +237,7 @@ PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far
     const double tau = rate * length;
     out.depth[c] = tau;
     out.transmittance[c] = std::exp(-tau);
-    out.emission[c] = q * length * phi(tau);
+    out.emission[c] = q * length * step_weight(tau);
   }
   return out;
 }
