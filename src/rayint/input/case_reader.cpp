@@ -63,7 +63,7 @@ class CaseSchema {
     const json& s = s_.required(j, path, "scalar");
     s_.array_of_size(s, spath, 2, "a [far, near] pair of numbers");
     seg.scalar_far = s_.finite_number(s[0], index_path(spath, 0));
-    seg.scalar_near = s_.finite_number(s[1], index_path(spath, 1));
+    seg.scalar_exit = s_.finite_number(s[1], index_path(spath, 1));
     return seg;
   }
 
