@@ -46,7 +46,7 @@ void check_case(const rayint::Case& c) {
     for (double b : ray.background) require(finite_non_negative(b));
     for (const rayint::Segment& s : ray.segments)
       require(finite_non_negative(s.length) && std::isfinite(s.scalar_far) &&
-              std::isfinite(s.scalar_near));
+              std::isfinite(s.scalar_exit));
   }
 }
 

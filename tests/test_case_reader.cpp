@@ -79,10 +79,10 @@ TEST_CASE("valid case, per-channel colour and shared density, round-trips", "[ca
   REQUIRE(c.rays[0].segments.size() == 2);
   CHECK(c.rays[0].segments[0].length == 1.0);
   CHECK(c.rays[0].segments[0].scalar_far == 0.1);
-  CHECK(c.rays[0].segments[0].scalar_near == 0.9);
+  CHECK(c.rays[0].segments[0].scalar_exit == 0.9);
   CHECK(c.rays[0].segments[1].length == 0.25);
   CHECK(c.rays[0].segments[1].scalar_far == 0.9);
-  CHECK(c.rays[0].segments[1].scalar_near == 0.4);
+  CHECK(c.rays[0].segments[1].scalar_exit == 0.4);
 }
 
 TEST_CASE("valid case, per-channel density and shared colour, defaults applied", "[case_reader]") {

@@ -378,7 +378,7 @@ TEST_CASE("cells: decomposed chords tile the cell chord", "[cells]") {
       for (const auto& s : r.segments) total += s.length;
       CHECK(total == Approx(chord.segment.length).epsilon(1e-14));
       CHECK(!r.segments.empty());
-      for (const auto& s : r.segments) CHECK((std::isfinite(s.scalar_far) && std::isfinite(s.scalar_near)));
+      for (const auto& s : r.segments) CHECK((std::isfinite(s.scalar_far) && std::isfinite(s.scalar_exit)));
     }
 }
 

@@ -302,7 +302,7 @@ Real hand_kappa(int c, const Real& s) {
 }
 
 struct HandSegment {
-  double length, scalar_far, scalar_near;
+  double length, scalar_far, scalar_exit;
   std::vector<double> ends;  // far -> near, including both segment ends
 };
 
@@ -339,12 +339,12 @@ TEST_CASE("reference: a ray composited by hand from analytic pieces", "[referenc
     T[c] = 1;
   }
   for (const HandSegment& seg : hand_segments()) {
-    ray.segments.push_back({seg.length, seg.scalar_far, seg.scalar_near});
+    ray.segments.push_back({seg.length, seg.scalar_far, seg.scalar_exit});
     for (std::size_t k = 0; k + 1 < seg.ends.size(); ++k) {
       const Real s_far = seg.ends[k], s_exit = seg.ends[k + 1];
-      const Real L = seg.scalar_far == seg.scalar_near
+      const Real L = seg.scalar_far == seg.scalar_exit
                          ? Real(seg.length)
-                         : seg.length * (s_exit - s_far) / (Real(seg.scalar_near) - seg.scalar_far);
+                         : seg.length * (s_exit - s_far) / (Real(seg.scalar_exit) - seg.scalar_far);
       for (int c = 0; c < kChannels; ++c) {
         const Real rho_far = hand_rho(c, s_far), rho_exit = hand_rho(c, s_exit);
         const Real e =

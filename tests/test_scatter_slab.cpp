@@ -17,7 +17,7 @@
 
 #include "cli_harness.hpp"
 #include "rayint/scattering/azimuthal_phase.hpp"
-#include "rayint/scattering/gauss_legendre.hpp"
+#include "rayint/special/gauss_legendre.hpp"
 #include "rayint/input/slab_benchmark_reader.hpp"
 #include "rayint/scattering/slab_benchmark.hpp"
 #include "rayint/scattering/slab_doubling.hpp"

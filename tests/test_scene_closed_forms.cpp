@@ -16,6 +16,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "rayint/core/math.hpp"
 #include "scene_builders.hpp"
 
 using namespace rayint;
@@ -23,8 +24,6 @@ using namespace rayint::test;
 using nlohmann::json;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double hg(double g, double cos_theta) {
   return (1 - g * g) / (4 * kPi * std::pow(1 + g * g - 2 * g * cos_theta, 1.5));

@@ -209,8 +209,8 @@ TEST_CASE("psi_table: rho = 0 returns the background exactly", "[tables][psi_tab
 
 TEST_CASE("psi_table: max_error bounds the table's Psi error and is attained",
           "[tables][psi_table]") {
-  // Sample the whole gamma square, plus the edge gamma_back -> 1 with gamma_front small where
-  // Psi ~ sqrt(pi (1 - gamma_back)/2) and the sup sits.
+  // Sample the whole gamma square, plus the edge gamma_far -> 1 with gamma_exit small where
+  // Psi ~ sqrt(pi (1 - gamma_far)/2) and the sup sits.
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<std::pair<double, double>> gammas;
@@ -273,12 +273,12 @@ TEST_CASE("psi_table converges: order 2 (linear), 1 (nearest, floor) off the edg
   std::vector<std::pair<double, double>> smooth;
   for (int i = 0; i < 4000; ++i)
     smooth.emplace_back(std::pow(10.0, -2 + 3 * u(rng)), std::pow(10.0, -2 + 3 * u(rng)));
-  // On the edge: x_front = 0, 1 - gamma_back = 1e-9 .. 1 on a fine log scan, which passes
+  // On the edge: x_exit = 0, 1 - gamma_far = 1e-9 .. 1 on a fine log scan, which passes
   // within 0.1% of every size's worst point (h/4 for linear, just below h/2 for nearest,
   // -> 0 for floor).
   std::vector<std::pair<double, double>> edge;
   for (int i = 0; i <= 20000; ++i) {
-    const double t = std::pow(10.0, -9.0 + 9.0 * i / 20000.0);  // 1 - gamma_back
+    const double t = std::pow(10.0, -9.0 + 9.0 * i / 20000.0);  // 1 - gamma_far
     edge.emplace_back(0.0, (1.0 - t) / t);
   }
   const auto psi_errors = [](const PsiTable& t, table::Lookup lookup,
@@ -383,7 +383,7 @@ TEST_CASE("preintegrated: constant kappa, rho linear in the scalar (Eq. 5) is ex
     for (int k = 0; k < 3; ++k) {
       const Segment seg{2.0 * u(rng), u(rng), u(rng)};
       ray.segments.push_back(seg);
-      depth += seg.length * (rho0 + (rho1 - rho0) * 0.5 * (seg.scalar_far + seg.scalar_near));
+      depth += seg.length * (rho0 + (rho1 - rho0) * 0.5 * (seg.scalar_far + seg.scalar_exit));
     }
     const double expected = eq5(kappa, 0.4, depth);
     for (const int dims : {2, 3}) {

@@ -80,7 +80,7 @@ double check_segments(const VoxelGrid& g, const ViewRay& ray, std::mt19937_64& r
     for (int m = 0; m < 3; ++m) {
       const double a = u01(rng);  // fraction of the way from far to near
       const double t = t_far + a * (t_near - t_far);
-      const double expected = seg.scalar_far + a * (seg.scalar_near - seg.scalar_far);
+      const double expected = seg.scalar_far + a * (seg.scalar_exit - seg.scalar_far);
       worst = std::max(worst, std::abs(g.kuhn_value(ray.origin + t * ray.direction) - expected));
     }
     t_far = t_near;

@@ -20,6 +20,11 @@ struct Tolerances {
   // The paper's literal formula on a benign piece (T ~ 1, |q2| ~ q1): no overflow, but the
   // Erfi difference cancels; measured ~1e-15..1e-13, 1e-9 is a loose "it works here" bound.
   static constexpr double paper_benign_rel = 1e-9;
+  // core/math.hpp's step weight (1 - e^{-x})/x and attenuated length against 50 digits, in units
+  // of epsilon = 2^-52 relative (tests/test_math.cpp): measured <= 0.90 and <= 1.31 (glibc's
+  // expm1; the series region below 1e-8: <= 0.31, 0.68); 1.5 and 2 leave room for another libm.
+  static constexpr double step_weight_eps = 1.5;
+  static constexpr double attenuated_length_eps = 2.0;
 
   // --- table methods (tests/test_tables.cpp) ---
   // psi_table read exactly at a grid point (and a pre-integrated step of exactly D between

@@ -302,15 +302,15 @@ RaySample sample_narrow_pulse(std::mt19937_64& rng) {
       case 1: {
         const double lo = uniform(rng, 0.0, 0.2), hi = uniform(rng, 0.8, 1.0);
         seg.scalar_far = coin(rng) ? lo : hi;
-        seg.scalar_near = seg.scalar_far == lo ? hi : lo;
+        seg.scalar_exit = seg.scalar_far == lo ? hi : lo;
         break;
       }
       case 2:  // ends on, beside or inside a pulse
         seg.scalar_far = pulse_scalar(rng, bps);
-        seg.scalar_near = pulse_scalar(rng, bps);
+        seg.scalar_exit = pulse_scalar(rng, bps);
         break;
       default:  // constant scalar (w = 0) on, beside or inside a pulse
-        seg.scalar_far = seg.scalar_near = pulse_scalar(rng, bps);
+        seg.scalar_far = seg.scalar_exit = pulse_scalar(rng, bps);
         break;
     }
     out.ray.segments.push_back(seg);
@@ -375,9 +375,9 @@ RaySample sample_long_ray(std::mt19937_64& rng) {
     Segment seg;
     seg.length = len_scale * log_uniform(rng, 0.1, 10.0);
     seg.scalar_far = rng() % 64 == 0 ? uniform(rng, 0.0, 1.0) : s;
-    seg.scalar_near =
+    seg.scalar_exit =
         rng() % 32 == 0 ? seg.scalar_far : reflect01(seg.scalar_far + sigma * uniform(rng, -1.0, 1.0));
-    s = seg.scalar_near;
+    s = seg.scalar_exit;
     out.ray.segments.push_back(seg);
   }
   return out;
@@ -411,7 +411,7 @@ RaySample sample_out_of_range(std::mt19937_64& rng) {
     seg.length = log_uniform(rng, 1e-3, 1e2);
     // The first segment starts outside the range, so every ray goes there.
     seg.scalar_far = scalar(i == 0 ? static_cast<int>(rng() % 2) : static_cast<int>(rng() % 5));
-    seg.scalar_near = rng() % 8 == 0 ? seg.scalar_far : scalar(static_cast<int>(rng() % 5));
+    seg.scalar_exit = rng() % 8 == 0 ? seg.scalar_far : scalar(static_cast<int>(rng() % 5));
     out.ray.segments.push_back(seg);
   }
   return out;

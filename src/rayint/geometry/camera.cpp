@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
+
 namespace rayint {
 
 void Camera::validate() const {
@@ -32,7 +34,7 @@ ViewRay Camera::ray_at(double px, double py) const {
   const double v = 1.0 - 2.0 * py / height;
   ViewRay ray;
   if (projection == Projection::perspective) {
-    const double half = std::tan(0.5 * fov_deg * M_PI / 180.0);
+    const double half = std::tan(0.5 * fov_deg * kPi / 180.0);
     ray.origin = position;
     ray.direction = (forward + u * half * right + v * half * true_up).normalized();
   } else {

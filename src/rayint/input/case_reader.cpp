@@ -46,7 +46,7 @@ Segment segment(const JsonSchema& s, const json& j, const std::string& path) {
   const json& sc = s.required(j, path, "scalar");
   s.array_of_size(sc, spath, 2, "a [far, near] pair of numbers");
   seg.scalar_far = s.finite_number(sc[0], index_path(spath, 0));
-  seg.scalar_near = s.finite_number(sc[1], index_path(spath, 1));
+  seg.scalar_exit = s.finite_number(sc[1], index_path(spath, 1));
   return seg;
 }
 

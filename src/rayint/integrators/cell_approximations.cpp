@@ -86,9 +86,9 @@ RayResult CellIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
     if (!(seg.length > 0.0)) continue;  // a zero-length cell transmits everything
     ++cells;
     for (int c = 0; c < kChannels; ++c) {
-      const double kappa_avg = 0.5 * (tf_.color[c](seg.scalar_far) + tf_.color[c](seg.scalar_near));
+      const double kappa_avg = 0.5 * (tf_.color[c](seg.scalar_far) + tf_.color[c](seg.scalar_exit));
       const double rho_avg =
-          0.5 * (tf_.density[c](seg.scalar_far) + tf_.density[c](seg.scalar_near));
+          0.5 * (tf_.density[c](seg.scalar_far) + tf_.density[c](seg.scalar_exit));
       const double x = rho_avg * seg.length;
       double alpha, transparency;
       switch (rule_) {

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <complex>
 
+#include "rayint/core/math.hpp"
 #include "rayint/model/pieces.hpp"
 #include "rayint/special/special_functions.hpp"
 
@@ -20,7 +21,6 @@ namespace rayint {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 // Erfi for an argument that is either real or pure imaginary (paper, Sec. 3.3).
 Complex erfi_paper(Complex x) {
@@ -77,7 +77,7 @@ RayResult PaperIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
     const std::vector<Piece>& pieces = splitter_.pieces(seg);
     // Eq. 13: S(t) = v + w t, t measured from where the ray enters the cell (segment).
     const double v = seg.scalar_far;
-    const double w = (seg.scalar_near - seg.scalar_far) / seg.length;
+    const double w = (seg.scalar_exit - seg.scalar_far) / seg.length;
     double t_flat = 0.0;  // for w == 0 the single piece spans [0, L]
     for (const auto& piece : pieces) {
       const double ti = (w == 0.0) ? t_flat : (piece.scalar_far - v) / w;

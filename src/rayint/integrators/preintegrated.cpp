@@ -1,24 +1,25 @@
 // preintegrated.cpp -- pre-integrated transfer functions (Engel, Kraus & Ertl 2001): the ray
 // integral of Williams & Max (1992, Eq. 4) over a step of length l whose scalar runs linearly
-// from s_far to s_near, read from a table over (s_far, s_near) built once per case with the
+// from s_far to s_exit, read from a table over (s_far, s_exit) built once per case with the
 // exact kernel; with dims=3 (Roettger, Kraus & Ertl 2000) the length is a third table axis.
 //
 // Table (built in the constructor; its cost is reported by build_seconds(), not per ray).
 //   Scalar axes: `size` points on [s_lo, s_hi] = [first, last breakpoint of the six transfer
-//   functions] (beyond it every function is constant). Row = s_far, column = s_near.
+//   functions] (beyond it every function is constant). Row = s_far, column = s_exit.
 //   Per entry and channel, with the step's pieces found by append_pieces (split at every
 //   breakpoint) on a step of unit length:
 //     rate = (1/l) * optical depth of the step = mean of rho along the scalar path (exact; it
 //            does not depend on l, so one array serves every length),
-//     q(L) = E(L) / (L phi(rate L)),  phi(t) = (1 - e^{-t})/t,  E(L) = emission of a step of
-//            length L, composited far -> near with exact_piece; q(0) = mean of kappa*rho along
-//            the path (the L -> 0 limit, from the per-piece closed form of the integral).
+//     q(L) = E(L) / (L phi(rate L)),  phi(t) = (1 - e^{-t})/t (step_weight, core/math.hpp),
+//            E(L) = emission of a step of length L, composited far -> near with exact_piece;
+//            q(0) = mean of kappa*rho along the path (the L -> 0 limit, from the per-piece
+//            closed form of the integral).
 //   q is "emission per unit length, corrected for self-absorption": for constant kappa,
 //   q = kappa * rate exactly, whatever the length. dims=2 stores one plane, L = D (`step`);
 //   dims=3 stores `lengths` planes L_k = k max_length/(lengths - 1), k = 0 .. lengths - 1.
 //   Memory: size^2 (3 + 3 planes) doubles = 6 size^2 doubles for dims=2 (3 MB at size 256).
 //
-// Lookup of a step (s_far, s_near, l): rate and q are read with `lookup` = nearest or linear
+// Lookup of a step (s_far, s_exit, l): rate and q are read with `lookup` = nearest or linear
 // (bilinear in the scalars; dims=3 also linear in L between the two planes around l, nearest
 // plane otherwise), then
 //     tau = rate * l,  transmittance = e^{-tau},  emission = q * l * phi(tau),
@@ -34,7 +35,7 @@
 //     sample spacing changes). A remainder below 1e-9 D (L/D an integer up to rounding) is
 //     merged into the previous step. Default D = 2^-6: a binary fraction so that lengths such
 //     as 0.25, 0.5, 1, 2 are whole numbers of steps; the per-ray cost is L/D lookups.
-//   dims=3: each segment is one lookup (s_far, s_near, L); a segment longer than max_length
+//   dims=3: each segment is one lookup (s_far, s_exit, L); a segment longer than max_length
 //     (default 4, longer than most segments of cases/) is cut into ceil(L/max_length) equal
 //     parts. Default lengths = min(size, 32): memory grows with size^2 * lengths.
 //   A ray needing more than kPreintegratedMaxLookupsPerRay = 2^22 lookups (about 0.1 s) is
@@ -85,6 +86,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rayint/core/math.hpp"
 #include "rayint/core/parallel.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/factories.hpp"
@@ -92,9 +94,6 @@
 
 namespace rayint {
 namespace {
-
-// (1 - e^{-t})/t for t >= 0, 1 at t = 0; accurate to a few ulps (expm1 has no cancellation).
-double phi(double t) { return t > 0.0 ? -std::expm1(-t) / t : 1.0; }
 
 // Number of equal-length-`step` pieces a length is cut into: ceil(length/step), except that a
 // remainder below 1e-9 step (length/step an integer up to rounding) adds no step.
@@ -190,7 +189,7 @@ PreintegratedIntegrator::PreintegratedIntegrator(const TransferFunctions& tf,
               const PieceOptics o = exact_piece(cp);
               emission = emission * o.transmittance + o.emission;
             }
-            q = emission / (L * phi(rate * L));
+            q = emission / (L * step_weight(rate * L));
           }
           q_[k * kChannels + c][e] = q;
         }
@@ -211,11 +210,11 @@ double PreintegratedIntegrator::table_bytes() const {
   return entries * kChannels * (1.0 + planes) * sizeof(double);
 }
 
-PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far, double s_near,
+PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far, double s_exit,
                                                                     double length) const {
   const int n = opt_.size;
   const table::GridCoord row = table::locate((s_far - s_lo_) * inv_ds_, n, opt_.lookup);
-  const table::GridCoord col = table::locate((s_near - s_lo_) * inv_ds_, n, opt_.lookup);
+  const table::GridCoord col = table::locate((s_exit - s_lo_) * inv_ds_, n, opt_.lookup);
   table::GridCoord plane;  // plane 0 for dims = 2
   if (opt_.dims == 3)
     plane = table::locate(length * inv_dL_, static_cast<int>(plane_length_.size()), opt_.lookup);
@@ -229,7 +228,7 @@ PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far
     const double tau = rate * length;
     out.depth[c] = tau;
     out.transmittance[c] = std::exp(-tau);
-    out.emission[c] = q * length * phi(tau);
+    out.emission[c] = q * length * step_weight(tau);
   }
   return out;
 }
@@ -258,14 +257,14 @@ RayResult PreintegratedIntegrator::integrate(const Ray& ray, Diagnostics* diag) 
     const long n = static_cast<long>(step_count(seg.length, cut));
     // dims = 2: n - 1 steps of D then the rest; dims = 3: n equal parts.
     const double part = opt_.dims == 2 ? opt_.step : seg.length / static_cast<double>(n);
-    const double ds = seg.scalar_near - seg.scalar_far;
+    const double ds = seg.scalar_exit - seg.scalar_far;
     if (opt_.dims == 3 && n > 1) ++split;
     double s0 = seg.scalar_far;
     for (long k = 0; k < n; ++k) {
       const bool last = k + 1 == n;
       const double l = last ? seg.length - part * static_cast<double>(n - 1) : part;
       const double s1 =
-          last ? seg.scalar_near
+          last ? seg.scalar_exit
                : seg.scalar_far + ds * (part * static_cast<double>(k + 1) / seg.length);
       const StepOptics o = lookup(s0, s1, l);
       for (int c = 0; c < kChannels; ++c) {

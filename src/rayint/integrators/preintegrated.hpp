@@ -1,7 +1,7 @@
 #pragma once
 // Pre-integrated transfer functions (Engel, Kraus & Ertl 2001; the 3-D form with the segment
 // length as a third axis after Roettger, Kraus & Ertl 2000): the ray integral of a step whose
-// scalar runs linearly from s_far to s_near is read from a table built once per case with the
+// scalar runs linearly from s_far to s_exit is read from a table built once per case with the
 // exact kernel. See preintegrated.cpp for the table's contents, lookups and error sources.
 #include <vector>
 
@@ -42,7 +42,7 @@ class PreintegratedIntegrator final : public RayIntegrator {
   struct StepOptics {
     Rgb depth, transmittance, emission;  // optical depth tau, e^{-tau}, emission
   };
-  StepOptics lookup(double s_far, double s_near, double length) const;
+  StepOptics lookup(double s_far, double s_exit, double length) const;
 
   PreintegratedOptions opt_;
   double s_lo_ = 0.0, s_hi_ = 1.0, inv_ds_ = 1.0;
@@ -50,7 +50,7 @@ class PreintegratedIntegrator final : public RayIntegrator {
   double inv_dL_ = 0.0;               // 1 / (L_{k+1} - L_k), dims = 3
   // rate_[c]: mean density over the step's scalar path (optical depth per unit length);
   // q_[k][c]: emission per unit length corrected for self-absorption at length L_k.
-  // Each is size x size, row = s_far, column = s_near.
+  // Each is size x size, row = s_far, column = s_exit.
   std::vector<double> rate_[kChannels];
   std::vector<std::vector<double>> q_;  // [plane * kChannels + c]
   double build_seconds_ = 0.0;

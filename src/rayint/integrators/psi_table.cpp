@@ -1,10 +1,11 @@
 // psi_table.cpp -- partial pre-integration (Moreland & Angel 2004, "A Fast High Accuracy Volume
 // Renderer for Unstructured Data"; VTK's vtkUnstructuredGridPartialPreIntegration).
 //
-// On a piece where rho and kappa are linear (Williams & Max 1992, Sec. 3.3), with front = the
-// exit (eye) end and back = the far end, x_f = rho_exit L, x_b = rho_far L (= tau_f D, tau_b D
-// in Moreland & Angel's notation), T = (x_f + x_b)/2 and tau(u) = x_f u + (x_b - x_f) u^2/2:
-//     I_out = I_in zeta + kappa_back (Psi - zeta) + kappa_front (1 - Psi),
+// On a piece where rho and kappa are linear (Williams & Max 1992, Sec. 3.3), with its exit and
+// far ends as in model/ray.hpp (Moreland & Angel's "front" and "back"), x_f = rho_exit L,
+// x_b = rho_far L (= tau_f D, tau_b D in Moreland & Angel's notation), T = (x_f + x_b)/2 and
+// tau(u) = x_f u + (x_b - x_f) u^2/2:
+//     I_out = I_in zeta + kappa_far (Psi - zeta) + kappa_exit (1 - Psi),
 //     zeta = e^{-T},  Psi = int_0^1 e^{-tau(u)} du  (exact.cpp's e0; 1 - Psi = weight_exit).
 // Psi depends on (x_f, x_b) only, and Moreland & Angel tabulate it over
 //     gamma = x/(1 + x) in [0, 1]
@@ -13,7 +14,7 @@
 // approximation.
 //
 // Table: `size` x `size` (default 512, VTK's PSI_TABLE_SIZE; Moreland's thesis used 1024),
-// row = gamma_front, column = gamma_back, grid gamma_i = i/(size - 1) including gamma = 1,
+// row = gamma_exit, column = gamma_far, grid gamma_i = i/(size - 1) including gamma = 1,
 // where x = inf and Psi = 0 (its limit: tau(u) >= x_f u/2 and >= x_b u^2/2 on [0, 1], so
 // Psi <= 2/x_f and Psi <= sqrt(pi/(2 x_b))). Entries come
 // from exact_piece on a unit-length piece: Psi = weight_far + transmittance and
@@ -24,25 +25,25 @@
 //
 // Lookups (`lookup`):
 //   nearest: the closest grid point in each gamma (error first order in 1/size),
-//   linear:  bilinear in (gamma_front, gamma_back) (second order where Psi is smooth),
+//   linear:  bilinear in (gamma_exit, gamma_far) (second order where Psi is smooth),
 //   floor:   VTK's Psi(): grid gamma_i = i/size, i < size, index floor(gamma * size) (first
 //            order with a one-sided bias; VTK computes in float, we keep doubles, and clamp
 //            the index to size - 1 where gamma rounds to 1).
 // Weights from the looked-up values, in the regimes of exact.cpp (kThinDepth = 1):
-//   T <= 1: w_front = clamp(1 - Psi, 0, alpha), w_back = alpha - w_front, alpha = 1 - zeta
-//           from expm1 (w_back >= 0.27 alpha for T <= 1, the minimum at T = 1 with all the
-//           density at the front, so the subtraction loses < 2 bits);
+//   T <= 1: w_exit = clamp(1 - Psi, 0, alpha), w_far = alpha - w_exit, alpha = 1 - zeta
+//           from expm1 (w_far >= 0.27 alpha for T <= 1, the minimum at T = 1 with all the
+//           density at the exit end, so the subtraction loses < 2 bits);
 //   T > 1:  Psi clamped to [zeta, 1] (where the true value lies since 0 <= tau(u) <= T),
-//           w_front = 1 - Psi (> 0.25), w_back = Psi - zeta (> 0.17; the bounds of exact.cpp).
+//           w_exit = 1 - Psi (> 0.25), w_far = Psi - zeta (> 0.17; the bounds of exact.cpp).
 //   Clamping only removes interpolation error that would make a weight negative; it is
-//   counted ("psi_clamped"). w_front + w_back = 1 - zeta always, so a piece of constant kappa
+//   counted ("psi_clamped"). w_exit + w_far = 1 - zeta always, so a piece of constant kappa
 //   (Eq. 5, Eq. 6) is exact whatever the table, and rho = 0 returns the background exactly.
 // Error. The intensity of a piece depends on the table only through Psi, with
-// dI/dPsi = kappa_back - kappa_front, so |error| <= |kappa_back - kappa_front| * |error in Psi|,
+// dI/dPsi = kappa_far - kappa_exit, so |error| <= |kappa_far - kappa_exit| * |error in Psi|,
 // composited like the intensity over the ray (reported as the "error_bound" statistic).
 // Where Psi is smooth in gamma (both gammas below ~0.9) the error in Psi is first order in
 // h = 1/(size - 1) for nearest/floor and second order for linear. But Psi is not smooth at
-// gamma_back = 1 with gamma_front small (a thick piece whose density falls toward the eye):
+// gamma_far = 1 with gamma_exit small (a thick piece whose density falls toward the eye):
 // there x_b = gamma/(1 - gamma) -> inf and Psi ~ sqrt(pi/(2 x_b)) ~ sqrt(pi/2) sqrt(1 - gamma_b),
 // a square root at the table's edge, and the sup of the error over the square is that of
 // interpolating sqrt(t) on the last cell [0, h]:
@@ -64,7 +65,7 @@
 //   - within the composited error_bound on 400 random rays from thin to very thick pieces.
 //   - cases/: the edge dominates density-decreasing-toward-eye (2.7e-2 at 512 linear, 2.2e-2 at
 //     1024); nearest and floor read gamma = 0 (Psi = 1) for pieces much thinner than a grid
-//     cell, so such a piece's emission all takes the back colour (cases/thin-pieces: 0.5
+//     cell, so such a piece's emission all takes the far colour (cases/thin-pieces: 0.5
 //     relative; linear: 8e-4 at 512, first order there since 1 - Psi ~ x_f/3 + x_b/6 is read
 //     from the first cell).
 //   Build: 0.03 s at 512, 0.13 s at 1024, 0.55 s at 2048 (busy 2-core machine); shared.
@@ -133,10 +134,10 @@ double PsiTable::max_error(table::Lookup lookup) const {
   return std::min(1.0, kMargin * kSqrtHalfPi * c * std::sqrt(h));
 }
 
-PsiTable::Value PsiTable::lookup(double tau_front_D, double tau_back_D,
+PsiTable::Value PsiTable::lookup(double tau_exit_D, double tau_far_D,
                                  table::Lookup lookup) const {
-  const table::GridCoord f = table::locate(psi_gamma(tau_front_D) * scale_, size_, lookup);
-  const table::GridCoord b = table::locate(psi_gamma(tau_back_D) * scale_, size_, lookup);
+  const table::GridCoord f = table::locate(psi_gamma(tau_exit_D) * scale_, size_, lookup);
+  const table::GridCoord b = table::locate(psi_gamma(tau_far_D) * scale_, size_, lookup);
   return {table::bilerp(psi_.data(), size_, f, b),
           table::bilerp(one_minus_psi_.data(), size_, f, b)};
 }
@@ -158,30 +159,30 @@ RayResult PsiTableIntegrator::integrate(const Ray& ray, Diagnostics* diag) const
     const std::vector<Piece>& pieces = splitter_.pieces(seg);
     for (const Piece& piece : pieces) {
       for (int c = 0; c < kChannels; ++c) {
-        const double x_front = piece.rho_exit[c] * piece.length;
-        const double x_back = piece.rho_far[c] * piece.length;
-        const double T = 0.5 * (x_front + x_back);
+        const double x_exit = piece.rho_exit[c] * piece.length;
+        const double x_far = piece.rho_far[c] * piece.length;
+        const double T = 0.5 * (x_exit + x_far);
         if (!(T > 0.0)) {  // transparent: nothing absorbed or emitted
           ++transparent;
           continue;
         }
-        const PsiTable::Value v = table_->lookup(x_front, x_back, lookup_);
+        const PsiTable::Value v = table_->lookup(x_exit, x_far, lookup_);
         ++lookups;
         const double zeta = std::exp(-T);
-        double w_front, w_back;
+        double w_exit, w_far;
         if (T <= kThinDepth) {
           const double alpha = -std::expm1(-T);
-          w_front = std::clamp(v.one_minus_psi, 0.0, alpha);
-          if (w_front != v.one_minus_psi) ++clamped;
-          w_back = alpha - w_front;
+          w_exit = std::clamp(v.one_minus_psi, 0.0, alpha);
+          if (w_exit != v.one_minus_psi) ++clamped;
+          w_far = alpha - w_exit;
         } else {
           const double psi = std::clamp(v.psi, zeta, 1.0);
           if (psi != v.psi) ++clamped;
-          w_front = 1.0 - psi;
-          w_back = psi - zeta;
+          w_exit = 1.0 - psi;
+          w_far = psi - zeta;
         }
-        r.intensity[c] = r.intensity[c] * zeta + piece.kappa_exit[c] * w_front +
-                         piece.kappa_far[c] * w_back;
+        r.intensity[c] = r.intensity[c] * zeta + piece.kappa_exit[c] * w_exit +
+                         piece.kappa_far[c] * w_far;
         r.transmittance[c] *= zeta;
         if (diag)
           bound[c] = bound[c] * zeta +

@@ -12,8 +12,8 @@
 
 namespace rayint {
 
-// Psi and 1 - Psi on a size x size grid of (gamma_front, gamma_back); row = front (exit, eye
-// side), column = back (far side). Depends only on (size, lookup), so it is shared.
+// Psi and 1 - Psi on a size x size grid of (gamma_exit, gamma_far); row = exit end (eye side),
+// column = far end (model/ray.hpp). Depends only on (size, lookup), so it is shared.
 class PsiTable {
  public:
   PsiTable(int size, table::Lookup lookup);
@@ -26,7 +26,7 @@ class PsiTable {
   double bytes() const { return 2.0 * sizeof(double) * size_ * size_; }
 
   // Bound on |interpolated Psi - Psi| over the whole square for `lookup` (see psi_table.cpp):
-  // the sup sits at gamma_back -> 1, where Psi ~ sqrt(pi (1 - gamma_back)/2), and scales
+  // the sup sits at gamma_far -> 1, where Psi ~ sqrt(pi (1 - gamma_far)/2), and scales
   // like size^{-1/2} for every lookup.
   double max_error(table::Lookup lookup) const;
 
@@ -34,7 +34,7 @@ class PsiTable {
     double psi, one_minus_psi;
   };
   // Interpolated (per `lookup`) at optical depths tau_front D, tau_back D >= 0.
-  Value lookup(double tau_front_D, double tau_back_D, table::Lookup lookup) const;
+  Value lookup(double tau_exit_D, double tau_far_D, table::Lookup lookup) const;
 
  private:
   int size_;

@@ -91,7 +91,7 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
       const Segment& seg = ray.segments[far_to_near ? idx : m - 1 - idx];
       if (!(seg.length > 0.0)) continue;
       const double h = seg.length / n;
-      const double ds = seg.scalar_near - seg.scalar_far;
+      const double ds = seg.scalar_exit - seg.scalar_far;
       for (int j = 0; j < n; ++j) {
         const int k = far_to_near ? j : n - 1 - j;
         visit(seg.scalar_far + ((k + 0.5) / n) * ds, h);
@@ -99,13 +99,13 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
     }
     return;
   }
-  // dt mode. near_offset[i] = distance from the eye to the near end of segment i, accumulated
+  // dt mode. exit_offset[i] = distance from the eye to the exit end of segment i, accumulated
   // once so that both directions see identical sample positions.
-  thread_local std::vector<double> near_offset;
-  near_offset.resize(m);
+  thread_local std::vector<double> exit_offset;
+  exit_offset.resize(m);
   double total = 0.0;
   for (std::size_t i = m; i-- > 0;) {
-    near_offset[i] = total;
+    exit_offset[i] = total;
     total += std::max(0.0, ray.segments[i].length);
   }
   if (!(total > 0.0)) return;
@@ -115,9 +115,9 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
                              std::to_string(steps) + " samples on this ray, over the budget of " +
                              std::to_string(kRiemannSampleBudget));
   const long count = static_cast<long>(steps);
-  // Segment i holds distances [near_offset[i], near_offset[i] + length_i) from the eye.
+  // Segment i holds distances [exit_offset[i], exit_offset[i] + length_i) from the eye.
   auto far_end = [&](std::size_t j) {
-    return near_offset[j] + std::max(0.0, ray.segments[j].length);
+    return exit_offset[j] + std::max(0.0, ray.segments[j].length);
   };
   std::size_t i = far_to_near ? 0 : m - 1;
   for (long step = 0; step < count; ++step) {
@@ -127,13 +127,13 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
     if (!(hi > lo)) continue;
     const double mid = 0.5 * (lo + hi);
     if (far_to_near) {
-      while (i + 1 < m && mid < near_offset[i]) ++i;
+      while (i + 1 < m && mid < exit_offset[i]) ++i;
     } else {
       while (i > 0 && mid >= far_end(i)) --i;
     }
     const Segment& seg = ray.segments[i];
-    const double u = seg.length > 0.0 ? (mid - near_offset[i]) / seg.length : 0.0;  // from near end
-    visit(seg.scalar_near + u * (seg.scalar_far - seg.scalar_near), hi - lo);
+    const double u = seg.length > 0.0 ? (mid - exit_offset[i]) / seg.length : 0.0;  // from exit end
+    visit(seg.scalar_exit + u * (seg.scalar_far - seg.scalar_exit), hi - lo);
   }
 }
 

@@ -67,7 +67,7 @@ RayResult Rk4Integrator::integrate(const Ray& ray, Diagnostics* diag) const {
     if (!(seg.length > 0.0)) continue;
     const double h = seg.length / n_;
     const SegmentSystem system{&tf_, seg.scalar_far,
-                               (seg.scalar_near - seg.scalar_far) / seg.length};
+                               (seg.scalar_exit - seg.scalar_far) / seg.length};
     for (int j = 0; j < n_; ++j) stepper.do_step(system, x, j * h, h);
     steps += n_;
   }

@@ -24,7 +24,7 @@ Piece make_piece(const TransferFunctions& tf, double length, double s_far, doubl
 void append_pieces(const TransferFunctions& tf, const Segment& seg,
                    const std::vector<double>& breakpoints, std::vector<Piece>& out) {
   if (!(seg.length > 0.0)) return;
-  const double s0 = seg.scalar_far, s1 = seg.scalar_near;
+  const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
   if (s0 == s1) {  // w = 0: the scalar, and so every transfer function, is constant
     out.push_back(make_piece(tf, seg.length, s0, s1));
     return;

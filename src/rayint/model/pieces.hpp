@@ -7,7 +7,7 @@
 
 namespace rayint {
 
-// One channel of one piece. "far" is where light enters the piece, "exit" is the eye side.
+// One channel of one piece; its two ends are "far" and "exit" as defined in model/ray.hpp.
 struct ChannelPiece {
   double length = 0.0;
   double rho_far = 0.0;
@@ -29,7 +29,7 @@ struct Piece {
 
 // Appends the pieces of `segment` (far -> near) to `out`. A segment whose scalar is constant
 // (w = 0) is one piece. Interior piece ends sit exactly on breakpoints, where the transfer
-// functions take their stored values; piece lengths are L * (s_{k+1} - s_k) / (s_near - s_far),
+// functions take their stored values; piece lengths are L * (s_{k+1} - s_k) / (s_exit - s_far),
 // so pieces between breakpoints 1e-12 apart keep full relative accuracy. Zero-length pieces
 // are dropped (they transmit everything and emit nothing).
 void append_pieces(const TransferFunctions& tf, const Segment& segment,

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
+
 namespace rayint {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInv4Pi = 1.0 / (4.0 * kPi);
 
 // Lambert-sphere CDF in theta and its derivative (the density in theta).

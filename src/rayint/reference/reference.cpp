@@ -197,19 +197,19 @@ QuadratureSum gauss_kronrod_sum(const Coefficients& co, const Real& s_cut, int n
 
   // Node factors: F = exp(-a h^2 y^2) (the same in every subinterval), P = exp(-+ rho(c) h y)
   // for the first subinterval, and G = exp(-+ 4 a h^2 y) that moves P to the next one.
-  std::array<Real, M> F, P_far, P_near, G_far, G_near;
+  std::array<Real, M> F, P_far, P_exit, G_far, G_exit;
   double err = 0.0, e = 0.0;
   for (std::size_t j = 1; j < M; ++j) {
     const Real& y = t.x[j];
     F[j] = varying_rho ? exp_series(-(ah2 * y * y), &e) : Real(1);
     err = std::max(err, varying_rho ? e : 0.0);
-    P_near[j] = exp_series(rho_first * h * y, &e);  // node c - h y, nearer the exit
+    P_exit[j] = exp_series(rho_first * h * y, &e);  // node c - h y, nearer the exit
     err = std::max(err, e + eps());
-    P_far[j] = 1 / P_near[j];  // node c + h y
+    P_far[j] = 1 / P_exit[j];  // node c + h y
     if (recur) {
-      G_near[j] = exp_series(4 * ah2 * y, &e);
+      G_exit[j] = exp_series(4 * ah2 * y, &e);
       err = std::max(err, e + eps());
-      G_far[j] = 1 / G_near[j];
+      G_far[j] = 1 / G_exit[j];
     }
   }
   out.exp_relative = err;
@@ -227,15 +227,15 @@ QuadratureSum gauss_kronrod_sum(const Coefficients& co, const Real& s_cut, int n
       const Real& y = t.x[j];
       const Real ry = rho_d * y, ky = kappa_d * y;
       const Real CF = C * F[j];
-      const Real e_far = CF * P_far[j], e_near = CF * P_near[j];
+      const Real e_far = CF * P_far[j], e_exit = CF * P_exit[j];
       const Real pair =
-          (kappa_c + ky) * (rho_c + ry) * e_far + (kappa_c - ky) * (rho_c - ry) * e_near;
+          (kappa_c + ky) * (rho_c + ry) * e_far + (kappa_c - ky) * (rho_c - ry) * e_exit;
       K += t.kronrod[j] * pair;
-      E += t.kronrod[j] * (e_far + e_near);
+      E += t.kronrod[j] * (e_far + e_exit);
       if (t.gauss[j] != 0) G += t.gauss[j] * pair;
       if (recur) {
         P_far[j] *= G_far[j];
-        P_near[j] *= G_near[j];
+        P_exit[j] *= G_exit[j];
       }
     }
     out.kronrod += h * K;
@@ -575,31 +575,31 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
   std::vector<double> ends;
   for (const Segment& seg : ray.segments) {
     if (!(std::isfinite(seg.length) && seg.length >= 0 && std::isfinite(seg.scalar_far) &&
-          std::isfinite(seg.scalar_near)))
+          std::isfinite(seg.scalar_exit)))
       throw std::invalid_argument(
           "reference: segment length must be finite and >= 0, scalars finite");
     if (seg.length == 0) continue;  // transmits everything, emits nothing
-    const double s_far = seg.scalar_far, s_near = seg.scalar_near;
-    // Piece ends in the direction of travel: s_far, the breakpoints strictly between, s_near.
+    const double s_far = seg.scalar_far, s_exit = seg.scalar_exit;
+    // Piece ends in the direction of travel: s_far, the breakpoints strictly between, s_exit.
     ends.assign(1, s_far);
-    if (s_far != s_near) {
-      const double lo = std::min(s_far, s_near), hi = std::max(s_far, s_near);
+    if (s_far != s_exit) {
+      const double lo = std::min(s_far, s_exit), hi = std::max(s_far, s_exit);
       const std::size_t first = ends.size();
       for (const double b : breakpoints)
         if (lo < b && b < hi) ends.push_back(b);
-      if (s_far > s_near)
+      if (s_far > s_exit)
         std::reverse(ends.begin() + static_cast<std::ptrdiff_t>(first), ends.end());
     }
-    ends.push_back(s_near);
+    ends.push_back(s_exit);
     const Real length = seg.length;
-    const Real span = Real(s_near) - Real(s_far);
+    const Real span = Real(s_exit) - Real(s_far);
 
     for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
       const double e_far = ends[k], e_exit = ends[k + 1];
       // Scalar varies linearly along the segment, so a piece's length is L times its share of
       // the scalar span (the whole segment when the scalar is constant).
       const Real piece_length =
-          s_far == s_near ? length : length * (Real(e_exit) - Real(e_far)) / span;
+          s_far == s_exit ? length : length * (Real(e_exit) - Real(e_far)) / span;
       for (int c = 0; c < kChannels; ++c) {
         const reference_detail::PieceData data{
             piece_length, interpolate(tf.density[c], e_far), interpolate(tf.density[c], e_exit),

@@ -23,7 +23,7 @@ double seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 // Pieces of a segment: one more than the breakpoints strictly inside its scalar range.
 long count_pieces(const std::vector<double>& bps, const Segment& s) {
   if (!(s.length > 0.0)) return 0;
-  const double lo = std::min(s.scalar_far, s.scalar_near), hi = std::max(s.scalar_far, s.scalar_near);
+  const double lo = std::min(s.scalar_far, s.scalar_exit), hi = std::max(s.scalar_far, s.scalar_exit);
   const auto a = std::upper_bound(bps.begin(), bps.end(), lo);
   const auto b = std::lower_bound(bps.begin(), bps.end(), hi);
   return 1 + (b > a ? static_cast<long>(b - a) : 0L);

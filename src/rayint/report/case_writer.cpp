@@ -28,7 +28,7 @@ json channels(const std::array<PiecewiseLinear, kChannels>& f) {
 }
 
 json segment_json(const Segment& s) {
-  return json{{"length", s.length}, {"scalar", json::array({s.scalar_far, s.scalar_near})}};
+  return json{{"length", s.length}, {"scalar", json::array({s.scalar_far, s.scalar_exit})}};
 }
 
 // `"key": <channels>` at `indent`: the shared form on one line, the per-channel form one

@@ -5,11 +5,11 @@
 #include <boost/math/special_functions/ellint_2.hpp>
 #include <cmath>
 
+#include "rayint/core/math.hpp"
+
 namespace rayint {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 // Complete elliptic integral of the second kind E(k) by the arithmetic-geometric mean
 // (Abramowitz & Stegun 17.6): E = K (1 - sum_n 2^(n-1) c_n^2), K = pi / (2 a_N), quadratic
 // convergence (5-6 steps to 1e-16 for k^2 <= 0.999). Where K grows and the bracket cancels

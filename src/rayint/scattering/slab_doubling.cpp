@@ -7,13 +7,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
 #include "rayint/scattering/azimuthal_phase.hpp"
-#include "rayint/scattering/gauss_legendre.hpp"
+#include "rayint/special/gauss_legendre.hpp"
 
 namespace rayint {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
+
 namespace rayint {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 // E_n(x), x >= 0, n >= 2 (E_n(0) = 1/(n-1)); underflows to 0 beyond x ~ 700.
 double En(int n, double x) {
   if (x <= 0) return 1.0 / (n - 1);
@@ -47,7 +47,7 @@ HatWeights exp_hat_weights(double ua, double h, double mu) {
     near = x / 2 - x * x / 6 + x * x * x / 24;
     far = x / 2 - x * x / 3 + x * x * x / 8;
   } else {
-    g = -std::expm1(-x) / x;
+    g = step_weight(x);
     near = 1 - g;
     far = g - std::exp(-x);
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
 #include "rayint/scattering/azimuthal_phase.hpp"
 #include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/slab_single_scattering.hpp"
@@ -13,7 +14,6 @@
 namespace rayint {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRouletteWeight = 0.1;
 }  // namespace
 

@@ -6,14 +6,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
 #include "rayint/scattering/azimuthal_phase.hpp"
-#include "rayint/scattering/gauss_legendre.hpp"
+#include "rayint/special/gauss_legendre.hpp"
 
 namespace rayint {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 namespace {
 
@@ -25,8 +22,7 @@ double beam_reflected(const SlabProblem& p, double mu0, double mu) {
 double beam_transmitted(const SlabProblem& p, double mu0, double mu) {
   const double d = std::fabs(1 / mu - 1 / mu0);
   const double m = std::max(mu, mu0);
-  const double h = d == 0 ? p.tau * std::exp(-p.tau / mu)
-                          : std::exp(-p.tau / m) * -std::expm1(-d * p.tau) / d;
+  const double h = std::exp(-p.tau / m) * attenuated_length(d, p.tau);
   return p.albedo * kPi * azimuthal_phase(p.phase, mu, mu0) * h / (mu * mu0);
 }
 

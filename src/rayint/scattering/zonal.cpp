@@ -7,18 +7,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "rayint/core/math.hpp"
 #include "rayint/core/parallel.hpp"
 #include "rayint/scattering/estimate.hpp"
 
 namespace rayint {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
-double one_minus_exp_over(double sigma, double s) {
-  const double x = sigma * s;
-  return x < 1e-8 ? s * (1 - 0.5 * x) : -std::expm1(-x) / sigma;
-}
 
 // Walks the ray x + t d (x inside the box or on its boundary, d unit) through the zones with
 // exact chords (Amanatides & Woo 1987), calling visit(cell, chord) until it leaves the box.
@@ -190,7 +185,7 @@ double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const V
     const double sigma_cells = g.interpolate(sol.sigma_t, x);
     const double multiple = sigma_cells > 0 ? g.interpolate(sol.multiple, x) * sigma / sigma_cells : 0.0;
     const double J = v.albedo * sigma * E * p_sun + multiple;
-    const double a1 = one_minus_exp_over(sigma, dt);
+    const double a1 = attenuated_length(sigma, dt);
     L += T * J * a1;
     T *= 1 - sigma * a1;
   }

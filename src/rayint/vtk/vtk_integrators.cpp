@@ -10,7 +10,7 @@
 //   C_front (1 - Psi) + C_back (Psi - zeta), Moreland & Angel), i.e. our chromaticity kappa.
 //   Integrate composites front to back (near first) into premultiplied RGBA starting at 0, so
 //   intensity = rgb + (1 - a) * background and transmittance = 1 - a. Our segments run far ->
-//   near, so they are handed to VTK reversed, with near = scalar_near, far = scalar_far.
+//   near, so they are handed to VTK reversed, with front = scalar_exit, back = scalar_far.
 //   VTK builds its tables over the scalar range of the array given to Initialize; we pass the
 //   transfer functions' breakpoint range and split every segment at its ends, then clamp: both
 //   rayint and VTK hold the functions constant outside that range, so the split is exact.
@@ -127,7 +127,7 @@ class VtkIntegrator final : public RayIntegrator {
     far_s->Reset();
     // near -> far: our segments reversed, each split at the range ends (see the file comment)
     for (auto it = ray.segments.rbegin(); it != ray.segments.rend(); ++it) {
-      const double sn = it->scalar_near, sf = it->scalar_far, length = it->length;
+      const double sn = it->scalar_exit, sf = it->scalar_far, length = it->length;
       std::vector<double> cuts{0.0, 1.0};  // fractions from near to far
       for (const double edge : {s_min_, s_max_})
         if ((sn - edge) * (sf - edge) < 0.0) cuts.push_back((edge - sn) / (sf - sn));

@@ -1,14 +1,15 @@
 // Gauss-Legendre nodes and weights on [0, 1]; see gauss_legendre.hpp.
-#include "rayint/scattering/gauss_legendre.hpp"
+#include "rayint/special/gauss_legendre.hpp"
 
 #include <cmath>
 #include <stdexcept>
+
+#include "rayint/core/math.hpp"
 
 namespace rayint {
 
 GaussLegendre gauss_legendre_01(int n) {
   if (n < 1) throw std::invalid_argument("gauss_legendre_01: n must be >= 1");
-  constexpr double kPi = 3.14159265358979323846;
   GaussLegendre q;
   q.nodes.resize(static_cast<std::size_t>(n));
   q.weights.resize(static_cast<std::size_t>(n));
