@@ -148,11 +148,13 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
 
   // work[worker][e] for the term effects, work[worker][ne] for shadows.
   std::vector<std::vector<EffectWork>> work(threads, std::vector<EffectWork>(ne + 1));
-  // term_sum[worker][e]: each term summed over the rays, and [ne] the whole pixel (for means).
-  std::vector<std::vector<Rgb>> term_sum(threads, std::vector<Rgb>(ne + 1, Rgb{}));
+  // row_sum[row][e]: each term summed over a row, and [ne] the whole pixel (for means). Summed
+  // per row and then over the rows in order, so the means do not depend on the thread count or
+  // on which worker took which row.
   std::mutex progress_mutex;
   long long rows_done = 0;
   const long long rows = height;
+  std::vector<std::vector<Rgb>> row_sum(static_cast<std::size_t>(rows), std::vector<Rgb>(ne + 1, Rgb{}));
   const Clock::time_point t_render = Clock::now();
   const double cpu_render = process_cpu_seconds();
   parallel_for(rows, threads, [&](long long row, unsigned w) {
@@ -168,12 +170,12 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
         work[w][e].seconds += seconds_since(t0);
         for (int c = 0; c < kChannels; ++c) {
           pixel[c] += term[c];
-          term_sum[w][e][c] += term[c];
+          row_sum[static_cast<std::size_t>(row)][e][c] += term[c];
         }
         if (keep_terms) out.ray_terms[static_cast<std::size_t>(index)][e] = term;
       }
       out.image.at(x, static_cast<int>(row)) = pixel;
-      for (int c = 0; c < kChannels; ++c) term_sum[w][ne][c] += pixel[c];
+      for (int c = 0; c < kChannels; ++c) row_sum[static_cast<std::size_t>(row)][ne][c] += pixel[c];
     }
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
@@ -190,15 +192,14 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     r.role = role_name(infos_[e]->role);
     r.work.setup_seconds = effect_setup_[e].first;
     r.work.setup_cpu_seconds = effect_setup_[e].second;
-    for (unsigned w = 0; w < threads; ++w) {
-      r.work.add(work[w][e]);
-      for (int c = 0; c < kChannels; ++c) r.mean_term[c] += term_sum[w][e][c];
-    }
+    for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][e]);
+    for (const std::vector<Rgb>& sums : row_sum)
+      for (int c = 0; c < kChannels; ++c) r.mean_term[c] += sums[e][c];
     for (int c = 0; c < kChannels; ++c) r.mean_term[c] /= static_cast<double>(std::max(count, 1LL));
     out.effects.push_back(r);
   }
-  for (unsigned w = 0; w < threads; ++w)
-    for (int c = 0; c < kChannels; ++c) out.image_mean[c] += term_sum[w][ne][c];
+  for (const std::vector<Rgb>& sums : row_sum)
+    for (int c = 0; c < kChannels; ++c) out.image_mean[c] += sums[ne][c];
   for (int c = 0; c < kChannels; ++c) out.image_mean[c] /= static_cast<double>(std::max(count, 1LL));
   if (scene_.has("shadows")) {
     EffectReport r;
@@ -224,10 +225,12 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     } else {
       for (long long i = 0; i < count; ++i) subset.push_back(i);
     }
-    std::vector<std::vector<ErrorAccumulator>> acc(threads, std::vector<ErrorAccumulator>(ne + 1));
+    // One accumulator per sampled ray, merged in order: independent of the thread count.
+    std::vector<std::vector<ErrorAccumulator>> acc(subset.size(), std::vector<ErrorAccumulator>(ne + 1));
     const Clock::time_point t_err = Clock::now();
-    parallel_for(static_cast<long long>(subset.size()), threads, [&](long long s, unsigned w) {
+    parallel_for(static_cast<long long>(subset.size()), threads, [&](long long s) {
       const PixelRay pr = ray(subset[static_cast<std::size_t>(s)]);
+      std::vector<ErrorAccumulator>& ray_acc = acc[static_cast<std::size_t>(s)];
       EffectWork scratch, shadow_scratch;
       Rgb total_approx = absorption ? Rgb{} : pr.background;
       Rgb total_ref = total_approx, total_ref_err{};
@@ -235,21 +238,21 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
         const Rgb approx = effects_[e]->term(pr, scratch, shadow_scratch);
         const Clock::time_point t0 = Clock::now();
         const ReferenceValue ref = effects_[e]->reference(pr);
-        acc[w][e].seconds += seconds_since(t0);
-        acc[w][e].converged = acc[w][e].converged && ref.converged;
-        acc[w][e].add(approx, ref.value, ref.error_estimate);
+        ray_acc[e].seconds += seconds_since(t0);
+        ray_acc[e].converged = ray_acc[e].converged && ref.converged;
+        ray_acc[e].add(approx, ref.value, ref.error_estimate);
         for (int c = 0; c < kChannels; ++c) {
           total_approx[c] += approx[c];
           total_ref[c] += ref.value[c];
           total_ref_err[c] += ref.error_estimate[c];
         }
       }
-      acc[w][ne].add(total_approx, total_ref, total_ref_err);
+      ray_acc[ne].add(total_approx, total_ref, total_ref_err);
     });
     out.error_seconds = seconds_since(t_err);
     for (std::size_t e = 0; e <= ne; ++e) {
       ErrorAccumulator a;
-      for (unsigned w = 0; w < threads; ++w) a.merge(acc[w][e]);
+      for (const std::vector<ErrorAccumulator>& ray_acc : acc) a.merge(ray_acc[e]);
       if (e < ne) {
         out.effects[e].has_error = true;
         out.effects[e].error = a.result();
