@@ -1,9 +1,12 @@
 #pragma once
 // Shared by the tests that run the real `rayint` binary (RAYINT_CLI_PATH): a scratch folder
-// removed on destruction, a file reader, and one CLI run with exit status, stdout and stderr.
+// removed on destruction, a file reader, one CLI run with exit status, stdout and stderr, and the
+// check of a command line refused as a usage error.
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +24,11 @@ inline std::string slurp(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// The number of lines of `s` (its newline characters).
+inline long line_count(const std::string& s) {
+  return static_cast<long>(std::count(s.begin(), s.end(), '\n'));
 }
 
 // A scratch directory under the system temp dir, removed on destruction.
@@ -73,6 +81,15 @@ inline CliRun run_cli(const fs::path& dir, const std::string& args) {
   fs::remove(out);
   fs::remove(err);
   return r;
+}
+
+// A command line refused as a usage error: exit 2, nothing on stdout, one stderr line starting
+// "rayint: error: ".
+inline void check_usage_error(const CliRun& r) {
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(line_count(r.err) == 1);
+  CHECK(r.err.rfind("rayint: error: ", 0) == 0);
 }
 
 }  // namespace rayint::test

@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "rayint/input/case_reader.hpp"
+#include "input_text.hpp"
 
 namespace {
 
@@ -36,28 +38,13 @@ const std::string kValid = R"({
 
 // kValid with the first occurrence of `from` replaced by `to` (which must exist).
 std::string with(std::string_view from, std::string_view to, std::string text = kValid) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  return text;
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    parse_case_text(text, kSource);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return rayint::test::replace_first(std::move(text), from, to);
 }
 
 // The message is `<file>: <path>: <what>` on one line.
 void check_error(const std::string& text, const std::string& path, const std::string& what) {
-  const std::string msg = error_of(text);
-  INFO("message: " << msg);
-  CHECK(msg.rfind(std::string(kSource) + ": " + path + ": ", 0) == 0);
-  CHECK(msg.find(what) != std::string::npos);
-  CHECK(msg.find('\n') == std::string::npos);
+  rayint::test::check_one_line_error(
+      rayint::test::input_error_of([&] { parse_case_text(text, kSource); }), kSource, path, what);
 }
 
 }  // namespace

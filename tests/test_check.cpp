@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "rayint/studies/check.hpp"
 #include "rayint/integrators/exact.hpp"
@@ -22,6 +23,7 @@
 #include "rayint/report/check_json.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "cli_harness.hpp"
+#include "input_text.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
@@ -33,17 +35,10 @@ namespace {
 constexpr const char* kCandidateSource = "theirs.json";
 
 // The paper's Fig. 2 interval with a per-channel colour, two rays.
-const std::string kCase = R"({
-  "name": "fig2",
-  "transfer_function": {
-    "density": [[0.0, 5.0], [1.0, 2.0]],
-    "color": {"r": [[0.0, 1.7]], "g": [[0.0, 1.0]], "b": [[0.0, 0.2]]}
-  },
-  "rays": [
+const std::string kCase = rayint::test::fig2_case_text(R"([
     {"segments": [{"length": 1.0, "scalar": [0.0, 1.0]}]},
     {"background": [0.5, 0.5, 0.5], "segments": [{"length": 1.0, "scalar": [1.0, 0.0]}]}
-  ]
-})";
+  ])");
 
 const std::string kCandidate = R"({
   "case": "fig2",
@@ -54,28 +49,15 @@ const std::string kCandidate = R"({
 Case fig2() { return parse_case_text(kCase, "fig2.json"); }
 
 std::string with(std::string_view from, std::string_view to, std::string text = kCandidate) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  return text;
-}
-
-std::string candidate_error(const std::string& text) {
-  try {
-    require_candidate_matches(parse_candidate_text(text, kCandidateSource), fig2());
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return rayint::test::replace_first(std::move(text), from, to);
 }
 
 // `<candidate file>: <path>: <what>` on one line.
 void check_error(const std::string& text, const std::string& path, const std::string& what) {
-  const std::string msg = candidate_error(text);
-  INFO("message: " << msg);
-  CHECK(msg.rfind(std::string(kCandidateSource) + ": " + path + ": ", 0) == 0);
-  CHECK(msg.find(what) != std::string::npos);
-  CHECK(msg.find('\n') == std::string::npos);
+  rayint::test::check_one_line_error(
+      rayint::test::input_error_of(
+          [&] { require_candidate_matches(parse_candidate_text(text, kCandidateSource), fig2()); }),
+      kCandidateSource, path, what);
 }
 
 // The exact intensities of every ray of `c`, as a candidate.
@@ -86,6 +68,20 @@ Candidate exact_candidate(const Case& c) {
   const ExactIntegrator exact(c.transfer);
   for (const Ray& ray : c.rays) cand.intensity.push_back(exact.integrate(ray, nullptr).intensity);
   return cand;
+}
+
+// A ray whose exact intensity is 0 (zero density, black background), checked without the
+// reference against a candidate that gives `got`.
+CheckResult check_dark(const Rgb& got, CheckOptions options = {}) {
+  static const Case dark = parse_case_text(
+      R"({"name": "dark", "transfer_function": {"density": [[0, 0]], "color": [[0, 1]]},
+          "rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]}]})",
+      "dark.json");
+  Candidate d;
+  d.case_name = "dark";
+  d.intensity = {got};
+  options.with_reference = false;
+  return check_candidate(dark, d, options);
 }
 
 using rayint::test::CliRun;
@@ -215,23 +211,15 @@ TEST_CASE("errors: abs = |got - expected|, rel = abs / |expected|, inf when expe
   CHECK(std::isnan(r.summary.expected_max_rel_uncertainty));
 
   // A ray whose exact intensity is 0 (zero density, black background).
-  const Case dark = parse_case_text(
-      R"({"name": "dark", "transfer_function": {"density": [[0, 0]], "color": [[0, 1]]},
-          "rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]}]})",
-      "dark.json");
-  Candidate d;
-  d.case_name = "dark";
-  d.intensity = {Rgb{0.0, 1e-12, 0.0}};
-  CheckOptions tight;
-  tight.with_reference = false;
-  const CheckResult z = check_candidate(dark, d, tight);
+  const CheckResult z = check_dark(Rgb{0.0, 1e-12, 0.0});
   CHECK(z.rays[0].channel[0].expected == 0.0);
   CHECK(z.rays[0].channel[0].rel_error == 0.0);
   CHECK(z.rays[0].channel[0].pass);
   CHECK(std::isinf(z.rays[0].channel[1].rel_error));
   CHECK_FALSE(z.rays[0].channel[1].pass);
+  CheckOptions tight;
   tight.abs_tol = 1e-12;
-  CHECK(check_candidate(dark, d, tight).pass);
+  CHECK(check_dark(Rgb{0.0, 1e-12, 0.0}, tight).pass);
 }
 
 TEST_CASE("check_candidate refuses a candidate of the wrong size and bad tolerances", "[check]") {
@@ -380,16 +368,7 @@ TEST_CASE("the diff: documented keys in order, per ray and channel, null for inf
   CHECK(b.contains("expected_error"));
 
   // Without the reference, no reference fields; an infinite rel_error is written as null.
-  const Case dark = parse_case_text(
-      R"({"name": "dark", "transfer_function": {"density": [[0, 0]], "color": [[0, 1]]},
-          "rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]}]})",
-      "dark.json");
-  Candidate d;
-  d.case_name = "dark";
-  d.intensity = {Rgb{0.0, 1.0, 0.0}};
-  CheckOptions no_ref;
-  no_ref.with_reference = false;
-  const nlohmann::ordered_json z = check_report_json(check_candidate(dark, d, no_ref));
+  const nlohmann::ordered_json z = check_report_json(check_dark(Rgb{0.0, 1.0, 0.0}));
   CHECK(z["rays"][0]["channels"][1]["rel_error"].is_null());
   CHECK(z["rays"][0]["channels"][0]["rel_error"] == 0.0);
   CHECK_FALSE(z["rays"][0]["channels"][0].contains("reference"));

@@ -22,6 +22,7 @@
 #include <string_view>
 
 #include "cli_harness.hpp"
+#include "input_text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,18 +30,11 @@ namespace {
 
 // A valid case (Williams & Max Fig. 2, first interval) and a candidate that matches it; each test
 // breaks one thing in one of them.
-const std::string kCase = R"({
-  "name": "fig2",
-  "transfer_function": {
-    "density": [[0.0, 5.0], [1.0, 2.0]],
-    "color": {"r": [[0.0, 1.7]], "g": [[0.0, 1.0]], "b": [[0.0, 0.2]]}
-  },
-  "rays": [
+const std::string kCase = rayint::test::fig2_case_text(R"([
     {"background": [0.0, 0.0, 0.0],
      "segments": [{"length": 1.0, "scalar": [0.1, 0.9]}, {"length": 0.25, "scalar": [0.9, 0.4]}]},
     {"segments": [{"length": 2.0, "scalar": [1.0, 0.0]}]}
-  ]
-})";
+  ])");
 
 const std::string kCandidate = R"({
   "case": "fig2",
@@ -48,16 +42,12 @@ const std::string kCandidate = R"({
   "rays": [{"intensity": [1.0, 0.5, 0.1]}, {"intensity": [1.5, 0.9, 0.2]}]
 })";
 
-// `text` with the first occurrence of `from` replaced by `to` (which must exist).
-std::string with(std::string text, std::string_view from, std::string_view to) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  return text;
+// kCase, kCandidate with the first occurrence of `from` replaced by `to` (which must exist).
+std::string case_with(std::string_view from, std::string_view to) {
+  return rayint::test::replace_first(kCase, from, to);
 }
-std::string case_with(std::string_view from, std::string_view to) { return with(kCase, from, to); }
 std::string candidate_with(std::string_view from, std::string_view to) {
-  return with(kCandidate, from, to);
+  return rayint::test::replace_first(kCandidate, from, to);
 }
 
 using rayint::test::CliRun;

@@ -14,13 +14,9 @@
 #include "transfer_builders.hpp"
 
 using namespace rayint;
-using rayint::test::Tolerances;
+using namespace rayint::test;  // Tolerances and the transfer-function builders
 
 namespace {
-
-using rayint::test::constant;
-using rayint::test::line;
-using rayint::test::uniform_tf;
 
 // Passes if relative error <= rel, or absolute error <= Tolerances::exact_abs_underflow where
 // the reference value is itself below the underflow threshold.

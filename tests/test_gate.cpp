@@ -24,14 +24,9 @@
 using namespace rayint;
 namespace fs = std::filesystem;
 
+using namespace rayint::test;  // the CLI harness
+
 namespace {
-
-using rayint::test::CliRun;
-using rayint::test::run_cli;
-using rayint::test::slurp;
-using rayint::test::TempDir;
-
-long lines(const std::string& s) { return static_cast<long>(std::count(s.begin(), s.end(), '\n')); }
 
 // The message parse_gate_config_text throws for `text` (empty if it does not throw).
 std::string config_error(const std::string& text, const std::string& source) {
@@ -208,10 +203,7 @@ TEST_CASE("gate: a bad config or option exits 2 with one line and nothing on std
            {"gate --config typo.json --threads -1", "--threads"}}) {
     INFO(args);
     const CliRun r = run_cli(dir.path, args + " -o out.json");
-    CHECK(r.status == 2);
-    CHECK(r.out.empty());
-    CHECK(lines(r.err) == 1);
-    CHECK(r.err.rfind("rayint: error: ", 0) == 0);
+    check_usage_error(r);
     CHECK(r.err.find(field) != std::string::npos);
     CHECK_FALSE(fs::exists(dir.path / "out.json"));
   }

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,7 @@ using rayint::test::Tolerances;
 namespace {
 
 using rayint::test::constant;
+using rayint::test::constant_tf;
 using rayint::test::line;
 
 std::unique_ptr<RayIntegrator> make(const std::string& spec, const TransferFunctions& tf) {
@@ -95,6 +97,22 @@ double fitted_order(const std::vector<double>& h, const std::vector<double>& e) 
   return (m * sxy - sx * sy) / (m * sxx - sx * sx);
 }
 
+// The smooth case's intensity error against `exact` of spec(n), n = n_first, 2 n_first, ..,
+// n_last; the order between consecutive n must lie within `band` of `expected`.
+std::vector<double> check_doubling_orders(const std::function<std::string(int)>& spec, int n_first,
+                                          int n_last, double expected, double band) {
+  const SmoothCase sc;
+  std::vector<double> errors;
+  for (int n = n_first; n <= n_last; n *= 2) {
+    const double e = max_rel(run(spec(n), sc.tf, sc.ray), smooth_exact());
+    const double e_prev = errors.empty() ? 0.0 : errors.back();
+    INFO(spec(n) << " error " << e << " previous " << e_prev);
+    if (e_prev > 0.0) CHECK(std::fabs(order(e_prev, e) - expected) <= band);
+    errors.push_back(e);
+  }
+  return errors;
+}
+
 }  // namespace
 
 TEST_CASE("smooth case: the exact closed form agrees with the 50-digit reference", "[methods]") {
@@ -110,36 +128,20 @@ TEST_CASE("smooth case: the exact closed form agrees with the 50-digit reference
 TEST_CASE("riemann with exact per-sample opacity is second order", "[methods][convergence]") {
   // Midpoint sampling with alpha = 1 - exp(-rho h) and colour kappa alpha: each sub-step is Eq. 6
   // with rho, kappa frozen at the midpoint, whose local error is O(h^3) -> second order.
-  const SmoothCase sc;
   for (const std::string options : {"", ":order=ftb", ":correction=exp:ref_dt=0.01"}) {
-    double e_prev = 0.0;
-    for (int n = 8; n <= 64; n *= 2) {
-      const std::string spec = "riemann:n=" + std::to_string(n) + options;
-      const double e = max_rel(run(spec, sc.tf, sc.ray), smooth_exact());
-      INFO(spec << " error " << e << " previous " << e_prev);
-      if (e_prev > 0.0) {
-        CHECK(std::fabs(order(e_prev, e) - 2.0) <= MethodTolerances::riemann_order_band);
-      }
-      e_prev = e;
-    }
+    const std::vector<double> errors = check_doubling_orders(
+        [&](int n) { return "riemann:n=" + std::to_string(n) + options; }, 8, 64, 2.0,
+        MethodTolerances::riemann_order_band);
     // Cost/error figure quoted in riemann.cpp: n = 64 per segment.
-    CHECK(e_prev <= 1e-5);
+    CHECK(errors.back() <= 1e-5);
   }
 }
 
 TEST_CASE("riemann with linearised opacity alpha = rho h is first order",
           "[methods][convergence]") {
   // alpha = rho h misses rho^2 h^2 / 2 per sample: O(h^2) locally, O(h) globally.
-  const SmoothCase sc;
-  double e_prev = 0.0;
-  for (int n = 8; n <= 64; n *= 2) {
-    const std::string spec = "riemann:correction=linear:n=" + std::to_string(n);
-    const double e = max_rel(run(spec, sc.tf, sc.ray), smooth_exact());
-    INFO(spec << " error " << e << " previous " << e_prev);
-    if (e_prev > 0.0)
-      CHECK(std::fabs(order(e_prev, e) - 1.0) <= MethodTolerances::riemann_order_band);
-    e_prev = e;
-  }
+  check_doubling_orders([](int n) { return "riemann:correction=linear:n=" + std::to_string(n); },
+                        8, 64, 1.0, MethodTolerances::riemann_order_band);
 }
 
 TEST_CASE("riemann with a fixed step dt along the ray is second order", "[methods][convergence]") {
@@ -206,16 +208,10 @@ TEST_CASE("riemann: front-to-back equals back-to-front to rounding", "[methods]"
 }
 
 TEST_CASE("rk4 is fourth order on a smooth ray", "[methods][convergence]") {
-  const SmoothCase sc;
-  double e_prev = 0.0;
-  for (int n = 8; n <= 32; n *= 2) {
-    const std::string spec = "rk4:n=" + std::to_string(n);
-    const double e = max_rel(run(spec, sc.tf, sc.ray), smooth_exact());
-    INFO(spec << " error " << e << " previous " << e_prev);
-    if (e_prev > 0.0) CHECK(std::fabs(order(e_prev, e) - 4.0) <= MethodTolerances::rk4_order_band);
-    if (n == 16) CHECK(e <= 1e-7);  // the figure quoted in rk4.cpp
-    e_prev = e;
-  }
+  const std::vector<double> errors = check_doubling_orders(
+      [](int n) { return "rk4:n=" + std::to_string(n); }, 8, 32, 4.0,
+      MethodTolerances::rk4_order_band);
+  CHECK(errors[1] <= 1e-7);  // n = 16: the figure quoted in rk4.cpp
 }
 
 TEST_CASE("ode: the error falls with rtol and stays below it", "[methods][convergence]") {
@@ -241,12 +237,9 @@ TEST_CASE("constant kappa and rho: every method against Eq. 6 within its own err
           "[methods][limits]") {
   // Per-channel constants, several cells, non-black background. Along the whole ray Eq. 6 holds:
   //   I = kappa (1 - e^{-rho L}) + I0 e^{-rho L}.
-  TransferFunctions tf;
-  tf.density = {constant(0.35), constant(1.4), constant(0.02)};
-  tf.color = {constant(0.9), constant(0.25), constant(3.0)};
-  Ray ray;
-  ray.background = {0.4, 1.2, 0.0};
-  ray.segments = {{0.3, 0.1, 0.7}, {1.1, 0.7, 0.2}, {0.05, 0.2, 0.2}, {0.8, 0.2, 0.9}};
+  const TransferFunctions tf = constant_tf({0.35, 1.4, 0.02}, {0.9, 0.25, 3.0});
+  const Ray ray{{0.4, 1.2, 0.0},
+                {{0.3, 0.1, 0.7}, {1.1, 0.7, 0.2}, {0.05, 0.2, 0.2}, {0.8, 0.2, 0.9}}};
   double L = 0.0;
   for (const auto& s : ray.segments) L += s.length;
   RayResult eq6;
@@ -330,12 +323,8 @@ TEST_CASE("eq7 keeps one opacity per cell: thick cells lose the background", "[m
   // Eq. 7 is Eq. 6 written as an opacity; its transparency 1 - alpha cannot resolve e^{-x} below
   // half an ulp of 1, so for x = 50 it is exactly 0 where eq6 keeps e^{-50} (documented in
   // cell_approximations.cpp).
-  TransferFunctions tf;
-  tf.density = {constant(50.0), constant(50.0), constant(50.0)};
-  tf.color = {constant(0.0), constant(0.0), constant(0.0)};
-  Ray ray;
-  ray.background = {1.0, 1.0, 1.0};
-  ray.segments = {{1.0, 0.0, 1.0}};
+  const TransferFunctions tf = constant_tf({50.0, 50.0, 50.0}, {0.0, 0.0, 0.0});
+  const Ray ray{{1.0, 1.0, 1.0}, {{1.0, 0.0, 1.0}}};
   CHECK(relative_error(run("eq6", tf, ray).intensity[0], std::exp(-50.0)) <=
         Tolerances::analytic_limit_rel);
   CHECK(run("eq7", tf, ray).intensity[0] == 0.0);
@@ -343,12 +332,8 @@ TEST_CASE("eq7 keeps one opacity per cell: thick cells lose the background", "[m
 }
 
 TEST_CASE("rho = 0: every method returns the background", "[methods][limits]") {
-  TransferFunctions tf;
-  tf.density = {constant(0.0), constant(0.0), constant(0.0)};
-  tf.color = {constant(3.0), constant(0.5), constant(1e6)};
-  Ray ray;
-  ray.background = {0.25, 1.5, 1e-200};
-  ray.segments = {{2.0, 0.0, 1.0}, {0.0, 1.0, 0.5}, {0.5, 1.0, 0.2}};
+  const TransferFunctions tf = constant_tf({0.0, 0.0, 0.0}, {3.0, 0.5, 1e6});
+  const Ray ray{{0.25, 1.5, 1e-200}, {{2.0, 0.0, 1.0}, {0.0, 1.0, 0.5}, {0.5, 1.0, 0.2}}};
   for (const std::string spec :
        {"riemann:n=5", "riemann:n=5:order=ftb", "riemann:dt=0.3", "riemann:correction=linear",
         "riemann:correction=none:ref_dt=0.1", "riemann:correction=exp:ref_dt=0.1", "rk4:n=3", "ode",
@@ -443,12 +428,8 @@ TEST_CASE("diagnostics count the work and change nothing", "[methods][diagnostic
 }
 
 TEST_CASE("budgets and non-finite results never crash", "[methods][budget]") {
-  TransferFunctions tf;
-  tf.density = {constant(1e7), constant(1e7), constant(1e7)};
-  tf.color = {constant(0.5), constant(0.5), constant(0.5)};
-  Ray ray;
-  ray.background = {1.0, 1.0, 1.0};
-  ray.segments = {{1.0, 0.0, 1.0}};
+  const TransferFunctions tf = constant_tf({1e7, 1e7, 1e7}, {0.5, 0.5, 0.5});
+  const Ray ray{{1.0, 1.0, 1.0}, {{1.0, 0.0, 1.0}}};
   // ode: optical depth 1e7 needs ~3e6 explicit steps, over the budget -> NaN, and it says so.
   Diagnostics diag;
   const RayResult ode = make("ode", tf)->integrate(ray, &diag);

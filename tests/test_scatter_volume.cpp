@@ -5,6 +5,8 @@
 // 4 SE <= a stated fraction of the expected value.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "rayint/scattering/direction_bins.hpp"
 #include "rayint/scattering/discrete_ordinates.hpp"
@@ -29,6 +31,27 @@ ScatteringVolume box(double sigma, double albedo, PhaseFunction phase) {
   v.light.direction = Vec3(0, 0, -1);
   v.light.irradiance = 2.0;
   return v;
+}
+
+// The cube seen obliquely from above (fov 30, pixels x pixels) and compare_volume_methods on it:
+// Monte Carlo reference at spp samples per pixel (seed 2), discrete ordinates at do_grids x
+// do_bins, zonal at zonal_grids.
+VolumeComparison compare_on_cube(const ScatteringVolume& v, int pixels, int spp,
+                                 std::vector<int> do_grids, std::vector<int> do_bins,
+                                 std::vector<int> zonal_grids) {
+  Camera cam;
+  cam.position = Vec3(0.5, 2.5, 3.5);
+  cam.look_at = Vec3(0.5, 0.5, 0.5);
+  cam.fov_deg = 30;
+  cam.width = pixels;
+  cam.height = pixels;
+  ComparisonOptions o;
+  o.reference.samples_per_pixel = spp;
+  o.reference.seed = 2;
+  o.do_grids = std::move(do_grids);
+  o.do_bins = std::move(do_bins);
+  o.zonal_grids = std::move(zonal_grids);
+  return compare_volume_methods(v, cam, o);
 }
 }  // namespace
 
@@ -104,19 +127,7 @@ TEST_CASE("discrete ordinates and zonal method against Monte Carlo on a homogene
   // bounds and the measured errors they come from are in tests/tolerances.hpp
   // (ScatterTolerances::cube_all_over_single_min, cube_brightness_rel).
   const ScatteringVolume v = box(3.0, 0.95, PhaseFunction::isotropic());
-  Camera cam;
-  cam.position = Vec3(0.5, 2.5, 3.5);
-  cam.look_at = Vec3(0.5, 0.5, 0.5);
-  cam.fov_deg = 30;
-  cam.width = 8;
-  cam.height = 8;
-  ComparisonOptions o;
-  o.reference.samples_per_pixel = 128;
-  o.reference.seed = 2;
-  o.do_grids = {12};
-  o.do_bins = {2};
-  o.zonal_grids = {8};
-  const VolumeComparison c = compare_volume_methods(v, cam, o);
+  const VolumeComparison c = compare_on_cube(v, 8, 128, {12}, {2}, {8});
   REQUIRE(c.runs.size() == 2);
   INFO("MC brightness " << c.brightness_all << " single " << c.brightness_single << " SE "
                         << c.mean_reference_se);
@@ -139,19 +150,7 @@ TEST_CASE("zonal method on a thick homogeneous cube: converges to the Monte Carl
   // -0.253, -0.093, -0.022 at grids 4, 8, 16 (about first order in the zone size). Bounds: the
   // error must fall with each refinement and stay below the measured value rounded up.
   const ScatteringVolume v = box(12.0, 0.95, PhaseFunction::isotropic());
-  Camera cam;
-  cam.position = Vec3(0.5, 2.5, 3.5);
-  cam.look_at = Vec3(0.5, 0.5, 0.5);
-  cam.fov_deg = 30;
-  cam.width = 12;
-  cam.height = 12;
-  ComparisonOptions o;
-  o.reference.samples_per_pixel = 256;
-  o.reference.seed = 2;
-  o.do_grids = {};
-  o.do_bins = {};
-  o.zonal_grids = {4, 8, 16};
-  const VolumeComparison c = compare_volume_methods(v, cam, o);
+  const VolumeComparison c = compare_on_cube(v, 12, 256, {}, {}, {4, 8, 16});
   REQUIRE(c.runs.size() == 3);
   const double* bound = Tolerances::zonal_thick_brightness_rel;
   double previous = 1e300;

@@ -1,6 +1,7 @@
 // `rayint render SCENE.json`: a valid scene writes the PNG and the stats; every class of bad
 // scene input gives exit 2, one stderr line naming the file and the field, and no output file.
 #include <catch2/catch.hpp>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
@@ -35,6 +36,14 @@ void expect_bad(const json& scene, const std::string& field, const std::string& 
   CHECK(dir.entries() == std::set<std::string>{"scene.json"});
 }
 
+// valid_scene() changed by `edit` is refused as expect_bad says.
+void expect_bad_edit(const std::string& field, const std::string& what,
+                     const std::function<void(json&)>& edit) {
+  json j = valid_scene();
+  edit(j);
+  expect_bad(j, field, what);
+}
+
 }  // namespace
 
 TEST_CASE("render scene: a valid scene writes the image and per-effect stats", "[scene][cli]") {
@@ -56,74 +65,65 @@ TEST_CASE("render scene: a valid scene writes the image and per-effect stats", "
 }
 
 TEST_CASE("render scene: bad input, one line naming file and field", "[scene][cli]") {
-  json j = valid_scene();
-  j["effects"].push_back("smoke");
-  expect_bad(j, "effects[4]", "unknown effect");
-  j = valid_scene();
-  j["effects"] = json::array({"absorption", "absorption"});
-  expect_bad(j, "effects[1]", "named twice");
-  j = valid_scene();
+  expect_bad_edit("effects[4]", "unknown effect", [](json& j) { j["effects"].push_back("smoke"); });
+  expect_bad_edit("effects[1]", "named twice", [](json& j) {
+    j["effects"] = json::array({"absorption", "absorption"});
+  });
   // multiple_scattering is registered (issue 7): an unknown parameter of its method is refused.
-  j["effects"] = json::array({"absorption", "multiple_scattering"});
-  j["methods"] = {{"multiple_scattering", "discrete_ordinates:foo=1"}};
-  expect_bad(j, "methods.multiple_scattering", "foo");
-  j = valid_scene();
-  j["effects"] = json::array();
-  expect_bad(j, "effects", "non-empty array");
-  j = valid_scene();
-  j["medium"]["colour"] = 1;
-  expect_bad(j, "medium.colour", "unknown field");
-  j = valid_scene();
-  j["medium"] = {{"type", "homogeneous"}, {"shape", "box"}, {"density", -1}, {"lower", {0, 0, 0}}, {"upper", {1, 1, 1}}};
-  expect_bad(j, "medium.density", ">= 0");
-  j = valid_scene();
-  j["medium"] = {{"type", "homogeneous"}, {"shape", "box"}, {"density", 1}, {"lower", {0, 0, 0}}, {"upper", {1, 0, 1}}};
-  expect_bad(j, "medium.upper[1]", "greater than");
-  j = valid_scene();
-  j["medium"]["type"] = "fog";
-  expect_bad(j, "medium.type", "unknown medium type");
-  j = valid_scene();
-  j["transfer"].erase("albedo");
-  expect_bad(j, "transfer.albedo", "single_scattering needs");
-  j = valid_scene();
-  j["transfer"]["albedo"] = {{0, 1.5}};
-  expect_bad(j, "transfer.albedo", "[0, 1]");
-  j = valid_scene();
-  j["lights"] = json::array();
-  expect_bad(j, "lights", "at least one light");
-  j = valid_scene();
-  j["lights"][0]["direction"] = {0, 0, 0};
-  expect_bad(j, "lights[0].direction", "non-zero");
-  j = valid_scene();
-  j["methods"]["single_scattering"] = "exact";
-  expect_bad(j, "methods.single_scattering", "unknown method exact");
-  j = valid_scene();
-  j["methods"]["emission"] = "exact";
-  expect_bad(j, "methods.emission", "piecewise linear");
-  j = valid_scene();
-  j["methods"]["shadows"] = "two_pass:grid=1";
-  expect_bad(j, "methods.shadows", "grid must be >= 2");
-  j = valid_scene();
-  j["methods"]["shadows"] = "shadow_rays:m=3";
-  expect_bad(j, "methods.shadows", "no parameter m");
-  j = valid_scene();
-  j["methods"]["shading"] = "riemann:n=3";
-  expect_bad(j, "methods.shading", "not named in effects");
-  j = valid_scene();
-  j["phase"] = {{"type", "henyey_greenstein"}, {"g", 1.0}};
-  expect_bad(j, "phase.g", "(-1, 1)");
-  j = valid_scene();
-  j["background"] = {{"image", "missing.png"}};
-  expect_bad(j, "background.image", "missing.png");
-  j = valid_scene();
-  j["rays"] = json::array({{{"origin", {0, 0, 5}}, {"direction", {0, 0, -1}}}});
-  expect_bad(j, "(root)", "exactly one of camera or rays");
-  j = valid_scene();
-  j["camera"]["width"] = 0;
-  expect_bad(j, "camera.width", "integer in [1");
-  j = valid_scene();
-  j["effects"] = json::array({"absorption", "shadows"});
-  expect_bad(j, "effects", "shadows needs");
+  expect_bad_edit("methods.multiple_scattering", "foo", [](json& j) {
+    j["effects"] = json::array({"absorption", "multiple_scattering"});
+    j["methods"] = {{"multiple_scattering", "discrete_ordinates:foo=1"}};
+  });
+  expect_bad_edit("effects", "non-empty array", [](json& j) { j["effects"] = json::array(); });
+  expect_bad_edit("medium.colour", "unknown field", [](json& j) { j["medium"]["colour"] = 1; });
+  expect_bad_edit("medium.density", ">= 0", [](json& j) {
+    j["medium"] = {{"type", "homogeneous"},
+                   {"shape", "box"},
+                   {"density", -1},
+                   {"lower", {0, 0, 0}},
+                   {"upper", {1, 1, 1}}};
+  });
+  expect_bad_edit("medium.upper[1]", "greater than", [](json& j) {
+    j["medium"] = {{"type", "homogeneous"},
+                   {"shape", "box"},
+                   {"density", 1},
+                   {"lower", {0, 0, 0}},
+                   {"upper", {1, 0, 1}}};
+  });
+  expect_bad_edit("medium.type", "unknown medium type",
+                  [](json& j) { j["medium"]["type"] = "fog"; });
+  expect_bad_edit("transfer.albedo", "single_scattering needs",
+                  [](json& j) { j["transfer"].erase("albedo"); });
+  expect_bad_edit("transfer.albedo", "[0, 1]", [](json& j) {
+    j["transfer"]["albedo"] = {{0, 1.5}};
+  });
+  expect_bad_edit("lights", "at least one light", [](json& j) { j["lights"] = json::array(); });
+  expect_bad_edit("lights[0].direction", "non-zero", [](json& j) {
+    j["lights"][0]["direction"] = {0, 0, 0};
+  });
+  expect_bad_edit("methods.single_scattering", "unknown method exact",
+                  [](json& j) { j["methods"]["single_scattering"] = "exact"; });
+  expect_bad_edit("methods.emission", "piecewise linear",
+                  [](json& j) { j["methods"]["emission"] = "exact"; });
+  expect_bad_edit("methods.shadows", "grid must be >= 2",
+                  [](json& j) { j["methods"]["shadows"] = "two_pass:grid=1"; });
+  expect_bad_edit("methods.shadows", "no parameter m",
+                  [](json& j) { j["methods"]["shadows"] = "shadow_rays:m=3"; });
+  expect_bad_edit("methods.shading", "not named in effects",
+                  [](json& j) { j["methods"]["shading"] = "riemann:n=3"; });
+  expect_bad_edit("phase.g", "(-1, 1)", [](json& j) {
+    j["phase"] = {{"type", "henyey_greenstein"}, {"g", 1.0}};
+  });
+  expect_bad_edit("background.image", "missing.png", [](json& j) {
+    j["background"] = {{"image", "missing.png"}};
+  });
+  expect_bad_edit("(root)", "exactly one of camera or rays", [](json& j) {
+    j["rays"] = json::array({{{"origin", {0, 0, 5}}, {"direction", {0, 0, -1}}}});
+  });
+  expect_bad_edit("camera.width", "integer in [1", [](json& j) { j["camera"]["width"] = 0; });
+  expect_bad_edit("effects", "shadows needs", [](json& j) {
+    j["effects"] = json::array({"absorption", "shadows"});
+  });
 
   TempDir dir;  // 1e999 and duplicate keys are caught by the parser, with the field
   dir.write("scene.json", R"({"effects": ["absorption"], "effects": ["emission"]})");

@@ -32,14 +32,9 @@
 using namespace rayint;
 namespace fs = std::filesystem;
 
+using namespace rayint::test;  // the CLI harness
+
 namespace {
-
-using rayint::test::CliRun;
-using rayint::test::run_cli;
-using rayint::test::slurp;
-using rayint::test::TempDir;
-
-long lines(const std::string& s) { return static_cast<long>(std::count(s.begin(), s.end(), '\n')); }
 
 // Every regime but the 10^4-segment long rays (whose reference takes a second or two each).
 std::vector<Regime> quick_regimes() {
@@ -339,10 +334,7 @@ TEST_CASE("stress: bad options are one line on stderr and exit 2", "[stress][cli
         std::string("stress --count x"), std::string("stress --seed -1")}) {
     INFO(args);
     const CliRun r = run_cli(dir.path, args + " -q --no-worst");
-    CHECK(r.status == 2);
-    CHECK(r.out.empty());
-    CHECK(lines(r.err) == 1);
-    CHECK(r.err.rfind("rayint: error: ", 0) == 0);
+    check_usage_error(r);
   }
   CHECK(run_cli(dir.path, "stress --regime nosuch -q").err.find("--regime") != std::string::npos);
   CHECK(run_cli(dir.path, "stress --methods nosuch -q").err.find("--methods") != std::string::npos);

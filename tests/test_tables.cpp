@@ -22,13 +22,9 @@
 #include "transfer_builders.hpp"
 
 using namespace rayint;
-using rayint::test::Tolerances;
+using namespace rayint::test;  // Tolerances and the transfer-function builders
 
 namespace {
-
-using rayint::test::constant;
-using rayint::test::line;
-using rayint::test::uniform_tf;
 
 // Smooth: every function is one linear piece on [0, 1], so the tables' scalar entries are
 // smooth functions (no breakpoint inside a grid cell) and the asymptotic orders show.
@@ -60,20 +56,28 @@ std::vector<Ray> smooth_rays(int count, std::uint64_t seed) {
   return rays;
 }
 
-// Root mean square of the relative error of the intensity over rays and channels.
-double rms_error(const RayIntegrator& method, const std::vector<Ray>& rays,
-                 const std::vector<ReferenceRay>& refs) {
-  double sum = 0.0;
-  int n = 0;
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    const RayResult r = method.integrate(rays[i], nullptr);
-    for (int c = 0; c < kChannels; ++c, ++n) {
-      const double e = relative_error(r.intensity[c], refs[i].intensity[c]);
-      sum += e * e;
-    }
+// 30 rays of smooth_rays(seed) through smooth_tf() and their 50-digit references.
+struct SmoothSample {
+  TransferFunctions tf = smooth_tf();
+  std::vector<Ray> rays;
+  std::vector<ReferenceRay> refs;
+  explicit SmoothSample(std::uint64_t seed) : rays(smooth_rays(30, seed)) {
+    for (const Ray& r : rays) refs.push_back(reference_ray(tf, r));
   }
-  return std::sqrt(sum / n);
-}
+  // Root mean square of the relative error of the intensity over rays and channels.
+  double rms_error(const RayIntegrator& method) const {
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const RayResult r = method.integrate(rays[i], nullptr);
+      for (int c = 0; c < kChannels; ++c, ++n) {
+        const double e = relative_error(r.intensity[c], refs[i].intensity[c]);
+        sum += e * e;
+      }
+    }
+    return std::sqrt(sum / n);
+  }
+};
 
 // Observed order of convergence between table sizes N and 2N.
 double observed_order(double error_n, double error_2n) { return std::log2(error_n / error_2n); }
@@ -314,14 +318,11 @@ TEST_CASE("psi_table converges: order 2 (linear), 1 (nearest, floor) off the edg
 
 TEST_CASE("psi_table rays converge to the reference as the table grows",
           "[tables][psi_table][convergence]") {
-  const TransferFunctions tf = smooth_tf();
-  const std::vector<Ray> rays = smooth_rays(30, 23);
-  std::vector<ReferenceRay> refs;
-  for (const Ray& r : rays) refs.push_back(reference_ray(tf, r));
+  const SmoothSample sample(23);
   for (const table::Lookup lookup : kAllLookups) {
     std::vector<double> errors;
     for (const int size : {64, 128, 256, 512, 1024}) {
-      errors.push_back(rms_error(PsiTableIntegrator(tf, size, lookup), rays, refs));
+      errors.push_back(sample.rms_error(PsiTableIntegrator(sample.tf, size, lookup)));
       WARN("psi_table:size=" << size << ":lookup=" << table::lookup_name(lookup)
                              << " rms relative error of the intensity vs reference "
                              << errors.back());
@@ -420,20 +421,17 @@ TEST_CASE("preintegrated: rho = 0 returns the background exactly", "[tables][pre
 
 TEST_CASE("preintegrated converges to the reference: order 1 (nearest), 2 (linear)",
           "[tables][preintegrated][convergence]") {
-  const TransferFunctions tf = smooth_tf();
-  const std::vector<Ray> rays = smooth_rays(30, 29);
-  std::vector<ReferenceRay> refs;
-  for (const Ray& r : rays) refs.push_back(reference_ray(tf, r));
+  const SmoothSample sample(29);
   for (const int dims : {2, 3}) {
     for (const table::Lookup lookup : {table::Lookup::nearest, table::Lookup::linear}) {
       std::vector<double> errors;
       for (const int size : dims == 2 ? std::vector<int>{32, 64, 128, 256, 512}
                                       : std::vector<int>{16, 32, 64}) {
-        const PreintegratedIntegrator pre(tf, pre_options(size, lookup, dims));
+        const PreintegratedIntegrator pre(sample.tf, pre_options(size, lookup, dims));
         Diagnostics diag;
-        pre.integrate(rays[0], &diag);
+        pre.integrate(sample.rays[0], &diag);
         CHECK(diag.branches.count("length_corrected") == 0);  // whole steps only
-        errors.push_back(rms_error(pre, rays, refs));
+        errors.push_back(sample.rms_error(pre));
         WARN("preintegrated:dims=" << dims << ":size=" << size << ":lookup="
                                    << table::lookup_name(lookup) << " rms relative error "
                                    << errors.back() << ", table " << pre.table_bytes() / 1e6

@@ -19,4 +19,14 @@ inline TransferFunctions uniform_tf(const PiecewiseLinear& rho, const PiecewiseL
   return tf;
 }
 
+// Constant density and colour, one value per channel.
+inline TransferFunctions constant_tf(const Rgb& rho, const Rgb& kappa) {
+  TransferFunctions tf;
+  for (int c = 0; c < kChannels; ++c) {
+    tf.density[c] = constant(rho[static_cast<std::size_t>(c)]);
+    tf.color[c] = constant(kappa[static_cast<std::size_t>(c)]);
+  }
+  return tf;
+}
+
 }  // namespace rayint::test
