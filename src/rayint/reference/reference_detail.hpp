@@ -1,6 +1,7 @@
 #pragma once
 // Internals of the high-precision reference (reference.cpp), exposed for its tests and for
 // calibration programs. Not part of the public interface: use reference.hpp.
+#include <array>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "rayint/model/transfer_function.hpp"
@@ -84,5 +85,20 @@ void check_transfer_functions(const TransferFunctions& tf);
 ExtendedValue to_extended(const Real& x);
 // |x - (v.hi + v.lo)|, exact in 50 digits for the values to_extended returns.
 Real representation_error(const Real& x, const ExtendedValue& v);
+
+// The running sums of a reference ray per channel, far -> near (reference_ray and
+// reference_poly_ray): intensity, transmittance and the bound on the intensity's error.
+struct RaySums {
+  std::array<Real, kChannels> intensity, transmittance, error;
+  // At the far end: the background, transmittance 1, no error. Throws
+  // std::invalid_argument(`message`) unless the background is finite.
+  RaySums(const Rgb& background, const char* message);
+  // Composites a piece onto channel c: intensity = incoming * T + E, transmittance *= T.
+  // Returns the incoming intensity (the caller propagates error[c] with it).
+  Real composite(int c, const Real& piece_transmittance, const Real& piece_emission);
+  // Rounds into `out`: intensity and transmittance to_extended, error_bound the error plus the
+  // representation error, rounded up.
+  void round_into(ReferenceRay& out) const;
+};
 
 }  // namespace rayint::reference_detail
