@@ -195,11 +195,7 @@ ReferenceRay reference_poly_ray(const TransferFunctions& tf, const PolyRay& ray)
         const LinearPart kappa_part = linear_part(tf.color[c], f_mid);
         const PieceResult q = integrate_piece(compose(rho_part, g), compose(kappa_part, g),
                                               piece_length, kappa_part.max_value, degree);
-        const Real incoming = sums.composite(c, q.transmittance, q.emission);
-        Real& error = sums.error[c];
-        error = error * (q.transmittance + q.transmittance_error) +
-                abs(incoming) * q.transmittance_error + q.emission_error +
-                abs(sums.intensity[c]) * (2 * eps);
+        sums.add_piece(c, q, eps);  // exact piece data: no data error terms
         out.subintervals += q.subintervals;
       }
       ++out.pieces;

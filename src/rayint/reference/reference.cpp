@@ -526,13 +526,6 @@ RaySums::RaySums(const Rgb& background, const char* message) {
   }
 }
 
-Real RaySums::composite(int c, const Real& piece_transmittance, const Real& piece_emission) {
-  const Real incoming = intensity[c];
-  intensity[c] = incoming * piece_transmittance + piece_emission;
-  transmittance[c] *= piece_transmittance;
-  return incoming;
-}
-
 void RaySums::round_into(ReferenceRay& out) const {
   for (int c = 0; c < kChannels; ++c) {
     out.intensity[c] = to_extended(intensity[c]);
@@ -615,16 +608,12 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
             piece_length, interpolate(tf.density[c], e_far), interpolate(tf.density[c], e_exit),
             interpolate(tf.color[c], e_far), interpolate(tf.color[c], e_exit)};
         const reference_detail::PieceQuadrature q = reference_detail::integrate_piece(data);
-        const Real incoming = sums.composite(c, q.transmittance, q.emission);
         // Propagate: the incoming error is attenuated, the piece adds its own; the piece data
         // (length, interpolated rho and kappa) carry <= 8 ulps, which move tau by <= 8 eps tau,
         // the emission by <= 8 eps (2 + tau_cut) and the transmitted part by <= 8 eps T.
-        Real& error = sums.error[c];
-        error = error * (q.transmittance + q.transmittance_error) +
-                abs(incoming) * q.transmittance_error + q.emission_error +
-                q.emission * ((2 + q.tau_cut) * (8 * eps)) +
-                abs(incoming) * q.transmittance * (q.optical_depth * (8 * eps)) +
-                abs(sums.intensity[c]) * (2 * eps);
+        const Real incoming = sums.intensity[c];
+        sums.add_piece(c, q, eps, q.emission * ((2 + q.tau_cut) * (8 * eps)),
+                       abs(incoming) * q.transmittance * (q.optical_depth * (8 * eps)));
         out.subintervals += q.subintervals;
       }
       ++out.pieces;

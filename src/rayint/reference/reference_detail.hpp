@@ -93,9 +93,21 @@ struct RaySums {
   // At the far end: the background, transmittance 1, no error. Throws
   // std::invalid_argument(`message`) unless the background is finite.
   RaySums(const Rgb& background, const char* message);
-  // Composites a piece onto channel c: intensity = incoming * T + E, transmittance *= T.
-  // Returns the incoming intensity (the caller propagates error[c] with it).
-  Real composite(int c, const Real& piece_transmittance, const Real& piece_emission);
+  // Composites piece `q` (transmittance T, emission E and their bounds dT, dE) onto channel c:
+  // intensity = incoming * T + E, transmittance *= T, and the bound becomes
+  //   error * (T + dT) + |incoming| dT + dE + data_error... + |intensity| 2 eps,
+  // summed left to right; `data_error` are the terms for errors in the piece's own data (none
+  // where the data are exact).
+  template <class Quadrature, class... DataError>
+  void add_piece(int c, const Quadrature& q, double eps, const DataError&... data_error) {
+    const Real incoming = intensity[c];
+    intensity[c] = incoming * q.transmittance + q.emission;
+    transmittance[c] *= q.transmittance;
+    error[c] = ((error[c] * (q.transmittance + q.transmittance_error) +
+                 abs(incoming) * q.transmittance_error + q.emission_error) +
+                ... + data_error) +
+               abs(intensity[c]) * (2 * eps);
+  }
   // Rounds into `out`: intensity and transmittance to_extended, error_bound the error plus the
   // representation error, rounded up.
   void round_into(ReferenceRay& out) const;
