@@ -17,10 +17,7 @@
 // crossing breakpoints, the relative error stays below rtol (measured in the test's log).
 #include "rayint/cells/poly_ode.hpp"
 
-#include <array>
 #include <boost/numeric/odeint.hpp>
-#include <cmath>
-#include <limits>
 
 #include "rayint/integrators/ode_stepping.hpp"
 #include "rayint/model/polynomial.hpp"
@@ -30,21 +27,7 @@ namespace rayint {
 namespace {
 
 namespace odeint = boost::numeric::odeint;
-using State = std::array<double, 2 * kChannels>;
-
-struct PolyPieceSystem {
-  const TransferFunctions* tf;
-  const PolySegment* segment;
-  double s0;  // the piece's start in the segment's s
-  void operator()(const State& x, State& dxdt, double s) const {
-    const double f = (*segment)(s0 + s);
-    for (int c = 0; c < kChannels; ++c) {
-      const double rho = tf->density[c](f);
-      dxdt[c] = rho * (tf->color[c](f) - x[c]);
-      dxdt[kChannels + c] = rho;
-    }
-  }
-};
+using State = eq3::State;
 
 }  // namespace
 
@@ -60,8 +43,7 @@ PolyOdeIntegrator::PolyOdeIntegrator(const TransferFunctions& tf, const OdeOptio
 RayResult PolyOdeIntegrator::integrate(const PolyRay& ray, Diagnostics* diag) const {
   auto stepper =
       odeint::make_controlled(opt_.atol, opt_.rtol, odeint::runge_kutta_dopri5<State>());
-  State x{};
-  for (int c = 0; c < kChannels; ++c) x[c] = ray.background[c];
+  State x = eq3::start(ray.background);
   ode_stepping::Counters counts;
   long n_pieces = 0;
   const char* failed = nullptr;
@@ -72,25 +54,15 @@ RayResult PolyOdeIntegrator::integrate(const PolyRay& ray, Diagnostics* diag) co
       const double L = knots[k + 1] - knots[k];
       if (!(L > 0.0)) continue;
       ++n_pieces;
-      const PolyPieceSystem system{tf_, &seg, knots[k]};
+      // s from the piece's start, knots[k] in the segment's s
+      const auto system =
+          eq3::scalar_system(*tf_, [&seg, s0 = knots[k]](double s) { return seg(s0 + s); });
       stepper.reset();
       failed = ode_stepping::integrate_interval(stepper, system, x, L, counts, kOdeStepBudget);
     }
     if (failed) break;
   }
-  RayResult r;
-  for (int c = 0; c < kChannels; ++c) {
-    r.intensity[c] = failed ? std::numeric_limits<double>::quiet_NaN() : x[c];
-    r.transmittance[c] =
-        failed ? std::numeric_limits<double>::quiet_NaN() : std::exp(-x[kChannels + c]);
-  }
-  if (diag) {
-    diag->add_stat("steps", static_cast<double>(counts.accepted));
-    diag->add_stat("rejected_steps", static_cast<double>(counts.rejected));
-    diag->add_stat("pieces", static_cast<double>(n_pieces));
-    if (failed) diag->count(failed);
-  }
-  return r;
+  return ode_stepping::finish(x, failed, counts, n_pieces, diag);
 }
 
 }  // namespace rayint

@@ -156,13 +156,8 @@ PieceOptics exact_piece(const ChannelPiece& p) {
   return out;
 }
 
-ExactIntegrator::ExactIntegrator(const TransferFunctions& tf)
-    : splitter_(tf) {}
-
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
-  RayResult r;
-  r.intensity = ray.background;
-  r.transmittance = {1.0, 1.0, 1.0};
+  RayResult r = RayResult::of_background(ray.background);
   int max_terms = 0;
   for (const auto& seg : ray.segments) {
     const std::vector<Piece>& pieces = splitter_.pieces(seg);

@@ -32,13 +32,10 @@ inline constexpr double kQ2Relative = 1.0 / (1 << 26);
 PieceOptics exact_piece(const ChannelPiece& piece);
 
 // Composites exact_piece over the pieces of a ray (far -> near).
-class ExactIntegrator final : public RayIntegrator {
+class ExactIntegrator final : public PieceIntegrator {
  public:
-  explicit ExactIntegrator(const TransferFunctions& tf);
+  using PieceIntegrator::PieceIntegrator;
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
-
- private:
-  PieceSplitter splitter_;
 };
 
 }  // namespace rayint

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/model/pieces.hpp"
 #include "rayint/model/ray.hpp"
 
 namespace rayint {
@@ -26,6 +27,8 @@ struct Diagnostics {
 struct RayResult {
   Rgb intensity{};      // light reaching the eye
   Rgb transmittance{};  // fraction of the background reaching the eye
+  // Before anything is composited: the background, transmitted whole.
+  static RayResult of_background(const Rgb& background) { return {background, {1.0, 1.0, 1.0}}; }
 };
 
 class RayIntegrator {
@@ -33,6 +36,16 @@ class RayIntegrator {
   virtual ~RayIntegrator() = default;
   // `diag` may be null (timing loops pass null so bookkeeping costs nothing).
   virtual RayResult integrate(const Ray& ray, Diagnostics* diag) const = 0;
+};
+
+// A method that works on the pieces of a ray (its segments split at every transfer-function
+// breakpoint, rho and kappa linear on each): holds the splitter bound to the case's functions.
+class PieceIntegrator : public RayIntegrator {
+ public:
+  explicit PieceIntegrator(const TransferFunctions& tf) : splitter_(tf) {}
+
+ protected:
+  PieceSplitter splitter_;
 };
 
 // "name" or "name:key=value:key=value", e.g. "riemann:n=64", "ode:rtol=1e-8".

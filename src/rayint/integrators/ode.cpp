@@ -28,11 +28,9 @@
 // and rho within rtol; rho = 0 returns the background exactly.
 #include "rayint/integrators/ode.hpp"
 
-#include <array>
 #include <boost/numeric/odeint.hpp>
-#include <cmath>
-#include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "rayint/integrators/factories.hpp"
 #include "rayint/integrators/ode_stepping.hpp"
@@ -42,7 +40,7 @@ namespace rayint {
 namespace {
 
 namespace odeint = boost::numeric::odeint;
-using State = std::array<double, 2 * kChannels>;
+using State = eq3::State;
 
 // Eq. 3 on one piece; s is the distance from the piece's far end, rho and kappa linear in s.
 struct PieceSystem {
@@ -50,12 +48,10 @@ struct PieceSystem {
   double inv_length;
   void operator()(const State& x, State& dxdt, double s) const {
     const double f = s * inv_length;  // 0 at the far end, 1 at the exit
-    for (int c = 0; c < kChannels; ++c) {
-      const double rho = piece->rho_far[c] + f * (piece->rho_exit[c] - piece->rho_far[c]);
-      const double kappa = piece->kappa_far[c] + f * (piece->kappa_exit[c] - piece->kappa_far[c]);
-      dxdt[c] = rho * (kappa - x[c]);
-      dxdt[kChannels + c] = rho;
-    }
+    eq3::derivative(x, dxdt, [&](int c) {
+      return std::pair{piece->rho_far[c] + f * (piece->rho_exit[c] - piece->rho_far[c]),
+                       piece->kappa_far[c] + f * (piece->kappa_exit[c] - piece->kappa_far[c])};
+    });
   }
 };
 
@@ -78,8 +74,7 @@ OdeIntegrator::OdeIntegrator(const TransferFunctions& tf, const OdeOptions& opti
 
 RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   auto stepper = odeint::make_controlled(opt_.atol, opt_.rtol, odeint::runge_kutta_dopri5<State>());
-  State x{};
-  for (int c = 0; c < kChannels; ++c) x[c] = ray.background[c];
+  State x = eq3::start(ray.background);
   ode_stepping::Counters counts;
   long n_pieces = 0;
   const char* failed = nullptr;  // why the integration stopped early, if it did
@@ -95,20 +90,7 @@ RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
     }
     if (failed) break;
   }
-  const long accepted = counts.accepted, rejected = counts.rejected;
-  RayResult r;
-  for (int c = 0; c < kChannels; ++c) {
-    r.intensity[c] = failed ? std::numeric_limits<double>::quiet_NaN() : x[c];
-    r.transmittance[c] =
-        failed ? std::numeric_limits<double>::quiet_NaN() : std::exp(-x[kChannels + c]);
-  }
-  if (diag) {
-    diag->add_stat("steps", static_cast<double>(accepted));
-    diag->add_stat("rejected_steps", static_cast<double>(rejected));
-    diag->add_stat("pieces", static_cast<double>(n_pieces));
-    if (failed) diag->count(failed);
-  }
-  return r;
+  return ode_stepping::finish(x, failed, counts, n_pieces, diag);
 }
 
 std::unique_ptr<RayIntegrator> make_ode(const MethodSpec& spec, const TransferFunctions& tf) {

@@ -6,6 +6,9 @@
 // about budgets and failure branches holds for every user.
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <limits>
+
+#include "rayint/integrators/eq3_system.hpp"
 
 namespace rayint::ode_stepping {
 
@@ -38,6 +41,25 @@ const char* integrate_interval(Stepper& stepper, const System& system, State& x,
     if (!(h > 0.0) || !std::isfinite(h)) return "step_size_collapsed";  // NaN error
   }
   return nullptr;
+}
+
+// The ray's result after the loop: NaN intensity and transmittance where `failed` (the reason,
+// counted as a branch), otherwise eq3::result; stats "steps" (accepted), "rejected_steps" and
+// "pieces".
+inline RayResult finish(const eq3::State& x, const char* failed, const Counters& n, long pieces,
+                        Diagnostics* diag) {
+  RayResult r = eq3::result(x);
+  if (failed) {
+    r.intensity.fill(std::numeric_limits<double>::quiet_NaN());
+    r.transmittance.fill(std::numeric_limits<double>::quiet_NaN());
+  }
+  if (diag) {
+    diag->add_stat("steps", static_cast<double>(n.accepted));
+    diag->add_stat("rejected_steps", static_cast<double>(n.rejected));
+    diag->add_stat("pieces", static_cast<double>(pieces));
+    if (failed) diag->count(failed);
+  }
+  return r;
 }
 
 }  // namespace rayint::ode_stepping

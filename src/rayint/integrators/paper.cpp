@@ -66,13 +66,8 @@ double paper_transmittance(const PaperInterval& iv) {
   return std::exp(-(q1 * tn + q2 * tn * tn / 2 - q1 * ti - q2 * ti * ti / 2));
 }
 
-PaperIntegrator::PaperIntegrator(const TransferFunctions& tf)
-    : splitter_(tf) {}
-
 RayResult PaperIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
-  RayResult r;
-  r.intensity = ray.background;
-  r.transmittance = {1.0, 1.0, 1.0};
+  RayResult r = RayResult::of_background(ray.background);
   for (const auto& seg : ray.segments) {
     const std::vector<Piece>& pieces = splitter_.pieces(seg);
     // Eq. 13: S(t) = v + w t, t measured from where the ray enters the cell (segment).

@@ -3,7 +3,6 @@
 // the q2 = 0 expression, in the paper's variables (t measured from the cell entry). Kept to show
 // where the printed formula overflows or cancels; non-finite results are returned as they come.
 #include "rayint/integrators/integrator.hpp"
-#include "rayint/model/pieces.hpp"
 
 namespace rayint {
 
@@ -17,13 +16,10 @@ double paper_emission(const PaperInterval& iv);
 // exp(-(q1 t_{i+1} + q2 t_{i+1}^2/2 - q1 t_i - q2 t_i^2/2)), as printed.
 double paper_transmittance(const PaperInterval& iv);
 
-class PaperIntegrator final : public RayIntegrator {
+class PaperIntegrator final : public PieceIntegrator {
  public:
-  explicit PaperIntegrator(const TransferFunctions& tf);
+  using PieceIntegrator::PieceIntegrator;
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
-
- private:
-  PieceSplitter splitter_;
 };
 
 }  // namespace rayint

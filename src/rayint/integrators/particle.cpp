@@ -54,7 +54,7 @@ std::string particle_model_mismatch(const TransferFunctions& tf) {
 }
 
 ParticleIntegrator::ParticleIntegrator(const TransferFunctions& tf)
-    : splitter_(tf) {
+    : PieceIntegrator(tf) {
   const std::string why = particle_model_mismatch(tf);
   if (!why.empty())
     throw std::invalid_argument("particle: needs a single transfer function: " + why);

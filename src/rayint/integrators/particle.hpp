@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
-#include "rayint/model/pieces.hpp"
 
 namespace rayint {
 
@@ -13,14 +12,13 @@ namespace rayint {
 // functions identical, every colour function constant); otherwise the reason it is not.
 std::string particle_model_mismatch(const TransferFunctions& tf);
 
-class ParticleIntegrator final : public RayIntegrator {
+class ParticleIntegrator final : public PieceIntegrator {
  public:
   // Throws std::invalid_argument("particle: needs a single transfer function: <reason>").
   explicit ParticleIntegrator(const TransferFunctions& tf);
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
-  PieceSplitter splitter_;
   Rgb kappa_{};  // the constant particle colour per channel
 };
 

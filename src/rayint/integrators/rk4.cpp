@@ -18,33 +18,19 @@
 // kappa, rho the error stays below the bound N z^5/120 max(kappa, I0), z = rho h.
 #include "rayint/integrators/rk4.hpp"
 
-#include <array>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "rayint/integrators/eq3_system.hpp"
 #include "rayint/integrators/factories.hpp"
 
 namespace rayint {
 namespace {
 
 namespace odeint = boost::numeric::odeint;
-using State = std::array<double, 2 * kChannels>;
-
-// Eq. 3 along one segment; s is the distance from its far end.
-struct SegmentSystem {
-  const TransferFunctions* tf;
-  double scalar_far, scalar_slope;  // scalar = scalar_far + scalar_slope * s
-  void operator()(const State& x, State& dxdt, double s) const {
-    const double scalar = scalar_far + scalar_slope * s;
-    for (int c = 0; c < kChannels; ++c) {
-      const double rho = tf->density[c](scalar);
-      dxdt[c] = rho * (tf->color[c](scalar) - x[c]);
-      dxdt[kChannels + c] = rho;
-    }
-  }
-};
+using State = eq3::State;
 
 }  // namespace
 
@@ -53,8 +39,7 @@ Rk4Integrator::Rk4Integrator(const TransferFunctions& tf, int steps_per_segment)
 
 RayResult Rk4Integrator::integrate(const Ray& ray, Diagnostics* diag) const {
   odeint::runge_kutta4<State> stepper;
-  State x{};
-  for (int c = 0; c < kChannels; ++c) x[c] = ray.background[c];
+  State x = eq3::start(ray.background);
   double planned = 0.0;
   for (const auto& seg : ray.segments)
     if (seg.length > 0.0) planned += n_;
@@ -66,16 +51,14 @@ RayResult Rk4Integrator::integrate(const Ray& ray, Diagnostics* diag) const {
   for (const auto& seg : ray.segments) {
     if (!(seg.length > 0.0)) continue;
     const double h = seg.length / n_;
-    const SegmentSystem system{&tf_, seg.scalar_far,
-                               (seg.scalar_exit - seg.scalar_far) / seg.length};
+    // Eq. 3 along the segment, s the distance from its far end, the scalar linear in s.
+    const double slope = (seg.scalar_exit - seg.scalar_far) / seg.length;
+    const auto system = eq3::scalar_system(
+        tf_, [scalar_far = seg.scalar_far, slope](double s) { return scalar_far + slope * s; });
     for (int j = 0; j < n_; ++j) stepper.do_step(system, x, j * h, h);
     steps += n_;
   }
-  RayResult r;
-  for (int c = 0; c < kChannels; ++c) {
-    r.intensity[c] = x[c];
-    r.transmittance[c] = std::exp(-x[kChannels + c]);
-  }
+  const RayResult r = eq3::result(x);
   if (diag) {
     diag->add_stat("steps", static_cast<double>(steps));
     diag->add_stat("rhs_evaluations", 4.0 * static_cast<double>(steps));

@@ -169,14 +169,7 @@ ReferenceRay reference_poly_ray(const TransferFunctions& tf, const PolyRay& ray)
   for (double b : tf.breakpoints()) levels.emplace_back(b);
 
   ReferenceRay out;
-  std::array<Real, kChannels> intensity, transmittance, error;
-  for (int c = 0; c < kChannels; ++c) {
-    if (!std::isfinite(ray.background[c]))
-      throw std::invalid_argument("reference_poly_ray: background must be finite");
-    intensity[c] = ray.background[c];
-    transmittance[c] = 1;
-    error[c] = 0;
-  }
+  reference_detail::RaySums sums(ray.background, "reference_poly_ray: background must be finite");
   for (const PolySegment& seg : ray.segments) {
     if (!(std::isfinite(seg.length) && seg.length >= 0))
       throw std::invalid_argument("reference_poly_ray: segment length must be finite and >= 0");
@@ -202,23 +195,13 @@ ReferenceRay reference_poly_ray(const TransferFunctions& tf, const PolyRay& ray)
         const LinearPart kappa_part = linear_part(tf.color[c], f_mid);
         const PieceResult q = integrate_piece(compose(rho_part, g), compose(kappa_part, g),
                                               piece_length, kappa_part.max_value, degree);
-        const Real incoming = intensity[c];
-        intensity[c] = incoming * q.transmittance + q.emission;
-        transmittance[c] *= q.transmittance;
-        error[c] = error[c] * (q.transmittance + q.transmittance_error) +
-                   abs(incoming) * q.transmittance_error + q.emission_error +
-                   abs(intensity[c]) * (2 * eps);
+        sums.add_piece(c, q, eps);  // exact piece data: no data error terms
         out.subintervals += q.subintervals;
       }
       ++out.pieces;
     }
   }
-  for (int c = 0; c < kChannels; ++c) {
-    out.intensity[c] = reference_detail::to_extended(intensity[c]);
-    out.transmittance[c] = reference_detail::to_extended(transmittance[c]);
-    out.error_bound[c] = reference_detail::rounded_up(
-        error[c] + reference_detail::representation_error(intensity[c], out.intensity[c]));
-  }
+  sums.round_into(out);
   return out;
 }
 

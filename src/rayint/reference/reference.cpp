@@ -64,6 +64,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "rayint/reference/reference_detail.hpp"
@@ -247,24 +249,30 @@ QuadratureSum gauss_kronrod_sum(const Coefficients& co, const Real& s_cut, int n
   return out;
 }
 
-QuadratureSum run_rule(int rule, const Coefficients& co, const Real& s_cut, int n_sub) {
-  switch (rule) {
-    case 15:
-      return gauss_kronrod_sum<15>(co, s_cut, n_sub);
-    case 21:
-      return gauss_kronrod_sum<21>(co, s_cut, n_sub);
-    case 31:
-      return gauss_kronrod_sum<31>(co, s_cut, n_sub);
-    case 41:
-      return gauss_kronrod_sum<41>(co, s_cut, n_sub);
-    case 51:
-      return gauss_kronrod_sum<51>(co, s_cut, n_sub);
-    case 61:
-      return gauss_kronrod_sum<61>(co, s_cut, n_sub);
-    default:
-      throw std::invalid_argument("reference: no Gauss-Kronrod rule with " + std::to_string(rule) +
-                                  " points");
+// The Gauss-Kronrod rules the reference holds tables for, by number of points.
+using RulePoints = std::integer_sequence<unsigned, 15, 21, 31, 41, 51, 61>;
+
+// f(std::integral_constant<unsigned, N>{}) for the rule with N == `points` among the listed
+// ones (with_rule below: among RulePoints); throws std::invalid_argument for any other number.
+template <class F, unsigned N, unsigned... Rest>
+auto with_rule(int points, const F& f, std::integer_sequence<unsigned, N, Rest...>) {
+  if (points == static_cast<int>(N)) return f(std::integral_constant<unsigned, N>{});
+  if constexpr (sizeof...(Rest) > 0) {
+    return with_rule(points, f, std::integer_sequence<unsigned, Rest...>{});
+  } else {
+    throw std::invalid_argument("reference: no Gauss-Kronrod rule with " +
+                                std::to_string(points) + " points");
   }
+}
+template <class F>
+auto with_rule(int points, const F& f) {
+  return with_rule(points, f, RulePoints{});
+}
+
+QuadratureSum run_rule(int rule, const Coefficients& co, const Real& s_cut, int n_sub) {
+  return with_rule(rule, [&](auto points) {
+    return gauss_kronrod_sum<decltype(points)::value>(co, s_cut, n_sub);
+  });
 }
 
 struct Method {
@@ -468,23 +476,7 @@ GaussKronrodRule rule_view() {
 }  // namespace
 
 GaussKronrodRule gauss_kronrod_rule(int points) {
-  switch (points) {
-    case 15:
-      return rule_view<15>();
-    case 21:
-      return rule_view<21>();
-    case 31:
-      return rule_view<31>();
-    case 41:
-      return rule_view<41>();
-    case 51:
-      return rule_view<51>();
-    case 61:
-      return rule_view<61>();
-    default:
-      throw std::invalid_argument("reference: no Gauss-Kronrod rule with " +
-                                  std::to_string(points) + " points");
-  }
+  return with_rule(points, [](auto n) { return rule_view<decltype(n)::value>(); });
 }
 
 double unit_roundoff() { return eps(); }
@@ -525,6 +517,24 @@ Real representation_error(const Real& x, const ExtendedValue& v) {
   return abs(x - Real(v.hi) - Real(v.lo));
 }
 
+RaySums::RaySums(const Rgb& background, const char* message) {
+  for (int c = 0; c < kChannels; ++c) {
+    if (!std::isfinite(background[c])) throw std::invalid_argument(message);
+    intensity[c] = background[c];
+    transmittance[c] = 1;
+    error[c] = 0;
+  }
+}
+
+void RaySums::round_into(ReferenceRay& out) const {
+  for (int c = 0; c < kChannels; ++c) {
+    out.intensity[c] = to_extended(intensity[c]);
+    out.transmittance[c] = to_extended(transmittance[c]);
+    out.error_bound[c] =
+        round_up_to_double(error[c] + representation_error(intensity[c], out.intensity[c]));
+  }
+}
+
 }  // namespace reference_detail
 
 using reference_detail::Real;
@@ -562,14 +572,7 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
   breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
 
   ReferenceRay out;
-  std::array<Real, kChannels> intensity, transmittance, error;
-  for (int c = 0; c < kChannels; ++c) {
-    if (!std::isfinite(ray.background[c]))
-      throw std::invalid_argument("reference: background must be finite");
-    intensity[c] = ray.background[c];
-    transmittance[c] = 1;
-    error[c] = 0;
-  }
+  reference_detail::RaySums sums(ray.background, "reference: background must be finite");
   const double eps = reference_detail::eps();
 
   std::vector<double> ends;
@@ -605,29 +608,19 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
             piece_length, interpolate(tf.density[c], e_far), interpolate(tf.density[c], e_exit),
             interpolate(tf.color[c], e_far), interpolate(tf.color[c], e_exit)};
         const reference_detail::PieceQuadrature q = reference_detail::integrate_piece(data);
-        const Real incoming = intensity[c];
-        intensity[c] = incoming * q.transmittance + q.emission;
-        transmittance[c] *= q.transmittance;
         // Propagate: the incoming error is attenuated, the piece adds its own; the piece data
         // (length, interpolated rho and kappa) carry <= 8 ulps, which move tau by <= 8 eps tau,
         // the emission by <= 8 eps (2 + tau_cut) and the transmitted part by <= 8 eps T.
-        error[c] = error[c] * (q.transmittance + q.transmittance_error) +
-                   abs(incoming) * q.transmittance_error + q.emission_error +
-                   q.emission * ((2 + q.tau_cut) * (8 * eps)) +
-                   abs(incoming) * q.transmittance * (q.optical_depth * (8 * eps)) +
-                   abs(intensity[c]) * (2 * eps);
+        const Real incoming = sums.intensity[c];
+        sums.add_piece(c, q, eps, q.emission * ((2 + q.tau_cut) * (8 * eps)),
+                       abs(incoming) * q.transmittance * (q.optical_depth * (8 * eps)));
         out.subintervals += q.subintervals;
       }
       ++out.pieces;
     }
   }
 
-  for (int c = 0; c < kChannels; ++c) {
-    out.intensity[c] = reference_detail::to_extended(intensity[c]);
-    out.transmittance[c] = reference_detail::to_extended(transmittance[c]);
-    out.error_bound[c] = reference_detail::round_up_to_double(
-        error[c] + reference_detail::representation_error(intensity[c], out.intensity[c]));
-  }
+  sums.round_into(out);
   return out;
 }
 

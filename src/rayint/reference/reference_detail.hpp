@@ -1,6 +1,7 @@
 #pragma once
 // Internals of the high-precision reference (reference.cpp), exposed for its tests and for
 // calibration programs. Not part of the public interface: use reference.hpp.
+#include <array>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "rayint/model/transfer_function.hpp"
@@ -84,5 +85,32 @@ void check_transfer_functions(const TransferFunctions& tf);
 ExtendedValue to_extended(const Real& x);
 // |x - (v.hi + v.lo)|, exact in 50 digits for the values to_extended returns.
 Real representation_error(const Real& x, const ExtendedValue& v);
+
+// The running sums of a reference ray per channel, far -> near (reference_ray and
+// reference_poly_ray): intensity, transmittance and the bound on the intensity's error.
+struct RaySums {
+  std::array<Real, kChannels> intensity, transmittance, error;
+  // At the far end: the background, transmittance 1, no error. Throws
+  // std::invalid_argument(`message`) unless the background is finite.
+  RaySums(const Rgb& background, const char* message);
+  // Composites piece `q` (transmittance T, emission E and their bounds dT, dE) onto channel c:
+  // intensity = incoming * T + E, transmittance *= T, and the bound becomes
+  //   error * (T + dT) + |incoming| dT + dE + data_error... + |intensity| 2 eps,
+  // summed left to right; `data_error` are the terms for errors in the piece's own data (none
+  // where the data are exact).
+  template <class Quadrature, class... DataError>
+  void add_piece(int c, const Quadrature& q, double eps, const DataError&... data_error) {
+    const Real incoming = intensity[c];
+    intensity[c] = incoming * q.transmittance + q.emission;
+    transmittance[c] *= q.transmittance;
+    error[c] = ((error[c] * (q.transmittance + q.transmittance_error) +
+                 abs(incoming) * q.transmittance_error + q.emission_error) +
+                ... + data_error) +
+               abs(intensity[c]) * (2 * eps);
+  }
+  // Rounds into `out`: intensity and transmittance to_extended, error_bound the error plus the
+  // representation error, rounded up.
+  void round_into(ReferenceRay& out) const;
+};
 
 }  // namespace rayint::reference_detail
