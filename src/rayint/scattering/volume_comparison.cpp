@@ -51,6 +51,23 @@ ImageError image_error(const std::vector<double>& image, const std::vector<doubl
   return e;
 }
 
+namespace {
+// Times solve() (setup) and the gather of every pixel from its solution, and scores the image.
+template <class Solve, class Gather>
+void run_method(MethodRun& r, const Camera& cam, unsigned threads, const std::vector<double>& reference,
+                Solve solve, Gather gather) {
+  const auto t0 = Clock::now();
+  const auto sol = solve();
+  r.setup_seconds = since(t0);
+  r.iterations = sol.iterations;
+  r.converged = sol.converged;
+  const auto t1 = Clock::now();
+  r.image = gather_image(cam, threads, [&](const ViewRay& ray) { return gather(sol, ray); });
+  r.gather_seconds = since(t1);
+  r.error = image_error(r.image, reference);
+}
+}  // namespace
+
 VolumeComparison compare_volume_methods(const ScatteringVolume& v, const Camera& cam,
                                         const ComparisonOptions& o,
                                         const std::function<void(const std::string&)>& progress) {
@@ -83,17 +100,9 @@ VolumeComparison compare_volume_methods(const ScatteringVolume& v, const Camera&
       d.grid = g;
       d.bins_per_edge = b;
       d.threads = o.threads;
-      const auto t0 = Clock::now();
-      const DiscreteOrdinatesSolution sol = solve_discrete_ordinates(v, d);
-      r.setup_seconds = since(t0);
-      r.iterations = sol.iterations;
-      r.converged = sol.converged;
-      const auto t1 = Clock::now();
-      r.image = gather_image(cam, o.threads, [&](const ViewRay& ray) {
-        return gather_discrete_ordinates(v, sol, ray);
-      });
-      r.gather_seconds = since(t1);
-      r.error = image_error(r.image, c.reference_all.mean);
+      run_method(
+          r, cam, o.threads, c.reference_all.mean, [&] { return solve_discrete_ordinates(v, d); },
+          [&](const DiscreteOrdinatesSolution& sol, const ViewRay& ray) { return gather_discrete_ordinates(v, sol, ray); });
       c.runs.push_back(std::move(r));
     }
   if (v.phase.kind() == PhaseFunction::Kind::isotropic)
@@ -105,15 +114,9 @@ VolumeComparison compare_volume_methods(const ScatteringVolume& v, const Camera&
       ZonalOptions z;
       z.grid = g;
       z.threads = o.threads;
-      const auto t0 = Clock::now();
-      const ZonalSolution sol = solve_zonal(v, z);
-      r.setup_seconds = since(t0);
-      r.iterations = sol.iterations;
-      r.converged = sol.converged;
-      const auto t1 = Clock::now();
-      r.image = gather_image(cam, o.threads, [&](const ViewRay& ray) { return gather_zonal(v, sol, ray); });
-      r.gather_seconds = since(t1);
-      r.error = image_error(r.image, c.reference_all.mean);
+      run_method(
+          r, cam, o.threads, c.reference_all.mean, [&] { return solve_zonal(v, z); },
+          [&](const ZonalSolution& sol, const ViewRay& ray) { return gather_zonal(v, sol, ray); });
       c.runs.push_back(std::move(r));
     }
   return c;
