@@ -10,7 +10,7 @@
 
 #include "rayint/core/math.hpp"
 #include "rayint/core/parallel.hpp"
-#include "rayint/scattering/gather_march.hpp"
+#include "rayint/scattering/cell_passes.hpp"
 
 namespace rayint {
 
@@ -74,6 +74,14 @@ CellGrid make_cell_grid(const ScatteringVolume& v, int n) {
   return g;
 }
 
+std::vector<double> centre_sigma_t(const ScatteringVolume& v, const CellGrid& g) {
+  std::vector<double> sigma_t(g.size());
+  for (int k = 0; k < g.n; ++k)
+    for (int j = 0; j < g.n; ++j)
+      for (int i = 0; i < g.n; ++i) sigma_t[g.index(i, j, k)] = v.sigma_t(g.center(i, j, k));
+  return sigma_t;
+}
+
 std::vector<double> first_pass_irradiance(const ScatteringVolume& v, const CellGrid& g, unsigned threads) {
   std::vector<double> E(g.size());
   const Vec3 to_light = -v.light.direction;
@@ -104,16 +112,11 @@ DiscreteOrdinatesSolution solve_discrete_ordinates(const ScatteringVolume& v,
     throw std::invalid_argument("discrete ordinates: bins_per_edge, sub_per_edge >= 1, tolerance > 0");
   const auto start = std::chrono::steady_clock::now();
   DiscreteOrdinatesSolution sol;
-  sol.cells = make_cell_grid(v, o.grid);
+  first_pass(v, o.grid, o.threads, sol);
   const CellGrid& g = sol.cells;
   const std::size_t nc = g.size();
   sol.bins = cube_face_bins(o.bins_per_edge, o.sub_per_edge);
   const std::size_t m = sol.bins.size();
-  sol.sigma_t.resize(nc);
-  for (int k = 0; k < g.n; ++k)
-    for (int j = 0; j < g.n; ++j)
-      for (int i = 0; i < g.n; ++i) sol.sigma_t[g.index(i, j, k)] = v.sigma_t(g.center(i, j, k));
-  sol.irradiance = first_pass_irradiance(v, g, o.threads);
   sol.radiance.assign(nc * m, 0.0f);
 
   // W(a, b) = Omega_a P_ab / Omega_b: bin radiance a -> source radiance of bin b per sigma_s.

@@ -10,7 +10,7 @@
 #include "rayint/core/math.hpp"
 #include "rayint/core/parallel.hpp"
 #include "rayint/scattering/estimate.hpp"
-#include "rayint/scattering/gather_march.hpp"
+#include "rayint/scattering/cell_passes.hpp"
 
 namespace rayint {
 
@@ -60,16 +60,11 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
     throw std::invalid_argument("zonal method: rays_per_cell and light_rays_per_face must be >= 1");
   const auto start = std::chrono::steady_clock::now();
   ZonalSolution sol;
-  sol.cells = make_cell_grid(v, o.grid);
+  first_pass(v, o.grid, o.threads, sol);
   const CellGrid& g = sol.cells;
   const std::size_t nc = g.size();
   const Vec3 h = g.h;
   const double V = h[0] * h[1] * h[2];
-  sol.sigma_t.resize(nc);
-  for (int k = 0; k < g.n; ++k)
-    for (int j = 0; j < g.n; ++j)
-      for (int i = 0; i < g.n; ++i) sol.sigma_t[g.index(i, j, k)] = v.sigma_t(g.center(i, j, k));
-  sol.irradiance = first_pass_irradiance(v, g, o.threads);
   const std::vector<double>& sig = sol.sigma_t;
 
   // Light power extinguished per zone: parallel rays entering through the lit faces.

@@ -1,8 +1,10 @@
 #pragma once
-// The final gathering pass shared by discrete ordinates and the zonal method
-// (discrete_ordinates.hpp, step 5): the midpoint rule along the viewing ray with steps of at most
-// h/4 (h the smallest cell size), trilinear sigma_t, and the in-scattered source J(x, sigma_t)
-// that each method computes from its solution.
+// The passes that discrete ordinates and the zonal method share (discrete_ordinates.hpp):
+//   first_pass: the cells over the volume's box, sigma_t at their centres and the light's
+//     irradiance there (steps 1-2);
+//   gather_march: the final gathering (step 5), the midpoint rule along the viewing ray with steps
+//     of at most h/4 (h the smallest cell size), trilinear sigma_t, and the in-scattered source
+//     J(x, sigma_t) that each method computes from its solution.
 #include <algorithm>
 #include <cmath>
 
@@ -10,6 +12,14 @@
 #include "rayint/scattering/discrete_ordinates.hpp"
 
 namespace rayint {
+
+// Sets sol.cells (grid cells per axis), sol.sigma_t and sol.irradiance.
+template <class Solution>
+void first_pass(const ScatteringVolume& v, int grid, unsigned threads, Solution& sol) {
+  sol.cells = make_cell_grid(v, grid);
+  sol.sigma_t = centre_sigma_t(v, sol.cells);
+  sol.irradiance = first_pass_irradiance(v, sol.cells, threads);
+}
 
 // L = sum_i T_i J_i a_i + T background, a_i = int_0^dt e^{-sigma_i t} dt, over the span `iv` of the
 // ray from `origin` along the unit direction `d`.
