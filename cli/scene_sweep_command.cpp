@@ -42,7 +42,8 @@ void set_scene_sweep_command(CLI::App& app) {
           auto [effect, spec] = parse_effect_assignment(scene, item);
           c[effect] = spec;
         } catch (const EffectMethodError& e) {
-          if (e.kind == EffectMethodError::Kind::method) throw InputError("--config " + text + ": " + e.what());
+          if (e.kind == EffectMethodError::Kind::method)
+            throw InputError("--config " + text + ": " + e.what());
           throw InputError("--config " + text + ": " + (e.effect.empty() ? item : e.effect) +
                            " is not an effect named in " + opt->input);
         }

@@ -24,8 +24,8 @@ nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& s
 
 // The whole file as text; InputError "<path>: cannot read file (<reason>)".
 std::string read_text_file(const std::string& path);
-// The whole file's bytes; when it cannot be opened or read, fail(reason) with reason strerror(errno)
-// or "read error", and fail must throw.
+// The whole file's bytes; when it cannot be opened or read, fail(reason), reason strerror(errno)
+// or "read error"; fail must throw.
 std::string read_file_bytes(const std::string& file,
                             const std::function<void(const std::string& reason)>& fail);
 

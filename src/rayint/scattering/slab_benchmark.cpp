@@ -35,7 +35,8 @@ namespace {
 // The value a benchmark names, from the doubling values (SlabValues) or the Monte Carlo estimates
 // (SlabEstimates): the same members, double or Estimate.
 template <class Values>
-auto benchmark_value(const Values& v, const BenchmarkValue& b) -> std::decay_t<decltype(v.flux_up_top)> {
+auto benchmark_value(const Values& v, const BenchmarkValue& b)
+    -> std::decay_t<decltype(v.flux_up_top)> {
   switch (b.quantity) {
     case SlabQuantity::flux_up_top: return v.flux_up_top;
     case SlabQuantity::diffuse_down_bottom: return v.diffuse_down_bottom;

@@ -105,7 +105,9 @@ VolumeComparison compare_volume_methods(const ScatteringVolume& v, const Camera&
       c.runs.push_back(run_method(
           "discrete_ordinates", g, 6 * b * b, cam, o.threads, c.reference_all.mean,
           [&] { return solve_discrete_ordinates(v, d); },
-          [&](const DiscreteOrdinatesSolution& sol, const ViewRay& ray) { return gather_discrete_ordinates(v, sol, ray); }));
+          [&](const DiscreteOrdinatesSolution& sol, const ViewRay& ray) {
+            return gather_discrete_ordinates(v, sol, ray);
+          }));
     }
   if (v.phase.kind() == PhaseFunction::Kind::isotropic)
     for (int g : o.zonal_grids) {

@@ -19,7 +19,8 @@ class ExactOrRiemannEffect : public Effect {
       : scene_(ctx.scene), spec_(ctx.method), name_(effect),
         tf_(ctx.scene.medium.transfer().emission_absorption(emission)) {
     if (ctx.method.name == "exact" && !ctx.scene.medium.field().piecewise_linear())
-      throw std::invalid_argument(std::string(effect) + ": method exact needs a medium that is piecewise "
+      throw std::invalid_argument(std::string(effect) +
+                                  ": method exact needs a medium that is piecewise "
                                   "linear along rays (homogeneous or grid), not " +
                                   ctx.scene.medium.field().kind() + "; use riemann:n=N");
     exact_ = spec_.name == "exact";
@@ -41,7 +42,8 @@ class ExactOrRiemannEffect : public Effect {
 
 class AbsorptionEffect final : public ExactOrRiemannEffect {
  public:
-  explicit AbsorptionEffect(const EffectContext& ctx) : ExactOrRiemannEffect(ctx, "absorption", false) {}
+  explicit AbsorptionEffect(const EffectContext& ctx)
+      : ExactOrRiemannEffect(ctx, "absorption", false) {}
 
   Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
     ++work.rays;

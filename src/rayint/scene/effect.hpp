@@ -125,7 +125,8 @@ struct EffectMethodError : std::invalid_argument {
   Kind kind;
   std::string effect;
 };
-std::pair<std::string, MethodSpec> parse_effect_assignment(const Scene& scene, const std::string& text);
+std::pair<std::string, MethodSpec> parse_effect_assignment(const Scene& scene,
+                                                           const std::string& text);
 // The n of a riemann:n=N method (default 128); std::invalid_argument "<label>: n must be an integer
 // in [1, 1e8]".
 int riemann_samples(const MethodSpec& spec);

@@ -92,14 +92,17 @@ MethodSpec parse_effect_method(const EffectInfo& effect, const std::string& text
   return spec;
 }
 
-std::pair<std::string, MethodSpec> parse_effect_assignment(const Scene& scene, const std::string& text) {
+std::pair<std::string, MethodSpec> parse_effect_assignment(const Scene& scene,
+                                                           const std::string& text) {
   using Kind = EffectMethodError::Kind;
   const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw EffectMethodError(Kind::syntax, "", "expected EFFECT=METHOD");
+  if (eq == std::string::npos || eq == 0)
+    throw EffectMethodError(Kind::syntax, "", "expected EFFECT=METHOD");
   std::string effect = text.substr(0, eq);
   const EffectInfo* info = find_effect(effect);
   if (info == nullptr || !scene.has(effect))
-    throw EffectMethodError(Kind::effect, effect, "effect " + effect + " is not named in " + scene.source);
+    throw EffectMethodError(Kind::effect, effect,
+                            "effect " + effect + " is not named in " + scene.source);
   try {
     MethodSpec spec = parse_effect_method(*info, text.substr(eq + 1));
     return {std::move(effect), std::move(spec)};
