@@ -8,7 +8,6 @@
 #endif
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/effects/standard_effects.hpp"
-#include "rayint/input/case_reader.hpp"
 
 namespace rayint::cli {
 
@@ -51,16 +50,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const rayint::cli::ChecksFailed&) {
     return rayint::cli::kExitFailed;
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "rayint: error: " << e.what() << "\n";
-    return rayint::cli::kExitBadInput;
-  } catch (const rayint::InputError& e) {
-    std::cerr << "rayint: error: " << e.what() << "\n";
-    return rayint::cli::kExitBadInput;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "rayint: error: " << e.what() << "\n";
-    return rayint::cli::kExitBadInput;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // CLI::ParseError, InputError, std::invalid_argument, ...
     std::cerr << "rayint: error: " << e.what() << "\n";
     return rayint::cli::kExitBadInput;
   }

@@ -24,17 +24,12 @@ std::string dir_of(const std::string& path) {
 
 void apply_overrides(Scene& scene, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) {
-    const auto eq = o.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw InputError("--method " + o + ": expected EFFECT=METHOD, e.g. single_scattering=riemann:n=64");
-    const std::string effect = o.substr(0, eq);
-    const EffectInfo* info = find_effect(effect);
-    if (info == nullptr || !scene.has(effect))
-      throw InputError("--method " + o + ": effect " + effect + " is not named in " + scene.source);
     try {
-      const MethodSpec spec = parse_effect_method(*info, o.substr(eq + 1));
+      auto [effect, spec] = parse_effect_assignment(scene, o);
       scene.methods[effect] = spec;
-    } catch (const std::invalid_argument& e) {
+    } catch (const EffectMethodError& e) {
+      if (e.kind == EffectMethodError::Kind::syntax)
+        throw InputError("--method " + o + ": expected EFFECT=METHOD, e.g. single_scattering=riemann:n=64");
       throw InputError("--method " + o + ": " + e.what());
     }
   }

@@ -38,16 +38,14 @@ void set_scene_sweep_command(CLI::App& app) {
       std::stringstream in(text);
       std::string item;
       while (std::getline(in, item, ',')) {
-        const auto eq = item.find('=');
-        const std::string effect = eq == std::string::npos ? "" : item.substr(0, eq);
-        const EffectInfo* info = find_effect(effect);
-        if (info == nullptr || !scene.has(effect))
-          throw InputError("--config " + text + ": " + (effect.empty() ? item : effect) +
-                           " is not an effect named in " + opt->input);
         try {
-          c[effect] = parse_effect_method(*info, item.substr(eq + 1));
-        } catch (const std::invalid_argument& e) {
-          throw InputError("--config " + text + ": " + e.what());
+          auto [effect, spec] = parse_effect_assignment(scene, item);
+          c[effect] = spec;
+        } catch (const EffectMethodError& e) {
+          if (e.kind == EffectMethodError::Kind::method)
+            throw InputError("--config " + text + ": " + e.what());
+          throw InputError("--config " + text + ": " + (e.effect.empty() ? item : e.effect) +
+                           " is not an effect named in " + opt->input);
         }
       }
       configs.push_back(c);

@@ -157,22 +157,27 @@ nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& s
   return parse_with_paths<nlohmann::ordered_json>(text, source);
 }
 
-std::string read_text_file(const std::string& path) {
+std::string read_file_bytes(const std::string& file,
+                            const std::function<void(const std::string& reason)>& fail) {
   errno = 0;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                       &std::fclose);
-  auto cannot_read = [&path]() {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
+  auto cannot_read = [&fail]() {
     const int err = errno;
-    throw InputError(one_line(path + ": cannot read file (" +
-                              (err != 0 ? std::strerror(err) : "read error") + ")"));
+    fail(err != 0 ? std::strerror(err) : "read error");
   };
-  if (!file) cannot_read();
-  std::string text;
+  if (!f) cannot_read();
+  std::string bytes;
   char buf[1 << 16];
   std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, file.get())) > 0) text.append(buf, n);
-  if (std::ferror(file.get())) cannot_read();
-  return text;
+  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) bytes.append(buf, n);
+  if (std::ferror(f.get())) cannot_read();
+  return bytes;
+}
+
+std::string read_text_file(const std::string& path) {
+  return read_file_bytes(path, [&path](const std::string& reason) {
+    throw InputError(one_line(path + ": cannot read file (" + reason + ")"));
+  });
 }
 
 }  // namespace rayint::json_source

@@ -7,6 +7,7 @@
 // errors carry the 1-based line and column of the offending character and nlohmann's reason.
 // Parsing is strict: no comments, nothing but whitespace after the document.
 #include <cstddef>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -23,6 +24,10 @@ nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& s
 
 // The whole file as text; InputError "<path>: cannot read file (<reason>)".
 std::string read_text_file(const std::string& path);
+// The whole file's bytes; when it cannot be opened or read, fail(reason), reason strerror(errno)
+// or "read error"; fail must throw.
+std::string read_file_bytes(const std::string& file,
+                            const std::function<void(const std::string& reason)>& fail);
 
 // The message helpers (core/error.hpp, core/format.hpp), named here for the readers' schema walks.
 using field::fail;

@@ -2,13 +2,10 @@
 // little-endian files (byte by byte, so the host's byte order does not matter).
 #include "rayint/input/voxel_grid_reader.hpp"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <memory>
 #include <vector>
 
 #include "rayint/input/json_source.hpp"
@@ -25,20 +22,9 @@ using json_source::quoted;
 
 std::string read_binary_file(const std::string& file, const JsonSchema& s,
                              const std::string& path) {
-  errno = 0;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-  auto cannot_read = [&]() {
-    const int err = errno;
-    s.fail(path, "cannot read " + quoted(file) + " (" +
-                     (err != 0 ? std::strerror(err) : "read error") + ")");
-  };
-  if (!f) cannot_read();
-  std::string bytes;
-  char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) bytes.append(buf, n);
-  if (std::ferror(f.get())) cannot_read();
-  return bytes;
+  return json_source::read_file_bytes(file, [&](const std::string& reason) {
+    s.fail(path, "cannot read " + quoted(file) + " (" + reason + ")");
+  });
 }
 
 std::uint64_t little_endian(const unsigned char* p, int size) {

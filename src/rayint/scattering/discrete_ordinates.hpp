@@ -84,6 +84,8 @@ struct CellGrid {
 };
 
 CellGrid make_cell_grid(const ScatteringVolume& volume, int n);
+// sigma_t at every cell centre, indexed by CellGrid::index; shared with the zonal method.
+std::vector<double> centre_sigma_t(const ScatteringVolume& volume, const CellGrid& cells);
 
 // Light irradiance at every cell centre (step 2); shared with the zonal method.
 std::vector<double> first_pass_irradiance(const ScatteringVolume& volume, const CellGrid& cells,

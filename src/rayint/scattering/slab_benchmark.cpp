@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <type_traits>
 
 
 namespace rayint {
@@ -31,24 +32,17 @@ std::string BenchmarkValue::label() const {
 
 namespace {
 
-double doubling_value(const SlabValues& v, const BenchmarkValue& b) {
+// The value a benchmark names, from the doubling values (SlabValues) or the Monte Carlo estimates
+// (SlabEstimates): the same members, double or Estimate.
+template <class Values>
+auto benchmark_value(const Values& v, const BenchmarkValue& b)
+    -> std::decay_t<decltype(v.flux_up_top)> {
   switch (b.quantity) {
     case SlabQuantity::flux_up_top: return v.flux_up_top;
     case SlabQuantity::diffuse_down_bottom: return v.diffuse_down_bottom;
     case SlabQuantity::direct_down_bottom: return v.direct_down_bottom;
     case SlabQuantity::intensity_up_top: return v.intensity_up_top[b.detector];
     case SlabQuantity::intensity_down_bottom: return v.intensity_down_bottom[b.detector];
-  }
-  return 0;
-}
-
-Estimate mc_value(const SlabEstimates& e, const BenchmarkValue& b) {
-  switch (b.quantity) {
-    case SlabQuantity::flux_up_top: return e.flux_up_top;
-    case SlabQuantity::diffuse_down_bottom: return e.diffuse_down_bottom;
-    case SlabQuantity::direct_down_bottom: return e.direct_down_bottom;
-    case SlabQuantity::intensity_up_top: return e.intensity_up_top[b.detector];
-    case SlabQuantity::intensity_down_bottom: return e.intensity_down_bottom[b.detector];
   }
   return {};
 }
@@ -118,21 +112,21 @@ BenchmarkReport run_slab_benchmark(const SlabBenchmark& benchmark, const Benchma
       const double allowed = v.tolerance_rel * std::fabs(v.published);
       if (o.doubling) {
         row.has_doubling = true;
-        row.doubling = doubling_value(dv, v);
+        row.doubling = benchmark_value(dv, v);
         row.doubling_rel_dev = (row.doubling - v.published) / v.published;
         row.doubling_pass = std::fabs(row.doubling - v.published) <= allowed;
       }
       if (run_ie) {
         row.has_integral_equation = true;
-        row.integral_equation = doubling_value(ie.values, v);
-        row.ie_error = doubling_value(ie.error_estimate, v);
-        row.ie_order = doubling_value(ie.observed_order, v);
+        row.integral_equation = benchmark_value(ie.values, v);
+        row.ie_error = benchmark_value(ie.error_estimate, v);
+        row.ie_order = benchmark_value(ie.observed_order, v);
         row.ie_rel_dev = (row.integral_equation - v.published) / v.published;
         row.ie_pass = std::fabs(row.integral_equation - v.published) <= allowed;
       }
       if (o.monte_carlo) {
         row.has_monte_carlo = true;
-        row.monte_carlo = mc_value(me, v);
+        row.monte_carlo = benchmark_value(me, v);
         row.mc_rel_dev = (row.monte_carlo.mean - v.published) / v.published;
         row.mc_allowed = std::max(allowed, 4 * row.monte_carlo.std_error);
         row.mc_in_95 = row.monte_carlo.covers(v.published);

@@ -51,6 +51,29 @@ ImageError image_error(const std::vector<double>& image, const std::vector<doubl
   return e;
 }
 
+namespace {
+// One method's run: times solve() (setup) and the gather of every pixel from its solution, and
+// scores the image against the reference.
+template <class Solve, class Gather>
+MethodRun run_method(const char* method, int grid, int bins, const Camera& cam, unsigned threads,
+                     const std::vector<double>& reference, Solve solve, Gather gather) {
+  MethodRun r;
+  r.method = method;
+  r.grid = grid;
+  r.bins = bins;
+  const auto t0 = Clock::now();
+  const auto sol = solve();
+  r.setup_seconds = since(t0);
+  r.iterations = sol.iterations;
+  r.converged = sol.converged;
+  const auto t1 = Clock::now();
+  r.image = gather_image(cam, threads, [&](const ViewRay& ray) { return gather(sol, ray); });
+  r.gather_seconds = since(t1);
+  r.error = image_error(r.image, reference);
+  return r;
+}
+}  // namespace
+
 VolumeComparison compare_volume_methods(const ScatteringVolume& v, const Camera& cam,
                                         const ComparisonOptions& o,
                                         const std::function<void(const std::string&)>& progress) {
@@ -75,46 +98,26 @@ VolumeComparison compare_volume_methods(const ScatteringVolume& v, const Camera&
   for (int g : o.do_grids)
     for (int b : o.do_bins) {
       say("discrete ordinates grid " + std::to_string(g) + " bins " + std::to_string(6 * b * b));
-      MethodRun r;
-      r.method = "discrete_ordinates";
-      r.grid = g;
-      r.bins = 6 * b * b;
       DiscreteOrdinatesOptions d;
       d.grid = g;
       d.bins_per_edge = b;
       d.threads = o.threads;
-      const auto t0 = Clock::now();
-      const DiscreteOrdinatesSolution sol = solve_discrete_ordinates(v, d);
-      r.setup_seconds = since(t0);
-      r.iterations = sol.iterations;
-      r.converged = sol.converged;
-      const auto t1 = Clock::now();
-      r.image = gather_image(cam, o.threads, [&](const ViewRay& ray) {
-        return gather_discrete_ordinates(v, sol, ray);
-      });
-      r.gather_seconds = since(t1);
-      r.error = image_error(r.image, c.reference_all.mean);
-      c.runs.push_back(std::move(r));
+      c.runs.push_back(run_method(
+          "discrete_ordinates", g, 6 * b * b, cam, o.threads, c.reference_all.mean,
+          [&] { return solve_discrete_ordinates(v, d); },
+          [&](const DiscreteOrdinatesSolution& sol, const ViewRay& ray) {
+            return gather_discrete_ordinates(v, sol, ray);
+          }));
     }
   if (v.phase.kind() == PhaseFunction::Kind::isotropic)
     for (int g : o.zonal_grids) {
       say("zonal grid " + std::to_string(g));
-      MethodRun r;
-      r.method = "zonal";
-      r.grid = g;
       ZonalOptions z;
       z.grid = g;
       z.threads = o.threads;
-      const auto t0 = Clock::now();
-      const ZonalSolution sol = solve_zonal(v, z);
-      r.setup_seconds = since(t0);
-      r.iterations = sol.iterations;
-      r.converged = sol.converged;
-      const auto t1 = Clock::now();
-      r.image = gather_image(cam, o.threads, [&](const ViewRay& ray) { return gather_zonal(v, sol, ray); });
-      r.gather_seconds = since(t1);
-      r.error = image_error(r.image, c.reference_all.mean);
-      c.runs.push_back(std::move(r));
+      c.runs.push_back(run_method(
+          "zonal", g, 0, cam, o.threads, c.reference_all.mean, [&] { return solve_zonal(v, z); },
+          [&](const ZonalSolution& sol, const ViewRay& ray) { return gather_zonal(v, sol, ray); }));
     }
   return c;
 }

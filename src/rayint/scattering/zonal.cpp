@@ -10,6 +10,7 @@
 #include "rayint/core/math.hpp"
 #include "rayint/core/parallel.hpp"
 #include "rayint/scattering/estimate.hpp"
+#include "rayint/scattering/cell_passes.hpp"
 
 namespace rayint {
 
@@ -59,16 +60,11 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
     throw std::invalid_argument("zonal method: rays_per_cell and light_rays_per_face must be >= 1");
   const auto start = std::chrono::steady_clock::now();
   ZonalSolution sol;
-  sol.cells = make_cell_grid(v, o.grid);
+  first_pass(v, o.grid, o.threads, sol);
   const CellGrid& g = sol.cells;
   const std::size_t nc = g.size();
   const Vec3 h = g.h;
   const double V = h[0] * h[1] * h[2];
-  sol.sigma_t.resize(nc);
-  for (int k = 0; k < g.n; ++k)
-    for (int j = 0; j < g.n; ++j)
-      for (int i = 0; i < g.n; ++i) sol.sigma_t[g.index(i, j, k)] = v.sigma_t(g.center(i, j, k));
-  sol.irradiance = first_pass_irradiance(v, g, o.threads);
   const std::vector<double>& sig = sol.sigma_t;
 
   // Light power extinguished per zone: parallel rays entering through the lit faces.
@@ -170,26 +166,14 @@ double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const V
   if (!iv.hit) return background;
   const CellGrid& g = sol.cells;
   const double p_sun = include_single ? v.phase.eval(v.light.direction.dot(-d)) : 0.0;
-  const double step = 0.25 * g.h.minCoeff();
-  const double len = iv.t_exit - iv.t_enter;
-  const int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
-  const double dt = len / steps;
-  double L = 0, T = 1;
-  for (int s = 0; s < steps; ++s) {
-    const Vec3 x = ray.origin + (iv.t_enter + (s + 0.5) * dt) * d;
-    const double sigma = v.sigma_t(x);
-    if (sigma <= 0) continue;
+  return gather_march(v, g, ray.origin, d, iv, background, [&](const Vec3& x, double sigma) {
     const double E = g.interpolate(sol.irradiance, x);
     // The zone emission is per unit volume of the zone; spread by sigma_t(x)/sigma_zone so that
     // it follows the medium inside the zone (sigma_zone from the interpolated cell values).
     const double sigma_cells = g.interpolate(sol.sigma_t, x);
     const double multiple = sigma_cells > 0 ? g.interpolate(sol.multiple, x) * sigma / sigma_cells : 0.0;
-    const double J = v.albedo * sigma * E * p_sun + multiple;
-    const double a1 = attenuated_length(sigma, dt);
-    L += T * J * a1;
-    T *= 1 - sigma * a1;
-  }
-  return L + T * background;
+    return v.albedo * sigma * E * p_sun + multiple;
+  });
 }
 
 }  // namespace rayint

@@ -11,31 +11,39 @@
 namespace rayint {
 namespace {
 
-int samples_of(const MethodSpec& spec) {
-  const double n = spec.number("n", 128);
-  if (!(n >= 1 && n <= 1e8 && n == std::floor(n)))
-    throw std::invalid_argument(spec.label() + ": n must be an integer in [1, 1e8]");
-  return static_cast<int>(n);
-}
-
-void check_exact_allowed(const EffectContext& ctx, const char* effect) {
-  if (ctx.method.name == "exact" && !ctx.scene.medium.field().piecewise_linear())
-    throw std::invalid_argument(std::string(effect) + ": method exact needs a medium that is piecewise "
-                                "linear along rays (homogeneous or grid), not " +
-                                ctx.scene.medium.field().kind() + "; use riemann:n=N");
-}
-
-class AbsorptionEffect final : public Effect {
+// Shared by both terms: method exact (integrators/exact, refused unless the medium is piecewise
+// linear along rays) or riemann:n, on the emission-absorption transfer functions.
+class ExactOrRiemannEffect : public Effect {
  public:
-  explicit AbsorptionEffect(const EffectContext& ctx)
-      : scene_(ctx.scene), spec_(ctx.method), tf_(ctx.scene.medium.transfer().emission_absorption(false)) {
-    check_exact_allowed(ctx, "absorption");
+  ExactOrRiemannEffect(const EffectContext& ctx, const char* effect, bool emission)
+      : scene_(ctx.scene), spec_(ctx.method), name_(effect),
+        tf_(ctx.scene.medium.transfer().emission_absorption(emission)) {
+    if (ctx.method.name == "exact" && !ctx.scene.medium.field().piecewise_linear())
+      throw std::invalid_argument(std::string(effect) +
+                                  ": method exact needs a medium that is piecewise "
+                                  "linear along rays (homogeneous or grid), not " +
+                                  ctx.scene.medium.field().kind() + "; use riemann:n=N");
     exact_ = spec_.name == "exact";
     if (exact_) integrator_ = std::make_unique<ExactIntegrator>(tf_);
-    else n_ = samples_of(spec_);
+    else n_ = riemann_samples(spec_);
   }
-  std::string name() const override { return "absorption"; }
+  std::string name() const override { return name_; }
   std::string method_label() const override { return spec_.label(); }
+
+ protected:
+  const Scene& scene_;
+  MethodSpec spec_;
+  const char* name_;
+  TransferFunctions tf_;
+  bool exact_ = false;
+  int n_ = 0;
+  std::unique_ptr<ExactIntegrator> integrator_;
+};
+
+class AbsorptionEffect final : public ExactOrRiemannEffect {
+ public:
+  explicit AbsorptionEffect(const EffectContext& ctx)
+      : ExactOrRiemannEffect(ctx, "absorption", false) {}
 
   Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
     ++work.rays;
@@ -68,28 +76,12 @@ class AbsorptionEffect final : public Effect {
     }
     return r;
   }
-
- private:
-  const Scene& scene_;
-  MethodSpec spec_;
-  TransferFunctions tf_;
-  bool exact_ = false;
-  int n_ = 0;
-  std::unique_ptr<ExactIntegrator> integrator_;
 };
 
-class EmissionEffect final : public Effect {
+class EmissionEffect final : public ExactOrRiemannEffect {
  public:
   explicit EmissionEffect(const EffectContext& ctx)
-      : scene_(ctx.scene), spec_(ctx.method), absorption_(ctx.absorption),
-        tf_(ctx.scene.medium.transfer().emission_absorption(true)) {
-    check_exact_allowed(ctx, "emission");
-    exact_ = spec_.name == "exact";
-    if (exact_) integrator_ = std::make_unique<ExactIntegrator>(tf_);
-    else n_ = samples_of(spec_);
-  }
-  std::string name() const override { return "emission"; }
-  std::string method_label() const override { return spec_.label(); }
+      : ExactOrRiemannEffect(ctx, "emission", true), absorption_(ctx.absorption) {}
 
   Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
     ++work.rays;
@@ -125,13 +117,7 @@ class EmissionEffect final : public Effect {
   }
 
  private:
-  const Scene& scene_;
-  MethodSpec spec_;
   bool absorption_;
-  TransferFunctions tf_;
-  bool exact_ = false;
-  int n_ = 0;
-  std::unique_ptr<ExactIntegrator> integrator_;
 };
 
 }  // namespace

@@ -23,7 +23,9 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rayint/scene/scene.hpp"
@@ -110,5 +112,23 @@ const EffectInfo* find_effect(const std::string& name);  // null if unknown
 void check_effect_method(const EffectInfo& effect, const MethodSpec& spec);
 // "name" or "name:key=value:...", checked with check_effect_method; throws std::invalid_argument.
 MethodSpec parse_effect_method(const EffectInfo& effect, const std::string& text);
+// One "EFFECT=METHOD" item (a command line's method choice) for an effect `scene` names: the effect
+// and parse_effect_method's spec of METHOD. Throws EffectMethodError.
+struct EffectMethodError : std::invalid_argument {
+  enum class Kind {
+    syntax,  // no '=', or nothing before it (effect empty)
+    effect,  // not an effect the scene names
+    method,  // parse_effect_method refused METHOD; what() is its message
+  };
+  EffectMethodError(Kind k, std::string name, const std::string& message)
+      : std::invalid_argument(message), kind(k), effect(std::move(name)) {}
+  Kind kind;
+  std::string effect;
+};
+std::pair<std::string, MethodSpec> parse_effect_assignment(const Scene& scene,
+                                                           const std::string& text);
+// The n of a riemann:n=N method (default 128); std::invalid_argument "<label>: n must be an integer
+// in [1, 1e8]".
+int riemann_samples(const MethodSpec& spec);
 
 }  // namespace rayint

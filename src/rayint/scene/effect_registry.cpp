@@ -92,6 +92,25 @@ MethodSpec parse_effect_method(const EffectInfo& effect, const std::string& text
   return spec;
 }
 
+std::pair<std::string, MethodSpec> parse_effect_assignment(const Scene& scene,
+                                                           const std::string& text) {
+  using Kind = EffectMethodError::Kind;
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw EffectMethodError(Kind::syntax, "", "expected EFFECT=METHOD");
+  std::string effect = text.substr(0, eq);
+  const EffectInfo* info = find_effect(effect);
+  if (info == nullptr || !scene.has(effect))
+    throw EffectMethodError(Kind::effect, effect,
+                            "effect " + effect + " is not named in " + scene.source);
+  try {
+    MethodSpec spec = parse_effect_method(*info, text.substr(eq + 1));
+    return {std::move(effect), std::move(spec)};
+  } catch (const std::invalid_argument& e) {
+    throw EffectMethodError(Kind::method, effect, e.what());
+  }
+}
+
 void check_effect_method(const EffectInfo& effect, const MethodSpec& spec) {
   std::string names;
   for (const MethodInfo& m : effect.methods) {
@@ -109,6 +128,13 @@ void check_effect_method(const EffectInfo& effect, const MethodSpec& spec) {
   }
   throw std::invalid_argument("unknown method " + spec.name + " for effect " + effect.name +
                               " (expected " + (names.empty() ? "none" : names) + ")");
+}
+
+int riemann_samples(const MethodSpec& spec) {
+  const double n = spec.number("n", 128);
+  if (!(n >= 1 && n <= 1e8 && n == std::floor(n)))
+    throw std::invalid_argument(spec.label() + ": n must be an integer in [1, 1e8]");
+  return static_cast<int>(n);
 }
 
 }  // namespace rayint

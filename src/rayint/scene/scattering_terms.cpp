@@ -10,13 +10,6 @@
 namespace rayint {
 namespace {
 
-int samples_of(const MethodSpec& spec) {
-  const double n = spec.number("n", 128);
-  if (!(n >= 1 && n <= 1e8 && n == std::floor(n)))
-    throw std::invalid_argument(spec.label() + ": n must be an integer in [1, 1e8]");
-  return static_cast<int>(n);
-}
-
 // Shared by both terms: a per-point source with a light-transmittance callback.
 class LitTermEffect : public Effect {
  public:
@@ -25,7 +18,7 @@ class LitTermEffect : public Effect {
         shadows_(ctx.shadows), shadowing_(ctx.shadowing) {
     if (spec_.name != "riemann")
       throw std::invalid_argument(name_ + ": unknown method " + spec_.name + " (expected riemann:n=N)");
-    n_ = samples_of(spec_);
+    n_ = riemann_samples(spec_);
   }
   std::string name() const override { return name_; }
   std::string method_label() const override { return spec_.label(); }

@@ -177,7 +177,8 @@ void run_method(const MethodSpec& spec, const RaySample& sample,
   if (finite) keep(acc.worst_finite);
 }
 
-void merge_into(MethodAccumulator& into, MethodAccumulator& from) {
+// The counts, the largest underflow error and the branch counts (not the worst samples).
+void add_counts(MethodAccumulator& into, const MethodAccumulator& from) {
   into.scored += from.scored;
   into.non_finite += from.non_finite;
   into.failures += from.failures;
@@ -185,6 +186,10 @@ void merge_into(MethodAccumulator& into, MethodAccumulator& from) {
   into.underflow += from.underflow;
   into.max_abs_underflow = std::max(into.max_abs_underflow, from.max_abs_underflow);
   for (const auto& [k, v] : from.branches) into.branches[k] += v;
+}
+
+void merge_into(MethodAccumulator& into, MethodAccumulator& from) {
+  add_counts(into, from);
   if (from.worst.severity.worse_than(into.worst.severity)) into.worst = std::move(from.worst);
   if (from.worst_finite.severity.worse_than(into.worst_finite.severity))
     into.worst_finite = std::move(from.worst_finite);
@@ -439,14 +444,7 @@ StressReport run_stress(const StressOptions& opt) {
     for (std::size_t m = 0; m < n_methods; ++m) {
       MethodAccumulator& ma = into.methods[m];
       // pooled figures first (to_method_stress consumes the slots)
-      MethodAccumulator& pa = pooled_acc[m];
-      pa.scored += ma.scored;
-      pa.non_finite += ma.non_finite;
-      pa.failures += ma.failures;
-      pa.negative += ma.negative;
-      pa.underflow += ma.underflow;
-      pa.max_abs_underflow = std::max(pa.max_abs_underflow, ma.max_abs_underflow);
-      for (const auto& [k, v] : ma.branches) pa.branches[k] += v;
+      add_counts(pooled_acc[m], ma);
       for (const double x : rel[r][m]) pooled_rel[m].push_back(x);
       for (const double x : ulp[r][m]) pooled_ulp[m].push_back(x);
 
