@@ -43,10 +43,6 @@
 
 namespace rayint {
 
-// The ray span of geometry/bounds.hpp under the name grid/ gave it first (discrete_ordinates.cpp
-// still spells it so); one type.
-using RayInterval = RaySpan;
-
 class VoxelGrid {
  public:
   VoxelGrid() = default;

@@ -91,7 +91,7 @@ std::vector<double> first_pass_irradiance(const ScatteringVolume& v, const CellG
     for (int j = 0; j < g.n; ++j)
       for (int i = 0; i < g.n; ++i) {
         const Vec3 c = g.center(i, j, k);
-        const RayInterval iv = v.density.clip(ViewRay{c, to_light});
+        const RaySpan iv = v.density.clip(ViewRay{c, to_light});
         double tau = 0;
         if (iv.hit) {
           const double len = iv.t_exit - iv.t_enter;
@@ -212,7 +212,7 @@ DiscreteOrdinatesSolution solve_discrete_ordinates(const ScatteringVolume& v,
 double gather_discrete_ordinates(const ScatteringVolume& v, const DiscreteOrdinatesSolution& sol,
                                  const ViewRay& ray, bool include_single) {
   const Vec3 d = ray.direction.normalized();
-  const RayInterval iv = v.density.clip(ViewRay{ray.origin, d});
+  const RaySpan iv = v.density.clip(ViewRay{ray.origin, d});
   const double background = include_single ? v.background : 0.0;
   if (!iv.hit) return background;
   const CellGrid& g = sol.cells;
