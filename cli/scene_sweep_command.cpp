@@ -50,7 +50,7 @@ void set_scene_sweep_command(CLI::App& app) {
       }
       configs.push_back(c);
     }
-    const SweepResult r = sweep_scene(scene, configs, opt->errors, opt->threads,
+    const SceneSweepResult r = sweep_scene(scene, configs, opt->errors, opt->threads,
                                       [opt](std::size_t done, std::size_t total) {
                                         if (!opt->quiet) std::cerr << "\rconfiguration " << done << "/" << total << std::flush;
                                       });

@@ -4,7 +4,7 @@
 
 namespace rayint {
 
-nlohmann::json scene_sweep_json(const Scene& scene, const SweepResult& r) {
+nlohmann::json scene_sweep_json(const Scene& scene, const SceneSweepResult& r) {
   nlohmann::json j;
   j["scene"] = scene.name;
   j["source"] = scene.source;

@@ -7,6 +7,6 @@
 
 namespace rayint {
 
-nlohmann::json scene_sweep_json(const Scene& scene, const SweepResult& result);
+nlohmann::json scene_sweep_json(const Scene& scene, const SceneSweepResult& result);
 
 }  // namespace rayint

@@ -47,10 +47,10 @@ TermError compare(const std::vector<Rgb>& approx, const std::vector<Rgb>& ref) {
 
 }  // namespace
 
-SweepResult sweep_scene(const Scene& scene, const std::vector<std::map<std::string, MethodSpec>>& configs,
+SceneSweepResult sweep_scene(const Scene& scene, const std::vector<std::map<std::string, MethodSpec>>& configs,
                         int error_grid, unsigned threads,
                         const std::function<void(std::size_t, std::size_t)>& progress) {
-  SweepResult out;
+  SceneSweepResult out;
   out.error_grid = error_grid;
   out.threads = resolve_threads(threads);
   const bool absorption = scene.has("absorption");

@@ -22,14 +22,14 @@ struct SweepPoint {
   TermError total_error;
 };
 
-struct SweepResult {
+struct SceneSweepResult {
   int error_grid = 0;
   unsigned threads = 1;
   double reference_seconds = 0.0;  // wall time of the references
   std::vector<SweepPoint> points;
 };
 
-SweepResult sweep_scene(const Scene& scene, const std::vector<std::map<std::string, MethodSpec>>& configs,
+SceneSweepResult sweep_scene(const Scene& scene, const std::vector<std::map<std::string, MethodSpec>>& configs,
                         int error_grid, unsigned threads,
                         const std::function<void(std::size_t done, std::size_t total)>& progress = {});
 
