@@ -199,3 +199,19 @@ TEST_CASE("scene: the cloud's Perlin noise stays within the bound used for its m
   CHECK(dmax > 0.0);
   CHECK(dmax <= cloud.max_density());
 }
+
+TEST_CASE("scene effects: multiple_scattering is registered in its reserved place, last in the pipeline order",
+          "[scene]") {
+  // tests/main.cpp calls register_standard_effects() as cli/main.cpp does; the entry it replaces
+  // was reserved (no factory) so that a program without the call is told to make it.
+  const std::vector<EffectInfo>& effects = effect_registry();
+  REQUIRE(!effects.empty());
+  CHECK(effects.back().name == "multiple_scattering");
+  const EffectInfo* ms = find_effect("multiple_scattering");
+  REQUIRE(ms != nullptr);
+  CHECK(ms->make != nullptr);
+  CHECK(!ms->methods.empty());
+  std::size_t named = 0;
+  for (const EffectInfo& e : effects) named += e.name == "multiple_scattering" ? 1 : 0;
+  CHECK(named == 1);
+}

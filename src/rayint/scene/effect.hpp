@@ -19,7 +19,9 @@
 // `multiple_scattering` by scattering/) lives in src/rayint/effects/ and registers itself with
 // register_effect() from register_standard_effects() (effects/standard_effects.hpp), the one
 // registration call that the CLI's main and the tests' main make before any scene is read, so
-// both see the same registry. docs/scenes.md describes the contract.
+// both see the same registry. Its name is reserved in registry() at its place in the pipeline
+// order, so a program that never calls register_standard_effects() is told to, rather than
+// getting "unknown effect". docs/scenes.md describes the contract.
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>

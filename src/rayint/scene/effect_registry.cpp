@@ -51,6 +51,12 @@ std::vector<EffectInfo>& registry() {
        nullptr},
       {"shading", Role::term, "Max's gradient-strength surface shading (Lambert/Phong)",
        "riemann:n=128", {{"riemann", {"n"}, "n midpoint samples"}}, make_shading_effect},
+      // Reserved: implemented in effects/ (scene does not link scattering) and put in this place
+      // by register_standard_effects(). A program that links the library but never calls it
+      // gets "not available in this build" naming the call, not "unknown effect".
+      {"multiple_scattering", Role::term,
+       "not registered: call rayint::register_standard_effects() (effects/standard_effects.hpp)",
+       "", {}, nullptr},
   };
   return effects;
 }
