@@ -2,7 +2,8 @@
 // read by input/slab_benchmark_reader.hpp).
 #include "rayint/scattering/slab_benchmark.hpp"
 
-#include <chrono>
+#include "rayint/scattering/slab_run.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -82,27 +83,17 @@ BenchmarkReport run_slab_benchmark(const SlabBenchmark& benchmark, const Benchma
     if (progress) progress(bp.id);
     BenchmarkProblemCost cost;
     cost.problem_id = bp.id;
-    SlabValues dv;
-    SlabEstimates me;
-    if (o.doubling) {
-      const auto t0 = std::chrono::steady_clock::now();
-      dv = solve_slab_doubling(bp.problem, o.doubling_options);
-      cost.doubling_seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The one solver dispatch (slab_run.hpp); a benchmark has no max_order.
+    const SlabRun run = run_slab_problem(bp.problem, o);
+    cost.doubling_seconds = run.doubling_seconds;
+    if (run.integral_equation) {
+      cost.ie_seconds = run.integral_equation->seconds;
+      cost.ie_segments = run.integral_equation->finest_segments;
     }
-    SlabIntegralEquationResult ie;
-    const bool run_ie = o.integral_equation && bp.problem.phase.kind() == PhaseFunction::Kind::isotropic;
-    if (run_ie) {
-      ie = solve_slab_integral_equation(bp.problem, o.ie_options);
-      cost.ie_seconds = ie.seconds;
-      cost.ie_segments = ie.finest_segments;
-    }
-    if (o.monte_carlo) {
-      me = o.mc_split ? solve_slab_monte_carlo_split(bp.problem, o.mc_options)
-                      : solve_slab_monte_carlo(bp.problem, o.mc_options);
-      cost.mc_seconds = me.seconds;
-      cost.mc_photons = me.photons;
-      cost.mc_collisions = me.collisions;
+    if (run.monte_carlo) {
+      cost.mc_seconds = run.monte_carlo->seconds;
+      cost.mc_photons = run.monte_carlo->photons;
+      cost.mc_collisions = run.monte_carlo->collisions;
     }
     report.costs.push_back(cost);
     for (const auto& v : bp.values) {
@@ -110,23 +101,23 @@ BenchmarkReport run_slab_benchmark(const SlabBenchmark& benchmark, const Benchma
       row.problem_id = bp.id;
       row.value = v;
       const double allowed = v.tolerance_rel * std::fabs(v.published);
-      if (o.doubling) {
+      if (run.doubling) {
         row.has_doubling = true;
-        row.doubling = benchmark_value(dv, v);
+        row.doubling = benchmark_value(*run.doubling, v);
         row.doubling_rel_dev = (row.doubling - v.published) / v.published;
         row.doubling_pass = std::fabs(row.doubling - v.published) <= allowed;
       }
-      if (run_ie) {
+      if (const auto& ie = run.integral_equation) {
         row.has_integral_equation = true;
-        row.integral_equation = benchmark_value(ie.values, v);
-        row.ie_error = benchmark_value(ie.error_estimate, v);
-        row.ie_order = benchmark_value(ie.observed_order, v);
+        row.integral_equation = benchmark_value(ie->values, v);
+        row.ie_error = benchmark_value(ie->error_estimate, v);
+        row.ie_order = benchmark_value(ie->observed_order, v);
         row.ie_rel_dev = (row.integral_equation - v.published) / v.published;
         row.ie_pass = std::fabs(row.integral_equation - v.published) <= allowed;
       }
-      if (o.monte_carlo) {
+      if (run.monte_carlo) {
         row.has_monte_carlo = true;
-        row.monte_carlo = benchmark_value(me, v);
+        row.monte_carlo = benchmark_value(*run.monte_carlo, v);
         row.mc_rel_dev = (row.monte_carlo.mean - v.published) / v.published;
         row.mc_allowed = std::max(allowed, 4 * row.monte_carlo.std_error);
         row.mc_in_95 = row.monte_carlo.covers(v.published);

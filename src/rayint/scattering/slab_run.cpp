@@ -1,6 +1,7 @@
 #include "rayint/scattering/slab_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "rayint/scattering/slab_single_scattering.hpp"
@@ -11,9 +12,12 @@ SlabRun run_slab_problem(const SlabProblem& p, const BenchmarkRunOptions& o) {
   SlabRun run;
   run.options = o;
   const int max_order = o.mc_options.max_order;
-  if (o.doubling && max_order == 0) run.doubling = solve_slab_doubling(p, o.doubling_options);
-  if (o.doubling && max_order == 0 && o.integral_equation &&
-      p.phase.kind() == PhaseFunction::Kind::isotropic)
+  if (o.doubling && max_order == 0) {
+    const auto t0 = std::chrono::steady_clock::now();
+    run.doubling = solve_slab_doubling(p, o.doubling_options);
+    run.doubling_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  if (o.integral_equation && max_order == 0 && p.phase.kind() == PhaseFunction::Kind::isotropic)
     run.integral_equation = solve_slab_integral_equation(p, o.ie_options);
   if (max_order == 1) run.single_scattering_closed_form = single_scattering(p);
   if (o.monte_carlo) {
