@@ -1,9 +1,15 @@
 // rayint eval CASE.json [...] -- every method against the 50-digit reference, per ray.
+// Progress on stderr (at most one line a second, none with --quiet); --no-reference skips the
+// reference and the error fields.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/studies/evaluate.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/report/evaluation_json.hpp"
@@ -18,6 +24,9 @@ void set_eval_command(CLI::App& app) {
     std::string format = "json";
     std::string output;
     bool no_timing = false;
+    bool no_reference = false;
+    bool quiet = false;
+    double progress_every = 1.0;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -29,23 +38,57 @@ void set_eval_command(CLI::App& app) {
       ->check(CLI::IsMember({"json", "table"}));
   cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
   cmd->add_flag("--no-timing", opt->no_timing, "Skip the timing runs (seconds_per_ray = 0)");
+  cmd->add_flag("--no-reference", opt->no_reference,
+                "Skip the 50-digit reference and the error fields (costs time on big cases)");
+  add_quiet_flag(cmd, opt->quiet);
+  cmd->add_option("--progress-every", opt->progress_every,
+                  "Seconds between progress lines on stderr (0: every step)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->callback([opt] {
     const std::vector<MethodSpec> methods =
         opt->methods.empty() ? default_methods() : parse_method_list(opt->methods);
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    auto last = start;
+    // True (and the clock reset) when --progress-every seconds have passed since the last line.
+    const auto line_due = [&]() {
+      const auto now = clock::now();
+      if (opt->quiet || std::chrono::duration<double>(now - last).count() < opt->progress_every)
+        return false;
+      last = now;
+      return true;
+    };
+    const auto seconds = [&]() { return std::chrono::duration<double>(clock::now() - start).count(); };
     std::vector<Case> cases;
+    const auto read = [&](const std::string& file) {
+      cases.push_back(read_case_file(file));
+      if (line_due())
+        std::fprintf(stderr, "eval: read %s, %.0f s\n", file.c_str(), seconds());
+    };
     for (const auto& f : opt->files) {  // a folder means every case file in it
       if (std::filesystem::is_directory(f)) {
         const std::vector<std::string> files = list_case_files(f);
         if (files.empty()) throw InputError(f + ": folder holds no case files (*.json)");
-        for (const auto& file : files) cases.push_back(read_case_file(file));
+        for (const auto& file : files) read(file);
       } else {
-        cases.push_back(read_case_file(f));  // validate all before evaluating any
+        read(f);  // validate all before evaluating any
       }
     }
     EvalOptions eo;
     eo.measure_time = !opt->no_timing;
+    eo.with_reference = !opt->no_reference;
+    std::string name;  // the case being evaluated
+    eo.progress_seconds = std::max(opt->progress_every, 0.05);
+    if (!opt->quiet)
+      eo.progress = [&](const EvalProgress& p) {
+        if (line_due()) std::fputs(eval_progress_line(name, p, seconds()).c_str(), stderr);
+      };
     std::vector<CaseEvaluation> results;
-    for (const auto& c : cases) results.push_back(evaluate_case(c, methods, eo));
+    for (const auto& c : cases) {
+      name = c.name;
+      results.push_back(evaluate_case(c, methods, eo));
+    }
     emit(opt->format == "table" ? evaluation_table(results) : eval_report_json(results).dump(2),
          opt->output);
   });

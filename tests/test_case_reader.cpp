@@ -5,12 +5,15 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "rayint/input/case_reader.hpp"
+#include "rayint/input/json_source.hpp"
 #include "input_text.hpp"
 
 namespace {
@@ -303,4 +306,102 @@ TEST_CASE("paper-figure-2 reproduces the paper's interval coefficients", "[case_
   CHECK(kappa(0.0) * rho(0.0) == Approx(8.5).epsilon(1e-15));
   CHECK(kappa(1.0) * rho(1.0) - kappa(0.0) * rho(0.0) == Approx(-5.1).epsilon(1e-15));
   CHECK(kappa(0.25) == 1.7);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Streaming segments (parse_case_text) against the whole-tree walk (detail::parse_case_text_tree):
+// the same Case, bit for bit, and the same first message.
+
+namespace {
+
+void check_same_case(const Case& a, const Case& b) {
+  CHECK(a.name == b.name);
+  CHECK(a.description == b.description);
+  CHECK(a.source == b.source);
+  for (int ch = 0; ch < rayint::kChannels; ++ch) {
+    CHECK(a.transfer.density[ch].scalar == b.transfer.density[ch].scalar);
+    CHECK(a.transfer.density[ch].value == b.transfer.density[ch].value);
+    CHECK(a.transfer.color[ch].scalar == b.transfer.color[ch].scalar);
+    CHECK(a.transfer.color[ch].value == b.transfer.color[ch].value);
+  }
+  REQUIRE(a.rays.size() == b.rays.size());
+  for (std::size_t i = 0; i < a.rays.size(); ++i) {
+    INFO("ray " << i);
+    CHECK(a.rays[i].background == b.rays[i].background);
+    REQUIRE(a.rays[i].segments.size() == b.rays[i].segments.size());
+    std::size_t differ = 0;  // compared as bits: -0 and +0, and every last ulp
+    for (std::size_t k = 0; k < a.rays[i].segments.size(); ++k) {
+      const rayint::Segment& x = a.rays[i].segments[k];
+      const rayint::Segment& y = b.rays[i].segments[k];
+      if (std::memcmp(&x, &y, sizeof x) != 0) ++differ;
+    }
+    CHECK(differ == 0);
+  }
+}
+
+std::string message_of(const std::string& text, bool streamed) {
+  return rayint::test::input_error_of([&] {
+    if (streamed)
+      parse_case_text(text, kSource);
+    else
+      rayint::detail::parse_case_text_tree(text, kSource);
+  });
+}
+
+}  // namespace
+
+TEST_CASE("streamed segments give the whole-tree reader's case on every file in cases/",
+          "[case_reader][corpus]") {
+  const std::vector<std::string> files = rayint::list_case_files(RAYINT_SOURCE_DIR "/cases");
+  REQUIRE(files.size() >= 20);
+  std::size_t segments = 0;
+  for (const auto& file : files) {
+    INFO("file: " << file);
+    const std::string text = rayint::json_source::read_text_file(file);
+    const Case streamed = parse_case_text(text, file);
+    const Case tree = rayint::detail::parse_case_text_tree(text, file);
+    check_same_case(streamed, tree);
+    for (const auto& r : streamed.rays) segments += r.segments.size();
+  }
+  CHECK(segments > 1000);  // the corpus holds many-segment cases, not only one-liners
+}
+
+TEST_CASE("streamed segments: the same first message as the whole-tree reader", "[case_reader]") {
+  // One problem each, then two problems where the streamed segment is met first in the text but
+  // the walk reports the other one first (syntax errors, the root's fields, a ray's own fields,
+  // the transfer function written after the rays), then problems in several rays.
+  const std::string bad_segment = with(R"("length": 0.25)", R"("length": -1)");
+  const std::string tf_after_rays = R"({"name": "n",
+    "rays": [{"segments": [{"length": -1, "scalar": [0, 1]}]}],
+    "transfer_function": {"density": [[0, -1]], "color": [[0, 1]]}})";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {bad_segment, "rays[0].segments[1].length: must be finite and >= 0, got -1"},
+      {with(R"("scalar": [0.1, 0.9])", R"("scalar": 0.5)"), "rays[0].segments[0].scalar"},
+      {with(R"({"length": 1.0, "scalar": [0.1, 0.9]})", "7"), "rays[0].segments[0]: must be an object"},
+      {with(R"("length": 0.25)", R"("length": 0.25, "length": 0.5)"), "duplicate field"},
+      {with(R"("length": 1.0)", R"("length": 1e400)"), "rays[0].segments[0].length: must be finite"},
+      {bad_segment + " trailing", "(root): invalid JSON at line 12"},
+      {with(R"("description")", R"("descripton")", bad_segment), "descripton: unknown field"},
+      {with(R"("segments")", R"("weight": 1, "segments")", bad_segment), "rays[0].weight: unknown field"},
+      {with("[0.0, 0.0, 0.0]", "[0.0, -1, 0.0]", bad_segment), "rays[0].background[1]"},
+      {tf_after_rays, "transfer_function.density[0][1]"},
+      {R"({"name": "n", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+          "rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]},
+                   {"segments": [{"length": 1, "scalar": [0, 1]}, {"length": -2, "scalar": [0, 1]},
+                                 {"length": -3, "scalar": [0, 1]}]},
+                   {"segments": [{"length": -4, "scalar": [0, 1]}]}]})",
+       "rays[1].segments[1].length: must be finite and >= 0, got -2"},
+      {R"({"name": "n", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+          "rays": [{"segments": []}, {"segments": [{"length": -1, "scalar": [0, 1]}]}]})",
+       "rays[0].segments: must be a non-empty array, got []"},
+      {R"({"name": "n", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+          "rays": [{"segments": {"0": {"length": 1, "scalar": [0, 1]}}}]})",
+       "rays[0].segments: must be a non-empty array, got object"},
+  };
+  for (const auto& [text, expected] : cases) {
+    INFO("text: " << text);
+    const std::string tree = message_of(text, false);
+    CHECK(message_of(text, true) == tree);
+    CHECK(tree.find(expected) != std::string::npos);
+  }
 }

@@ -525,3 +525,37 @@ TEST_CASE("reference: concurrent calls give the serial results", "[reference]") 
     }
   }
 }
+
+TEST_CASE("reference: a long ray on several threads is bit-identical to one thread",
+          "[reference]") {
+  // 4500 segments (two full blocks of ReferenceRun and a partial one), the scalar crossing the
+  // breakpoints of hand_tf back and forth, some segments of zero length.
+  Ray ray;
+  ray.background = {0.3, 0.0, 1.5};
+  double s = 0.5;
+  for (int k = 0; k < 4500; ++k) {
+    const double next = 0.5 + 0.45 * std::sin(0.013 * (k + 1));
+    ray.segments.push_back({k % 97 == 0 ? 0.0 : 1e-3 * (1 + k % 7), s, next});
+    s = next;
+  }
+  const ReferenceRay serial = reference_ray(hand_tf(), ray);
+  std::vector<std::size_t> done;
+  ReferenceRun run;
+  run.threads = 3;
+  run.progress = [&](std::size_t d, std::size_t total) {
+    CHECK(total == ray.segments.size());
+    done.push_back(d);
+  };
+  const ReferenceRay parallel = reference_ray(hand_tf(), ray, run);
+  CHECK(done == std::vector<std::size_t>{2048, 4096, 4500});
+  CHECK(parallel.pieces == serial.pieces);
+  CHECK(parallel.subintervals == serial.subintervals);
+  CHECK(serial.pieces > 4500);  // breakpoints split segments
+  for (int c = 0; c < kChannels; ++c) {
+    CHECK(parallel.intensity[c].hi == serial.intensity[c].hi);
+    CHECK(parallel.intensity[c].lo == serial.intensity[c].lo);
+    CHECK(parallel.transmittance[c].hi == serial.transmittance[c].hi);
+    CHECK(parallel.transmittance[c].lo == serial.transmittance[c].lo);
+    CHECK(parallel.error_bound[c] == serial.error_bound[c]);
+  }
+}

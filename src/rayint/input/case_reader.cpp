@@ -7,6 +7,14 @@
 //     values, strictly increasing breakpoints, non-empty arrays, and no unknown fields.
 //
 // Every problem is thrown as one InputError line `<source>: <field path>: <what>`.
+//
+// Streaming (parse_case_text): the segments, the bulk of a big case, are not kept in the tree.
+// json_source streams each rays[i].segments[j] element as soon as it is parsed; it is checked by
+// the same schema function (segment) and stored as a Segment (24 bytes instead of nlohmann's
+// ~400 for the object, its keys and the pair). A problem found there is held, not thrown, until
+// the schema walk reaches that ray's segments, so every file gets the same first message as the
+// whole-tree walk (detail::parse_case_text_tree, which tests/test_case_reader.cpp compares it with
+// on every case of cases/): syntax errors anywhere, then the walk's order.
 #include "rayint/input/case_reader.hpp"
 
 #include "rayint/input/json_schema.hpp"
@@ -50,8 +58,16 @@ Segment segment(const JsonSchema& s, const json& j, const std::string& path) {
   return seg;
 }
 
-// {"background"?: [r, g, b], "segments": [segment, ...]}.
-Ray ray(const JsonSchema& s, const json& j, const std::string& path) {
+// The segments of the rays, as streamed: per ray, those read so far, or the first problem.
+struct StreamedRay {
+  std::vector<Segment> segments;
+  std::string error;  // InputError message of the first bad segment; empty: none
+};
+using StreamedRays = std::vector<StreamedRay>;
+
+// {"background"?: [r, g, b], "segments": [segment, ...]}; with `streamed`, the segments were
+// streamed there (the tree holds rays[i].segments empty when it was an array).
+Ray ray(const JsonSchema& s, const json& j, const std::string& path, StreamedRay* streamed) {
   s.require_object(j, path);
   s.check_fields(j, path, {"background", "segments"});
   Ray r;
@@ -59,6 +75,13 @@ Ray ray(const JsonSchema& s, const json& j, const std::string& path) {
     r.background = s.rgb(*b, member_path(path, "background"));
   const std::string spath = member_path(path, "segments");
   const json& segs = s.required(j, path, "segments");
+  if (streamed && segs.is_array() && segs.empty()) {
+    if (!streamed->error.empty()) throw InputError(streamed->error);
+    if (!streamed->segments.empty()) {
+      r.segments = std::move(streamed->segments);
+      return r;
+    }
+  }
   s.non_empty_array(segs, spath, "");
   r.segments.reserve(segs.size());
   for (std::size_t i = 0; i < segs.size(); ++i)
@@ -66,7 +89,7 @@ Ray ray(const JsonSchema& s, const json& j, const std::string& path) {
   return r;
 }
 
-Case read_case(const JsonSchema& s, const json& root) {
+Case read_case(const JsonSchema& s, const json& root, StreamedRays* streamed) {
   const std::string path;
   s.require_object(root, path);
   s.check_fields(root, path, {"name", "description", "transfer_function", "rays"});
@@ -78,21 +101,51 @@ Case read_case(const JsonSchema& s, const json& root) {
   const json& rays = s.required(root, path, "rays");
   s.non_empty_array(rays, "rays", "");
   c.rays.reserve(rays.size());
-  for (std::size_t i = 0; i < rays.size(); ++i) c.rays.push_back(ray(s, rays[i], index_path("rays", i)));
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    StreamedRay* sr = streamed && i < streamed->size() ? &(*streamed)[i] : nullptr;
+    c.rays.push_back(ray(s, rays[i], index_path("rays", i), sr));
+  }
   return c;
 }
 
-}  // namespace
-
-Case parse_case_text(std::string_view text, const std::string& source) {
-  const json root = json_source::parse(text, source);
+Case parse_case_root(const json& root, const std::string& source, StreamedRays* streamed) {
   if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
     MeshCase mc = parse_mesh_case(root, source);
     const TetTraversal mesh(mc.mesh, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
   }
-  return read_case(JsonSchema(source), root);
+  return read_case(JsonSchema(source), root, streamed);
 }
+
+}  // namespace
+
+Case parse_case_text(std::string_view text, const std::string& source) {
+  const JsonSchema schema(source);
+  StreamedRays streamed;
+  json_source::StreamedArray sink;
+  sink.array_path = {"rays", "[]", "segments"};
+  sink.element = [&](json& element, const std::vector<std::size_t>& at) {
+    const std::size_t i = at[0], k = at[1];
+    if (streamed.size() <= i) streamed.resize(i + 1);
+    StreamedRay& r = streamed[i];
+    if (!r.error.empty()) return;  // the first problem of this ray is the one reported
+    try {
+      r.segments.push_back(
+          segment(schema, element, index_path(member_path(index_path("rays", i), "segments"), k)));
+    } catch (const InputError& e) {
+      r.error = e.what();
+      r.segments = {};
+    }
+  };
+  const json root = json_source::parse(text, source, sink);
+  return parse_case_root(root, source, &streamed);
+}
+
+namespace detail {
+Case parse_case_text_tree(std::string_view text, const std::string& source) {
+  return parse_case_root(json_source::parse(text, source), source, nullptr);
+}
+}  // namespace detail
 
 Case read_case_file(const std::string& path) {
   const std::string text = json_source::read_text_file(path);

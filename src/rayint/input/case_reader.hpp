@@ -15,6 +15,13 @@ namespace rayint {
 Case parse_case_text(std::string_view text, const std::string& source);
 Case read_case_file(const std::string& path);
 
+namespace detail {
+// The same reading with every segment kept in the JSON tree until the schema walk (how
+// parse_case_text read before it streamed segments; ~10x the text in memory). For the test that
+// both give the same cases and the same messages.
+Case parse_case_text_tree(std::string_view text, const std::string& source);
+}  // namespace detail
+
 // The name of the gate configuration that lives beside the cases (cases/gates.json); it is the
 // one .json file in a case folder that is not a case.
 inline constexpr const char* kGateConfigName = "gates.json";

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,8 +28,9 @@ class PathTrackingBuilder final : public Json::json_sax_t {
   using typename Json::json_sax_t::string_t;
   using typename Json::json_sax_t::binary_t;
 
-  PathTrackingBuilder(std::string_view text, const std::string& source)
-      : text_(text), source_(source) {}
+  PathTrackingBuilder(std::string_view text, const std::string& source,
+                      const StreamedArray* streamed = nullptr)
+      : text_(text), source_(source), streamed_(streamed) {}
 
   json take_root() { return std::move(root_); }
 
@@ -55,7 +57,9 @@ class PathTrackingBuilder final : public Json::json_sax_t {
   }
   bool end_object() override { return close(); }
   bool start_array(std::size_t /*elements*/) override {
+    const bool streams = streamed_ != nullptr && at_streamed_path();
     open(json(json::value_t::array), true);
+    frames_.back().streamed = streams;
     return true;
   }
   bool end_array() override { return close(); }
@@ -73,7 +77,29 @@ class PathTrackingBuilder final : public Json::json_sax_t {
     bool is_array;
     std::string key;        // object: key of the value being read
     std::size_t index = 0;  // array: index of the value being read
+    bool streamed = false;  // array: its elements go to streamed_->element, not the tree
   };
+
+  // Whether an array that starts now sits at streamed_->array_path: one step per open frame.
+  bool at_streamed_path() const {
+    const std::vector<std::string>& steps = streamed_->array_path;
+    if (steps.size() != frames_.size()) return false;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      const Frame& f = frames_[k];
+      if (f.is_array ? steps[k] != "[]" : (steps[k] == "[]" || steps[k] != f.key)) return false;
+    }
+    return true;
+  }
+
+  // The element just completed in a streamed array: hand it over and drop it from the tree.
+  void hand_over(Frame& f) {
+    std::vector<std::size_t> indices;
+    for (const Frame& g : frames_)
+      if (g.is_array) indices.push_back(g.index);
+    if constexpr (std::is_same_v<Json, nlohmann::json>)  // parse_ordered streams nothing
+      streamed_->element(f.container->back(), indices);
+    f.container->erase(f.container->size() - 1);
+  }
 
   // "invalid JSON at line L, column C: <nlohmann's reason>"; `position` counts the characters
   // read, the last of which is the offending one.
@@ -119,16 +145,23 @@ class PathTrackingBuilder final : public Json::json_sax_t {
     frames_.push_back(Frame{where, is_array, {}, 0});
   }
 
-  // A value is complete: an enclosing array moves on to its next index.
+  // A value is complete: an enclosing array moves on to its next index (after handing the value
+  // over, when the array is streamed).
   bool add(json value) {
     place(std::move(value));
-    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
-    return true;
+    return completed();
   }
 
   bool close() {
     frames_.pop_back();
-    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
+    return completed();
+  }
+
+  bool completed() {
+    if (frames_.empty() || !frames_.back().is_array) return true;
+    Frame& f = frames_.back();
+    if (f.streamed) hand_over(f);
+    ++f.index;
     return true;
   }
 
@@ -137,11 +170,13 @@ class PathTrackingBuilder final : public Json::json_sax_t {
   json root_;
   std::vector<Frame> frames_;  // containers being filled; pointers stay valid (see place)
   json* member_ = nullptr;
+  const StreamedArray* streamed_ = nullptr;
 };
 
 template <class Json>
-Json parse_with_paths(std::string_view text, const std::string& source) {
-  PathTrackingBuilder<Json> builder(text, source);
+Json parse_with_paths(std::string_view text, const std::string& source,
+                      const StreamedArray* streamed = nullptr) {
+  PathTrackingBuilder<Json> builder(text, source, streamed);
   Json::sax_parse(text.begin(), text.end(), &builder, Json::input_format_t::json, /*strict=*/true,
                   /*ignore_comments=*/false);
   return builder.take_root();
@@ -151,6 +186,11 @@ Json parse_with_paths(std::string_view text, const std::string& source) {
 
 nlohmann::json parse(std::string_view text, const std::string& source) {
   return parse_with_paths<nlohmann::json>(text, source);
+}
+
+nlohmann::json parse(std::string_view text, const std::string& source,
+                     const StreamedArray& streamed) {
+  return parse_with_paths<nlohmann::json>(text, source, &streamed);
 }
 
 nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& source) {

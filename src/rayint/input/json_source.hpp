@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
@@ -18,6 +19,21 @@
 namespace rayint::json_source {
 
 nlohmann::json parse(std::string_view text, const std::string& source);
+
+// Streaming the elements of one array pattern instead of keeping them in the tree, so that a
+// file whose bulk is one long array (a case of millions of segments) is read in memory close to
+// the size of what the caller keeps rather than nlohmann's DOM (~10x the text). The arrays at
+// `array_path` -- field names and "[]" for any array index, e.g. {"rays", "[]", "segments"} for
+// rays[i].segments of the root object -- are left in the tree empty, and each of their elements
+// is handed to element(value, indices) as soon as it is complete, then dropped; `indices` are the
+// array indices along its path (rays[3].segments[7]: {3, 7}). Everything else -- duplicate keys,
+// overflowing numbers, syntax errors, and their messages -- is exactly as parse. An exception
+// thrown by `element` ends the parse and propagates.
+struct StreamedArray {
+  std::vector<std::string> array_path;
+  std::function<void(nlohmann::json& element, const std::vector<std::size_t>& indices)> element;
+};
+nlohmann::json parse(std::string_view text, const std::string& source, const StreamedArray& streamed);
 // The same, keeping each object's keys in file order (for formats whose order means something:
 // a gate config's checks are run and reported in the order it lists them).
 nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& source);

@@ -68,6 +68,7 @@
 #include <utility>
 #include <vector>
 
+#include "rayint/core/parallel.hpp"
 #include "rayint/reference/reference_detail.hpp"
 
 namespace rayint {
@@ -561,6 +562,10 @@ ReferencePiece reference_piece(const ChannelPiece& piece, double incoming) {
 }
 
 ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
+  return reference_ray(tf, ray, ReferenceRun{});
+}
+
+ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray, const ReferenceRun& run) {
   using reference_detail::interpolate;
   std::vector<double> breakpoints;
   for (const auto* group : {&tf.density, &tf.color})
@@ -575,13 +580,20 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
   reference_detail::RaySums sums(ray.background, "reference: background must be finite");
   const double eps = reference_detail::eps();
 
-  std::vector<double> ends;
-  for (const Segment& seg : ray.segments) {
+  for (const Segment& seg : ray.segments)
     if (!(std::isfinite(seg.length) && seg.length >= 0 && std::isfinite(seg.scalar_far) &&
           std::isfinite(seg.scalar_exit)))
       throw std::invalid_argument(
           "reference: segment length must be finite and >= 0, scalars finite");
-    if (seg.length == 0) continue;  // transmits everything, emits nothing
+
+  // The quadratures of one segment's pieces, all channels: piece k, channel c at [k * 3 + c].
+  // Computed in parallel a block at a time (ReferenceRun); buffers keep their capacity.
+  constexpr std::size_t kBlock = 2048;  // segments: ~0.1-0.3 s of work, a few MB of quadratures
+  std::vector<std::vector<reference_detail::PieceQuadrature>> block(kBlock);
+  const auto quadratures = [&](const Segment& seg, std::vector<reference_detail::PieceQuadrature>& qs) {
+    qs.clear();
+    if (seg.length == 0) return;  // transmits everything, emits nothing
+    std::vector<double> ends;
     const double s_far = seg.scalar_far, s_exit = seg.scalar_exit;
     // Piece ends in the direction of travel: s_far, the breakpoints strictly between, s_exit.
     ends.assign(1, s_far);
@@ -607,17 +619,35 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
         const reference_detail::PieceData data{
             piece_length, interpolate(tf.density[c], e_far), interpolate(tf.density[c], e_exit),
             interpolate(tf.color[c], e_far), interpolate(tf.color[c], e_exit)};
-        const reference_detail::PieceQuadrature q = reference_detail::integrate_piece(data);
-        // Propagate: the incoming error is attenuated, the piece adds its own; the piece data
-        // (length, interpolated rho and kappa) carry <= 8 ulps, which move tau by <= 8 eps tau,
-        // the emission by <= 8 eps (2 + tau_cut) and the transmitted part by <= 8 eps T.
-        const Real incoming = sums.intensity[c];
-        sums.add_piece(c, q, eps, q.emission * ((2 + q.tau_cut) * (8 * eps)),
-                       abs(incoming) * q.transmittance * (q.optical_depth * (8 * eps)));
-        out.subintervals += q.subintervals;
+        qs.push_back(reference_detail::integrate_piece(data));
       }
-      ++out.pieces;
     }
+  };
+
+  const std::size_t n = ray.segments.size();
+  for (std::size_t b0 = 0; b0 < n; b0 += kBlock) {
+    const std::size_t count = std::min(kBlock, n - b0);
+    parallel_for(static_cast<long long>(count), run.threads, [&](long long i) {
+      const auto k = static_cast<std::size_t>(i);
+      quadratures(ray.segments[b0 + k], block[k]);
+    });
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::vector<reference_detail::PieceQuadrature>& qs = block[k];
+      for (std::size_t p = 0; p < qs.size(); p += kChannels) {
+        for (int c = 0; c < kChannels; ++c) {
+          const reference_detail::PieceQuadrature& q = qs[p + static_cast<std::size_t>(c)];
+          // Propagate: the incoming error is attenuated, the piece adds its own; the piece data
+          // (length, interpolated rho and kappa) carry <= 8 ulps, which move tau by <= 8 eps
+          // tau, the emission by <= 8 eps (2 + tau_cut) and the transmitted part by <= 8 eps T.
+          const Real incoming = sums.intensity[c];
+          sums.add_piece(c, q, eps, q.emission * ((2 + q.tau_cut) * (8 * eps)),
+                         abs(incoming) * q.transmittance * (q.optical_depth * (8 * eps)));
+          out.subintervals += q.subintervals;
+        }
+        ++out.pieces;
+      }
+    }
+    if (run.progress) run.progress(b0 + count, n);
   }
 
   sums.round_into(out);

@@ -4,6 +4,8 @@
 // quadrature (Boost.Math). It never calls the closed-form code: it splits segments at
 // breakpoints itself, in 50-digit arithmetic.
 #include <array>
+#include <cstddef>
+#include <functional>
 
 #include "rayint/model/pieces.hpp"
 #include "rayint/model/ray.hpp"
@@ -36,5 +38,17 @@ struct ReferenceRay {
 };
 
 ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray);
+
+// How reference_ray runs on a long ray. The pieces' quadratures do not depend on each other, only
+// the compositing does: a block of segments at a time, the quadratures run on `threads` workers
+// (core/parallel.hpp parallel_for; 0: all cores) and are then composited far -> near in order on
+// the calling thread -- the same operations in the same order as with one thread, so the result is
+// bit-identical for every thread count (tests/test_reference.cpp). progress(done, total) is called
+// on the calling thread after each block with the segments done so far.
+struct ReferenceRun {
+  unsigned threads = 1;
+  std::function<void(std::size_t done, std::size_t total)> progress;
+};
+ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray, const ReferenceRun& run);
 
 }  // namespace rayint

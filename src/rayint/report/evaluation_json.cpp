@@ -1,6 +1,7 @@
 #include "rayint/report/evaluation_json.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace rayint {
 
@@ -37,15 +38,17 @@ nlohmann::json to_json(const ReferenceRay& ref) {
           {"quadrature_subintervals", ref.subintervals}};
 }
 
-nlohmann::json to_json(const MethodOutcome& o) {
+nlohmann::json to_json(const MethodOutcome& o, bool with_reference) {
   nlohmann::json j = {{"intensity", rgb_json(o.result.intensity)},
                       {"transmittance", rgb_json(o.result.transmittance)},
-                      {"abs_error", rgb_json(o.abs_error)},
-                      {"rel_error", rgb_json(o.rel_error)},
-                      {"ulp_error", rgb_json(o.ulp_error)},
-                      {"transmittance_rel_error", rgb_json(o.transmittance_rel_error)},
                       {"seconds_per_ray", o.seconds_per_ray},
                       {"finite", o.finite}};
+  if (with_reference) {
+    j["abs_error"] = rgb_json(o.abs_error);
+    j["rel_error"] = rgb_json(o.rel_error);
+    j["ulp_error"] = rgb_json(o.ulp_error);
+    j["transmittance_rel_error"] = rgb_json(o.transmittance_rel_error);
+  }
   const nlohmann::json d = to_json(o.diagnostics);
   j["branches"] = d["branches"];
   j["stats"] = d["stats"];
@@ -57,16 +60,33 @@ nlohmann::json to_json(const CaseEvaluation& c) {
   nlohmann::json rays = nlohmann::json::array();
   for (std::size_t i = 0; i < c.rays.size(); ++i) {
     nlohmann::json methods = nlohmann::json::object();
-    for (const auto& m : c.rays[i].methods) methods[m.method] = to_json(m);
-    rays.push_back({{"index", i}, {"reference", to_json(c.rays[i].reference)}, {"methods", methods}});
+    for (const auto& m : c.rays[i].methods) methods[m.method] = to_json(m, c.with_reference);
+    nlohmann::json ray = {{"index", i}, {"methods", methods}};
+    if (c.with_reference) ray["reference"] = to_json(c.rays[i].reference);
+    rays.push_back(std::move(ray));
   }
-  return {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
+  nlohmann::json j = {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
+  if (!c.with_reference) j["reference"] = "skipped";
+  return j;
 }
 
 nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases) {
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& c : cases) arr.push_back(to_json(c));
   return {{"tool", "rayint"}, {"report", "eval"}, {"cases", arr}};
+}
+
+std::string eval_progress_line(const std::string& case_name, const EvalProgress& p, double seconds) {
+  char line[512];
+  if (p.stage == EvalProgress::Stage::reference) {
+    const double percent = p.total > 0 ? 100.0 * static_cast<double>(p.done) / static_cast<double>(p.total) : 100.0;
+    std::snprintf(line, sizeof line, "eval %s: reference %zu/%zu segments (%.0f%%), %.0f s\n",
+                  case_name.c_str(), p.done, p.total, percent, seconds);
+  } else {
+    std::snprintf(line, sizeof line, "eval %s: method %s, ray %zu/%zu, %.0f s\n", case_name.c_str(),
+                  p.method.c_str(), p.done + 1, p.total, seconds);
+  }
+  return line;
 }
 
 }  // namespace rayint

@@ -1,7 +1,10 @@
 #pragma once
 // The one place where evaluation results become JSON. Non-finite numbers are written as null
-// (JSON has no NaN/Inf) and flagged with "finite": false.
+// (JSON has no NaN/Inf) and flagged with "finite": false. A case evaluated without the
+// reference (eval --no-reference) says "reference": "skipped", and its rays carry no "reference"
+// and its methods no error fields (abs_error, rel_error, ulp_error, transmittance_rel_error).
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "rayint/studies/evaluate.hpp"
@@ -12,8 +15,14 @@ nlohmann::json number_or_null(double x);
 nlohmann::json rgb_json(const Rgb& v);
 nlohmann::json to_json(const Diagnostics& d);
 nlohmann::json to_json(const ReferenceRay& ref);
-nlohmann::json to_json(const MethodOutcome& o);
+// with_reference false: without the error fields.
+nlohmann::json to_json(const MethodOutcome& o, bool with_reference = true);
 nlohmann::json to_json(const CaseEvaluation& c);
 nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases);
+
+// One progress line of `rayint eval` on stderr (with its newline), `seconds` since the start:
+// "eval NAME: reference 1200000/2000000 segments (60%), 41 s" or
+// "eval NAME: method exact, ray 3/10, 45 s".
+std::string eval_progress_line(const std::string& case_name, const EvalProgress& p, double seconds);
 
 }  // namespace rayint

@@ -35,10 +35,16 @@ std::string evaluation_table(const std::vector<CaseEvaluation>& cases) {
       for (const auto& [k, v] : merged.branches)
         branches += (branches.empty() ? "" : " ") + k + "=" + std::to_string(v);
       const auto& label = c.rays.front().methods[m].method;
-      std::snprintf(line, sizeof line, "%-34.34s %-22.22s %5zu %11.3g %11.3g %11.1e %9.3g us  %s%s\n",
-                    c.name.c_str(), label.c_str(), c.rays.size(), max_rel, max_ulp, ref_rel,
-                    time / static_cast<double>(c.rays.size()) * 1e6, finite ? "" : "NON-FINITE ",
-                    branches.c_str());
+      if (c.with_reference)
+        std::snprintf(line, sizeof line, "%-34.34s %-22.22s %5zu %11.3g %11.3g %11.1e %9.3g us  %s%s\n",
+                      c.name.c_str(), label.c_str(), c.rays.size(), max_rel, max_ulp, ref_rel,
+                      time / static_cast<double>(c.rays.size()) * 1e6, finite ? "" : "NON-FINITE ",
+                      branches.c_str());
+      else  // --no-reference: no errors to show
+        std::snprintf(line, sizeof line, "%-34.34s %-22.22s %5zu %11s %11s %11s %9.3g us  %s%s\n",
+                      c.name.c_str(), label.c_str(), c.rays.size(), "-", "-", "skipped",
+                      time / static_cast<double>(c.rays.size()) * 1e6, finite ? "" : "NON-FINITE ",
+                      branches.c_str());
       out += line;
     }
   }

@@ -1,6 +1,7 @@
 #include "rayint/studies/evaluate.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -41,19 +42,52 @@ double time_per_ray(const RayIntegrator& integrator, const Ray& ray, const EvalO
   return median(samples);
 }
 
-std::vector<ReferenceRay> reference_rays(const Case& c, unsigned threads) {
+std::vector<ReferenceRay> reference_rays(
+    const Case& c, unsigned threads,
+    const std::function<void(std::size_t done, std::size_t total)>& progress,
+    double progress_seconds) {
   std::vector<ReferenceRay> refs(c.rays.size());
-  parallel_for(static_cast<long long>(c.rays.size()), threads, [&](long long i) {
-    const auto r = static_cast<std::size_t>(i);
-    refs[r] = reference_ray(c.transfer, c.rays[r]);
-  });
+  std::size_t total = 0;
+  for (const Ray& ray : c.rays) total += ray.segments.size();
+  if (c.rays.size() >= resolve_threads(threads)) {  // over the rays
+    std::atomic<std::size_t> done{0};
+    const auto one = [&](long long i) {
+      const auto r = static_cast<std::size_t>(i);
+      refs[r] = reference_ray(c.transfer, c.rays[r]);
+      done += c.rays[r].segments.size();
+    };
+    const auto n = static_cast<long long>(c.rays.size());
+    if (progress && parallel_workers(n, threads) > 1)
+      parallel_for(n, threads, one, progress_seconds, [&] { progress(done.load(), total); });
+    else
+      parallel_for(n, threads, one);
+    if (progress) progress(total, total);
+    return refs;
+  }
+  std::size_t before = 0;  // over the segments of each ray in turn
+  for (std::size_t r = 0; r < c.rays.size(); ++r) {
+    ReferenceRun run;
+    run.threads = threads;
+    if (progress)
+      run.progress = [&](std::size_t done, std::size_t) { progress(before + done, total); };
+    refs[r] = reference_ray(c.transfer, c.rays[r], run);
+    before += c.rays[r].segments.size();
+  }
   return refs;
 }
 
 CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& methods,
                              const EvalOptions& opt) {
-  CaseEvaluation out{c.name, c.description, c.source, {}};
-  const std::vector<ReferenceRay> refs = reference_rays(c, opt.threads);
+  CaseEvaluation out{c.name, c.description, c.source, {}, opt.with_reference};
+  std::vector<ReferenceRay> refs(c.rays.size());
+  if (opt.with_reference) {
+    std::function<void(std::size_t, std::size_t)> tick;
+    if (opt.progress)
+      tick = [&](std::size_t done, std::size_t total) {
+        opt.progress(EvalProgress{EvalProgress::Stage::reference, done, total, {}});
+      };
+    refs = reference_rays(c, opt.threads, tick, opt.progress_seconds);
+  }
   std::vector<std::unique_ptr<RayIntegrator>> integrators;
   std::vector<std::string> build_errors;
   for (const auto& spec : methods) {
@@ -71,6 +105,8 @@ CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& metho
     for (std::size_t m = 0; m < methods.size(); ++m) {
       MethodOutcome o;
       o.method = methods[m].label();
+      if (opt.progress)
+        opt.progress(EvalProgress{EvalProgress::Stage::methods, r, c.rays.size(), o.method});
       if (!integrators[m]) {
         o.failure = build_errors[m];
         o.finite = false;
@@ -79,7 +115,14 @@ CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& metho
       }
       try {
         o.result = integrators[m]->integrate(c.rays[r], &o.diagnostics);
-        score_against_reference(o, ev.reference);
+        if (opt.with_reference) {
+          score_against_reference(o, ev.reference);
+        } else {
+          o.finite = true;
+          for (int ch = 0; ch < kChannels; ++ch)
+            if (!std::isfinite(o.result.intensity[ch]) || !std::isfinite(o.result.transmittance[ch]))
+              o.finite = false;
+        }
         if (opt.measure_time) o.seconds_per_ray = time_per_ray(*integrators[m], c.rays[r], opt);
       } catch (const std::exception& e) {
         o.failure = e.what();

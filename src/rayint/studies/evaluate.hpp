@@ -1,6 +1,8 @@
 #pragma once
 // Runs methods on a case's rays, measures their error against the 50-digit reference and their
 // cost per ray. Returns plain structs; report/evaluation_json turns them into JSON.
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,11 +11,24 @@
 
 namespace rayint {
 
+// Where evaluate_case is, for a progress line: the reference (segments of the case done / all),
+// then each method on each ray (rays done / all, the method's label).
+struct EvalProgress {
+  enum class Stage { reference, methods } stage = Stage::reference;
+  std::size_t done = 0, total = 0;
+  std::string method;  // methods: the one about to run
+};
+
 struct EvalOptions {
   double timing_batch_seconds = 1e-3;  // each timing batch repeats the ray until this long
   int timing_batches = 5;              // seconds_per_ray is the median over batches
   bool measure_time = true;
   unsigned threads = 0;                // for the reference; 0 = all cores
+  bool with_reference = true;          // false: no 50-digit reference, no error fields
+  // Called on the calling thread: after each block of reference segments (ReferenceRun), every
+  // `progress_seconds` while rays are referenced in parallel, and before each method on each ray.
+  std::function<void(const EvalProgress&)> progress;
+  double progress_seconds = 1.0;
 };
 
 struct MethodOutcome {
@@ -28,13 +43,14 @@ struct MethodOutcome {
 };
 
 struct RayEvaluation {
-  ReferenceRay reference;
+  ReferenceRay reference;  // all zero when the case was evaluated without it
   std::vector<MethodOutcome> methods;
 };
 
 struct CaseEvaluation {
   std::string name, description, source;
   std::vector<RayEvaluation> rays;
+  bool with_reference = true;  // false: reference and error fields were not computed
 };
 
 // Fills the error fields of `outcome` from its result against `ref`.
@@ -43,8 +59,13 @@ void score_against_reference(MethodOutcome& outcome, const ReferenceRay& ref);
 // Median (core/statistics.hpp) over the batches of the seconds per call of integrator.integrate(ray) (no diagnostics, no reference in loop).
 double time_per_ray(const RayIntegrator& integrator, const Ray& ray, const EvalOptions& opt);
 
-// References for all rays, computed in parallel over `threads` threads (0: all cores).
-std::vector<ReferenceRay> reference_rays(const Case& c, unsigned threads);
+// References for all rays, computed in parallel over `threads` threads (0: all cores): over the
+// rays when there are at least as many as threads, else over the segments of each ray in turn
+// (ReferenceRun); the results are the same either way. progress(done, total) counts segments.
+std::vector<ReferenceRay> reference_rays(
+    const Case& c, unsigned threads,
+    const std::function<void(std::size_t done, std::size_t total)>& progress = {},
+    double progress_seconds = 1.0);
 
 CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& methods,
                              const EvalOptions& opt);
