@@ -7,11 +7,14 @@
 //   - an InputError whose message is not one line starting with "<source>: ";
 //   - a case accepted although it breaks the format's guarantees (cases/README.md): non-empty
 //     name, at least one ray and one segment, lengths and values finite and >= 0, scalars finite,
-//     breakpoints strictly increasing.
+//     breakpoints strictly increasing;
+//   - the streaming reader (parse_case_text) and the whole-tree walk
+//     (detail::parse_case_text_tree) disagreeing: another message, or other rays.
 // Each check traps, so the input is saved as a crash artifact.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -56,14 +59,35 @@ void check_message(const std::string& what) {
   require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
 }
 
+void check_same_rays(const rayint::Case& a, const rayint::Case& b) {
+  require(a.rays.size() == b.rays.size());
+  for (std::size_t i = 0; i < a.rays.size(); ++i) {
+    require(a.rays[i].background == b.rays[i].background);
+    require(a.rays[i].segments.size() == b.rays[i].segments.size());
+    for (std::size_t k = 0; k < a.rays[i].segments.size(); ++k)
+      require(std::memcmp(&a.rays[i].segments[k], &b.rays[i].segments[k], sizeof(rayint::Segment)) == 0);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
+  rayint::Case streamed, tree;
+  std::string streamed_error, tree_error;
   try {
-    check_case(rayint::parse_case_text(text, kSource));
+    streamed = rayint::parse_case_text(text, kSource);
+    check_case(streamed);
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    streamed_error = e.what();
+    check_message(streamed_error);
   }
+  try {
+    tree = rayint::detail::parse_case_text_tree(text, kSource);
+  } catch (const rayint::InputError& e) {
+    tree_error = e.what();
+  }
+  require(streamed_error == tree_error);
+  if (streamed_error.empty()) check_same_rays(streamed, tree);
   return 0;
 }
