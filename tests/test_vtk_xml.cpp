@@ -5,6 +5,8 @@
 // id type, must read to exactly (bit for bit) those points, cells and point arrays. Then: a mesh
 // case naming a .vtu evaluates like the same mesh as VTK's legacy .vtk; a .vti is a scene's
 // grid_file; bad input is one line naming the file and the field (exit 2, no output file).
+// mesh-legacy.vtk is VTK 9.1's legacy 5.1 output with METADATA blocks (each ended by a blank
+// line), which the legacy reader used to run past (it skipped the blank line): "CELLS: missing".
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -210,7 +212,7 @@ TEST_CASE("bad VTK XML input: one line naming the file and the field", "[vtkxml]
   }
   SECTION("header size beyond the file") {
     std::string bad = raw;
-    bad.erase(bad.rfind("</AppendedData>") - 200, 200);  // the last array (types) loses its end
+    bad.erase(bad.rfind("</AppendedData>") - 100, 100);  // the last array (types) loses its end
     expect_error(vtu(bad), src + ": UnstructuredGrid/Piece/Cells/DataArray[types]: ", "data truncated");
   }
   SECTION("bad zlib stream and compression header") {
@@ -233,20 +235,21 @@ TEST_CASE("bad VTK XML input: one line naming the file and the field", "[vtkxml]
   SECTION("unknown type, format, compressor, header type, byte order") {
     expect_error(vtu(replace_once(ascii, "type=\"Float64\" Name=\"Points\"", "type=\"Float128\" Name=\"Points\"")), pts,
                  "type \"Float128\" is not read");
-    expect_error(vtu(replace_once(ascii, "format=\"ascii\"", "format=\"hex\"")), src + ": UnstructuredGrid/Piece/Points/DataArray: format \"hex\"");
+    expect_error(vtu(replace_once(ascii, "format=\"ascii\"", "format=\"hex\"")), src + ": UnstructuredGrid/Piece/PointData/DataArray[s]: format \"hex\"");
     expect_error(vtu(replace_once(zraw, "vtkZLibDataCompressor", "vtkLZ4DataCompressor")), src + ": VTKFile: compressor \"vtkLZ4DataCompressor\" is not read");
     expect_error(vtu(replace_once(raw, "header_type=\"UInt32\"", "header_type=\"UInt16\"")), src + ": VTKFile: header_type \"UInt16\"");
     expect_error(vtu(replace_once(raw, "LittleEndian", "MiddleEndian")), src + ": VTKFile: byte_order \"MiddleEndian\"");
   }
   SECTION("missing fields") {
     expect_error(vtu(replace_once(ascii, "Name=\"types\"", "Name=\"typez\"")), src + ": UnstructuredGrid/Piece/Cells/DataArray[types]: missing");
-    expect_error(vtu(replace_once(ascii, "<Points>", "<Pointz>")), src + ": UnstructuredGrid/Piece/Points: missing");
+    expect_error(vtu(replace_once(replace_once(ascii, "<Points>", "<Pointz>"), "</Points>", "</Pointz>")), src + ": UnstructuredGrid/Piece/Points: missing");
     expect_error(vtu(replace_once(ascii, "NumberOfPoints", "NumberOfPointz")), src + ": UnstructuredGrid/Piece: missing attribute NumberOfPoints");
     expect_error(vtu(ascii, "pressure"), src + ": UnstructuredGrid/Piece/PointData: no array named \"pressure\"");
     expect_error(vtu(replace_once(ascii, "type=\"UnstructuredGrid\"", "type=\"PolyData\"")), src + ": VTKFile: type \"PolyData\" is not read");
-    expect_error(vtu("not xml at all"), src + ": VTKFile: missing");
+    expect_error(vtu("not xml at all"), src + ": XML: No document element");
+    expect_error(vtu("<?xml version=\"1.0\"?><Other/>"), src + ": VTKFile: missing");
     expect_error(vtu("<VTKFile"), src + ": XML: ");
-    expect_error(vtu(""), src + ": VTKFile: missing");
+    expect_error(vtu(""), src + ": XML: ");
   }
   SECTION("wrong counts and values") {
     expect_error(vtu(replace_once(ascii, "NumberOfPoints=\"64\"", "NumberOfPoints=\"65\"")), pts, "has 192 values, expected 195");
@@ -266,7 +269,7 @@ TEST_CASE("bad VTK XML input: one line naming the file and the field", "[vtkxml]
     const auto img = [&](const std::string& text) { return error_of([&] { parse_vti(text, "bad.vti"); }); };
     expect_error(img(replace_once(vti, "Spacing=\"0.5", "Spacing=\"-0.5")), "bad.vti: ImageData: Spacing must be > 0");
     expect_error(img(replace_once(vti, "WholeExtent=\"1 5", "WholeExtent=\"1 1")), "bad.vti: ImageData: WholeExtent");
-    expect_error(img(replace_once(vti, "Extent=\"1 5 0 3 2 4\"                ", "Extent=\"1 4 0 3 2 4\"")),
+    expect_error(img(replace_once(vti, "<Piece Extent=\"1 5 0 3 2 4\"", "<Piece Extent=\"1 4 0 3 2 4\"")),
                  "bad.vti: ImageData/Piece: Extent differs");
     expect_error(img(replace_once(vti, "Origin=\"-0.25", "Origin=\"nan")), "bad.vti: ImageData: Origin");
     expect_error(img(replace_once(vti, "0.7237499999999999", "inf")), "bad.vti: ImageData/Piece/PointData/DataArray[s]: value 0 is not finite");
