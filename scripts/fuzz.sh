@@ -24,7 +24,9 @@ target="${RAYINT_FUZZ_TARGET:-case_parser}"
 case "$target" in
   case_parser) seed_files=("$root"/cases/*.json); what="rayint::parse_case_text" ;;
   candidate_parser) seed_files=("$root"/fuzz/seeds/candidate/*.json); what="rayint::parse_candidate_text" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser or candidate_parser" >&2; exit 2 ;;
+  vtu_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vtu); what="rayint::parse_vtu" ;;
+  vti_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vti); what="rayint::parse_vti" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader or vti_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

@@ -11,6 +11,8 @@ packages=(build-essential cmake pkg-config
           catch2                # unit tests (Catch2 2.13)
           libcerf-dev           # erfcx and Dawson functions for the closed forms
           libbenchmark-dev      # Google Benchmark micro-benchmarks
+          libpugixml-dev        # XML parser of the VTK XML readers (.vtu / .vti, input/vtk_xml_reader)
+          zlib1g-dev            # inflating vtkZLibDataCompressor blocks in .vtu / .vti files
           python3-matplotlib)   # plots in reports/
 missing=()
 for p in "${packages[@]}"; do

@@ -9,12 +9,20 @@
 #include "rayint/input/json_schema.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/vtk_legacy_reader.hpp"
+#include "rayint/input/vtk_xml_reader.hpp"
 
 namespace rayint {
 namespace {
 
+TetMesh read_vtu_mesh(const std::string& path, const std::string& scalar_name) {
+  return read_vtu(path, scalar_name);
+}
+
+// The registry register_mesh_reader() adds to. It starts with rayint's own .vtu reader
+// (input/vtk_xml_reader.hpp), so a library user gets it without registering anything; the
+// optional VTK build's register_vtk_mesh_readers() replaces it with VTK's reader.
 std::map<std::string, MeshFileReader>& extra_mesh_readers() {
-  static std::map<std::string, MeshFileReader> readers;
+  static std::map<std::string, MeshFileReader> readers{{".vtu", read_vtu_mesh}};
   return readers;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Reading mesh cases (format: cases/README.md, "Mesh cases") through the shared JsonSchema walk.
-// The mesh is inline ("mesh": {"points", "scalars", "tets"}) or a VTK legacy file
-// ("mesh_file", relative to the case file's folder). Every problem is one InputError line naming
+// The mesh is inline ("mesh": {"points", "scalars", "tets"}) or a file ("mesh_file", relative to
+// the case file's folder): VTK legacy .vtk, VTK XML .vtu (input/vtk_xml_reader.hpp, registered
+// below like any other reader), or what register_mesh_reader adds. Every problem is one InputError line naming
 // the file and the field (or, for a .vtk file, the file and its section).
 #include <nlohmann/json.hpp>
 #include <string>

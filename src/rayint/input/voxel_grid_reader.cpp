@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/vtk_xml_reader.hpp"
 
 namespace rayint {
 
@@ -152,6 +153,8 @@ VoxelGrid parse_voxel_grid_text(std::string_view text, const std::string& source
 }
 
 VoxelGrid read_voxel_grid_file(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".vti") return read_vti(path);  // VTK XML image data (input/vtk_xml_reader.hpp)
   const std::string text = json_source::read_text_file(path);
   return parse_voxel_grid_text(text, path, std::filesystem::path(path).parent_path().string());
 }

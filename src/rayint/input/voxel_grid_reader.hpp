@@ -26,6 +26,8 @@ VoxelGrid parse_voxel_grid(const nlohmann::json& j, const JsonSchema& schema,
 // A whole JSON text / file that is one grid object.
 VoxelGrid parse_voxel_grid_text(std::string_view text, const std::string& source,
                                 const std::string& base_dir);
+// A file ending in .vti is read as VTK XML image data (read_vti, input/vtk_xml_reader.hpp: the
+// active point scalars, else the first one-component point array).
 VoxelGrid read_voxel_grid_file(const std::string& path);
 
 }  // namespace rayint

@@ -58,6 +58,8 @@ class VtkCursor {
     skip_space();
     return pos_ >= b_.size();
   }
+  // True while bytes remain, without skipping blank lines (a METADATA block ends at one).
+  bool more() const { return pos_ < b_.size(); }
 
   // One text line without its terminator ('\n' or "\r\n").
   std::string line(const std::string& section) {
@@ -299,7 +301,7 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
       for (std::size_t a = 0; a < arrays; ++a) {
         std::vector<std::string> fa = c.keyword_line("FIELD");
         if (!fa.empty() && upper(fa[0]) == "METADATA") {  // 5.x: metadata block inside FIELD
-          while (!c.at_end() && !c.line("METADATA").empty()) {}
+          while (c.more() && !c.line("METADATA").empty()) {}
           fa = c.keyword_line("FIELD");
         }
         need_words(c, fa, 4, "arrayName components tuples type");
@@ -312,7 +314,7 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
         }
       }
     } else if (key == "METADATA") {
-      while (!c.at_end() && !c.line("METADATA").empty()) {}
+      while (c.more() && !c.line("METADATA").empty()) {}
     } else {
       c.fail(w[0].substr(0, 40), "unknown keyword");
     }

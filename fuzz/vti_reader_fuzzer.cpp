@@ -1,0 +1,56 @@
+// libFuzzer target for rayint's .vti reader (rayint::parse_vti, input/vtk_xml_reader.hpp) on
+// arbitrary bytes. Built by fuzz/CMakeLists.txt with -fsanitize=fuzzer,address,undefined; run it
+// with RAYINT_FUZZ_TARGET=vti_reader scripts/fuzz.sh (seeds: tests/fixtures/vtkxml/*.vti). A
+// finding is any of:
+//   - a crash, sanitizer report, hang, leak or out-of-memory;
+//   - an exception other than rayint::InputError escaping the reader (the VoxelGrid constructor's
+//     std::invalid_argument included: the reader must refuse what the grid would refuse);
+//   - an InputError whose message is not one line starting with "<source>: ";
+//   - a grid accepted although it breaks the reader's guarantees: >= 2 points per axis, one finite
+//     value per point, spacing > 0, finite bounds.
+// Each check traps, so the input is saved as a crash artifact.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "rayint/core/error.hpp"
+#include "rayint/input/vtk_xml_reader.hpp"
+
+namespace {
+
+constexpr const char* kSource = "fuzz-input.vti";
+
+void require(bool ok) {
+  if (!ok) __builtin_trap();
+}
+
+void check_grid(const rayint::VoxelGrid& g) {
+  std::size_t n = 1;
+  for (int a = 0; a < 3; ++a) {
+    require(g.dims()[static_cast<std::size_t>(a)] >= 2 && g.spacing()[a] > 0);
+    require(std::isfinite(g.lower()[a]) && std::isfinite(g.upper()[a]));
+    n *= static_cast<std::size_t>(g.dims()[static_cast<std::size_t>(a)]);
+  }
+  require(g.values().size() == n);
+  for (double v : g.values()) require(std::isfinite(v));
+}
+
+void check_message(const std::string& what) {
+  const std::string prefix = std::string(kSource) + ": ";
+  require(what.compare(0, prefix.size(), prefix) == 0);
+  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    check_grid(rayint::parse_vti(bytes, kSource));
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  }
+  return 0;
+}

@@ -1,0 +1,39 @@
+#pragma once
+// Reading VTK XML files without VTK: .vtu unstructured grids into a TetMesh and .vti image data
+// into a VoxelGrid, with pugixml (XML) and zlib (compressed blocks). The DataArray decoding is
+// one decoder for both (vtk_xml_data_array.hpp): format ascii, binary (base64) and appended (raw
+// or base64), compressor none or vtkZLibDataCompressor, header_type UInt32 or UInt64, byte_order
+// LittleEndian or BigEndian, types Int8..UInt64, Float32, Float64.
+//
+// .vtu (VTKFile type="UnstructuredGrid", one Piece): Points (3 components), Cells
+// (connectivity, offsets, types), PointData. Every cell must be VTK_TETRA (10); any other type is
+// refused with one line naming it (e.g. "cell type 12 (hexahedron)"): rayint does not split
+// hexahedra or voxels itself, because a split that conforms across neighbouring cells depends on
+// how the mesh was built. The mesh is validated (validate_tet_mesh).
+// .vti (VTKFile type="ImageData", one Piece whose Extent is the WholeExtent): WholeExtent,
+// Origin, Spacing (> 0), Direction (absent or the identity: rayint's grids are axis-aligned; a
+// rotated image is refused), PointData. Point (i, j, k) of the extent lies at
+// Origin + (i Spacing_x, j Spacing_y, k Spacing_z), as in vtkImageData, so the grid's origin is
+// Origin + extent minimum * Spacing. Values must be finite.
+//
+// The point scalar: the PointData array named `scalar_name`; with no name, the array the
+// PointData's Scalars attribute names (VTK's active scalars), else the first one-component
+// array. It must have one component.
+// Every problem is one InputError "<file>: <field>: <what>", e.g.
+//   "mesh.vtu: UnstructuredGrid/Piece/Points/DataArray: header says 96 bytes, expected 1536 (...)".
+#include <string>
+#include <string_view>
+
+#include "rayint/grid/voxel_grid.hpp"
+#include "rayint/mesh/tet_mesh.hpp"
+
+namespace rayint {
+
+// `source` names the file in messages. Throw InputError.
+TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
+TetMesh read_vtu(const std::string& path, const std::string& scalar_name = "");
+
+VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
+VoxelGrid read_vti(const std::string& path, const std::string& scalar_name = "");
+
+}  // namespace rayint
