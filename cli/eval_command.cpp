@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/studies/evaluate.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/report/evaluation_json.hpp"
@@ -18,6 +19,7 @@ void set_eval_command(CLI::App& app) {
     std::string format = "json";
     std::string output;
     bool no_timing = false;
+    MeshReadOptions mesh;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -29,23 +31,32 @@ void set_eval_command(CLI::App& app) {
       ->check(CLI::IsMember({"json", "table"}));
   cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
   cmd->add_flag("--no-timing", opt->no_timing, "Skip the timing runs (seconds_per_ray = 0)");
+  add_strict_mesh_flag(cmd, opt->mesh.strict);
   cmd->callback([opt] {
     const std::vector<MethodSpec> methods =
         opt->methods.empty() ? default_methods() : parse_method_list(opt->methods);
     std::vector<Case> cases;
+    std::vector<std::optional<TetRepairs>> repairs;  // mesh cases: reoriented / dropped tets
+    const auto read = [&](const std::string& file) {
+      repairs.emplace_back();
+      cases.push_back(read_case_file(file, opt->mesh, &repairs.back()));
+    };
     for (const auto& f : opt->files) {  // a folder means every case file in it
       if (std::filesystem::is_directory(f)) {
         const std::vector<std::string> files = list_case_files(f);
         if (files.empty()) throw InputError(f + ": folder holds no case files (*.json)");
-        for (const auto& file : files) cases.push_back(read_case_file(file));
+        for (const auto& file : files) read(file);
       } else {
-        cases.push_back(read_case_file(f));  // validate all before evaluating any
+        read(f);  // validate all before evaluating any
       }
     }
     EvalOptions eo;
     eo.measure_time = !opt->no_timing;
     std::vector<CaseEvaluation> results;
-    for (const auto& c : cases) results.push_back(evaluate_case(c, methods, eo));
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      results.push_back(evaluate_case(cases[i], methods, eo));
+      results.back().mesh_repairs = repairs[i];
+    }
     emit(opt->format == "table" ? evaluation_table(results) : eval_report_json(results).dump(2),
          opt->output);
   });

@@ -84,19 +84,23 @@ Case read_case(const JsonSchema& s, const json& root) {
 
 }  // namespace
 
-Case parse_case_text(std::string_view text, const std::string& source) {
+Case parse_case_text(std::string_view text, const std::string& source, const MeshReadOptions& mesh_options,
+                     std::optional<TetRepairs>* repairs) {
   const json root = json_source::parse(text, source);
+  if (repairs) repairs->reset();
   if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
-    MeshCase mc = parse_mesh_case(root, source);
+    MeshCase mc = parse_mesh_case(root, source, mesh_options);
+    if (repairs) *repairs = mc.repairs;
     const TetTraversal mesh(mc.mesh, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
   }
   return read_case(JsonSchema(source), root);
 }
 
-Case read_case_file(const std::string& path) {
+Case read_case_file(const std::string& path, const MeshReadOptions& mesh_options,
+                    std::optional<TetRepairs>* repairs) {
   const std::string text = json_source::read_text_file(path);
-  return parse_case_text(text, path);
+  return parse_case_text(text, path, mesh_options, repairs);
 }
 
 std::vector<std::string> list_case_files(const std::string& dir) {

@@ -53,6 +53,13 @@ nlohmann::json to_json(const MethodOutcome& o) {
   return j;
 }
 
+nlohmann::json to_json(const TetRepairs& r) {
+  return {{"tets_read", r.tets_read},
+          {"reoriented", r.reoriented},
+          {"dropped_zero_volume", r.zero_volume},
+          {"dropped_slivers", r.slivers}};
+}
+
 nlohmann::json to_json(const CaseEvaluation& c) {
   nlohmann::json rays = nlohmann::json::array();
   for (std::size_t i = 0; i < c.rays.size(); ++i) {
@@ -60,7 +67,9 @@ nlohmann::json to_json(const CaseEvaluation& c) {
     for (const auto& m : c.rays[i].methods) methods[m.method] = to_json(m);
     rays.push_back({{"index", i}, {"reference", to_json(c.rays[i].reference)}, {"methods", methods}});
   }
-  return {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
+  nlohmann::json out = {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
+  if (c.mesh_repairs) out["mesh_repairs"] = to_json(*c.mesh_repairs);
+  return out;
 }
 
 nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases) {

@@ -13,6 +13,7 @@ nlohmann::json rgb_json(const Rgb& v);
 nlohmann::json to_json(const Diagnostics& d);
 nlohmann::json to_json(const ReferenceRay& ref);
 nlohmann::json to_json(const MethodOutcome& o);
+nlohmann::json to_json(const TetRepairs& r);  // a mesh case's reoriented / dropped tets
 nlohmann::json to_json(const CaseEvaluation& c);
 nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases);
 

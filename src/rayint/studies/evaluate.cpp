@@ -52,7 +52,7 @@ std::vector<ReferenceRay> reference_rays(const Case& c, unsigned threads) {
 
 CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& methods,
                              const EvalOptions& opt) {
-  CaseEvaluation out{c.name, c.description, c.source, {}};
+  CaseEvaluation out{c.name, c.description, c.source, {}, {}};
   const std::vector<ReferenceRay> refs = reference_rays(c, opt.threads);
   std::vector<std::unique_ptr<RayIntegrator>> integrators;
   std::vector<std::string> build_errors;

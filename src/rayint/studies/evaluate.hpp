@@ -1,10 +1,12 @@
 #pragma once
 // Runs methods on a case's rays, measures their error against the 50-digit reference and their
 // cost per ray. Returns plain structs; report/evaluation_json turns them into JSON.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/reference/reference.hpp"
 
 namespace rayint {
@@ -35,6 +37,7 @@ struct RayEvaluation {
 struct CaseEvaluation {
   std::string name, description, source;
   std::vector<RayEvaluation> rays;
+  std::optional<TetRepairs> mesh_repairs;  // a mesh case: what reading its mesh repaired (set by the caller)
 };
 
 // Fills the error fields of `outcome` from its result against `ref`.
