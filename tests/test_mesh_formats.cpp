@@ -29,7 +29,7 @@ namespace {
 
 const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/meshes/";
 
-double field(const Vec3& p) { return 0.5 + 0.3 * p.x() - 0.2 * p.y() + 0.4 * p.z(); }
+double linear_field(const Vec3& p) { return 0.5 + 0.3 * p.x() - 0.2 * p.y() + 0.4 * p.z(); }
 
 std::string slurp_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -63,7 +63,7 @@ Ray analytic_ray(const ViewRay& r, const Rgb& background) {
   }
   Ray ray;
   ray.background = background;
-  if (t1 > t0) ray.segments.push_back({t1 - t0, field(r.origin + t1 * d), field(r.origin + t0 * d)});
+  if (t1 > t0) ray.segments.push_back({t1 - t0, linear_field(r.origin + t1 * d), linear_field(r.origin + t0 * d)});
   return ray;
 }
 
@@ -79,7 +79,8 @@ Agreement agree_with_analytic(const TetMesh& mesh_as_read, const std::string& na
   TetMesh mesh = mesh_as_read;
   repair_tet_mesh(mesh, name);
   const TetTraversal m(mesh, name);
-  const auto exact = make_integrator(parse_method_spec("exact"), test_tf());
+  const TransferFunctions tf = test_tf();  // the integrator keeps a reference to it
+  const auto exact = make_integrator(parse_method_spec("exact"), tf);
   std::mt19937_64 rng(14);
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(-0.9, 0.9);
@@ -131,12 +132,12 @@ TEST_CASE("TetGen output (.node + .ele) reads and integrates like the analytic c
   // cube.1: Delaunay of 27 points, TetGen carried the field through as attribute 0.
   const TetMesh delaunay = read_tetgen(kDir + "cube.1.ele");
   for (std::size_t i = 0; i < delaunay.points.size(); ++i)
-    CHECK(delaunay.scalars[i] == Approx(field(delaunay.points[i])).margin(1e-15));
+    CHECK(delaunay.scalars[i] == Approx(linear_field(delaunay.points[i])).margin(1e-15));
   check_fixture(delaunay, "tetgen cube.1", 53);
   // cubeq.1: quality mesh (625 tets, Steiner points whose attribute TetGen did not interpolate):
   // its geometry is checked with the field set here.
   TetMesh quality = read_tetgen(kDir + "cubeq.1.ele");
-  assign_field(quality, field);
+  assign_field(quality, linear_field);
   check_fixture(quality, "tetgen cubeq.1", 625);
   // TetGen wrote every tet positively oriented (VTK's sense): nothing to reorient.
   TetMesh copy = read_tetgen(kDir + "cubeq.1.ele");
@@ -146,7 +147,7 @@ TEST_CASE("TetGen output (.node + .ele) reads and integrates like the analytic c
 TEST_CASE("gmsh output (MSH 2.2 with $ElementNodeData, MSH 4.1) reads and integrates like the analytic cube", "[mesh][formats]") {
   const TetMesh m22 = read_gmsh(kDir + "box-2.2.msh");
   for (std::size_t i = 0; i < m22.points.size(); ++i)
-    CHECK(m22.scalars[i] == Approx(field(m22.points[i])).margin(1e-14));
+    CHECK(m22.scalars[i] == Approx(linear_field(m22.points[i])).margin(1e-14));
   check_fixture(m22, "gmsh box-2.2.msh", 100);
   TetMesh copy = m22;
   CHECK(repair_tet_mesh(copy, "g").reoriented == 0);  // gmsh wrote every tet positive
@@ -155,7 +156,7 @@ TEST_CASE("gmsh output (MSH 2.2 with $ElementNodeData, MSH 4.1) reads and integr
                     Catch::StartsWith(kDir + "box-4.1.msh: $NodeData: no one-component $NodeData or $ElementNodeData"));
   // ...so a $NodeData is appended to gmsh's own $Entities/$Nodes/$Elements, and the field set here.
   TetMesh m41 = parse_gmsh(with_node_data(slurp_file(kDir + "box-4.1.msh")), "box-4.1.msh");
-  assign_field(m41, field);
+  assign_field(m41, linear_field);
   check_fixture(m41, "gmsh box-4.1.msh", 100);
 }
 
@@ -215,7 +216,7 @@ TEST_CASE("Mesh cases read .ele and .msh through the mesh_file dispatch", "[mesh
     double len = 0.0;
     for (const Segment& s : c.rays[0].segments) len += s.length;
     CHECK(len == Approx(2.0).epsilon(1e-14));
-    CHECK(c.rays[0].segments.front().scalar_far == Approx(field(Vec3(0.1, 0.2, -1))).epsilon(1e-13));
+    CHECK(c.rays[0].segments.front().scalar_far == Approx(linear_field(Vec3(0.1, 0.2, -1))).epsilon(1e-13));
   }
 }
 
@@ -260,11 +261,11 @@ TEST_CASE("TetGen reader: every problem is one line naming the file and the fiel
     std::string node, ele, expect;
   };
   const Bad bad[] = {
-      {replace(kNode, "4 3 1 0", "4 2 1 0"), kEle, "t.node: header, line 2: 2 is out of range [3, 3]"},
+      {replace(kNode, "4 3 1 0", "4 2 1 0"), kEle, "t.node: header, line 2: dimension must be 3"},
       {replace(kNode, "4 3 1 0", "4 3 0 0"), kEle, "t.node: header, line 2: no point attributes"},
       {replace(kNode, "3 0 1 0 2", "7 0 1 0 2"), kEle, "t.node: node[2], line 5: index 7 out of sequence (expected 3)"},
       {replace(kNode, "2 1 0 0 1", "2 1 0 nan 1"), kEle, "t.node: node[1], line 4: expected a finite number, got \"nan\""},
-      {replace(kNode, "4 0 0 1 3\n", ""), kEle, "t.node: node[3]: unexpected end of file"},
+      {replace(kNode, "4 0 0 1 3\n", ""), kEle, "t.node: node[3], line 5: unexpected end of file"},
       {kNode, replace(kEle, "1 1 2 3 4", "1 1 2 3 5"), "t.ele: ele[0], line 2: 5 is out of range [1, 4]"},
       {kNode, replace(kEle, "1 4 0", "1 6 0"), "t.ele: header, line 1: nodes per tetrahedron must be 4 or 10"},
       {kNode, replace(kEle, "1 1 2 3 4", "1 1 2 3"), "t.ele: ele[0], line 2: expected index n1 n2 n3 n4 [...] (5 numbers), got 4"},
@@ -273,6 +274,7 @@ TEST_CASE("TetGen reader: every problem is one line naming the file and the fiel
   for (const Bad& b : bad) {
     INFO(b.expect);
     const std::string msg = tetgen_error(b.node, b.ele);
+    INFO("got: " << msg);
     CHECK(msg.rfind(b.expect, 0) == 0);
     CHECK(msg.find('\n') == std::string::npos);
   }
@@ -286,18 +288,20 @@ TEST_CASE("gmsh reader: every problem is one line naming the file and the sectio
   const Bad bad[] = {
       {replace(kMsh22, "2.2 0 8", "3.0 0 8"), "g.msh: $MeshFormat, line 2: version \"3.0\" is not read"},
       {replace(kMsh22, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", ""), "g.msh: $Nodes, line 1: the file must start with $MeshFormat"},
-      {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 5 2 0 1 1 2 3 4"), "g.msh: $Elements, line 13: element 2: 9 numbers"},
-      {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 11 2 0 1 1 2 3 4 1 2 3 4 1 2"), "g.msh: $Elements, line 13: element type 11 (10-node tetrahedron) is not read"},
+      {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 5 2 0 1 1 2 3 4"), "g.msh: $Elements, line 14: element 2: 9 numbers, a 8-node hexahedron with 2 tags needs 13"},
+      {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 11 2 0 1 1 2 3 4 1 2 3 4 1 2"), "g.msh: $Elements, line 14: element type 11 (10-node tetrahedron) is not read"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 4 2 0 1 1 2 3 9"), "g.msh: $Elements (element 2): node tag 9 is not in $Nodes"},
       {replace(kMsh22, "2 1 0 0", "2 1 0 x"), "g.msh: $Nodes, line 7: expected a finite number, got \"x\""},
       {replace(kMsh22, "$EndNodes", "$EndNode"), "g.msh: $Nodes, line 10: expected $EndNodes, got \"$EndNode\""},
-      {replace(kMsh22, "3 2\n4 3\n", "3 2\n"), "g.msh: $NodeData, line 26: expected tag value..."},
-      {replace(kMsh22, "\"s\"\n1\n0.0\n3\n0\n1\n", "\"s\"\n1\n0.0\n3\n0\n3\n"), "g.msh: $NodeData: no one-component $NodeData or $ElementNodeData"},
+      {replace(kMsh22, "3 2\n4 3\n", "3 2\n"), "g.msh: $NodeData, line 28: expected tag value... (2 numbers), got 1"},
+      {replace(kMsh22, "\"s\"\n1\n0.0\n3\n0\n1\n", "\"s\"\n1\n0.0\n3\n0\n3\n"), "g.msh: $NodeData, line 25: entity 1: 1 values, expected 3"},
+      {kMsh22.substr(0, kMsh22.find("$NodeData")), "g.msh: $NodeData: no one-component $NodeData or $ElementNodeData"},
       {kMsh22.substr(0, kMsh22.find("$Elements")), "g.msh: $Elements: missing"},
   };
   for (const Bad& b : bad) {
     INFO(b.expect);
     const std::string msg = gmsh_error(b.msh);
+    INFO("got: " << msg);
     CHECK(msg.rfind(b.expect, 0) == 0);
     CHECK(msg.find('\n') == std::string::npos);
   }
@@ -311,12 +315,14 @@ TEST_CASE("gmsh reader: every problem is one line naming the file and the sectio
     }
   }
   SECTION("element node data that disagrees at a node") {
-    const std::string m = replace(replace(kMsh22, "$NodeData\n1\n\"s\"\n1\n0.0\n3\n0\n1\n4\n1 0.5\n2 1\n3 2\n4 3\n$EndNodeData\n",
-                                          "$ElementNodeData\n1\n\"s\"\n1\n0.0\n3\n0\n1\n2\n1 3 0.5 1 2\n2 4 0.5 1 2 3\n$EndElementNodeData\n"),
-                                  "2 4 0.5 1 2 3", "2 4 0.5 1 2 3");
+    // Two tets sharing nodes 2, 3, 4; the values are given per element, as gmsh's Save View does.
+    const std::string m =
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n$EndNodes\n"
+        "$Elements\n2\n1 4 2 0 1 1 2 3 4\n2 4 2 0 1 2 3 5 4\n$EndElements\n"
+        "$ElementNodeData\n1\n\"s\"\n1\n0.0\n3\n0\n1\n2\n1 4 0.5 1 2 3\n2 4 1 2 9 3\n$EndElementNodeData\n";
     CHECK(gmsh_error(m) == "(no error)");
-    CHECK(gmsh_error(replace(m, "2 4 0.5 1 2 3", "2 4 0.5 1.5 2 3"))
-              .rfind("g.msh: $ElementNodeData: node 2 has two values", 0) == 0);
+    CHECK(gmsh_error(replace(m, "2 4 1 2 9 3", "2 4 1.5 2 9 3")) ==
+          "g.msh: $ElementNodeData: node 2 has two values (1 and 1.5): the field is not continuous");
   }
 }
 
@@ -334,7 +340,7 @@ TEST_CASE("CLI: bad TetGen and gmsh files exit 2 with one line and no output", "
     std::string args, prefix;
   } runs[] = {
       {"eval t.json -o out.json", "t.node: node[1], line 4: expected index x y z [attributes] [marker] (5 numbers), got 4"},
-      {"eval g.json -o out.json", "g.msh: $Elements, line 13: element type 5 (8-node hexahedron) is not read"},
+      {"eval g.json -o out.json", "g.msh: $Elements, line 14: element type 5 (8-node hexahedron) is not read"},
   };
   for (const auto& run : runs) {
     const auto before = dir.entries();

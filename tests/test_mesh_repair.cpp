@@ -114,7 +114,8 @@ TEST_CASE("Mixed orientation: the mesh as written and reoriented give the same i
   CHECK(r.reoriented == static_cast<long>((g.mesh.tets.size() + 1) / 2 + g.mesh.tets.size() / 4));
   validate_tet_mesh(mixed, "m");  // now passes the strict check
   const TetTraversal original(g.mesh, "original"), repaired(mixed, "repaired");
-  const auto exact = make_integrator(parse_method_spec("exact"), test_tf());
+  const TransferFunctions tf = test_tf();  // the integrator keeps a reference to it
+  const auto exact = make_integrator(parse_method_spec("exact"), tf);
   long segments = 0;
   const double worst = max_abs_difference(original, repaired, random_rays(3000, 2026), *exact, &segments);
   // Measured max |difference| over 3000 rays (seed 2026, ~14 segments each): printed here,
@@ -130,6 +131,7 @@ TEST_CASE("A dropped zero-volume or sliver tet: traversal re-enters across it, n
     INFO("lift " << lift);
     TetMesh m = double_pyramid(lift);
     TetMesh strict = m;
+    reorient_tets(strict);  // the halves are written in both orders; the flat tet stays refused
     CHECK_THROWS_WITH(validate_tet_mesh(strict, "dp"), Catch::StartsWith("dp: tets[4]: degenerate tetrahedron"));
     const TetRepairs r = repair_tet_mesh(m, "dp");
     CHECK(r.zero_volume == (lift == 0.0 ? 1 : 0));
@@ -208,8 +210,10 @@ TEST_CASE("Mesh cases: default reorients and counts, --strict-mesh refuses", "[m
   CHECK(repairs->tets_read == 3);
   CHECK(repairs->reoriented == 1);
   CHECK(repairs->zero_volume == 1);
-  REQUIRE(c.rays[0].segments.size() == 1);
+  // Down x = y = 0.2: z in [0, 0.6] in the first tet, [0.6, 1] in the second (x + y - z <= 1 ...).
+  REQUIRE(c.rays[0].segments.size() == 2);
   CHECK(c.rays[0].segments[0].length == Approx(0.6).epsilon(1e-15));
+  CHECK(c.rays[0].segments[1].length == Approx(0.4).epsilon(1e-15));
   CHECK_THROWS_WITH(parse_case_text(text, "c.json", MeshReadOptions{true}),
                     Catch::StartsWith("c.json: mesh.tets[0]: inverted tetrahedron"));
 }

@@ -93,14 +93,19 @@ class MshReader {
       }
       end(section);
     }
-    if (!have_format) c_.fail("$MeshFormat", "missing (not a gmsh .msh file)");
-    if (!have_nodes) c_.fail("$Nodes", "missing");
-    if (!have_elements) c_.fail("$Elements", "missing");
-    if (mesh_.tets.empty()) c_.fail("$Elements", "no 4-node tetrahedra (type 4)");
+    if (!have_format) fail_whole("$MeshFormat", "missing (not a gmsh .msh file)");
+    if (!have_nodes) fail_whole("$Nodes", "missing");
+    if (!have_elements) fail_whole("$Elements", "missing");
+    if (tet_nodes_.empty()) fail_whole("$Elements", "no 4-node tetrahedra (type 4)");
     return finish();
   }
 
  private:
+  // A problem with the file as a whole (found after reading it): no line number.
+  [[noreturn]] void fail_whole(const std::string& section, const std::string& what) const {
+    field::fail(c_.source(), section, what);
+  }
+
   // --- low-level reading -------------------------------------------------------------------
   template <class T>
   T bin(const std::string& field) {
@@ -399,7 +404,7 @@ class MshReader {
   // --- assembling ----------------------------------------------------------------------------
   std::int32_t node(long long t, const std::string& field) {
     const auto it = node_index_.find(t);
-    if (it == node_index_.end()) c_.fail(field, "node tag " + std::to_string(t) + " is not in $Nodes");
+    if (it == node_index_.end()) fail_whole(field, "node tag " + std::to_string(t) + " is not in $Nodes");
     return it->second;
   }
 
@@ -429,12 +434,12 @@ class MshReader {
         const auto it = tet_of.find(t);
         if (it == tet_of.end()) continue;  // data on a point, line or triangle element
         if (vs.size() != 4)
-          c_.fail("$ElementNodeData", "element " + std::to_string(t) + " (a tetrahedron) has " +
+          fail_whole("$ElementNodeData", "element " + std::to_string(t) + " (a tetrahedron) has " +
                                           std::to_string(vs.size()) + " values, expected 4");
         for (std::size_t k = 0; k < 4; ++k) {
           const auto i = static_cast<std::size_t>(mesh_.tets[it->second][k]);
           if (have[i] && value[i] != vs[k])
-            c_.fail("$ElementNodeData",
+            fail_whole("$ElementNodeData",
                     "node " + std::to_string(tet_nodes_[it->second][k]) + " has two values (" + format_number(value[i]) +
                         " and " + format_number(vs[k]) + "): the field is not continuous");
           value[i] = vs[k];
@@ -442,12 +447,12 @@ class MshReader {
         }
       }
     } else {
-      c_.fail("$NodeData", what + " (one scalar per node is required)");
+      fail_whole("$NodeData", what + " (one scalar per node is required)");
     }
     for (const auto& t : mesh_.tets)
       for (const std::int32_t i : t)
         if (!have[static_cast<std::size_t>(i)])
-          c_.fail(node_data_.present ? "$NodeData" : "$ElementNodeData",
+          fail_whole(node_data_.present ? "$NodeData" : "$ElementNodeData",
                   "no value for a node of a tetrahedron (point " + std::to_string(i) + ")");
     mesh_.scalars = std::move(value);
     validate_tet_mesh_structure(mesh_, c_.source(), MeshFieldNames{"$Nodes", "$NodeData", "$Elements"});
