@@ -181,7 +181,7 @@ TEST_CASE("A dropped zero-volume or sliver tet: traversal re-enters across it, n
   }
 }
 
-TEST_CASE("Repair counts repeated indices as zero volume; a mesh of only degenerate tets is refused", "[mesh][repair]") {
+TEST_CASE("Repair counts repeated indices as zero volume, and a mesh of only degenerate tets is refused", "[mesh][repair]") {
   TetMesh m;
   m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   m.scalars.assign(4, 1.0);
