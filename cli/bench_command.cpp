@@ -60,6 +60,7 @@ void set_bench_command(CLI::App& app) {
     std::string output = "reports/bench.json";
     SweepOptions sweep;
     bool quiet = false;
+    MeshReadOptions mesh;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -85,11 +86,12 @@ void set_bench_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   add_threads_option(cmd, opt->sweep.timing.threads, "Threads for the reference (0 = all cores)");
   add_quiet_flag(cmd, opt->quiet);
+  add_strict_mesh_flag(cmd, opt->mesh.strict);
   cmd->callback([opt] {
     const std::vector<SweepAxis> axes = select_sweep_axes(split_names(opt->methods));
     const std::vector<std::string> files = case_files(opt->files);
     std::vector<Case> cases;
-    for (const auto& f : files) cases.push_back(read_case_file(f));  // validate all first
+    for (const auto& f : files) cases.push_back(read_case_file(f, opt->mesh));  // validate all first
     if (opt->output != "-") {
       const auto parent = std::filesystem::path(opt->output).parent_path();
       if (!parent.empty()) std::filesystem::create_directories(parent);

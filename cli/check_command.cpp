@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/studies/check.hpp"
 #include "rayint/input/candidate_reader.hpp"
 #include "rayint/report/check_json.hpp"
@@ -35,6 +36,7 @@ void set_check_command(CLI::App& app) {
     std::string output;
     CheckOptions check;
     bool no_reference = false;
+    MeshReadOptions mesh;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -54,8 +56,9 @@ void set_check_command(CLI::App& app) {
   cmd->add_flag("--no-reference", opt->no_reference,
                 "Skip the 50-digit reference (reported for context only; costs time on big cases)");
   cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");
+  add_strict_mesh_flag(cmd, opt->mesh.strict);
   cmd->callback([opt] {
-    const Case c = read_case_file(opt->case_file);
+    const Case c = read_case_file(opt->case_file, opt->mesh);
     const Candidate candidate = read_candidate_file(opt->candidate_file, c);
     CheckOptions co = opt->check;
     co.with_reference = !opt->no_reference;

@@ -27,6 +27,7 @@ void set_eval_command(CLI::App& app) {
     bool no_reference = false;
     bool quiet = false;
     double progress_every = 1.0;
+    MeshReadOptions mesh;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -45,6 +46,7 @@ void set_eval_command(CLI::App& app) {
                   "Seconds between progress lines on stderr (0: every step)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  add_strict_mesh_flag(cmd, opt->mesh.strict);
   cmd->callback([opt] {
     const std::vector<MethodSpec> methods =
         opt->methods.empty() ? default_methods() : parse_method_list(opt->methods);
@@ -61,8 +63,10 @@ void set_eval_command(CLI::App& app) {
     };
     const auto seconds = [&]() { return std::chrono::duration<double>(clock::now() - start).count(); };
     std::vector<Case> cases;
+    std::vector<std::optional<TetRepairs>> repairs;  // mesh cases: reoriented / dropped tets
     const auto read = [&](const std::string& file) {
-      cases.push_back(read_case_file(file));
+      repairs.emplace_back();
+      cases.push_back(read_case_file(file, opt->mesh, &repairs.back()));
       if (line_due())
         std::fprintf(stderr, "eval: read %s, %.0f s\n", file.c_str(), seconds());
     };
@@ -85,9 +89,10 @@ void set_eval_command(CLI::App& app) {
         if (line_due()) std::fputs(eval_progress_line(name, p, seconds()).c_str(), stderr);
       };
     std::vector<CaseEvaluation> results;
-    for (const auto& c : cases) {
-      name = c.name;
-      results.push_back(evaluate_case(c, methods, eo));
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      name = cases[i].name;
+      results.push_back(evaluate_case(cases[i], methods, eo));
+      results.back().mesh_repairs = repairs[i];
     }
     emit(opt->format == "table" ? evaluation_table(results) : eval_report_json(results).dump(2),
          opt->output);

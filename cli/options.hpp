@@ -17,4 +17,12 @@ inline CLI::Option* add_quiet_flag(CLI::App* cmd, bool& quiet) {
   return cmd->add_flag("-q,--quiet", quiet, "No progress on stderr");
 }
 
+// --strict-mesh: refuse inverted and degenerate tets (input/mesh_case_reader.hpp MeshReadOptions)
+// instead of reorienting and dropping them.
+inline CLI::Option* add_strict_mesh_flag(CLI::App* cmd, bool& strict) {
+  return cmd->add_flag("--strict-mesh", strict,
+                       "Mesh cases: refuse inverted, zero-volume and sliver tetrahedra (default: "
+                       "reorient inverted ones, drop degenerate ones, and count both)");
+}
+
 }  // namespace rayint::cli

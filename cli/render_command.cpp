@@ -23,6 +23,7 @@ void set_render_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   add_threads_option(cmd, opts->threads, "worker threads (0: all cores)");
   cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");
+  add_strict_mesh_flag(cmd, opts->strict_mesh);
   cmd->add_option("--method", opts->methods,
                   "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "
                   "shadows=two_pass:grid=64");

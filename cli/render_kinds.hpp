@@ -14,6 +14,7 @@ struct RenderOptions {
   double exposure = 1.0;
   unsigned threads = 0;
   bool quiet = false;
+  bool strict_mesh = false;          // mesh cases: --strict-mesh
   std::vector<std::string> methods;  // scenes: EFFECT=SPEC overrides of the scene's "methods"
   int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
 };

@@ -29,7 +29,7 @@ std::string heat_map_path(const std::string& output) {
 }  // namespace
 
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) {
-  const MeshCase mc = parse_mesh_case(root, options.input);
+  const MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   // Validate the methods before the (long) render.
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);

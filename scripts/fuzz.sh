@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the case parser (rayint::parse_case_text) with libFuzzer + ASan + UBSan for a bounded
-# time, then prints the executions and findings.
+# Fuzzes one parser with libFuzzer + ASan + UBSan for a bounded time, then prints the executions
+# and findings. Targets (RAYINT_FUZZ_TARGET): case_parser (rayint::parse_case_text, the default),
+# candidate_parser, scene_parser (rayint::parse_scene_text), vtk_legacy (rayint::parse_vtk_legacy),
+# gmsh (rayint::parse_gmsh), tetgen (rayint::parse_tetgen). Needs clang and libFuzzer: Debian's
+# clang + libclang-rt-14-dev (installed below when missing).
 #
 #   scripts/fuzz.sh [SECONDS] [extra libFuzzer flags...]     (SECONDS defaults to 60)
 #
@@ -8,7 +11,9 @@
 # fuzz/<target>_fuzzer, seeds it (case_parser: cases/*.json, copied at run time;
 # candidate_parser: fuzz/seeds/candidate/) with the dictionary fuzz/<target>.dict, and keeps the
 # inputs it finds interesting in RAYINT_FUZZ_CORPUS (default fuzz-corpus/<target>/, reused by the
-# next run). RAYINT_FUZZ_TARGET selects the target: case_parser (default) or candidate_parser.
+# next run). Seeds: case_parser cases/*.json; candidate_parser fuzz/seeds/candidate/; scene_parser
+# cases/scenes/*.json; vtk_legacy fuzz/seeds/vtk_legacy/ + cases/meshes/linear-box.vtk + the
+# meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -26,7 +31,12 @@ case "$target" in
   candidate_parser) seed_files=("$root"/fuzz/seeds/candidate/*.json); what="rayint::parse_candidate_text" ;;
   vtu_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vtu); what="rayint::parse_vtu" ;;
   vti_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vti); what="rayint::parse_vti" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader or vti_reader" >&2; exit 2 ;;
+  scene_parser) seed_files=("$root"/cases/scenes/*.json); what="rayint::parse_scene_text" ;;
+  vtk_legacy) seed_files=("$root"/fuzz/seeds/vtk_legacy/* "$root"/cases/meshes/linear-box.vtk
+                          "$root"/tests/fixtures/meshes/*.vtk); what="rayint::parse_vtk_legacy" ;;
+  gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
+  tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh or tetgen" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

@@ -110,7 +110,8 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
   expect_bad(dir, "eval oob.json -o out.json", "oob.json: mesh.tets[1][3]: point index 9 out of range [0, 5)");
   expect_bad(dir, "render oob.json -o out.png", "oob.json: mesh.tets[1][3]: point index 9 out of range");
   dir.write("inv.json", with(kMeshCase, "[0,1,2,3]", "[0,2,1,3]"));
-  expect_bad(dir, "eval inv.json -o out.json", "inv.json: mesh.tets[0]: inverted tetrahedron");
+  expect_bad(dir, "eval --strict-mesh inv.json -o out.json", "inv.json: mesh.tets[0]: inverted tetrahedron");
+  expect_bad(dir, "render --strict-mesh inv.json -o out.png", "inv.json: mesh.tets[0]: inverted tetrahedron");
   dir.write("count.json", with(kMeshCase, "0.2, 0.9]", "0.2]"));
   expect_bad(dir, "eval count.json -o out.json", "count.json: mesh.scalars: 4 scalars for 5 points");
   dir.write("nofile.json", with(kMeshCase, R"("mesh": {"points")", R"("mesh_file": "gone.vtk", "x": {"points")"));

@@ -104,9 +104,6 @@ TEST_CASE("VTK legacy reader: every problem is one line naming the file and sect
       {replace(base, "CELL_TYPES 1\n10", "CELL_TYPES 1\n12"), "m.vtk: CELL_TYPES[0]: cell type 12 (hexahedron) is not read; only linear tetrahedra (type 10)"},
       {replace(base, "0 0 0  1 0 0", "0 0 nan  1 0 0"), "m.vtk: POINTS[0][2]: coordinate must be finite, got nan"},
       {replace(base, "4 0 1 2 3", "4 0 1 2 9"), "m.vtk: CELLS[0][3]: point index 9 out of range [0, 4)"},
-      {replace(base, "4 0 1 2 3", "4 0 1 3 2"), "m.vtk: CELLS[0]: inverted tetrahedron"},
-      {replace(base, "4 0 1 2 3", "4 0 1 2 2"), "m.vtk: CELLS[0]: degenerate tetrahedron: point 2 appears twice"},
-      {replace(base, "0 0 1\n", "1 1 0\n"), "m.vtk: CELLS[0]: degenerate tetrahedron (volume 0"},
       {replace(base, "POINT_DATA 4", "POINT_DATA 3"), "m.vtk: POINT_DATA: 3 scalars for 4 points"},
       {replace(base, "SCALARS s double 1\nLOOKUP_TABLE default\n0.5 1.5 2.5 3.5\n", ""), "m.vtk: POINT_DATA: no SCALARS array"},
       {replace(base, "0.5 1.5 2.5 3.5\n", "0.5 1.5\n"), "m.vtk: POINT_DATA: expected 4 values, file ends after 2"},
@@ -120,6 +117,24 @@ TEST_CASE("VTK legacy reader: every problem is one line naming the file and sect
     const std::string msg = error_of(b.vtk);
     CHECK(msg.rfind(b.expect, 0) == 0);
     CHECK(msg.find('\n') == std::string::npos);
+  }
+  SECTION("strict (--strict-mesh): inverted and degenerate tets are refused by validate_tet_mesh") {
+    const Bad strict[] = {
+        {replace(base, "4 0 1 2 3", "4 0 1 3 2"), "m.vtk: CELLS[0]: inverted tetrahedron"},
+        {replace(base, "4 0 1 2 3", "4 0 1 2 2"), "m.vtk: CELLS[0]: degenerate tetrahedron: point 2 appears twice"},
+        {replace(base, "0 0 1\n", "1 1 0\n"), "m.vtk: CELLS[0]: degenerate tetrahedron (volume 0"},
+    };
+    for (const Bad& b : strict) {
+      INFO(b.expect);
+      const TetMesh m = parse_vtk_legacy(b.vtk, "m.vtk");  // the reader checks structure only
+      std::string msg = "(no error)";
+      try {
+        validate_tet_mesh(m, "m.vtk", MeshFieldNames{"POINTS", "POINT_DATA", "CELLS"});
+      } catch (const InputError& e) {
+        msg = e.what();
+      }
+      CHECK(msg.rfind(b.expect, 0) == 0);
+    }
   }
   SECTION("truncated binary data") {
     const GeneratedMesh g = generate_mesh("ball", 1, 1);
@@ -149,13 +164,13 @@ TEST_CASE("Inline JSON mesh cases: every field error names the file and field", 
     "rays": [{"origin": [0.2, 0.2, 5], "direction": [0, 0, -1]}]})";
   const auto err = [](const std::string& text) -> std::string {
     try {
-      parse_case_text(text, "c.json");
+      parse_case_text(text, "c.json", MeshReadOptions{true});
     } catch (const InputError& e) {
       return e.what();
     }
     return "(no error)";
   };
-  const Case c = parse_case_text(good, "c.json");
+  const Case c = parse_case_text(good, "c.json", MeshReadOptions{true});
   REQUIRE(c.rays.size() == 1);
   REQUIRE(c.rays[0].segments.size() == 1);
   CHECK(c.rays[0].segments[0].length == Approx(0.6).epsilon(1e-15));

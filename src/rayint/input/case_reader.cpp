@@ -108,9 +108,12 @@ Case read_case(const JsonSchema& s, const json& root, StreamedRays* streamed) {
   return c;
 }
 
-Case parse_case_root(const json& root, const std::string& source, StreamedRays* streamed) {
+Case parse_case_root(const json& root, const std::string& source, StreamedRays* streamed,
+                     const MeshReadOptions& mesh_options, std::optional<TetRepairs>* repairs) {
+  if (repairs) repairs->reset();
   if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
-    MeshCase mc = parse_mesh_case(root, source);
+    MeshCase mc = parse_mesh_case(root, source, mesh_options);
+    if (repairs) *repairs = mc.repairs;
     const TetTraversal mesh(mc.mesh, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
   }
@@ -119,7 +122,8 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
 
 }  // namespace
 
-Case parse_case_text(std::string_view text, const std::string& source) {
+Case parse_case_text(std::string_view text, const std::string& source,
+                     const MeshReadOptions& mesh_options, std::optional<TetRepairs>* repairs) {
   const JsonSchema schema(source);
   StreamedRays streamed;
   json_source::StreamedArray sink;
@@ -138,18 +142,19 @@ Case parse_case_text(std::string_view text, const std::string& source) {
     }
   };
   const json root = json_source::parse(text, source, sink);
-  return parse_case_root(root, source, &streamed);
+  return parse_case_root(root, source, &streamed, mesh_options, repairs);
 }
 
 namespace detail {
 Case parse_case_text_tree(std::string_view text, const std::string& source) {
-  return parse_case_root(json_source::parse(text, source), source, nullptr);
+  return parse_case_root(json_source::parse(text, source), source, nullptr, {}, nullptr);
 }
 }  // namespace detail
 
-Case read_case_file(const std::string& path) {
+Case read_case_file(const std::string& path, const MeshReadOptions& mesh_options,
+                    std::optional<TetRepairs>* repairs) {
   const std::string text = json_source::read_text_file(path);
-  return parse_case_text(text, path);
+  return parse_case_text(text, path, mesh_options, repairs);
 }
 
 std::vector<std::string> list_case_files(const std::string& dir) {

@@ -1,19 +1,25 @@
 #pragma once
 // Reading and validating case files (format: cases/README.md). Every problem is reported as an
 // InputError whose message is one line naming the file and the JSON field.
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "rayint/core/error.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/model/ray.hpp"
 
 namespace rayint {
 
-// `source` is the file name used in messages. Throws InputError.
-Case parse_case_text(std::string_view text, const std::string& source);
-Case read_case_file(const std::string& path);
+// `source` is the file name used in messages. Throws InputError. `mesh` applies to mesh cases
+// (mesh_case_reader.hpp: reorient/drop by default, refuse with --strict-mesh); for a mesh case,
+// `*repairs` (when given) receives what reading its mesh reoriented and dropped.
+Case parse_case_text(std::string_view text, const std::string& source, const MeshReadOptions& mesh = {},
+                     std::optional<TetRepairs>* repairs = nullptr);
+Case read_case_file(const std::string& path, const MeshReadOptions& mesh = {},
+                    std::optional<TetRepairs>* repairs = nullptr);
 
 namespace detail {
 // The same reading with every segment kept in the JSON tree until the schema walk (how

@@ -7,7 +7,9 @@
 #include <stdexcept>
 
 #include "rayint/input/json_schema.hpp"
+#include "rayint/input/gmsh_reader.hpp"
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/tetgen_reader.hpp"
 #include "rayint/input/vtk_legacy_reader.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
 
@@ -18,11 +20,14 @@ TetMesh read_vtu_mesh(const std::string& path, const std::string& scalar_name) {
   return read_vtu(path, scalar_name);
 }
 
-// The registry register_mesh_reader() adds to. It starts with rayint's own .vtu reader
-// (input/vtk_xml_reader.hpp), so a library user gets it without registering anything; the
-// optional VTK build's register_vtk_mesh_readers() replaces it with VTK's reader.
+// The readers chosen by extension besides .vtk: TetGen and gmsh here, .vtu etc. registered by
+// optional areas (register_mesh_reader).
 std::map<std::string, MeshFileReader>& extra_mesh_readers() {
-  static std::map<std::string, MeshFileReader> readers{{".vtu", read_vtu_mesh}};
+  static std::map<std::string, MeshFileReader> readers = {
+      {".ele", &read_tetgen},  // TetGen .ele + .node (tetgen_reader.hpp)
+      {".msh", &read_gmsh},    // gmsh MSH 2.2 / 4.1 (gmsh_reader.hpp)
+      {".vtu", &read_vtu_mesh},  // VTK XML, without VTK (vtk_xml_reader.hpp); the VTK build replaces it
+  };
   return readers;
 }
 
@@ -61,7 +66,7 @@ TetMesh inline_mesh(const JsonSchema& s, const json& j, const std::string& path)
       t[k] = static_cast<std::int32_t>(s.integer(tets[i][k], index_path(ti, k), INT32_MIN, INT32_MAX));
     m.tets.push_back(t);
   }
-  validate_tet_mesh(m, s.source(), MeshFieldNames{pp, sp, tp});
+  validate_tet_mesh_structure(m, s.source(), MeshFieldNames{pp, sp, tp});
   return m;
 }
 
@@ -99,13 +104,21 @@ SurfaceShading shading(const JsonSchema& s, const json& j, const std::string& pa
   return sh;
 }
 
+// The names a format gives its tets, for strict refusals ("mesh.tets[3]", "CELLS[3]", ...).
+MeshFieldNames file_field_names(const std::string& extension) {
+  if (extension == ".vtk") return {"POINTS", "POINT_DATA", "CELLS"};
+  if (extension == ".ele") return {"node", "node attribute", "ele"};  // tetgen_reader.hpp
+  if (extension == ".msh") return {"$Nodes", "$NodeData", "$Elements"};
+  return {"Points", "PointData", "Cells"};
+}
+
 }  // namespace
 
 bool is_mesh_case(const json& root) {
   return root.is_object() && (root.contains("mesh") || root.contains("mesh_file"));
 }
 
-MeshCase parse_mesh_case(const json& root, const std::string& source) {
+MeshCase parse_mesh_case(const json& root, const std::string& source, const MeshReadOptions& options) {
   const JsonSchema s(source);
   const std::string path;
   s.require_object(root, path);
@@ -121,6 +134,7 @@ MeshCase parse_mesh_case(const json& root, const std::string& source) {
   if ((inline_m != nullptr) == (file != nullptr))
     s.fail(path, "give exactly one of \"mesh\" (inline) or \"mesh_file\" (a .vtk file)");
   const json* scalar_field = s.optional(root, "scalar_field");
+  MeshFieldNames names{"mesh.points", "mesh.scalars", "mesh.tets"};
   if (inline_m) {
     if (scalar_field) s.fail("scalar_field", "only with \"mesh_file\"");
     mc.mesh = inline_mesh(s, *inline_m, "mesh");
@@ -143,7 +157,12 @@ MeshCase parse_mesh_case(const json& root, const std::string& source) {
       s.fail("mesh_file", "unsupported mesh format \"" + p.extension().string() +
                               "\" (read: .vtk, VTK legacy unstructured grid" +
                               extra_mesh_extensions() + ")");
+    names = file_field_names(p.extension().string());
   }
+  if (options.strict)
+    validate_tet_mesh(mc.mesh, mc.mesh_source, names);
+  else
+    mc.repairs = repair_tet_mesh(mc.mesh, mc.mesh_source, names);
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");
@@ -167,8 +186,8 @@ MeshCase parse_mesh_case(const json& root, const std::string& source) {
   return mc;
 }
 
-MeshCase read_mesh_case_file(const std::string& path) {
-  return parse_mesh_case(json_source::parse(json_source::read_text_file(path), path), path);
+MeshCase read_mesh_case_file(const std::string& path, const MeshReadOptions& options) {
+  return parse_mesh_case(json_source::parse(json_source::read_text_file(path), path), path, options);
 }
 
 void register_mesh_reader(const std::string& extension, MeshFileReader read) {

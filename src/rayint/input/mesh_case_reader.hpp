@@ -14,9 +14,19 @@ namespace rayint {
 // True when `root` is a mesh case (an object with "mesh" or "mesh_file").
 bool is_mesh_case(const nlohmann::json& root);
 
-MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source);
-MeshCase read_mesh_case_file(const std::string& path);
+// How a mesh's tets are taken (mesh/tet_mesh.hpp). Default: inverted tets are reoriented and
+// degenerate ones (zero volume, slivers) dropped, counted in MeshCase::repairs. strict
+// (`--strict-mesh`): refused with one line naming the tet, as validate_tet_mesh does.
+struct MeshReadOptions {
+  bool strict = false;
+};
 
+MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source,
+                         const MeshReadOptions& options = {});
+MeshCase read_mesh_case_file(const std::string& path, const MeshReadOptions& options = {});
+
+// Readers validate the structure only (validate_tet_mesh_structure); orientation and degenerate
+// tets are then handled here by `options` for every format alike.
 // Adds a reader for "mesh_file" paths ending in `extension` (e.g. ".vtu"; optional libraries such
 // as src/rayint/vtk/). The reader throws InputError "<file>: <field>: <what>". Register before
 // reading from several threads; a later registration of the same extension replaces the earlier.

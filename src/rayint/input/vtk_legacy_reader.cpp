@@ -199,6 +199,7 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
 
   TetMesh mesh;
   bool have_points = false, have_cells = false, have_types = false, have_scalars = false;
+  std::vector<double> field_scalars;  // the first one-component POINT_DATA FIELD array (meshio)
   std::vector<double> cell_types;
   std::vector<std::vector<std::int32_t>> cells;
   std::size_t attribute_count = 0;  // tuples of the current POINT_DATA / CELL_DATA block
@@ -312,6 +313,11 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
           mesh.scalars = data;
           have_scalars = true;
         }
+        // meshio writes point data as FIELD arrays only: without a name, the first one-component
+        // FIELD array of POINT_DATA stands in when the file has no SCALARS array at all.
+        if (in_point_data && scalar_name.empty() && field_scalars.empty() &&
+            count_of(c, "FIELD", fa[1]) == 1 && data.size() == attribute_count)
+          field_scalars = data;
       }
     } else if (key == "METADATA") {
       while (c.more() && !c.line("METADATA").empty()) {}
@@ -322,6 +328,10 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
   if (!have_points) c.fail("POINTS", "missing");
   if (!have_cells) c.fail("CELLS", "missing");
   if (!have_types) c.fail("CELL_TYPES", "missing");
+  if (!have_scalars && !field_scalars.empty()) {
+    mesh.scalars = field_scalars;
+    have_scalars = true;
+  }
   if (!have_scalars)
     c.fail("POINT_DATA", scalar_name.empty() ? "no SCALARS array (one scalar per point is required)"
                                              : "no SCALARS array named '" + scalar_name + "'");
@@ -339,7 +349,7 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
              "a tetrahedron needs 4 points, got " + std::to_string(cells[i].size()));
     std::copy(cells[i].begin(), cells[i].end(), mesh.tets[i].begin());
   }
-  validate_tet_mesh(mesh, source, MeshFieldNames{"POINTS", "POINT_DATA", "CELLS"});
+  validate_tet_mesh_structure(mesh, source, MeshFieldNames{"POINTS", "POINT_DATA", "CELLS"});
   return mesh;
 }
 

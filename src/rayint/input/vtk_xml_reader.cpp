@@ -121,7 +121,7 @@ TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::
   std::string scalar_field;
   const pugi::xml_node scalars = scalar_array(d, piece, piece_field, scalar_name, scalar_field);
   mesh.scalars = finite_values(d, scalars, scalar_field, n_points);
-  validate_tet_mesh(mesh, source, MeshFieldNames{piece_field + "/Points", scalar_field, cells_field});
+  validate_tet_mesh_structure(mesh, source, MeshFieldNames{piece_field + "/Points", scalar_field, cells_field});
   return mesh;
 }
 

@@ -26,6 +26,7 @@ struct MeshCase {
   std::string mesh_source;  // the .vtk file, or `source` for an inline mesh
   TransferFunctions transfer;
   TetMesh mesh;
+  TetRepairs repairs;             // what reading reoriented or dropped (all 0 under --strict-mesh)
   std::vector<MeshViewRay> rays;  // "rays" (may be empty when a camera is given)
   std::optional<Camera> camera;   // "camera"
   Rgb background{0.0, 0.0, 0.0};  // "background": behind every camera pixel

@@ -36,7 +36,23 @@ std::size_t reorient_tets(TetMesh& mesh) {
   return swapped;
 }
 
-void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const MeshFieldNames& names) {
+TetShape classify_tet(const TetMesh& mesh, std::size_t tet) {
+  const auto& t = mesh.tets[tet];
+  for (std::size_t a = 0; a < 4; ++a)
+    for (std::size_t b = a + 1; b < 4; ++b)
+      if (t[a] == t[b]) return TetShape::ZeroVolume;
+  const double v6 = signed_volume6(mesh, tet);
+  if (v6 == 0.0) return TetShape::ZeroVolume;
+  double longest = 0.0;
+  for (std::size_t a = 0; a < 4; ++a)
+    for (std::size_t b = a + 1; b < 4; ++b)
+      longest = std::max(longest, (mesh.points[t[a]] - mesh.points[t[b]]).norm());
+  if (!(std::fabs(v6) > kDegenerateTetRatio * longest * longest * longest)) return TetShape::Sliver;
+  return v6 < 0.0 ? TetShape::Inverted : TetShape::Positive;
+}
+
+void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,
+                                 const MeshFieldNames& names) {
   if (mesh.points.empty()) fail(source, names.points, "no points");
   if (mesh.tets.empty()) fail(source, names.tets, "no tetrahedra");
   if (mesh.scalars.size() != mesh.points.size())
@@ -59,25 +75,53 @@ void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const Mes
       if (t[k] < 0 || t[k] >= n)
         fail(source, at(at(names.tets, i), k),
              "point index " + std::to_string(t[k]) + " out of range [0, " + std::to_string(n) + ")");
+  }
+}
+
+void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const MeshFieldNames& names) {
+  validate_tet_mesh_structure(mesh, source, names);
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    const auto& t = mesh.tets[i];
     for (std::size_t a = 0; a < 4; ++a)
       for (std::size_t b = a + 1; b < 4; ++b)
         if (t[a] == t[b])
           fail(source, at(names.tets, i),
                "degenerate tetrahedron: point " + std::to_string(t[a]) + " appears twice");
+    const TetShape shape = classify_tet(mesh, i);
     const double v6 = signed_volume6(mesh, i);
-    double longest = 0.0;
-    for (std::size_t a = 0; a < 4; ++a)
-      for (std::size_t b = a + 1; b < 4; ++b)
-        longest = std::max(longest, (mesh.points[t[a]] - mesh.points[t[b]]).norm());
-    if (!(std::fabs(v6) > kDegenerateTetRatio * longest * longest * longest))
+    if (shape == TetShape::ZeroVolume || shape == TetShape::Sliver)
       fail(source, at(names.tets, i),
            "degenerate tetrahedron (volume " + format_number(v6 / 6.0) +
                ", flat or with coincident points)");
-    if (v6 < 0.0)
+    if (shape == TetShape::Inverted)
       fail(source, at(names.tets, i),
            "inverted tetrahedron (negative volume " + format_number(v6 / 6.0) +
                "); order points so that (p1-p0)x(p2-p0).(p3-p0) > 0, as VTK does");
   }
+}
+
+TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshFieldNames& names) {
+  TetRepairs r;
+  r.tets_read = static_cast<long>(mesh.tets.size());
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    switch (classify_tet(mesh, i)) {
+      case TetShape::ZeroVolume: ++r.zero_volume; continue;
+      case TetShape::Sliver: ++r.slivers; continue;
+      case TetShape::Inverted:
+        std::swap(mesh.tets[i][2], mesh.tets[i][3]);
+        ++r.reoriented;
+        break;
+      case TetShape::Positive: break;
+    }
+    mesh.tets[kept++] = mesh.tets[i];
+  }
+  mesh.tets.resize(kept);
+  if (mesh.tets.empty())
+    fail(source, names.tets,
+         "every tetrahedron is degenerate (" + std::to_string(r.zero_volume) + " zero-volume, " +
+             std::to_string(r.slivers) + " slivers): nothing to traverse");
+  return r;
 }
 
 }  // namespace rayint

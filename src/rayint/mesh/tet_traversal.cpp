@@ -120,6 +120,7 @@ std::int32_t TetTraversal::neighbor(std::size_t cell, int k) const {
 struct TetTraversal::Walk {
   Vec3 o, d;
   double t_lo = 0.0;  // re-entry filter bound
+  double tol = 0.0;   // how far before t_lo a non-strict re-entry may lie (rule 4)
   bool strict = false;
   const TetTraversal* self = nullptr;
 };
@@ -131,7 +132,7 @@ double TetTraversal::crossing(const Walk& w, std::int32_t f) const {
 }
 
 struct FirstHitFilterAccess {
-  // Rule 4: accept an entering boundary face at t_f >= t_lo (or > t_lo when strict).
+  // Rule 4: accept an entering boundary face at t_f >= t_lo - tol (or > t_lo when strict).
   static bool accept(const void* user, std::uint32_t prim) {
     const auto* w = static_cast<const TetTraversal::Walk*>(user);
     const TetTraversal& m = *w->self;
@@ -143,7 +144,7 @@ struct FirstHitFilterAccess {
     const double dn = m.cell_signs_[cell][static_cast<std::size_t>(k)] * face.normal.dot(w->d);
     if (!(dn < 0.0)) return false;  // leaving or parallel
     const double t = m.crossing(*w, f);
-    return w->strict ? t > w->t_lo : t >= w->t_lo;
+    return w->strict ? t > w->t_lo : t >= w->t_lo - w->tol;
   }
 };
 
@@ -246,6 +247,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   while (steps < budget) {
     // Outside the mesh: the next entering boundary face (rule 4).
     w.t_lo = t;
+    w.tol = kStarTolerance * (diagonal_ + std::fabs(t));
     ++local.first_hit_queries;
     const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
     const std::int64_t prim = first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);

@@ -25,13 +25,20 @@
 //     neighbours whose closure holds p to within kStarTolerance x the mesh diagonal) and
 //     continues in the one whose clipped ray interval starts at or before p and reaches furthest;
 //     if none reaches beyond p, the ray has left the mesh there.
-//  4. Re-entry queries accept only entering faces with t_f >= the current t (computed in double
-//     from rule 1's planes, inside Embree's filter); after a re-entry that made no progress the
-//     bound becomes strict (> t), so every loop strictly advances t. A hard budget of
-//     8 x cells + 1000 steps per ray is a last resort; hitting it is counted (never silent).
+//  4. Re-entry queries accept only entering faces with t_f >= the current t minus
+//     kStarTolerance x (diagonal + |t|) (computed in double from rule 1's planes, inside Embree's
+//     filter); the entered cell starts at max(t, t_f) (rule 2), so the slack loses and doubles
+//     nothing. It is there for two faces that meet across a dropped degenerate tet (tet_mesh.hpp:
+//     repair_tet_mesh): the ray leaves one at t and enters the other at a t_f that rounding (or
+//     a sliver thinner than the slack) puts just before t; without it the rest of the ray would
+//     be lost. After a re-entry that made no progress the bound becomes strict (> t), so every
+//     loop strictly advances t. A hard budget of 8 x cells + 1000 steps per ray is a last
+//     resort; hitting it is counted (never silent).
 // Tests (tests/test_mesh_traversal.cpp, [mesh]): rays exactly through vertices, along edges and
 // along faces of a structured mesh give the analytic chord length to 1e-14 relative; non-convex
-// and two-component meshes give the analytic in-mesh length.
+// and two-component meshes give the analytic in-mesh length. tests/test_mesh_repair.cpp
+// ([mesh][repair]): a dropped zero-volume tet and a dropped sliver between two halves of a
+// double pyramid, rays on a grid that includes its edges: analytic chord, nothing lost.
 //
 // The eye may be inside the mesh: the walk starts outside the bounding box (origin moved back
 // along the ray) and the crossings are clipped at the true origin.

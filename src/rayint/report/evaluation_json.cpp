@@ -56,6 +56,13 @@ nlohmann::json to_json(const MethodOutcome& o, bool with_reference) {
   return j;
 }
 
+nlohmann::json to_json(const TetRepairs& r) {
+  return {{"tets_read", r.tets_read},
+          {"reoriented", r.reoriented},
+          {"dropped_zero_volume", r.zero_volume},
+          {"dropped_slivers", r.slivers}};
+}
+
 nlohmann::json to_json(const CaseEvaluation& c) {
   nlohmann::json rays = nlohmann::json::array();
   for (std::size_t i = 0; i < c.rays.size(); ++i) {
@@ -67,6 +74,7 @@ nlohmann::json to_json(const CaseEvaluation& c) {
   }
   nlohmann::json j = {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
   if (!c.with_reference) j["reference"] = "skipped";
+  if (c.mesh_repairs) j["mesh_repairs"] = to_json(*c.mesh_repairs);
   return j;
 }
 

@@ -17,6 +17,7 @@ nlohmann::json to_json(const Diagnostics& d);
 nlohmann::json to_json(const ReferenceRay& ref);
 // with_reference false: without the error fields.
 nlohmann::json to_json(const MethodOutcome& o, bool with_reference = true);
+nlohmann::json to_json(const TetRepairs& r);  // a mesh case's reoriented / dropped tets
 nlohmann::json to_json(const CaseEvaluation& c);
 nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases);
 

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "rayint/report/evaluation_json.hpp"
+
 namespace rayint {
 
 nlohmann::json to_json(const MeshRenderCost& c) {
@@ -28,7 +30,8 @@ nlohmann::json mesh_render_json(const MeshCase& mc, const TetTraversal& mesh, co
   nlohmann::json stats = {{"case", mc.name},
                           {"source", mc.source},
                           {"mesh", {{"source", mc.mesh_source}, {"points", mc.mesh.points.size()},
-                                    {"tets", mc.mesh.tets.size()}, {"boundary_faces", mesh.boundary_face_count()}}},
+                                    {"tets", mc.mesh.tets.size()}, {"boundary_faces", mesh.boundary_face_count()},
+                                    {"repairs", to_json(mc.repairs)}}},
                           {"width", mc.camera->width},
                           {"height", mc.camera->height},
                           {"method", "exact"},

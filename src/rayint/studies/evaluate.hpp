@@ -3,10 +3,12 @@
 // cost per ray. Returns plain structs; report/evaluation_json turns them into JSON.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/reference/reference.hpp"
 
 namespace rayint {
@@ -51,6 +53,7 @@ struct CaseEvaluation {
   std::string name, description, source;
   std::vector<RayEvaluation> rays;
   bool with_reference = true;  // false: reference and error fields were not computed
+  std::optional<TetRepairs> mesh_repairs;  // a mesh case: what reading its mesh repaired (set by the caller)
 };
 
 // Fills the error fields of `outcome` from its result against `ref`.

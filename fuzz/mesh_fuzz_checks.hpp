@@ -1,0 +1,53 @@
+#pragma once
+// What every mesh-reader fuzz target checks (vtk_legacy, tetgen, gmsh): an accepted mesh keeps
+// the readers' guarantees (tet_mesh.hpp, validate_tet_mesh_structure) and then goes through what a
+// mesh case does with it — repair_tet_mesh and, when small, the traversal of one ray — and every
+// refusal is one InputError line starting "<source>: ". Each check traps, so libFuzzer saves the
+// input as a crash artifact.
+#include <cmath>
+#include <string>
+
+#include "rayint/core/error.hpp"
+#include "rayint/mesh/tet_mesh.hpp"
+#include "rayint/mesh/tet_traversal.hpp"
+
+namespace rayint::fuzz {
+
+inline void require(bool ok) {
+  if (!ok) __builtin_trap();
+}
+
+inline void check_message(const std::string& what, const std::string& source) {
+  const std::string prefix = source + ": ";
+  require(what.compare(0, prefix.size(), prefix) == 0);
+  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
+}
+
+// The accepted mesh: structure as promised, then the mesh-case path.
+inline void check_mesh(TetMesh mesh, const std::string& source) {
+  require(!mesh.points.empty() && !mesh.tets.empty() && mesh.scalars.size() == mesh.points.size());
+  for (const Vec3& p : mesh.points) require(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()));
+  for (const double s : mesh.scalars) require(std::isfinite(s));
+  for (const auto& t : mesh.tets)
+    for (const auto i : t) require(i >= 0 && static_cast<std::size_t>(i) < mesh.points.size());
+  try {
+    const TetRepairs r = repair_tet_mesh(mesh, source);
+    require(r.tets_read == r.zero_volume + r.slivers + static_cast<long>(mesh.tets.size()));
+    validate_tet_mesh(mesh, source);  // after repair the strict check must pass
+    if (mesh.tets.size() > 2000) return;
+    const TetTraversal traversal(mesh, source);
+    RayTrace trace;
+    TraversalStats stats;
+    const Vec3 centre = 0.5 * (traversal.box_min() + traversal.box_max());
+    traversal.trace(ViewRay{centre + Vec3(0.31, 0.47, 10.0), Vec3(-0.031, -0.047, -1.0)}, trace, &stats);
+    double last = -INFINITY;
+    for (const CellCrossing& c : trace.crossings) {
+      require(c.t_out > c.t_in && c.t_in >= last && std::isfinite(c.s_in) == std::isfinite(c.s_out));
+      last = c.t_out;
+    }
+  } catch (const InputError& e) {
+    check_message(e.what(), source);  // every tet degenerate; a face in 3 tets; overlapping tets
+  }
+}
+
+}  // namespace rayint::fuzz

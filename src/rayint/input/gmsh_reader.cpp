@@ -1,0 +1,482 @@
+// gmsh .msh reader, MSH 2.2 and 4.1, ASCII and binary (see gmsh_reader.hpp).
+#include "rayint/input/gmsh_reader.hpp"
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
+#include "rayint/input/json_source.hpp"
+#include "rayint/input/mesh_text.hpp"
+
+namespace rayint {
+namespace {
+
+using mesh_text::LineCursor;
+
+struct ElementType {
+  int dim;
+  int nodes;
+  const char* name;
+};
+
+// gmsh's element types (reference manual, "MSH file format": elm-type), up to third order.
+const ElementType* element_type(long long type) {
+  static const std::map<long long, ElementType> types = {
+      {1, {1, 2, "2-node line"}},          {2, {2, 3, "3-node triangle"}},
+      {3, {2, 4, "4-node quadrangle"}},    {4, {3, 4, "4-node tetrahedron"}},
+      {5, {3, 8, "8-node hexahedron"}},    {6, {3, 6, "6-node prism"}},
+      {7, {3, 5, "5-node pyramid"}},       {8, {1, 3, "3-node line"}},
+      {9, {2, 6, "6-node triangle"}},      {10, {2, 9, "9-node quadrangle"}},
+      {11, {3, 10, "10-node tetrahedron"}}, {12, {3, 27, "27-node hexahedron"}},
+      {13, {3, 18, "18-node prism"}},      {14, {3, 14, "14-node pyramid"}},
+      {15, {0, 1, "1-node point"}},        {16, {2, 8, "8-node quadrangle"}},
+      {17, {3, 20, "20-node hexahedron"}}, {18, {3, 15, "15-node prism"}},
+      {19, {3, 13, "13-node pyramid"}},    {20, {2, 9, "9-node triangle"}},
+      {21, {2, 10, "10-node triangle"}},   {22, {2, 12, "12-node triangle"}},
+      {23, {2, 15, "15-node triangle"}},   {24, {2, 15, "15-node triangle"}},
+      {25, {2, 21, "21-node triangle"}},   {26, {1, 4, "4-node line"}},
+      {27, {1, 5, "5-node line"}},         {28, {1, 6, "6-node line"}},
+      {29, {3, 20, "20-node tetrahedron"}}, {30, {3, 35, "35-node tetrahedron"}},
+      {31, {3, 56, "56-node tetrahedron"}}};
+  const auto it = types.find(type);
+  return it == types.end() ? nullptr : &it->second;
+}
+
+constexpr long long kMaxTag = (1LL << 53);          // tags are read through doubles elsewhere
+constexpr long long kMaxCount = 2'000'000'000;      // indices are stored as int32
+
+// A one-component data block ($NodeData or $ElementNodeData) chosen for the scalars.
+struct DataBlock {
+  bool present = false;
+  std::string name;
+  std::vector<std::pair<long long, double>> node_values;                 // $NodeData
+  std::vector<std::pair<long long, std::vector<double>>> element_values;  // $ElementNodeData
+};
+
+class MshReader {
+ public:
+  MshReader(std::string_view bytes, const std::string& source, const std::string& scalar_name)
+      : c_(bytes, source, '\0'), scalar_name_(scalar_name) {}
+
+  TetMesh read() {
+    bool have_format = false, have_nodes = false, have_elements = false;
+    for (;;) {
+      const auto w = c_.words();
+      if (w.empty()) break;
+      const std::string section(w[0]);
+      if (section.empty() || section[0] != '$' || section.rfind("$End", 0) == 0)
+        c_.fail("(file)", "expected a section such as $Nodes, got " + field::quoted(section.substr(0, 40)));
+      if (!have_format && section != "$MeshFormat") c_.fail(section, "the file must start with $MeshFormat");
+      if (section == "$MeshFormat") {
+        if (have_format) c_.fail(section, "given twice");
+        format();
+        have_format = true;
+      } else if (section == "$Nodes") {
+        if (have_nodes) c_.fail(section, "given twice");
+        version4_ ? nodes4() : nodes2();
+        have_nodes = true;
+      } else if (section == "$Elements") {
+        if (have_elements) c_.fail(section, "given twice");
+        version4_ ? elements4() : elements2();
+        have_elements = true;
+      } else if (section == "$NodeData" || section == "$ElementNodeData") {
+        data(section);
+      } else {
+        skip(section);
+        continue;
+      }
+      end(section);
+    }
+    if (!have_format) fail_whole("$MeshFormat", "missing (not a gmsh .msh file)");
+    if (!have_nodes) fail_whole("$Nodes", "missing");
+    if (!have_elements) fail_whole("$Elements", "missing");
+    if (tet_nodes_.empty()) fail_whole("$Elements", "no 4-node tetrahedra (type 4)");
+    return finish();
+  }
+
+ private:
+  // A problem with the file as a whole (found after reading it): no line number.
+  [[noreturn]] void fail_whole(const std::string& section, const std::string& what) const {
+    field::fail(c_.source(), section, what);
+  }
+
+  // --- low-level reading -------------------------------------------------------------------
+  template <class T>
+  T bin(const std::string& field) {
+    if (c_.remaining_bytes() < sizeof(T)) c_.fail(field, "binary data truncated");
+    T v;
+    std::memcpy(&v, c_.rest().data(), sizeof(T));
+    c_.skip_bytes(sizeof(T));
+    return v;
+  }
+  long long bin_int(const std::string& field) { return bin<std::int32_t>(field); }
+  long long bin_size(const std::string& field) {
+    const std::uint64_t v = bin<std::uint64_t>(field);
+    if (v > static_cast<std::uint64_t>(kMaxTag)) c_.fail(field, "value " + std::to_string(v) + " out of range");
+    return static_cast<long long>(v);
+  }
+  double bin_real(const std::string& field) {
+    const double v = bin<double>(field);
+    if (!std::isfinite(v)) c_.fail(field, "must be finite, got " + format_number(v));
+    return v;
+  }
+  long long count(std::string_view w, const std::string& field) { return c_.integer(w, field, 0, kMaxCount); }
+  long long tag(std::string_view w, const std::string& field) { return c_.integer(w, field, 0, kMaxTag); }
+
+  void end(const std::string& section) {
+    const std::string want = "$End" + section.substr(1);
+    const auto w = c_.words();
+    if (w.empty() || w[0] != want)
+      c_.fail(section, "expected " + want + (w.empty() ? ", got the end of the file" : ", got " + field::quoted(std::string(w[0]).substr(0, 40))));
+  }
+  void skip(const std::string& section) {
+    const std::string want = "$End" + section.substr(1);
+    const std::string_view rest = c_.rest();
+    std::size_t at = 0;
+    for (;;) {  // "$EndX" at the start of a line (binary payloads may hold anything before it)
+      at = rest.find(want, at);
+      if (at == std::string_view::npos) c_.fail(section, "no " + want);
+      if (at == 0 || rest[at - 1] == '\n') break;
+      ++at;
+    }
+    c_.skip_bytes(at);
+    c_.raw_line(section);
+  }
+
+  // --- sections ----------------------------------------------------------------------------
+  void format() {
+    const auto w = c_.need_words("$MeshFormat", 3, "version file-type data-size");
+    const std::string v(w[0]);
+    if (v == "4.1") version4_ = true;
+    else if (v == "2.2" || v == "2.1" || v == "2.0") version4_ = false;
+    else c_.fail("$MeshFormat", "version " + field::quoted(v.substr(0, 20)) + " is not read (MSH 2.2 and 4.1 are)");
+    binary_ = c_.integer(w[1], "$MeshFormat", 0, 1) == 1;
+    if (c_.integer(w[2], "$MeshFormat", 0, 64) != 8) c_.fail("$MeshFormat", "data-size must be 8");
+    if (binary_) {
+      if (bin<std::int32_t>("$MeshFormat") != 1)
+        c_.fail("$MeshFormat", "binary file of the other byte order (only little-endian files are read)");
+    }
+  }
+
+  std::int32_t add_node(long long t, const Vec3& p, const std::string& field) {
+    const auto index = static_cast<std::int32_t>(mesh_.points.size());
+    if (!node_index_.emplace(t, index).second) c_.fail(field, "node tag " + std::to_string(t) + " given twice");
+    mesh_.points.push_back(p);
+    return index;
+  }
+
+  void nodes2() {
+    const std::string f = "$Nodes";
+    const long long n = count(c_.need_words(f, 1, "number of nodes")[0], f);
+    mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
+    for (long long i = 0; i < n; ++i) {
+      if (binary_) {
+        const long long t = bin_int(f);
+        const double x = bin_real(f), y = bin_real(f), z = bin_real(f);
+        add_node(t, Vec3(x, y, z), f);
+      } else {
+        const auto w = c_.need_words(f, 4, "node-number x y z");
+        add_node(tag(w[0], f), Vec3(c_.real(w[1], f), c_.real(w[2], f), c_.real(w[3], f)), f);
+      }
+    }
+  }
+
+  void nodes4() {
+    const std::string f = "$Nodes";
+    long long blocks = 0, n = 0;
+    if (binary_) {
+      blocks = bin_size(f);
+      n = bin_size(f);
+      bin_size(f);
+      bin_size(f);
+    } else {
+      const auto h = c_.need_words(f, 4, "numEntityBlocks numNodes minNodeTag maxNodeTag");
+      blocks = count(h[0], f);
+      n = count(h[1], f);
+    }
+    if (n > kMaxCount) c_.fail(f, "too many nodes");
+    mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
+    long long seen = 0;
+    for (long long b = 0; b < blocks; ++b) {
+      long long dim = 0, parametric = 0, in_block = 0;
+      if (binary_) {
+        dim = bin_int(f);
+        bin_int(f);
+        parametric = bin_int(f);
+        in_block = bin_size(f);
+      } else {
+        const auto h = c_.need_words(f, 4, "entityDim entityTag parametric numNodesInBlock");
+        dim = c_.integer(h[0], f, 0, 3);
+        parametric = c_.integer(h[2], f, 0, 1);
+        in_block = count(h[3], f);
+      }
+      if (dim < 0 || dim > 3) c_.fail(f, "entityDim must be 0-3");
+      if (in_block > n - seen) c_.fail(f, "more nodes in the blocks than the header's " + std::to_string(n));
+      seen += in_block;
+      const std::size_t coords = 3 + (parametric != 0 ? static_cast<std::size_t>(dim) : 0);
+      std::vector<long long> tags;
+      tags.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(in_block), c_.remaining_bytes(), 1));
+      for (long long i = 0; i < in_block; ++i)
+        tags.push_back(binary_ ? bin_size(f) : tag(c_.need_words(f, 1, "nodeTag")[0], f));
+      for (long long i = 0; i < in_block; ++i) {
+        std::array<double, 3> x{};
+        if (binary_) {
+          for (std::size_t k = 0; k < coords; ++k) {
+            const double v = bin_real(f);
+            if (k < 3) x[k] = v;
+          }
+        } else {
+          const auto w = c_.need_words(f, coords, "x y z [u v w]");
+          for (std::size_t k = 0; k < 3; ++k) x[k] = c_.real(w[k], f);
+        }
+        add_node(tags[static_cast<std::size_t>(i)], Vec3(x[0], x[1], x[2]), f);
+      }
+    }
+    if (seen != n) c_.fail(f, "the blocks hold " + std::to_string(seen) + " nodes, the header says " + std::to_string(n));
+  }
+
+  // One element: tets are kept (nodes by tag, resolved in finish()), lower dimensions skipped.
+  void element(long long t, long long type, const std::vector<long long>& nodes, const std::string& f) {
+    const ElementType* et = element_type(type);
+    if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
+    if (et->dim < 3) return;
+    if (type != 4)
+      c_.fail(f, "element type " + std::to_string(type) + " (" + et->name +
+                     ") is not read; only 4-node tetrahedra (type 4)");
+    tet_tags_.push_back(t);
+    tet_nodes_.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+  }
+
+  void elements2() {
+    const std::string f = "$Elements";
+    const long long n = count(c_.need_words(f, 1, "number of elements")[0], f);
+    tet_nodes_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
+    std::vector<long long> nodes;
+    if (binary_) {
+      long long done = 0;
+      while (done < n) {
+        const long long type = bin_int(f), in_block = bin_int(f), ntags = bin_int(f);
+        const ElementType* et = element_type(type);
+        if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
+        if (in_block < 1 || in_block > n - done || ntags < 0 || ntags > 1000)
+          c_.fail(f, "element block header out of range");
+        for (long long i = 0; i < in_block; ++i) {
+          const long long t = bin_int(f);
+          for (long long k = 0; k < ntags; ++k) bin_int(f);
+          nodes.assign(static_cast<std::size_t>(et->nodes), 0);
+          for (auto& x : nodes) x = bin_int(f);
+          element(t, type, nodes, f);
+        }
+        done += in_block;
+      }
+      return;
+    }
+    for (long long i = 0; i < n; ++i) {
+      const auto w = c_.need_words(f, 3, "elm-number elm-type number-of-tags ...");
+      const long long t = tag(w[0], f), type = c_.integer(w[1], f, 0, 100000);
+      const long long ntags = c_.integer(w[2], f, 0, 1000);
+      const ElementType* et = element_type(type);
+      if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
+      const std::size_t want = 3 + static_cast<std::size_t>(ntags) + static_cast<std::size_t>(et->nodes);
+      if (w.size() != want)
+        c_.fail(f, "element " + std::to_string(t) + ": " + std::to_string(w.size()) + " numbers, a " + et->name +
+                       " with " + std::to_string(ntags) + " tags needs " + std::to_string(want));
+      nodes.clear();
+      for (std::size_t k = 3 + static_cast<std::size_t>(ntags); k < w.size(); ++k) nodes.push_back(tag(w[k], f));
+      element(t, type, nodes, f);
+    }
+  }
+
+  void elements4() {
+    const std::string f = "$Elements";
+    long long blocks = 0, n = 0;
+    if (binary_) {
+      blocks = bin_size(f);
+      n = bin_size(f);
+      bin_size(f);
+      bin_size(f);
+    } else {
+      const auto h = c_.need_words(f, 4, "numEntityBlocks numElements minElementTag maxElementTag");
+      blocks = count(h[0], f);
+      n = count(h[1], f);
+    }
+    if (n > kMaxCount) c_.fail(f, "too many elements");
+    tet_nodes_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
+    long long seen = 0;
+    std::vector<long long> nodes;
+    for (long long b = 0; b < blocks; ++b) {
+      long long type = 0, in_block = 0;
+      if (binary_) {
+        bin_int(f);
+        bin_int(f);
+        type = bin_int(f);
+        in_block = bin_size(f);
+      } else {
+        const auto h = c_.need_words(f, 4, "entityDim entityTag elementType numElementsInBlock");
+        type = c_.integer(h[2], f, 0, 100000);
+        in_block = count(h[3], f);
+      }
+      const ElementType* et = element_type(type);
+      if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
+      if (in_block > n - seen) c_.fail(f, "more elements in the blocks than the header's " + std::to_string(n));
+      seen += in_block;
+      for (long long i = 0; i < in_block; ++i) {
+        long long t = 0;
+        nodes.assign(static_cast<std::size_t>(et->nodes), 0);
+        if (binary_) {
+          t = bin_size(f);
+          for (auto& x : nodes) x = bin_size(f);
+        } else {
+          const auto w = c_.need_words(f, 1 + nodes.size(), "elementTag nodeTag...");
+          if (w.size() != 1 + nodes.size())
+            c_.fail(f, std::to_string(w.size() - 1) + " node tags for a " + et->name);
+          t = tag(w[0], f);
+          for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k] = tag(w[k + 1], f);
+        }
+        element(t, type, nodes, f);
+      }
+    }
+    if (seen != n) c_.fail(f, "the blocks hold " + std::to_string(seen) + " elements, the header says " + std::to_string(n));
+  }
+
+  void data(const std::string& f) {
+    const bool per_element = f == "$ElementNodeData";
+    const long long nstrings = c_.integer(c_.need_words(f, 1, "numStringTags")[0], f, 0, 1000);
+    std::string name;
+    for (long long i = 0; i < nstrings; ++i) {
+      std::string s(c_.raw_line(f));
+      while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.pop_back();
+      if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
+      if (i == 0) name = s;
+    }
+    const long long nreals = c_.integer(c_.need_words(f, 1, "numRealTags")[0], f, 0, 1000);
+    for (long long i = 0; i < nreals; ++i) c_.need_words(f, 1, "real tag");
+    const long long nints = c_.integer(c_.need_words(f, 1, "numIntegerTags")[0], f, 0, 1000);
+    if (nints < 3) c_.fail(f, "needs 3 integer tags (time step, components, entities)");
+    std::array<long long, 3> ints{};
+    for (long long i = 0; i < nints; ++i) {
+      const long long v = c_.integer(c_.need_words(f, 1, "integer tag")[0], f, -kMaxCount, kMaxCount);
+      if (i < 3) ints[static_cast<std::size_t>(i)] = v;
+    }
+    const long long comps = ints[1], n = ints[2];
+    if (comps < 1 || comps > 9) c_.fail(f, "number of components must be 1-9, got " + std::to_string(comps));
+    if (n < 0) c_.fail(f, "negative number of entities");
+    const bool wanted_name = scalar_name_.empty() || name == scalar_name_;
+    DataBlock& slot = per_element ? element_data_ : node_data_;
+    const bool take = wanted_name && comps == 1 && !slot.present;
+    if (take) {
+      slot.present = true;
+      slot.name = name;
+    }
+    for (long long i = 0; i < n; ++i) {
+      long long t = 0, per = 1;
+      std::vector<double> values;
+      if (binary_) {
+        t = bin_int(f);
+        if (per_element) per = bin_int(f);
+        if (per < 0 || per > 1000) c_.fail(f, "nodes per element out of range");
+        for (long long k = 0; k < per * comps; ++k) values.push_back(bin_real(f));
+      } else {
+        const auto w = c_.need_words(f, 2, "tag value...");
+        t = tag(w[0], f);
+        std::size_t k0 = 1;
+        if (per_element) {
+          per = c_.integer(w[1], f, 0, 1000);
+          k0 = 2;
+        }
+        if (w.size() != k0 + static_cast<std::size_t>(per * comps))
+          c_.fail(f, "entity " + std::to_string(t) + ": " + std::to_string(w.size() - k0) + " values, expected " +
+                         std::to_string(per * comps));
+        for (std::size_t k = k0; k < w.size(); ++k) values.push_back(c_.real(w[k], f));
+      }
+      if (!take) continue;
+      if (per_element) slot.element_values.emplace_back(t, std::move(values));
+      else slot.node_values.emplace_back(t, values[0]);
+    }
+  }
+
+  // --- assembling ----------------------------------------------------------------------------
+  std::int32_t node(long long t, const std::string& field) {
+    const auto it = node_index_.find(t);
+    if (it == node_index_.end()) fail_whole(field, "node tag " + std::to_string(t) + " is not in $Nodes");
+    return it->second;
+  }
+
+  TetMesh finish() {
+    mesh_.tets.reserve(tet_nodes_.size());
+    for (std::size_t i = 0; i < tet_nodes_.size(); ++i) {
+      std::array<std::int32_t, 4> t{};
+      for (std::size_t k = 0; k < 4; ++k)
+        t[k] = node(tet_nodes_[i][k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
+      mesh_.tets.push_back(t);
+    }
+    const std::string what = scalar_name_.empty() ? "no one-component $NodeData or $ElementNodeData"
+                                                  : "no one-component $NodeData or $ElementNodeData named " +
+                                                        field::quoted(scalar_name_);
+    std::vector<double> value(mesh_.points.size(), 0.0);
+    std::vector<char> have(mesh_.points.size(), 0);
+    if (node_data_.present) {
+      for (const auto& [t, v] : node_data_.node_values) {
+        const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
+        value[i] = v;
+        have[i] = 1;
+      }
+    } else if (element_data_.present) {
+      std::unordered_map<long long, std::size_t> tet_of;
+      for (std::size_t i = 0; i < tet_tags_.size(); ++i) tet_of.emplace(tet_tags_[i], i);
+      for (const auto& [t, vs] : element_data_.element_values) {
+        const auto it = tet_of.find(t);
+        if (it == tet_of.end()) continue;  // data on a point, line or triangle element
+        if (vs.size() != 4)
+          fail_whole("$ElementNodeData", "element " + std::to_string(t) + " (a tetrahedron) has " +
+                                          std::to_string(vs.size()) + " values, expected 4");
+        for (std::size_t k = 0; k < 4; ++k) {
+          const auto i = static_cast<std::size_t>(mesh_.tets[it->second][k]);
+          if (have[i] && value[i] != vs[k])
+            fail_whole("$ElementNodeData",
+                    "node " + std::to_string(tet_nodes_[it->second][k]) + " has two values (" + format_number(value[i]) +
+                        " and " + format_number(vs[k]) + "): the field is not continuous");
+          value[i] = vs[k];
+          have[i] = 1;
+        }
+      }
+    } else {
+      fail_whole("$NodeData", what + " (one scalar per node is required)");
+    }
+    for (const auto& t : mesh_.tets)
+      for (const std::int32_t i : t)
+        if (!have[static_cast<std::size_t>(i)])
+          fail_whole(node_data_.present ? "$NodeData" : "$ElementNodeData",
+                  "no value for a node of a tetrahedron (point " + std::to_string(i) + ")");
+    mesh_.scalars = std::move(value);
+    validate_tet_mesh_structure(mesh_, c_.source(), MeshFieldNames{"$Nodes", "$NodeData", "$Elements"});
+    return std::move(mesh_);
+  }
+
+  LineCursor c_;
+  std::string scalar_name_;
+  bool version4_ = false, binary_ = false;
+  TetMesh mesh_;
+  std::unordered_map<long long, std::int32_t> node_index_;
+  std::vector<long long> tet_tags_;
+  std::vector<std::array<long long, 4>> tet_nodes_;
+  DataBlock node_data_, element_data_;
+};
+
+}  // namespace
+
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name) {
+  return MshReader(bytes, source, scalar_name).read();
+}
+
+TetMesh read_gmsh(const std::string& path, const std::string& scalar_name) {
+  return parse_gmsh(json_source::read_text_file(path), path, scalar_name);
+}
+
+}  // namespace rayint

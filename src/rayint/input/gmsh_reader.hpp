@@ -1,0 +1,30 @@
+#pragma once
+// Reading gmsh meshes (.msh, gmsh reference manual section 10 "Gmsh file formats": MSH 2.2 and
+// MSH 4.1, ASCII and binary) into a TetMesh.
+//
+// Read: $MeshFormat, $Nodes, $Elements, $NodeData and $ElementNodeData; every other section
+// ($PhysicalNames, $Entities, $Periodic, $ElementData, ...) is skipped. Elements of dimension 0-2
+// (points, lines, triangles, quadrangles: the boundary gmsh writes beside the volume) are skipped;
+// 4-node tetrahedra (type 4) are the cells; any other 3-D element (hexahedra, prisms, pyramids,
+// 10-node tetrahedra, ...) is refused with its type named.
+// Scalars: the first one-component $NodeData (meshio writes point data so), else the first
+// one-component $ElementNodeData (what gmsh's own "Save View" writes for a MathEval view), or the
+// one whose name (first string tag) is scalar_field. Element node data must agree at every node
+// (a continuous field): a node given two different values is refused. Every node of a tet needs a
+// value. Node tags may be sparse; tets refer to nodes by tag.
+// Orientation: gmsh 4.8 writes every tet positively oriented in VTK's sense (measured on the
+// fixtures in tests/fixtures/meshes/); either order is accepted (mesh_case_reader.hpp).
+// Every problem is one InputError line "<file>: <section>, line N: <what>".
+#include <string>
+#include <string_view>
+
+#include "rayint/mesh/tet_mesh.hpp"
+
+namespace rayint {
+
+// `source` names the file in messages. Throws InputError. The mesh's structure is validated
+// (validate_tet_mesh_structure).
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
+TetMesh read_gmsh(const std::string& path, const std::string& scalar_name = "");
+
+}  // namespace rayint
