@@ -8,7 +8,8 @@
 # fuzz/<target>_fuzzer, seeds it (case_parser: cases/*.json, copied at run time;
 # candidate_parser: fuzz/seeds/candidate/) with the dictionary fuzz/<target>.dict, and keeps the
 # inputs it finds interesting in RAYINT_FUZZ_CORPUS (default fuzz-corpus/<target>/, reused by the
-# next run). RAYINT_FUZZ_TARGET selects the target: case_parser (default) or candidate_parser.
+# next run). RAYINT_FUZZ_TARGET selects the target: case_parser (default), candidate_parser or
+# preset_parser (ParaView presets; seeds fuzz/seeds/preset/).
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -24,7 +25,8 @@ target="${RAYINT_FUZZ_TARGET:-case_parser}"
 case "$target" in
   case_parser) seed_files=("$root"/cases/*.json); what="rayint::parse_case_text" ;;
   candidate_parser) seed_files=("$root"/fuzz/seeds/candidate/*.json); what="rayint::parse_candidate_text" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser or candidate_parser" >&2; exit 2 ;;
+  preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser or preset_parser" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"
