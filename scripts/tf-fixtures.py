@@ -15,11 +15,17 @@
    range plus every node: the independent oracle of tests/test_tf_import.cpp.
 """
 import json
-import re
+import os
+import subprocess
 import sys
 from pathlib import Path
 
-import vtk
+try:
+    import vtk
+except ImportError:  # the optional dependency of this script only (README, Dependencies)
+    sudo = [] if os.geteuid() == 0 else ["sudo"]
+    subprocess.run(sudo + ["apt-get", "install", "-y", "-qq", "python3-vtk9"], check=True)
+    import vtk
 
 OUT = Path(__file__).resolve().parent.parent / "tests" / "data" / "tf"
 PRESETS = ["Cool to Warm", "Viridis", "Blue to Red Rainbow", "blot", "Black-Body Radiation",
