@@ -60,6 +60,8 @@ void set_tf_command(CLI::App& app) {
     r.request_source = "rayint tf import";
     r.opacity_field = "--opacity";
     r.distance_field = "--unit-distance";
+    r.range_field = "--range";
+    r.tolerance_field = "--tolerance";
     r.options.tolerance = opt->tolerance;
     if (!opt->convention.empty()) {
       const auto c = parse_convention(opt->convention);

@@ -257,6 +257,8 @@ TransferFunctions BasicJsonSchema<Json>::preset_transfer_functions(const json& j
   r.request_source = source_;
   r.opacity_field = member_path(path, "opacity");
   r.distance_field = member_path(path, "unit_distance");
+  r.range_field = member_path(path, "range");
+  r.tolerance_field = member_path(path, "tolerance");
   const json* unit = optional(j, "unit_distance");
   const json* sample = optional(j, "sample_distance");
   if (unit != nullptr && sample != nullptr)

@@ -42,6 +42,8 @@ std::vector<std::array<double, 4>> tuples(const JsonSchema& s, const json& j, co
     if (!(out[k][0] > out[k - 1][0]))
       s.fail(index_path(path, 4 * k), "scalars must be strictly increasing (" + format_number(out[k][0]) +
                                           " after " + format_number(out[k - 1][0]) + ")");
+  if (!std::isfinite(out.back()[0] - out.front()[0]))
+    s.fail(path, "the scalars span more than the largest double");
   return out;
 }
 
@@ -153,8 +155,9 @@ PresetImport import_paraview_preset_text(std::string_view text, const PresetImpo
   const JsonSchema s(p.source);
   if (!(r.options.distance > 0.0 && std::isfinite(r.options.distance)))
     field::fail(r.request_source, r.distance_field, "must be finite and > 0, got " + format_number(r.options.distance));
-  if (!(r.options.tolerance > 0.0 && std::isfinite(r.options.tolerance)))
-    field::fail(r.request_source, "tolerance", "must be finite and > 0, got " + format_number(r.options.tolerance));
+  // Below ~1e-12 the bisection would chase the rounding of the curves' own evaluation (~1e-15).
+  if (!(r.options.tolerance >= 1e-12 && r.options.tolerance < 1.0))
+    field::fail(r.request_source, r.tolerance_field, "must be in [1e-12, 1), got " + format_number(r.options.tolerance));
   VtkPiecewiseFunction opacity;
   if (r.constant_opacity) {
     const double a = *r.constant_opacity;
@@ -180,8 +183,8 @@ PresetImport import_paraview_preset_text(std::string_view text, const PresetImpo
   }
   if (r.range) {
     const double b0 = (*r.range)[0], b1 = (*r.range)[1];
-    if (!(std::isfinite(b0) && std::isfinite(b1) && b1 > b0))
-      field::fail(r.request_source, "range", "must be two finite numbers lo < hi, got [" +
+    if (!(std::isfinite(b0) && std::isfinite(b1) && b1 > b0 && std::isfinite(b1 - b0)))
+      field::fail(r.request_source, r.range_field, "must be two finite numbers lo < hi, got [" +
                                                  format_number(b0) + ", " + format_number(b1) + "]");
     const double a0 = p.color.nodes.front().x, a1 = p.color.nodes.back().x;
     if (!(a1 > a0)) s.fail(member_path(p.field, "RGBPoints"), "a single colour point has no range to rescale");
@@ -195,7 +198,23 @@ PresetImport import_paraview_preset_text(std::string_view text, const PresetImpo
         s.fail(member_path(p.field, "RGBPoints"), "scalars not strictly increasing after rescaling to the range");
     if (p.opacity) p.opacity = opacity;
   }
-  out.result = import_vtk_transfer_function(p.color, opacity, r.options);
+  try {
+    out.result = import_vtk_transfer_function(p.color, opacity, r.options);
+  } catch (const std::length_error& e) {
+    field::fail(r.request_source, r.tolerance_field, std::string(e.what()) + "; give a larger tolerance");
+  }
+  // Extreme but finite inputs can overflow VTK's formulas (Hermite slopes, colour conversions).
+  auto finite = [](const std::array<PiecewiseLinear, kChannels>& f) {
+    for (const PiecewiseLinear& c : f)
+      for (std::size_t k = 0; k < c.scalar.size(); ++k)
+        if (!std::isfinite(c.scalar[k]) || !std::isfinite(c.value[k]) || c.value[k] < 0.0) return false;
+    return true;
+  };
+  if (!finite(out.result.transfer.density))
+    s.fail(member_path(p.field, r.constant_opacity ? "RGBPoints" : "Points"),
+           "the imported density is not finite (values too large for the convention's formula)");
+  if (!finite(out.result.transfer.color))
+    s.fail(member_path(p.field, "RGBPoints"), "the imported colour is not finite (values too large)");
   return out;
 }
 

@@ -46,6 +46,8 @@ struct PresetImportRequest {
   std::string request_source;
   std::string distance_field;
   std::string opacity_field;
+  std::string range_field = "range";
+  std::string tolerance_field = "tolerance";
 };
 
 struct PresetImport {

@@ -17,6 +17,7 @@ namespace {
 
 constexpr int kProbes = 16;
 constexpr int kMaxDepth = 48;
+constexpr std::size_t kMaxNodes = 10'000'000;  // a memory budget: ~240 MB of nodes
 
 using Values = std::array<double, 3>;
 using Curve = std::function<Values(double)>;
@@ -28,6 +29,7 @@ class Builder {
 
   void push(double x, const Values& v) {
     if (!x_.empty() && !(x > x_.back())) return;  // a node repeated (a step at an interval's end)
+    if (x_.size() >= kMaxNodes) throw std::length_error("the linearisation needs more than 10^7 nodes");
     x_.push_back(x);
     v_.push_back(v);
   }

@@ -63,7 +63,8 @@ struct TfImport {
   LinearisationReport color;  // over the three channels together
 };
 
-// Throws std::invalid_argument for an empty function or a sample_distance opacity >= 1.
+// Throws std::invalid_argument for an empty function or a sample_distance opacity >= 1, and
+// std::length_error when a function would need more than 10^7 nodes (a tolerance too small).
 TfImport import_vtk_transfer_function(const VtkColorTransferFunction& color,
                                       const VtkPiecewiseFunction& opacity,
                                       const TfImportOptions& options);
