@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   rayint::cli::set_cells_command(app);
   rayint::cli::set_slab_command(app);
   rayint::cli::set_scatter_command(app);
+  rayint::cli::set_tf_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -14,6 +14,8 @@
 # next run). Seeds: case_parser cases/*.json; candidate_parser fuzz/seeds/candidate/; scene_parser
 # cases/scenes/*.json; vtk_legacy fuzz/seeds/vtk_legacy/ + cases/meshes/linear-box.vtk + the
 # meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
+# RAYINT_FUZZ_TARGET selects the target (default case_parser); preset_parser (ParaView presets)
+# seeds from fuzz/seeds/preset/.
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -36,7 +38,8 @@ case "$target" in
                           "$root"/tests/fixtures/meshes/*.vtk); what="rayint::parse_vtk_legacy" ;;
   gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
   tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh or tetgen" >&2; exit 2 ;;
+  preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen or preset_parser" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

@@ -1,9 +1,11 @@
 #include "rayint/input/json_schema.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/paraview_preset.hpp"
 
 namespace rayint {
 
@@ -230,11 +232,61 @@ std::array<PiecewiseLinear, kChannels> BasicJsonSchema<Json>::channels(const jso
 template <class Json>
 TransferFunctions BasicJsonSchema<Json>::transfer_functions(const json& j, const std::string& path) const {
   require_object(j, path);
+  if (j.find("paraview_preset") != j.end()) return preset_transfer_functions(j, path);
   check_fields(j, path, {"density", "color"});
   TransferFunctions tf;
   tf.density = channels(required(j, path, "density"), member_path(path, "density"));
   tf.color = channels(required(j, path, "color"), member_path(path, "color"));
   return tf;
+}
+
+// {"paraview_preset": FILE (relative to this file), "name"?, "convention"?, "unit_distance"? |
+// "sample_distance"?, "tolerance"?, "opacity"?, "range"?}: the preset imported as `rayint tf
+// import` does (input/paraview_preset.hpp, docs/transfer-function-conventions.md).
+template <class Json>
+TransferFunctions BasicJsonSchema<Json>::preset_transfer_functions(const json& j,
+                                                                   const std::string& path) const {
+  check_fields(j, path, {"paraview_preset", "name", "convention", "unit_distance", "sample_distance",
+                         "tolerance", "opacity", "range"});
+  PresetImportRequest r;
+  const std::string file = non_empty_string(required(j, path, "paraview_preset"),
+                                            member_path(path, "paraview_preset"));
+  const std::filesystem::path fp(file);
+  r.file = fp.is_absolute() ? file : (std::filesystem::path(source_).parent_path() / fp).string();
+  if (const json* n = optional(j, "name")) r.name = non_empty_string(*n, member_path(path, "name"));
+  r.request_source = source_;
+  r.opacity_field = member_path(path, "opacity");
+  r.distance_field = member_path(path, "unit_distance");
+  r.range_field = member_path(path, "range");
+  r.tolerance_field = member_path(path, "tolerance");
+  const json* unit = optional(j, "unit_distance");
+  const json* sample = optional(j, "sample_distance");
+  if (unit != nullptr && sample != nullptr)
+    fail(path, "give at most one of unit_distance and sample_distance");
+  if (const json* c = optional(j, "convention")) {
+    const std::string cpath = member_path(path, "convention");
+    const auto conv = parse_convention(string_value(*c, cpath));
+    if (!conv) fail(cpath, "must be density, unit_distance, sample_distance or nerf_sigma");
+    r.options.convention = *conv;
+  }
+  if (unit != nullptr) {
+    r.options.distance = positive(*unit, r.distance_field);
+    r.options.convention = OpacityConvention::unit_distance;
+  }
+  if (sample != nullptr) {
+    r.distance_field = member_path(path, "sample_distance");
+    r.options.distance = positive(*sample, r.distance_field);
+    r.options.convention = OpacityConvention::sample_distance;
+  }
+  if (const json* t = optional(j, "tolerance")) r.options.tolerance = positive(*t, member_path(path, "tolerance"));
+  if (const json* a = optional(j, "opacity")) r.constant_opacity = non_negative(*a, r.opacity_field);
+  if (const json* rg = optional(j, "range")) {
+    const std::string rpath = member_path(path, "range");
+    array_of_size(*rg, rpath, 2, "a [lo, hi] pair");
+    r.range = std::array<double, 2>{finite_number((*rg)[0], index_path(rpath, 0)),
+                                    finite_number((*rg)[1], index_path(rpath, 1))};
+  }
+  return import_paraview_preset(r).result.transfer;
 }
 
 template <class Json>

@@ -65,8 +65,10 @@ class BasicJsonSchema {
   PiecewiseLinear points(const json& j, const std::string& path) const;
   // One list for all three channels, or {"r": ..., "g": ..., "b": ...}.
   std::array<PiecewiseLinear, kChannels> channels(const json& j, const std::string& path) const;
-  // {"density": channels, "color": channels} (Williams & Max's six transfer functions).
+  // {"density": channels, "color": channels} (Williams & Max's six transfer functions), or a
+  // reference to a ParaView preset {"paraview_preset": FILE, ...} (cases/README.md).
   TransferFunctions transfer_functions(const json& j, const std::string& path) const;
+  TransferFunctions preset_transfer_functions(const json& j, const std::string& path) const;
 
   // {"position", "look_at", "up"?, "fov_deg" | "ortho_height", "width", "height"}; validated.
   Camera camera(const json& j, const std::string& path) const;

@@ -1,0 +1,213 @@
+// VTK transfer functions as rayint's piecewise-linear ones (what is exact, what is linearised and
+// how the deviation is measured: tf_import.hpp). The adaptive linearisation bisects an interval
+// until the chord is within the absolute tolerance at kProbes equally spaced interior points, with
+// a budget of kMaxDepth bisections (an interval of width 2^-48 of the original; a function that
+// still deviates there, i.e. one with a jump, is accepted and reported as not converged).
+#include "rayint/model/tf_import.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+
+namespace rayint {
+namespace {
+
+constexpr int kProbes = 16;
+constexpr int kMaxDepth = 48;
+constexpr std::size_t kMaxNodes = 10'000'000;  // a memory budget: ~240 MB of nodes
+
+using Values = std::array<double, 3>;
+using Curve = std::function<Values(double)>;
+
+// Points of n (1 or 3) piecewise-linear functions on one strictly increasing set of scalars.
+class Builder {
+ public:
+  Builder(int n, double tolerance) : n_(n) { report_.tolerance = tolerance; }
+
+  void push(double x, const Values& v) {
+    if (!x_.empty() && !(x > x_.back())) return;  // a node repeated (a step at an interval's end)
+    if (x_.size() >= kMaxNodes) throw std::length_error("the linearisation needs more than 10^7 nodes");
+    x_.push_back(x);
+    v_.push_back(v);
+  }
+  double last_x() const { return x_.back(); }
+  const Values& last_value() const { return v_.back(); }
+
+  // The chord from the last point to (b, vb), refined until it follows `curve`.
+  void adaptive(const Curve& curve, double b, const Values& vb) {
+    ++report_.adaptive_intervals;
+    refine(curve, x_.back(), v_.back(), b, vb, 0);
+  }
+  void exact_interval() { ++report_.exact_intervals; }
+
+  LinearisationReport finish(std::array<PiecewiseLinear, kChannels>& out) {
+    for (int j = 0; j < kChannels; ++j) {
+      out[j].scalar = x_;
+      out[j].value.resize(v_.size());
+      for (std::size_t i = 0; i < v_.size(); ++i) out[j].value[i] = v_[i][n_ == 1 ? 0 : j];
+    }
+    report_.nodes = x_.size();
+    return report_;
+  }
+
+ private:
+  void refine(const Curve& curve, double a, const Values& va, double b, const Values& vb, int depth) {
+    double dev = 0.0;
+    for (int k = 1; k <= kProbes; ++k) {
+      const double x = a + (b - a) * k / (kProbes + 1);
+      const Values g = curve(x);
+      // The chord as PiecewiseLinear evaluates it (from the nearer end).
+      const double d0 = x - a, d1 = b - x, span = b - a;
+      for (int j = 0; j < n_; ++j) {
+        const double chord = d0 <= d1 ? va[j] + (d0 / span) * (vb[j] - va[j]) : vb[j] + (d1 / span) * (va[j] - vb[j]);
+        dev = std::max(dev, std::fabs(g[j] - chord));
+      }
+    }
+    const double mid = a + (b - a) / 2;
+    if (dev <= report_.tolerance || depth >= kMaxDepth || !(mid > a && mid < b)) {
+      if (dev > report_.tolerance) report_.converged = false;
+      report_.max_deviation = std::max(report_.max_deviation, dev);
+      push(b, vb);
+      return;
+    }
+    const Values vm = curve(mid);
+    refine(curve, a, va, mid, vm, depth + 1);
+    refine(curve, mid, vm, b, vb, depth + 1);
+  }
+
+  int n_;
+  std::vector<double> x_;
+  std::vector<Values> v_;
+  LinearisationReport report_;
+};
+
+// One function's intervals: node values, each interval's shape and its curve.
+struct Intervals {
+  std::size_t count_nodes;
+  std::function<double(std::size_t)> x;
+  std::function<IntervalShape(std::size_t)> shape;  // of interval k
+  std::function<double(std::size_t)> midpoint;      // of interval k
+  std::function<Values(std::size_t, double)> value; // interval k's curve (converted)
+  std::function<Values(std::size_t)> left_value;    // interval k's left node value (step)
+  std::function<Values(std::size_t)> right_value;   // interval k's right node value (step)
+  std::function<Values(double)> at;                 // VTK's value at x (converted)
+  bool linear_map = true;  // the conversion keeps straight pieces straight
+};
+
+void linearise(const Intervals& f, Builder& out) {
+  const std::size_t n = f.count_nodes;
+  out.push(f.x(0), f.at(f.x(0)));
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double x1 = f.x(k), x2 = f.x(k + 1);
+    const Curve curve = [&f, k](double x) { return f.value(k, x); };
+    // VTK's value at x1 belongs to interval k-1 (or is node 0's own); interval k starts from its
+    // own right limit, one double later when the two differ.
+    const Values start = f.value(k, x1);
+    if (start != out.last_value() && std::nextafter(x1, x2) < x2) out.push(std::nextafter(x1, x2), start);
+    const IntervalShape shape = f.shape(k);
+    if (shape == IntervalShape::step) {
+      const StepLocation step = step_location(x1, x2, f.midpoint(k));
+      out.push(step.below, f.left_value(k));
+      out.push(step.above, f.right_value(k));
+      out.push(x2, f.at(x2));
+      out.exact_interval();
+    } else if (shape == IntervalShape::linear && f.linear_map) {
+      out.push(x2, f.at(x2));
+      out.exact_interval();
+    } else if (shape == IntervalShape::two_linear_pieces && f.linear_map) {
+      const double xm = midpoint_scalar(x1, x2, f.midpoint(k));
+      out.push(xm, curve(xm));
+      out.push(x2, f.at(x2));
+      out.exact_interval();
+    } else if (shape == IntervalShape::two_linear_pieces || shape == IntervalShape::linear) {
+      // Straight in opacity, curved in density (sample_distance): refine each straight piece, so
+      // the kink at the midpoint is a node.
+      const double xm = midpoint_scalar(x1, x2, f.midpoint(k));
+      if (shape == IntervalShape::two_linear_pieces && xm > out.last_x() && xm < x2)
+        out.adaptive(curve, xm, curve(xm));
+      out.adaptive(curve, x2, f.at(x2));
+    } else {
+      out.adaptive(curve, x2, f.at(x2));
+    }
+  }
+}
+
+}  // namespace
+
+const char* convention_name(OpacityConvention c) {
+  switch (c) {
+    case OpacityConvention::density: return "density";
+    case OpacityConvention::unit_distance: return "unit_distance";
+    case OpacityConvention::sample_distance: return "sample_distance";
+    case OpacityConvention::nerf_sigma: return "nerf_sigma";
+  }
+  return "?";
+}
+
+double density_from_opacity(double y, OpacityConvention convention, double distance) {
+  switch (convention) {
+    case OpacityConvention::density:
+    case OpacityConvention::nerf_sigma:
+      return y;
+    case OpacityConvention::unit_distance:
+      return y / distance;
+    case OpacityConvention::sample_distance:
+      return -std::log1p(-y) / distance;  // -ln(1 - y)/d without cancellation for small y
+  }
+  return y;
+}
+
+TfImport import_vtk_transfer_function(const VtkColorTransferFunction& color,
+                                      const VtkPiecewiseFunction& opacity,
+                                      const TfImportOptions& options) {
+  if (color.nodes.empty() || opacity.nodes.empty())
+    throw std::invalid_argument("a transfer function needs at least one node");
+  const OpacityConvention conv = options.convention;
+  const double dist = options.distance;
+  double max_rho = 0.0;
+  for (const VtkPiecewiseNode& p : opacity.nodes) {
+    if (conv == OpacityConvention::sample_distance && !(p.y < 1.0))
+      throw std::invalid_argument("opacity per sample must be < 1");
+    max_rho = std::max(max_rho, density_from_opacity(p.y, conv, dist));
+  }
+  auto rho = [conv, dist](double y) { return density_from_opacity(y, conv, dist); };
+
+  TfImport out;
+  {
+    const auto& nodes = opacity.nodes;
+    Intervals f;
+    f.count_nodes = nodes.size();
+    f.x = [&](std::size_t k) { return nodes[k].x; };
+    f.shape = [&](std::size_t k) { return piecewise_interval_shape(nodes[k]); };
+    f.midpoint = [&](std::size_t k) { return nodes[k].midpoint; };
+    f.value = [&](std::size_t k, double x) { return Values{rho(opacity.interval_value(k, x)), 0, 0}; };
+    f.left_value = [&](std::size_t k) { return Values{rho(nodes[k].y), 0, 0}; };
+    f.right_value = [&](std::size_t k) { return Values{rho(nodes[k + 1].y), 0, 0}; };
+    f.at = [&](double x) { return Values{rho(opacity(x)), 0, 0}; };
+    f.linear_map = conv != OpacityConvention::sample_distance;
+    Builder b(1, options.tolerance * (max_rho > 0.0 ? max_rho : 1.0));
+    linearise(f, b);
+    out.density = b.finish(out.transfer.density);
+  }
+  {
+    const auto& nodes = color.nodes;
+    Intervals f;
+    f.count_nodes = nodes.size();
+    f.x = [&](std::size_t k) { return nodes[k].x; };
+    f.shape = [&](std::size_t k) { return color_interval_shape(color.space, nodes[k]); };
+    f.midpoint = [&](std::size_t k) { return nodes[k].midpoint; };
+    f.value = [&](std::size_t k, double x) { return color.interval_value(k, x); };
+    f.left_value = [&](std::size_t k) { return nodes[k].rgb; };
+    f.right_value = [&](std::size_t k) { return nodes[k + 1].rgb; };
+    f.at = [&](double x) { return color(x); };
+    Builder b(3, options.tolerance);
+    linearise(f, b);
+    out.color = b.finish(out.transfer.color);
+  }
+  return out;
+}
+
+}  // namespace rayint
