@@ -71,15 +71,6 @@ struct MethodTolerances {
   // Riemann with exact per-sample opacity on constant kappa, rho: exact but for the rounding of
   // up to ~260 compounded transparencies, N eps = 5.8e-14; measured <= 1.2e-14.
   static constexpr double riemann_constant_rel = 1e-13;
-  // --- NeRF quadratures (tests/test_nerf.cpp, [nerf]) ---
-  // pl_nerf where its model holds (linear rho, constant kappa) against the 50-digit reference:
-  // exact but for the rounding of up to 3 x 64 compounded steps; measured <= MEASURED_PL.
-  static constexpr double pl_nerf_exact_rel = 1e-13;
-  // Orders from n to 2n, n = 8..64, on the smooth ray: measured MEASURED_ORDERS; 0.1 as riemann.
-  static constexpr double nerf_order_band = 0.1;
-  // The explicit-sample functions against the methods on the same samples: the same operations
-  // in the same order; measured 0 (bitwise equal).
-  static constexpr double nerf_same_sum_rel = 1e-15;
 };
 
 // Multiple scattering (tests/test_scatter_slab.cpp, tests/test_scatter_volume.cpp, [scatter]).

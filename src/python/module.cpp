@@ -289,4 +289,9 @@ PYBIND11_MODULE(_rayint, m) {
   m.def("_composite", &composite);
   m.def("_method_names", &rayint::method_names);
   m.def("_mixed_regime_pieces", &mixed_regime_pieces);
+  m.def("_regime_names", [] {  // piece i of _mixed_regime_pieces is of regime i % len(names)
+    std::vector<std::string> names;
+    for (const rayint::Regime r : rayint::all_regimes()) names.push_back(rayint::regime_name(r));
+    return names;
+  });
 }

@@ -36,8 +36,13 @@
 // kappa is constant, the interval is integrated exactly; tests/test_nerf.cpp checks that against
 // the 50-digit reference (<= 1e-14), and the orders below.
 //
-// Orders on a smooth ray (tests/test_nerf.cpp, [nerf]): nerf at=mid 2 (the midpoint rule), at=near
-// 1; pl_nerf 2 (trapezoid in tau, and the midpoint-colour error is O(h^2) per unit length).
+// On an interval where the transfer functions are linear (no breakpoint inside), rho(mid) h is the
+// trapezoid (rho_0 + rho_1) h / 2 and kappa(mid) the mean of the ends: nerf at=mid and pl_nerf are
+// then the same sum, and differ only on intervals with a breakpoint inside (tested, [nerf]).
+// Orders on a smooth ray (tests/test_nerf.cpp, [nerf]), measured from n to 2n, n = 8..64:
+// nerf at=mid 1.9993..2.0000 (the midpoint rule), at=near 0.945..0.986; pl_nerf 1.9993..2.0000
+// (color=mid), 1.0009..1.0034 (color=near). pl_nerf on linear rho with constant kappa: <= 9.1e-16
+// relative against the 50-digit reference.
 // Budget: a ray needing more than kRiemannSampleBudget samples is refused (std::runtime_error).
 // Diagnostics: stat "samples".
 #include "rayint/integrators/nerf.hpp"
