@@ -6,7 +6,8 @@
 //   _reference      studies/reference_rays + report/to_json(ReferenceRay);
 //   _check          studies/check_candidate + report/check_report_json (`rayint check`);
 //   _integrate      any registered method by its spec on arrays of segments;
-//   _nerf_composite, _pl_nerf_composite  integrators/nerf on explicit samples.
+//   _composite      integrators/nerf (nerf_composite, pl_nerf_composite) on explicit samples;
+//   _mixed_regime_pieces, _regime_names  the benchmark's pieces (generators/), for timing.
 // Reports cross as JSON text (nlohmann's dump is round-trip exact for doubles; json.loads on the
 // Python side). Cases and candidates come as a path (read as the CLI reads it, so the messages name
 // the file) or as JSON text with a source name. rayint::InputError becomes rayint.InputError (a

@@ -22,8 +22,8 @@
 //   last=inf          NeRF 2020: one more sample at the far end of the ray with delta = 1e10
 //                     (kNerfLastDelta; "the 'distance' from the last integration time is
 //                     infinity"), so wherever the density there is > 0 that sample is opaque and
-//                     hides the background. PL-NeRF's code keeps the same idea as a far wall of
-//                     density 1e10.
+//                     hides the background. PL-NeRF's code (run_plnerf.py) keeps the same idea:
+//                     it pads the ray with density 0 at `near` and 1e10 at `far`, a far wall.
 // Front-to-back from the eye, no early ray termination (instant-ngp stops at T < 1e-4).
 //
 // pl_nerf (Uy et al. 2023, "NeRF Revisited", Sec. 4, the piecewise-linear density; their
