@@ -4,11 +4,13 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <random>
 #include <vector>
 
 #include "rayint/generators/regimes.hpp"
 #include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/exact_batch.hpp"
 
 namespace {
 
@@ -50,8 +52,34 @@ void BM_exact_piece_mixed(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// 1,000,000 pieces, every regime in turn (generators mixed_regime_pieces, seed 2026), through
+// exact_pieces_batch from arrays: the C++ figure for the Python module's rayint.exact_pieces on
+// the same pieces (scripts/examples/bench_exact_pieces.py). ns per piece = 1e9 / items_per_second.
+void BM_exact_pieces_batch(benchmark::State& state) {
+  const std::vector<rayint::ChannelPiece> pieces = rayint::mixed_regime_pieces(1000000, 2026);
+  const std::size_t n = pieces.size();
+  std::vector<double> rho_exit(n), rho_far(n), kappa_exit(n), kappa_far(n), length(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    rho_exit[i] = pieces[i].rho_exit;
+    rho_far[i] = pieces[i].rho_far;
+    kappa_exit[i] = pieces[i].kappa_exit;
+    kappa_far[i] = pieces[i].kappa_far;
+    length[i] = pieces[i].length;
+  }
+  std::vector<double> emission(n), transmittance(n);
+  const rayint::PieceArrays in{rho_exit.data(), rho_far.data(), kappa_exit.data(),
+                               kappa_far.data(), length.data(), n};
+  const rayint::PieceOpticsArrays out{emission.data(), transmittance.data()};
+  for (auto _ : state) {
+    rayint::exact_pieces_batch(in, out);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+}
+
 }  // namespace
 
+BENCHMARK(BM_exact_pieces_batch)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_exact_piece)->DenseRange(0, static_cast<int>(rayint::all_regimes().size()) - 1);
 BENCHMARK(BM_exact_piece_mixed);
 BENCHMARK_MAIN();

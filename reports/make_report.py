@@ -36,6 +36,7 @@ KNOB_TITLES = {
 COLOURS = {
     "riemann": "tab:blue", "rk4": "tab:orange", "ode": "tab:green",
     "preintegrated": "tab:red", "psi_table": "tab:purple",
+    "nerf": "darkred", "pl_nerf": "navy",
     "exact": "black", "paper": "tab:gray", "eq5": "tab:brown", "eq6": "tab:pink",
     "eq7": "tab:olive", "eq8": "tab:cyan", "particle": "gold",
 }

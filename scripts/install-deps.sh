@@ -13,7 +13,11 @@ packages=(build-essential cmake pkg-config
           libbenchmark-dev      # Google Benchmark micro-benchmarks
           libpugixml-dev        # XML parser of the VTK XML readers (.vtu / .vti, input/vtk_xml_reader)
           zlib1g-dev            # inflating vtkZLibDataCompressor blocks in .vtu / .vti files
-          python3-matplotlib)   # plots in reports/
+          python3-matplotlib    # plots in reports/
+          pybind11-dev          # the Python module (src/python/): pybind11 headers + CMake config
+          python3-dev           # Python.h and the interpreter's config, to compile that module
+          python3-numpy         # the module's array arguments and results (exact_pieces, ...)
+          python3-pytest)       # the module's tests (tests/python/, CTest test python_module)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

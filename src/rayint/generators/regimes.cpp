@@ -440,4 +440,13 @@ RaySample sample_ray(Regime r, std::mt19937_64& rng) {
   }
 }
 
+std::vector<ChannelPiece> mixed_regime_pieces(std::size_t count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const std::vector<Regime>& regimes = all_regimes();
+  std::vector<ChannelPiece> out;
+  out.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) out.push_back(sample_piece(regimes[i % regimes.size()], rng).piece);
+  return out;
+}
+
 }  // namespace rayint

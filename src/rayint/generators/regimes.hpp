@@ -67,6 +67,11 @@ struct RegimeSample {
 // Deterministic for a given engine state. Throws std::invalid_argument for a ray-level regime.
 RegimeSample sample_piece(Regime r, std::mt19937_64& rng);
 
+// `count` pieces, piece i from regime all_regimes()[i % size] with one engine seeded `seed`: the
+// mixed set of the batch benchmark (bench/bench_exact.cpp BM_exact_pieces_batch) and of the Python
+// module's throughput figure (scripts/examples/bench_exact_pieces.py), so both time the same pieces.
+std::vector<ChannelPiece> mixed_regime_pieces(std::size_t count, std::uint64_t seed);
+
 // A case without its name: transfer functions and one ray.
 struct RaySample {
   TransferFunctions transfer;

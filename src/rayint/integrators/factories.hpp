@@ -16,5 +16,7 @@ std::unique_ptr<RayIntegrator> make_eq8(const MethodSpec&, const TransferFunctio
 std::unique_ptr<RayIntegrator> make_particle(const MethodSpec&, const TransferFunctions&);   // particle.cpp
 std::unique_ptr<RayIntegrator> make_preintegrated(const MethodSpec&, const TransferFunctions&);  // preintegrated.cpp
 std::unique_ptr<RayIntegrator> make_psi_table(const MethodSpec&, const TransferFunctions&);  // psi_table.cpp
+std::unique_ptr<RayIntegrator> make_nerf(const MethodSpec&, const TransferFunctions&);       // nerf.cpp
+std::unique_ptr<RayIntegrator> make_pl_nerf(const MethodSpec&, const TransferFunctions&);    // nerf.cpp
 
 }  // namespace rayint

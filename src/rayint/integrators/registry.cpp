@@ -39,6 +39,8 @@ std::vector<MethodEntry>& registry() {
       {"particle", "", make_particle},
       {"preintegrated", "size lookup dims step max_length lengths", make_preintegrated},
       {"psi_table", "size lookup", make_psi_table},
+      {"nerf", "n at last", make_nerf},
+      {"pl_nerf", "n color", make_pl_nerf},
   };
   return entries;
 }

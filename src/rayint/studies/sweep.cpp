@@ -183,6 +183,8 @@ std::vector<SweepAxis>& mutable_sweep_table() {
       {"ode", "rtol", decades(2, 13)},                  // 1e-2 .. 1e-13
       {"preintegrated", "size", powers_of_two(5, 11)},  // 32 .. 2048 entries per axis
       {"psi_table", "size", powers_of_two(5, 11)},      // 32 .. 2048 entries
+      {"nerf", "n", powers_of_two(0, 16)},              // 1 .. 65536 samples per segment
+      {"pl_nerf", "n", powers_of_two(0, 16)},           // 1 .. 65536 intervals per segment
   };
   return table;
 }

@@ -1,0 +1,298 @@
+// module.cpp -- rayint as a Python module (pybind11): the compiled half, `rayint._rayint`.
+//
+// Every function calls the library code the CLI calls, so the numbers are the CLI's bit for bit:
+//   _exact_pieces   integrators/exact_batch (exact_piece in a loop), GIL released;
+//   _evaluate       studies/evaluate_case + report/eval_report_json (`rayint eval`);
+//   _reference      studies/reference_rays + report/to_json(ReferenceRay);
+//   _check          studies/check_candidate + report/check_report_json (`rayint check`);
+//   _integrate      any registered method by its spec on arrays of segments;
+//   _composite      integrators/nerf (nerf_composite, pl_nerf_composite) on explicit samples;
+//   _mixed_regime_pieces, _regime_names  the benchmark's pieces (generators/), for timing.
+// Reports cross as JSON text (nlohmann's dump is round-trip exact for doubles; json.loads on the
+// Python side). Cases and candidates come as a path (read as the CLI reads it, so the messages name
+// the file) or as JSON text with a source name. rayint::InputError becomes rayint.InputError (a
+// ValueError) with the CLI's one-line message (the CLI prints it after "rayint: error: ");
+// std::invalid_argument becomes ValueError, other std::exceptions RuntimeError (pybind11).
+// src/python/rayint/__init__.py holds the Python-facing signatures, broadcasting and docs.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
+#include "rayint/generators/regimes.hpp"
+#include "rayint/input/candidate_reader.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/integrators/exact_batch.hpp"
+#include "rayint/integrators/integrator.hpp"
+#include "rayint/integrators/nerf.hpp"
+#include "rayint/report/check_json.hpp"
+#include "rayint/report/evaluation_json.hpp"
+#include "rayint/studies/check.hpp"
+#include "rayint/studies/evaluate.hpp"
+
+namespace py = pybind11;
+using rayint::Case;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// A case or candidate as the Python side hands it: (is_path, path or JSON text, source name).
+struct Document {
+  bool is_path = false;
+  std::string text;
+  std::string source;
+};
+
+Case load_case(const Document& d) {
+  return d.is_path ? rayint::read_case_file(d.text) : rayint::parse_case_text(d.text, d.source);
+}
+
+std::vector<Case> load_cases(const std::vector<Document>& docs) {
+  std::vector<Case> cases;
+  for (const Document& d : docs) {
+    if (d.is_path && std::filesystem::is_directory(d.text)) {  // every case file in it, as `rayint eval`
+      const std::vector<std::string> files = rayint::list_case_files(d.text);
+      if (files.empty()) throw rayint::InputError(d.text + ": folder holds no case files (*.json)");
+      for (const auto& f : files) cases.push_back(rayint::read_case_file(f));
+    } else {
+      cases.push_back(load_case(d));
+    }
+  }
+  return cases;
+}
+
+std::vector<rayint::MethodSpec> methods_of(const std::string& csv) {
+  return csv.empty() ? rayint::default_methods() : rayint::parse_method_list(csv);
+}
+
+// field::fail with `what` about element `i` of `name` (messages like the case reader's).
+[[noreturn]] void bad_value(const char* function, const char* name, std::size_t i,
+                            const char* what, double got) {
+  rayint::field::fail(function, rayint::field::index_path(name, i),
+                      std::string(what) + ", got " + rayint::format_number(got));
+}
+
+py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array& kappa_exit,
+                       const Array& kappa_far, const Array& length) {
+  const std::size_t n = static_cast<std::size_t>(rho_exit.size());
+  for (const Array* a : {&rho_far, &kappa_exit, &kappa_far, &length})
+    if (static_cast<std::size_t>(a->size()) != n)
+      throw std::invalid_argument("exact_pieces: the five arrays must have the same size");
+  Array emission(static_cast<py::ssize_t>(n)), transmittance(static_cast<py::ssize_t>(n));
+  rayint::PieceArrays in{rho_exit.data(), rho_far.data(), kappa_exit.data(), kappa_far.data(),
+                         length.data(), n};
+  rayint::PieceOpticsArrays out{emission.mutable_data(), transmittance.mutable_data()};
+  {
+    py::gil_scoped_release release;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(std::isfinite(in.rho_exit[i]) && in.rho_exit[i] >= 0.0))
+        bad_value("exact_pieces", "rho_exit", i, "must be finite and >= 0", in.rho_exit[i]);
+      if (!(std::isfinite(in.rho_far[i]) && in.rho_far[i] >= 0.0))
+        bad_value("exact_pieces", "rho_far", i, "must be finite and >= 0", in.rho_far[i]);
+      if (!std::isfinite(in.kappa_exit[i]))
+        bad_value("exact_pieces", "kappa_exit", i, "must be finite", in.kappa_exit[i]);
+      if (!std::isfinite(in.kappa_far[i]))
+        bad_value("exact_pieces", "kappa_far", i, "must be finite", in.kappa_far[i]);
+      if (!(std::isfinite(in.length[i]) && in.length[i] >= 0.0))
+        bad_value("exact_pieces", "length", i, "must be finite and >= 0", in.length[i]);
+    }
+    rayint::exact_pieces_batch(in, out);
+  }
+  return py::make_tuple(emission, transmittance);
+}
+
+std::string evaluate(const std::vector<Document>& docs, const std::string& methods_csv,
+                     bool timing, unsigned threads) {
+  const std::vector<rayint::MethodSpec> methods = methods_of(methods_csv);
+  py::gil_scoped_release release;
+  const std::vector<Case> cases = load_cases(docs);  // validate all before evaluating any
+  rayint::EvalOptions eo;
+  eo.measure_time = timing;
+  eo.threads = threads;
+  std::vector<rayint::CaseEvaluation> results;
+  for (const auto& c : cases) results.push_back(rayint::evaluate_case(c, methods, eo));
+  return rayint::eval_report_json(results).dump();
+}
+
+std::string reference(const Document& doc, unsigned threads) {
+  py::gil_scoped_release release;
+  const Case c = load_case(doc);
+  nlohmann::json rays = nlohmann::json::array();
+  for (const auto& r : rayint::reference_rays(c, threads)) rays.push_back(rayint::to_json(r));
+  return nlohmann::json{{"case", c.name}, {"rays", rays}}.dump();
+}
+
+std::pair<std::string, bool> check(const Document& case_doc, const Document& candidate_doc,
+                                   double rel_tol, double abs_tol, bool with_reference,
+                                   unsigned threads) {
+  py::gil_scoped_release release;
+  const Case c = load_case(case_doc);
+  rayint::Candidate candidate;
+  if (candidate_doc.is_path) {
+    candidate = rayint::read_candidate_file(candidate_doc.text, c);
+  } else {
+    candidate = rayint::parse_candidate_text(candidate_doc.text, candidate_doc.source);
+    rayint::require_candidate_matches(candidate, c);
+  }
+  for (const double tol : {rel_tol, abs_tol})
+    if (!(std::isfinite(tol) && tol >= 0.0))
+      throw std::invalid_argument("check: tolerances must be finite numbers >= 0, got " +
+                                  rayint::format_number(tol));
+  rayint::CheckOptions co;
+  co.rel_tol = rel_tol;
+  co.abs_tol = abs_tol;
+  co.with_reference = with_reference;
+  co.threads = threads;
+  const rayint::CheckResult result = rayint::check_candidate(c, candidate, co);
+  return {rayint::check_report_json(result).dump(), result.pass};
+}
+
+// Rays from arrays of shape (rays, segments) (all three the same) and background (rays, 3).
+py::tuple integrate(const std::string& method, const Document& doc, const Array& length,
+                    const Array& scalar_far, const Array& scalar_exit, const Array& background,
+                    bool from_arrays) {
+  const rayint::MethodSpec spec = rayint::parse_method_spec(method);
+  std::vector<rayint::Ray> arrays_rays;
+  if (from_arrays) {
+    if (length.ndim() != 2 || scalar_far.ndim() != 2 || scalar_exit.ndim() != 2 ||
+        background.ndim() != 2 || background.shape(1) != rayint::kChannels)
+      throw std::invalid_argument("integrate: expected arrays of shape (rays, segments) and a "
+                                  "background of shape (rays, 3)");
+    const auto rays = static_cast<std::size_t>(length.shape(0));
+    const auto segs = static_cast<std::size_t>(length.shape(1));
+    if (static_cast<std::size_t>(background.shape(0)) != rays) 
+      throw std::invalid_argument("integrate: background must have one row per ray");
+    for (const Array* a : {&scalar_far, &scalar_exit})
+      if (static_cast<std::size_t>(a->shape(0)) != rays ||
+          static_cast<std::size_t>(a->shape(1)) != segs)
+        throw std::invalid_argument("integrate: length, scalar_far and scalar_exit must have the "
+                                    "same shape");
+    arrays_rays.resize(rays);
+    for (std::size_t r = 0; r < rays; ++r) {
+      rayint::Ray& ray = arrays_rays[r];
+      for (int c = 0; c < rayint::kChannels; ++c) {
+        const double b = background.at(r, c);
+        if (!(std::isfinite(b) && b >= 0.0))
+          bad_value("integrate", "background", r * 3 + static_cast<std::size_t>(c),
+                    "must be finite and >= 0", b);
+        ray.background[c] = b;
+      }
+      for (std::size_t s = 0; s < segs; ++s) {
+        const std::size_t i = r * segs + s;
+        const double L = length.data()[i], sf = scalar_far.data()[i], se = scalar_exit.data()[i];
+        if (!(std::isfinite(L) && L >= 0.0)) bad_value("integrate", "length", i, "must be finite and >= 0", L);
+        if (!std::isfinite(sf)) bad_value("integrate", "scalar_far", i, "must be finite", sf);
+        if (!std::isfinite(se)) bad_value("integrate", "scalar_exit", i, "must be finite", se);
+        ray.segments.push_back({L, sf, se});
+      }
+    }
+  }
+  std::vector<double> intensity, transmittance;
+  {
+    py::gil_scoped_release release;
+    const Case c = load_case(doc);
+    const std::vector<rayint::Ray>& rays = from_arrays ? arrays_rays : c.rays;
+    const auto integrator = rayint::make_integrator(spec, c.transfer);
+    intensity.resize(rays.size() * 3);
+    transmittance.resize(rays.size() * 3);
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+      const rayint::RayResult res = integrator->integrate(rays[r], nullptr);
+      for (int k = 0; k < rayint::kChannels; ++k) {
+        intensity[r * 3 + static_cast<std::size_t>(k)] = res.intensity[k];
+        transmittance[r * 3 + static_cast<std::size_t>(k)] = res.transmittance[k];
+      }
+    }
+  }
+  const std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(intensity.size() / 3), 3};
+  return py::make_tuple(Array(shape, intensity.data()), Array(shape, transmittance.data()));
+}
+
+// sigma (R, N), colour (R, 3, N), delta (R, N) for nerf; (R, N - 1) intervals for pl_nerf.
+py::tuple composite(const Array& sigma, const Array& colour, const Array& delta, bool linear,
+                    bool mid_colour) {
+  if (sigma.ndim() != 2 || colour.ndim() != 3 || delta.ndim() != 2 ||
+      colour.shape(1) != rayint::kChannels || colour.shape(0) != sigma.shape(0) ||
+      colour.shape(2) != sigma.shape(1) || delta.shape(0) != sigma.shape(0) ||
+      delta.shape(1) != sigma.shape(1) - (linear ? 1 : 0))
+    throw std::invalid_argument("composite: sigma (rays, N), rgb (rays, N, 3) and the deltas do "
+                                "not match");
+  const auto rays = static_cast<std::size_t>(sigma.shape(0));
+  const auto n = static_cast<std::size_t>(sigma.shape(1));
+  const std::size_t steps = static_cast<std::size_t>(delta.shape(1));
+  const char* fn = linear ? "pl_nerf_composite" : "nerf_composite";
+  Array out_rgb(std::vector<py::ssize_t>{static_cast<py::ssize_t>(rays), 3});
+  Array out_t(std::vector<py::ssize_t>{static_cast<py::ssize_t>(rays), 3});
+  const double* s = sigma.data();
+  const double* col = colour.data();
+  const double* d = delta.data();
+  double* rgb = out_rgb.mutable_data();
+  double* tr = out_t.mutable_data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t i = 0; i < rays * n; ++i)
+      if (!(std::isfinite(s[i]) && s[i] >= 0.0)) bad_value(fn, "sigma", i, "must be finite and >= 0", s[i]);
+    for (std::size_t i = 0; i < rays * steps; ++i)
+      if (!(std::isfinite(d[i]) && d[i] >= 0.0)) bad_value(fn, "delta", i, "must be finite and >= 0", d[i]);
+    for (std::size_t i = 0; i < rays * 3 * n; ++i)
+      if (!std::isfinite(col[i])) bad_value(fn, "rgb", i, "must be finite", col[i]);
+    for (std::size_t r = 0; r < rays; ++r)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const rayint::CompositeResult res =
+            linear ? rayint::pl_nerf_composite(s + r * n, col + (r * 3 + c) * n, d + r * steps,
+                                               steps, mid_colour)
+                   : rayint::nerf_composite(s + r * n, col + (r * 3 + c) * n, d + r * steps, n);
+        rgb[r * 3 + c] = res.emission;
+        tr[r * 3 + c] = res.transmittance;
+      }
+  }
+  return py::make_tuple(out_rgb, out_t);
+}
+
+// The benchmark's mixed pieces (generators/regimes.hpp), as five arrays: for timing
+// exact_pieces on the pieces bench/bench_exact.cpp BM_exact_pieces_batch times.
+py::tuple mixed_regime_pieces(std::size_t count, std::uint64_t seed) {
+  const std::vector<rayint::ChannelPiece> pieces = rayint::mixed_regime_pieces(count, seed);
+  Array rho_exit(static_cast<py::ssize_t>(count)), rho_far(static_cast<py::ssize_t>(count)),
+      kappa_exit(static_cast<py::ssize_t>(count)), kappa_far(static_cast<py::ssize_t>(count)),
+      length(static_cast<py::ssize_t>(count));
+  for (std::size_t i = 0; i < count; ++i) {
+    rho_exit.mutable_data()[i] = pieces[i].rho_exit;
+    rho_far.mutable_data()[i] = pieces[i].rho_far;
+    kappa_exit.mutable_data()[i] = pieces[i].kappa_exit;
+    kappa_far.mutable_data()[i] = pieces[i].kappa_far;
+    length.mutable_data()[i] = pieces[i].length;
+  }
+  return py::make_tuple(rho_exit, rho_far, kappa_exit, kappa_far, length);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_rayint, m) {
+  m.doc() = "rayint's library (see rayint/__init__.py for the Python-facing functions)";
+  py::register_exception<rayint::InputError>(m, "InputError", PyExc_ValueError);
+  py::class_<Document>(m, "_Document")
+      .def(py::init([](bool is_path, std::string text, std::string source) {
+        return Document{is_path, std::move(text), std::move(source)};
+      }));
+  m.def("_exact_pieces", &exact_pieces);
+  m.def("_evaluate", &evaluate);
+  m.def("_reference", &reference);
+  m.def("_check", &check);
+  m.def("_integrate", &integrate);
+  m.def("_composite", &composite);
+  m.def("_method_names", &rayint::method_names);
+  m.def("_mixed_regime_pieces", &mixed_regime_pieces);
+  m.def("_regime_names", [] {  // piece i of _mixed_regime_pieces is of regime i % len(names)
+    std::vector<std::string> names;
+    for (const rayint::Regime r : rayint::all_regimes()) names.push_back(rayint::regime_name(r));
+    return names;
+  });
+}
