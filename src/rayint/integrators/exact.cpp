@@ -32,7 +32,10 @@
 #include "rayint/integrators/exact.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
+#include "rayint/integrators/exact_batch.hpp"
 #include "rayint/special/special_functions.hpp"
 
 namespace rayint {
@@ -157,6 +160,67 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 }
 
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+  if (path_ == Path::scalar) return integrate_scalar(ray, diag);
+  // Columns of every piece-channel of the ray, piece-major (index 3 k + c), then one batch.
+  struct Columns {
+    std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit, transmittance, emission;
+    std::vector<ExactBranch> branch;
+    std::vector<std::int32_t> terms;
+    std::vector<unsigned char> converged;
+  };
+  thread_local Columns col;
+  col.length.clear();
+  col.rho_far.clear();
+  col.rho_exit.clear();
+  col.kappa_far.clear();
+  col.kappa_exit.clear();
+  for (const auto& seg : ray.segments) {
+    for (const auto& piece : splitter_.pieces(seg)) {
+      for (int c = 0; c < kChannels; ++c) {
+        col.length.push_back(piece.length);
+        col.rho_far.push_back(piece.rho_far[c]);
+        col.rho_exit.push_back(piece.rho_exit[c]);
+        col.kappa_far.push_back(piece.kappa_far[c]);
+        col.kappa_exit.push_back(piece.kappa_exit[c]);
+      }
+    }
+  }
+  const std::size_t n = col.length.size();
+  col.transmittance.resize(n);
+  col.emission.resize(n);
+  OpticsColumns out{col.transmittance.data(), col.emission.data()};
+  if (diag) {
+    col.branch.resize(n);
+    col.terms.resize(n);
+    col.converged.resize(n);
+    out.branch = col.branch.data();
+    out.terms = col.terms.data();
+    out.converged = col.converged.data();
+  }
+  exact_batch({col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
+               col.kappa_exit.data(), n},
+              out);
+  RayResult r = RayResult::of_background(ray.background);
+  for (std::size_t k = 0; k < n; k += kChannels) {
+    for (int c = 0; c < kChannels; ++c) {
+      const double t = col.transmittance[k + static_cast<std::size_t>(c)];
+      r.intensity[c] = r.intensity[c] * t + col.emission[k + static_cast<std::size_t>(c)];
+      r.transmittance[c] *= t;
+    }
+  }
+  if (diag) {
+    int max_terms = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      diag->count(branch_name(col.branch[i]));
+      if (!col.converged[i]) diag->count("series_not_converged");
+      if (col.terms[i] > max_terms) max_terms = col.terms[i];
+    }
+    diag->max_stat("max_series_terms", max_terms);
+  }
+  return r;
+}
+
+RayResult ExactIntegrator::integrate_scalar(const Ray& ray, Diagnostics* diag) const {
   RayResult r = RayResult::of_background(ray.background);
   int max_terms = 0;
   for (const auto& seg : ray.segments) {
