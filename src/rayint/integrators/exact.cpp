@@ -100,6 +100,13 @@ double q2_series_e0(double A, double B, double em1_A) {
   const double A2 = A * A;
   const double p2 = 1.0 + A + 0.5 * A2;
   const double p4 = p2 + A2 * A / 6.0 + A2 * A2 / 24.0;
+  if (!std::isfinite(A2 * A2 * A)) {
+    // A > ~1e61 (T up to 1e308): A^5 overflows and e^{-A} = 0, so m_n = n!/A^{n+1}; with
+    // r = B/A^2 (|r| <= kQ2Relative) the series is (1 - 2r + 12 r^2)/A, with no inf * 0.
+    // (The general form below gave NaN here; found by tests/test_exact_batch.cpp.)
+    const double r = B / A / A;
+    return (1.0 - 2.0 * r + 12.0 * r * r) / A;
+  }
   const double m2 = 2.0 / (A2 * A) * (1.0 - eA * p2);
   const double m4 = 24.0 / (A2 * A2 * A) * (1.0 - eA * p4);
   return m0 - B * m2 + 0.5 * B * B * m4;

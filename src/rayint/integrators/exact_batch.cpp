@@ -114,7 +114,11 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
         const V m2 = hn::Mul(hn::Div(hn::Set(d, 2.0), hn::Mul(A2, A)), hn::NegMulAdd(eA, p2, one));
         const V m4 = hn::Mul(hn::Div(hn::Set(d, 24.0), hn::Mul(hn::Mul(A2, A2), A)), hn::NegMulAdd(eA, p4, one));
         const V series = hn::Add(hn::NegMulAdd(B, m2, m0), hn::Mul(hn::Mul(half, hn::Mul(B, B)), m4));
-        e0 = hn::IfThenElse(hn::Eq(B, hn::Zero(d)), m0, series);  // B == 0: m0 alone, as exact.cpp
+        // A^5 overflows (A > ~1e61): (1 - 2r + 12 r^2)/A with r = B/A^2, as exact.cpp
+        const V r = hn::Div(hn::Div(B, A), A);
+        const V huge_A = hn::Div(hn::MulAdd(hn::Mul(hn::Set(d, 12.0), r), r, hn::NegMulAdd(hn::Set(d, 2.0), r, one)), A);
+        const V general = hn::IfThenElse(hn::IsFinite(hn::Mul(hn::Mul(A2, A2), A)), series, huge_A);
+        e0 = hn::IfThenElse(hn::Eq(B, hn::Zero(d)), m0, general);  // B == 0: m0 alone, as exact.cpp
       } else if (group == kErfcx) {
         const V beta = hn::Sqrt(B);
         const V z0 = hn::Div(A, hn::Add(beta, beta));
