@@ -53,7 +53,7 @@ void BM_exact_piece_mixed(benchmark::State& state) {
 }
 
 // 1,000,000 pieces, every regime in turn (generators mixed_regime_pieces, seed 2026), through
-// exact_pieces_batch from arrays: the C++ figure for the Python module's rayint.exact_pieces on
+// exact_batch (the batched `exact`) from arrays: the C++ figure for the Python module's rayint.exact_pieces on
 // the same pieces (scripts/examples/bench_exact_pieces.py). ns per piece = 1e9 / items_per_second.
 void BM_exact_pieces_batch(benchmark::State& state) {
   const std::vector<rayint::ChannelPiece> pieces = rayint::mixed_regime_pieces(1000000, 2026);
@@ -67,11 +67,13 @@ void BM_exact_pieces_batch(benchmark::State& state) {
     length[i] = pieces[i].length;
   }
   std::vector<double> emission(n), transmittance(n);
-  const rayint::PieceArrays in{rho_exit.data(), rho_far.data(), kappa_exit.data(),
-                               kappa_far.data(), length.data(), n};
-  const rayint::PieceOpticsArrays out{emission.data(), transmittance.data()};
+  const rayint::PieceColumns in{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(),
+                                kappa_exit.data(), n};
+  rayint::OpticsColumns out;
+  out.emission = emission.data();
+  out.transmittance = transmittance.data();
   for (auto _ : state) {
-    rayint::exact_pieces_batch(in, out);
+    rayint::exact_batch(in, out);
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));

@@ -10,6 +10,8 @@ packages=(build-essential cmake pkg-config
           nlohmann-json3-dev    # case files and JSON reports
           catch2                # unit tests (Catch2 2.13)
           libcerf-dev           # erfcx and Dawson functions for the closed forms
+          libhwy-dev            # Google Highway: vector erfcx/Dawson/exp of the batched exact path, one
+                                #   binary that picks SSE4/AVX2/AVX-512 at run time (exact_batch)
           libbenchmark-dev      # Google Benchmark micro-benchmarks
           libpugixml-dev        # XML parser of the VTK XML readers (.vtu / .vti, input/vtk_xml_reader)
           zlib1g-dev            # inflating vtkZLibDataCompressor blocks in .vtu / .vti files

@@ -189,23 +189,6 @@ TEST_CASE("the explicit-sample functions give the methods' numbers", "[nerf]") {
   }
 }
 
-TEST_CASE("exact_pieces_batch is exact_piece in a loop, bit for bit", "[nerf][exact]") {
-  const std::vector<double> rho_exit{0.0, 0.3, 5.0, 1e-9, 200.0};
-  const std::vector<double> rho_far{0.0, 1.7, 0.0, 2e-9, 180.0};
-  const std::vector<double> kappa_exit{1.0, 0.2, 3.0, 1e6, 0.5};
-  const std::vector<double> kappa_far{2.0, 0.9, 0.0, 1e6, 0.5};
-  const std::vector<double> length{1.0, 2.5, 0.7, 3.0, 0.01};
-  std::vector<double> emission(5), transmittance(5);
-  exact_pieces_batch({rho_exit.data(), rho_far.data(), kappa_exit.data(), kappa_far.data(),
-                      length.data(), 5},
-                     {emission.data(), transmittance.data()});
-  for (std::size_t i = 0; i < 5; ++i) {
-    const PieceOptics o = exact_piece({length[i], rho_far[i], rho_exit[i], kappa_far[i], kappa_exit[i]});
-    CHECK(emission[i] == o.emission);
-    CHECK(transmittance[i] == o.transmittance);
-  }
-}
-
 TEST_CASE("nerf and pl_nerf specs are checked", "[nerf]") {
   const SmoothCase sc;
   for (const char* bad : {"nerf:n=0", "nerf:n=2.5", "nerf:at=far", "nerf:last=1e10",

@@ -49,6 +49,24 @@ struct Tolerances {
   static constexpr double table_order_step_band = 0.4;
 };
 
+// The vector special functions and the batched exact path (tests/test_special_simd.cpp,
+// tests/test_exact_batch.cpp, [special_simd], [exact_batch]).
+struct SimdTolerances {
+  // erfcx_simd-inl.hpp against 50 digits over [0, 1e6]: the generator's table bound is 1.84e-16
+  // (erfcx) and 2.07e-16 (D/x) before the final multiply; measured figures are in the README
+  // ("Batched exact path"); 4e-16 (1.8 eps) is the claim of erfcx_simd-inl.hpp.
+  static constexpr double erfcx_rel = 4e-16;
+  static constexpr double dawson_rel = 4e-16;
+  // Against libcerf (itself accurate to ~1e-15 by its documentation; relative difference).
+  static constexpr double vs_libcerf_rel = 2e-15;
+  // Highway's own documented bounds (hwy/contrib/math/math-inl.h): Exp 1 ulp, Expm1 4 ulp.
+  static constexpr double exp_ulp = 1.0;
+  static constexpr double expm1_ulp = 4.0;
+  // exact_batch against exact_piece on the same piece: both within 1e-13 of the reference, and
+  // they evaluate the same formulas, so they differ by a few ulps of their two roundings.
+  static constexpr double batch_vs_scalar_rel = 1e-13;
+};
+
 // The numerical methods of tests/test_methods.cpp (riemann, rk4, ode, eq5..eq8, particle).
 // Orders are fitted from the errors at n and 2n on the smooth ray of that file (no breakpoint
 // inside a segment); the bands say how far the fit may sit from the textbook order.

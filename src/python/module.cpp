@@ -87,9 +87,12 @@ py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array&
     if (static_cast<std::size_t>(a->size()) != n)
       throw std::invalid_argument("exact_pieces: the five arrays must have the same size");
   Array emission(static_cast<py::ssize_t>(n)), transmittance(static_cast<py::ssize_t>(n));
-  rayint::PieceArrays in{rho_exit.data(), rho_far.data(), kappa_exit.data(), kappa_far.data(),
-                         length.data(), n};
-  rayint::PieceOpticsArrays out{emission.mutable_data(), transmittance.mutable_data()};
+  // The batched exact path (integrators/exact_batch.hpp), the one `exact` itself uses.
+  const rayint::PieceColumns in{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(),
+                                kappa_exit.data(), n};
+  rayint::OpticsColumns out;
+  out.emission = emission.mutable_data();
+  out.transmittance = transmittance.mutable_data();
   {
     py::gil_scoped_release release;
     for (std::size_t i = 0; i < n; ++i) {
@@ -104,7 +107,7 @@ py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array&
       if (!(std::isfinite(in.length[i]) && in.length[i] >= 0.0))
         bad_value("exact_pieces", "length", i, "must be finite and >= 0", in.length[i]);
     }
-    rayint::exact_pieces_batch(in, out);
+    rayint::exact_batch(in, out);
   }
   return py::make_tuple(emission, transmittance);
 }

@@ -32,7 +32,10 @@
 #include "rayint/integrators/exact.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
+#include "rayint/integrators/exact_batch.hpp"
 #include "rayint/special/special_functions.hpp"
 
 namespace rayint {
@@ -97,6 +100,13 @@ double q2_series_e0(double A, double B, double em1_A) {
   const double A2 = A * A;
   const double p2 = 1.0 + A + 0.5 * A2;
   const double p4 = p2 + A2 * A / 6.0 + A2 * A2 / 24.0;
+  if (!std::isfinite(A2 * A2 * A)) {
+    // A > ~1e61 (T up to 1e308): A^5 overflows and e^{-A} = 0, so m_n = n!/A^{n+1}; with
+    // r = B/A^2 (|r| <= kQ2Relative) the series is (1 - 2r + 12 r^2)/A, with no inf * 0.
+    // (The general form below gave NaN here; found by tests/test_exact_batch.cpp.)
+    const double r = B / A / A;
+    return (1.0 - 2.0 * r + 12.0 * r * r) / A;
+  }
   const double m2 = 2.0 / (A2 * A) * (1.0 - eA * p2);
   const double m4 = 24.0 / (A2 * A2 * A) * (1.0 - eA * p4);
   return m0 - B * m2 + 0.5 * B * B * m4;
@@ -157,6 +167,67 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 }
 
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+  if (path_ == Path::scalar) return integrate_scalar(ray, diag);
+  // Columns of every piece-channel of the ray, piece-major (index 3 k + c), then one batch.
+  struct Columns {
+    std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit, transmittance, emission;
+    std::vector<ExactBranch> branch;
+    std::vector<std::int32_t> terms;
+    std::vector<unsigned char> converged;
+  };
+  thread_local Columns col;
+  col.length.clear();
+  col.rho_far.clear();
+  col.rho_exit.clear();
+  col.kappa_far.clear();
+  col.kappa_exit.clear();
+  for (const auto& seg : ray.segments) {
+    for (const auto& piece : splitter_.pieces(seg)) {
+      for (int c = 0; c < kChannels; ++c) {
+        col.length.push_back(piece.length);
+        col.rho_far.push_back(piece.rho_far[c]);
+        col.rho_exit.push_back(piece.rho_exit[c]);
+        col.kappa_far.push_back(piece.kappa_far[c]);
+        col.kappa_exit.push_back(piece.kappa_exit[c]);
+      }
+    }
+  }
+  const std::size_t n = col.length.size();
+  col.transmittance.resize(n);
+  col.emission.resize(n);
+  OpticsColumns out{col.transmittance.data(), col.emission.data()};
+  if (diag) {
+    col.branch.resize(n);
+    col.terms.resize(n);
+    col.converged.resize(n);
+    out.branch = col.branch.data();
+    out.terms = col.terms.data();
+    out.converged = col.converged.data();
+  }
+  exact_batch({col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
+               col.kappa_exit.data(), n},
+              out);
+  RayResult r = RayResult::of_background(ray.background);
+  for (std::size_t k = 0; k < n; k += kChannels) {
+    for (int c = 0; c < kChannels; ++c) {
+      const double t = col.transmittance[k + static_cast<std::size_t>(c)];
+      r.intensity[c] = r.intensity[c] * t + col.emission[k + static_cast<std::size_t>(c)];
+      r.transmittance[c] *= t;
+    }
+  }
+  if (diag) {
+    int max_terms = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      diag->count(branch_name(col.branch[i]));
+      if (!col.converged[i]) diag->count("series_not_converged");
+      if (col.terms[i] > max_terms) max_terms = col.terms[i];
+    }
+    diag->max_stat("max_series_terms", max_terms);
+  }
+  return r;
+}
+
+RayResult ExactIntegrator::integrate_scalar(const Ray& ray, Diagnostics* diag) const {
   RayResult r = RayResult::of_background(ray.background);
   int max_terms = 0;
   for (const auto& seg : ray.segments) {

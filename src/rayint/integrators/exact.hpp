@@ -31,11 +31,20 @@ inline constexpr double kQ2Relative = 1.0 / (1 << 26);
 
 PieceOptics exact_piece(const ChannelPiece& piece);
 
-// Composites exact_piece over the pieces of a ray (far -> near).
+// Composites the exact piece integral over the pieces of a ray (far -> near). By default all
+// pieces and channels of the ray go through exact_batch (integrators/exact_batch.hpp) at once;
+// Path::scalar calls exact_piece one piece-channel at a time (the readable reference, method
+// "exact:path=scalar").
 class ExactIntegrator final : public PieceIntegrator {
  public:
-  using PieceIntegrator::PieceIntegrator;
+  enum class Path { batch, scalar };
+  explicit ExactIntegrator(const TransferFunctions& tf, Path path = Path::batch)
+      : PieceIntegrator(tf), path_(path) {}
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+
+ private:
+  RayResult integrate_scalar(const Ray& ray, Diagnostics* diag) const;
+  Path path_;
 };
 
 }  // namespace rayint

@@ -1,28 +1,40 @@
 #pragma once
-// exact_piece (exact.hpp) over arrays of pieces of one channel: the one call site of batch users
-// (the Python module's exact_pieces), so that a vectorised path can replace the loop here without
-// touching them. Same numbers as calling exact_piece on each piece, bit for bit.
+// The exact integral of exact.hpp on many pieces at once: structure-of-arrays in and out, pieces
+// grouped by branch, each group evaluated with vector erfcx/Dawson/exp (Google Highway, target
+// picked at run time). exact_piece (exact.cpp) stays the readable scalar reference; this path
+// computes the same formulas in the same regions. See exact_batch.cpp for the error bounds.
 #include <cstddef>
+#include <cstdint>
+
+#include "rayint/integrators/exact.hpp"
 
 namespace rayint {
 
-// Structure of arrays, `count` entries each; exit = the eye side, far = where light enters
-// (model/ray.hpp). Preconditions as exact_piece's: finite, rho >= 0, length >= 0.
-struct PieceArrays {
-  const double* rho_exit = nullptr;
-  const double* rho_far = nullptr;
-  const double* kappa_exit = nullptr;
-  const double* kappa_far = nullptr;
+// n pieces, one channel each (the fields of ChannelPiece as columns).
+struct PieceColumns {
   const double* length = nullptr;
-  std::size_t count = 0;
+  const double* rho_far = nullptr;
+  const double* rho_exit = nullptr;
+  const double* kappa_far = nullptr;
+  const double* kappa_exit = nullptr;
+  std::size_t size = 0;
 };
 
-// `count` entries each: int kappa rho exp(-tau) ds over the piece, and exp(-T).
-struct PieceOpticsArrays {
-  double* emission = nullptr;
+// Results per piece: the transmittance and emission of PieceOptics; the introspection columns
+// are optional (null: not written).
+struct OpticsColumns {
   double* transmittance = nullptr;
+  double* emission = nullptr;
+  ExactBranch* branch = nullptr;        // branch taken
+  std::int32_t* terms = nullptr;        // series terms (thin_series), else 0
+  unsigned char* converged = nullptr;   // 0 if the thin series hit its term budget
 };
 
-void exact_pieces_batch(const PieceArrays& in, const PieceOpticsArrays& out);
+// out[i] = exact_piece(in[i]) for i < in.size, to the accuracy stated in exact_batch.cpp.
+// Thread safe (per-thread scratch); no allocation once a thread's scratch has grown.
+void exact_batch(const PieceColumns& in, const OpticsColumns& out);
+
+// The Highway target exact_batch runs on this CPU ("AVX3", "AVX2", "SSE4", ...).
+const char* exact_batch_target();
 
 }  // namespace rayint

@@ -20,9 +20,14 @@ struct MethodEntry {
 
 std::vector<MethodEntry>& registry() {
   static std::vector<MethodEntry> entries = {
-      {"exact", "",
-       [](const MethodSpec&, const TransferFunctions& tf) -> std::unique_ptr<RayIntegrator> {
-         return std::make_unique<ExactIntegrator>(tf);
+      // path=batch (default): exact_batch, vectorised; path=scalar: exact_piece per piece-channel.
+      {"exact", "path",
+       [](const MethodSpec& spec, const TransferFunctions& tf) -> std::unique_ptr<RayIntegrator> {
+         const std::string path = spec.text("path", "batch");
+         if (path != "batch" && path != "scalar")
+           throw std::invalid_argument("exact: path must be batch or scalar, not '" + path + "'");
+         return std::make_unique<ExactIntegrator>(
+             tf, path == "scalar" ? ExactIntegrator::Path::scalar : ExactIntegrator::Path::batch);
        }},
       {"paper", "",
        [](const MethodSpec&, const TransferFunctions& tf) -> std::unique_ptr<RayIntegrator> {

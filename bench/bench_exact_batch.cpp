@@ -1,0 +1,148 @@
+// Throughput of the batched exact path (integrators/exact_batch.*) in piece-channels per second,
+// one and two threads, against the scalar exact_piece on the same pieces; and the vector
+// erfcx/Dawson against libcerf per call.
+// Run: build/bench/rayint_bench --benchmark_filter='batch|simd|cerf' --benchmark_repetitions=5
+//      --benchmark_report_aggregates_only=true      (quote the median; items_per_second is
+//      piece-channels per second, summed over threads)
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "rayint/generators/regimes.hpp"
+#include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/exact_batch.hpp"
+#include "rayint/special/erfcx_simd.hpp"
+#include "rayint/special/special_functions.hpp"
+
+namespace {
+
+// 512 pieces of every regime, shuffled (the mix of BM_exact_piece_mixed in bench_exact.cpp),
+// or 4096 of one regime.
+struct Columns {
+  std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
+  std::size_t size() const { return length.size(); }
+};
+
+Columns columns(int regime_index) {
+  std::vector<rayint::ChannelPiece> pieces;
+  for (std::size_t r = 0; r < rayint::all_regimes().size(); ++r) {
+    if (regime_index >= 0 && static_cast<std::size_t>(regime_index) != r) continue;
+    std::mt19937_64 rng(12345);
+    const int count = regime_index >= 0 ? 4096 : 512;
+    for (int i = 0; i < count; ++i) pieces.push_back(rayint::sample_piece(rayint::all_regimes()[r], rng).piece);
+  }
+  if (regime_index < 0) std::shuffle(pieces.begin(), pieces.end(), std::mt19937_64(99));
+  Columns c;
+  for (const auto& p : pieces) {
+    c.length.push_back(p.length);
+    c.rho_far.push_back(p.rho_far);
+    c.rho_exit.push_back(p.rho_exit);
+    c.kappa_far.push_back(p.kappa_far);
+    c.kappa_exit.push_back(p.kappa_exit);
+  }
+  return c;
+}
+
+void run_batch(benchmark::State& state, const Columns& c) {
+  std::vector<double> tr(c.size()), em(c.size());
+  for (auto _ : state) {
+    rayint::exact_batch({c.length.data(), c.rho_far.data(), c.rho_exit.data(), c.kappa_far.data(),
+                         c.kappa_exit.data(), c.size()},
+                        {tr.data(), em.data()});
+    benchmark::DoNotOptimize(em.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(c.size()));
+  state.SetLabel(rayint::exact_batch_target());
+}
+
+void BM_exact_batch_mixed(benchmark::State& state) {
+  static const Columns c = columns(-1);
+  run_batch(state, c);
+}
+
+void BM_exact_batch_regime(benchmark::State& state) {
+  const Columns c = columns(static_cast<int>(state.range(0)));
+  run_batch(state, c);
+  state.SetLabel(rayint::regime_name(rayint::all_regimes()[static_cast<std::size_t>(state.range(0))]) +
+                 " " + rayint::exact_batch_target());
+}
+
+// The scalar reference on the same mixed columns, same threads: the ratio within one run.
+void BM_exact_scalar_loop_mixed(benchmark::State& state) {
+  static const Columns c = columns(-1);
+  std::vector<double> tr(c.size()), em(c.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const rayint::PieceOptics o = rayint::exact_piece(
+          {c.length[i], c.rho_far[i], c.rho_exit[i], c.kappa_far[i], c.kappa_exit[i]});
+      tr[i] = o.transmittance;
+      em[i] = o.emission;
+    }
+    benchmark::DoNotOptimize(em.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(c.size()));
+}
+
+std::vector<double> special_args() {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> x(4096);
+  for (auto& v : x) v = std::exp(u(rng) * 9.0 - 4.0);  // 0.018 .. 148: both regions
+  return x;
+}
+
+void BM_erfcx_simd(benchmark::State& state) {
+  const std::vector<double> x = special_args();
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    rayint::special::erfcx_array(x.data(), y.data(), x.size());
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
+  state.SetLabel(rayint::special::simd_target_name());
+}
+
+void BM_dawson_simd(benchmark::State& state) {
+  const std::vector<double> x = special_args();
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    rayint::special::dawson_array(x.data(), y.data(), x.size());
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
+  state.SetLabel(rayint::special::simd_target_name());
+}
+
+void BM_erfcx_cerf(benchmark::State& state) {
+  const std::vector<double> x = special_args();
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < x.size(); ++i) y[i] = rayint::special::erfcx(x[i]);
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
+}
+
+void BM_dawson_cerf(benchmark::State& state) {
+  const std::vector<double> x = special_args();
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < x.size(); ++i) y[i] = rayint::special::dawson(x[i]);
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
+}
+
+}  // namespace
+
+BENCHMARK(BM_exact_batch_mixed)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_exact_scalar_loop_mixed)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_exact_batch_regime)->DenseRange(0, static_cast<int>(rayint::all_regimes().size()) - 1);
+BENCHMARK(BM_erfcx_simd);
+BENCHMARK(BM_dawson_simd);
+BENCHMARK(BM_erfcx_cerf);
+BENCHMARK(BM_dawson_cerf);

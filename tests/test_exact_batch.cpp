@@ -1,0 +1,174 @@
+// The batched exact path (integrators/exact_batch.*) against the 50-digit reference, regime by
+// regime, and against the scalar exact_piece: same branch, same series terms, same gate.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "rayint/generators/regimes.hpp"
+#include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/exact_batch.hpp"
+#include "rayint/metrics/error_metrics.hpp"
+#include "rayint/reference/reference.hpp"
+#include "tolerances.hpp"
+#include "transfer_builders.hpp"
+
+using namespace rayint;
+using namespace rayint::test;
+
+namespace {
+
+struct Batch {
+  std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
+  std::vector<double> transmittance, emission;
+  std::vector<ExactBranch> branch;
+  std::vector<std::int32_t> terms;
+  std::vector<unsigned char> converged;
+
+  void add(const ChannelPiece& p) {
+    length.push_back(p.length);
+    rho_far.push_back(p.rho_far);
+    rho_exit.push_back(p.rho_exit);
+    kappa_far.push_back(p.kappa_far);
+    kappa_exit.push_back(p.kappa_exit);
+  }
+  void run() {
+    const std::size_t n = length.size();
+    transmittance.assign(n, -1.0);
+    emission.assign(n, -1.0);
+    branch.assign(n, ExactBranch::transparent);
+    terms.assign(n, -1);
+    converged.assign(n, 2);
+    exact_batch({length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(), kappa_exit.data(), n},
+                {transmittance.data(), emission.data(), branch.data(), terms.data(), converged.data()});
+  }
+};
+
+bool within(double x, const ExtendedValue& ref, double rel) {
+  if (!std::isfinite(x)) return false;
+  if (relative_error(x, ref) <= rel) return true;
+  return std::fabs(ref.hi) < 1e-290 && absolute_error(x, ref) <= Tolerances::exact_abs_underflow;
+}
+
+}  // namespace
+
+TEST_CASE("exact_batch against the reference and exact_piece, all regimes in one batch",
+          "[exact_batch]") {
+  std::mt19937_64 rng(7);
+  std::vector<std::pair<Regime, RegimeSample>> drawn;
+  for (const Regime regime : all_regimes())
+    for (int i = 0; i < 150; ++i) drawn.emplace_back(regime, sample_piece(regime, rng));
+  std::shuffle(drawn.begin(), drawn.end(), std::mt19937_64(3));  // branches interleaved
+  std::vector<RegimeSample> samples;
+  for (const auto& d : drawn) samples.push_back(d.second);
+  Batch batch;
+  for (const auto& s : samples) batch.add(s.piece);
+  batch.run();
+  std::vector<double> ulps_batch, ulps_scalar;
+  std::map<std::string, long> branches;
+  double worst = 0.0, worst_vs_scalar = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const RegimeSample& s = samples[i];
+    const PieceOptics o = exact_piece(s.piece);
+    const ReferencePiece ref = reference_piece(s.piece, s.incoming);
+    const double intensity = s.incoming * batch.transmittance[i] + batch.emission[i];
+    branches[branch_name(batch.branch[i])]++;
+    INFO("regime " << regime_name(drawn[i].first) << " branch " << branch_name(batch.branch[i]) << " L "
+                   << s.piece.length << " rho_exit " << s.piece.rho_exit << " rho_far " << s.piece.rho_far
+                   << " batch " << batch.emission[i] << " scalar " << o.emission << " ref "
+                   << ref.emission.hi << " target " << exact_batch_target());
+    REQUIRE(std::isfinite(intensity));
+    CHECK(batch.branch[i] == o.branch);
+    CHECK(batch.terms[i] == o.terms);
+    CHECK(batch.converged[i] == (o.converged ? 1 : 0));
+    CHECK(within(intensity, ref.intensity, Tolerances::exact_rel));
+    CHECK(within(batch.emission[i], ref.emission, Tolerances::exact_rel));
+    CHECK(within(batch.transmittance[i], ref.transmittance, Tolerances::exact_rel));
+    worst = std::max(worst, relative_error(batch.emission[i], ref.emission));
+    if (o.emission != 0.0)
+      worst_vs_scalar = std::max(worst_vs_scalar, relative_error(batch.emission[i], o.emission));
+    if (std::fabs(ref.emission.hi) > 1e-290) {
+      ulps_batch.push_back(ulp_error(batch.emission[i], ref.emission));
+      ulps_scalar.push_back(ulp_error(o.emission, ref.emission));
+    }
+  }
+  for (const char* b : {"transparent", "thin_series", "q2_series", "erfcx", "dawson"}) {
+    INFO("branch " << b);
+    CHECK(branches[b] > 0);
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double med_batch = median(ulps_batch), med_scalar = median(ulps_scalar);
+  WARN("exact_batch (" << exact_batch_target() << "): worst emission rel " << worst << ", vs scalar "
+                       << worst_vs_scalar << ", median ulp " << med_batch << " (scalar " << med_scalar << ")");
+  CHECK(worst <= Tolerances::exact_rel);
+  CHECK(worst_vs_scalar <= SimdTolerances::batch_vs_scalar_rel);
+  CHECK(med_batch <= Tolerances::exact_median_ulp);
+  CHECK(med_batch <= med_scalar + 1.0);  // issue 17: median within 1 ulp of the scalar path
+}
+
+TEST_CASE("exact_batch: sizes that leave vector tails, edge pieces, results in place",
+          "[exact_batch]") {
+  // Pieces on every branch edge: T = 0, T exactly kThinDepth, B == 0, |B| at kQ2Relative A^2,
+  // huge T, tiny T, denormal density.
+  std::vector<ChannelPiece> edge = {
+      {1.0, 0.0, 0.0, 1.0, 2.0},                       // transparent
+      {1.0, 1.0, 1.0, 0.5, 0.5},                       // T = 1: thin
+      {2.0, 1.0, 1.0, 0.5, 1.5},                       // T = 2, B = 0: q2 series, m0 alone
+      {1.0, 3.0 + 0x1p-20, 3.0, 1.0, 1.0},             // |B| tiny: q2 series
+      {1.0, 40.0, 1.0, 1.0, 2.0},                      // erfcx
+      {1.0, 1.0, 40.0, 1.0, 2.0},                      // dawson
+      {1e10, 1e290, 1e280, 1.0, 3.0},                  // T ~ 5e299
+      {1e-5, 1e-300, 2e-300, 1.0, 1.0},                // T ~ 1e-305
+      {1.0, 5e-324, 0.0, 1.0, 1.0},                    // denormal
+      {3.0, 1e6, 2e5, 0.25, 4.0},                      // thick, erfcx with huge arguments
+      {3.0, 2e5, 1e6, 0.25, 4.0},                      // thick, dawson
+  };
+  std::vector<ReferencePiece> refs;
+  for (const ChannelPiece& p : edge) refs.push_back(reference_piece(p, 0.5));
+  for (std::size_t n : {0u, 1u, 3u, 7u, 8u, 9u, 17u, 33u, 100u}) {
+    Batch batch;
+    for (std::size_t i = 0; i < n; ++i) batch.add(edge[i % edge.size()]);
+    batch.run();
+    for (std::size_t i = 0; i < n; ++i) {
+      const ChannelPiece& p = edge[i % edge.size()];
+      const PieceOptics o = exact_piece(p);
+      const ReferencePiece& ref = refs[i % edge.size()];
+      INFO("n " << n << " i " << i << " branch " << branch_name(o.branch));
+      CHECK(batch.branch[i] == o.branch);
+      CHECK(within(batch.emission[i], ref.emission, Tolerances::exact_rel));
+      CHECK(within(batch.transmittance[i], ref.transmittance, Tolerances::exact_rel));
+      if (o.branch == ExactBranch::transparent) {
+        CHECK(batch.transmittance[i] == 1.0);
+        CHECK(batch.emission[i] == 0.0);
+      }
+    }
+  }
+}
+
+TEST_CASE("ExactIntegrator: the batch path and path=scalar agree on rays", "[exact_batch]") {
+  std::mt19937_64 rng(11);
+  const auto batch_spec = parse_method_spec("exact");
+  const auto scalar_spec = parse_method_spec("exact:path=scalar");
+  for (const Regime regime : ray_regimes()) {
+    for (int i = 0; i < 4; ++i) {
+      const RaySample s = sample_ray(regime, rng);
+      Diagnostics db, ds;
+      const RayResult rb = make_integrator(batch_spec, s.transfer)->integrate(s.ray, &db);
+      const RayResult rs = make_integrator(scalar_spec, s.transfer)->integrate(s.ray, &ds);
+      const ReferenceRay ref = reference_ray(s.transfer, s.ray);
+      CHECK(db.branches == ds.branches);
+      CHECK(db.stats == ds.stats);
+      for (int c = 0; c < kChannels; ++c) {
+        INFO("regime " << regime_name(regime) << " sample " << i << " channel " << c);
+        CHECK(within(rb.intensity[c], ref.intensity[c], Tolerances::exact_rel));
+        CHECK(within(rb.transmittance[c], ref.transmittance[c], Tolerances::exact_rel));
+        if (!underflowed(ref.intensity[c]))
+          CHECK(relative_error(rb.intensity[c], rs.intensity[c]) <= SimdTolerances::batch_vs_scalar_rel);
+      }
+    }
+  }
+}
