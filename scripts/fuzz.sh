@@ -8,7 +8,8 @@
 # fuzz/<target>_fuzzer, seeds it (case_parser: cases/*.json, copied at run time;
 # candidate_parser: fuzz/seeds/candidate/) with the dictionary fuzz/<target>.dict, and keeps the
 # inputs it finds interesting in RAYINT_FUZZ_CORPUS (default fuzz-corpus/<target>/, reused by the
-# next run). RAYINT_FUZZ_TARGET selects the target: case_parser (default) or candidate_parser.
+# next run). RAYINT_FUZZ_TARGET selects the target: case_parser (default), candidate_parser, or the image
+# readers pfm_reader, exr_reader, npy_reader (seeds: fuzz/seeds/<format>/).
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -24,7 +25,9 @@ target="${RAYINT_FUZZ_TARGET:-case_parser}"
 case "$target" in
   case_parser) seed_files=("$root"/cases/*.json); what="rayint::parse_case_text" ;;
   candidate_parser) seed_files=("$root"/fuzz/seeds/candidate/*.json); what="rayint::parse_candidate_text" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser or candidate_parser" >&2; exit 2 ;;
+  pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
+    fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, pfm_reader, exr_reader or npy_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"
@@ -60,7 +63,8 @@ echo "fuzz.sh: fuzzing $what for ${seconds} s" \
      "(seeds: $(ls "$seeds" | wc -l) files, corpus: $corpus, log: $log)"
 set +e
 UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
-"$fuzzer" "$corpus" "$seeds" -dict="$root/fuzz/$target.dict" \
+dict=(); [ -f "$root/fuzz/$target.dict" ] && dict=(-dict="$root/fuzz/$target.dict")
+"$fuzzer" "$corpus" "$seeds" "${dict[@]}" \
   -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   -artifact_prefix="$artifacts/" "$@" >"$log" 2>&1
 status=$?
