@@ -45,13 +45,13 @@ void set_check_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "check", "Compare another renderer's per-ray intensities with the exact values");
   cmd->add_option("case", opt->case_file, "Case file (JSON)")->required();
-  auto* candidate = cmd->add_option("--candidate", opt->candidate_file,
+  auto* candidate_json = cmd->add_option("--candidate", opt->candidate_file,
                                     "The renderer's intensities (JSON, docs/candidate-format.md)");
   auto* candidate_image = cmd->add_option(
       "--candidate-image", opt->image.candidate_image,
       "The renderer's image of a mesh case's camera (.pfm, .exr, .npy; .png only to ~1/255), "
       "compared pixel by pixel with the exact image (README, \"Checking a renderer's image\")");
-  candidate->excludes(candidate_image);
+  candidate_json->excludes(candidate_image);
   cmd->add_flag("--flip-x", opt->image.flip_x, "Images: mirror the candidate left-right first");
   cmd->add_flag("--flip-y", opt->image.flip_y,
                 "Images: mirror the candidate top-bottom first (rows stored bottom-up, e.g. OpenGL)");
@@ -89,7 +89,7 @@ void set_check_command(CLI::App& app) {
   cmd->add_flag("--no-reference", opt->no_reference,
                 "Skip the 50-digit reference (reported for context only; costs time on big cases)");
   cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");
-  cmd->callback([opt, candidate, candidate_image] {
+  cmd->callback([opt, candidate_json, candidate_image] {
     if (candidate_image->count() > 0) {
       ImageCheckOptions io = opt->image;
       io.case_file = opt->case_file;
@@ -99,7 +99,7 @@ void set_check_command(CLI::App& app) {
       run_image_check(io);
       return;
     }
-    if (candidate->count() == 0)
+    if (candidate_json->count() == 0)
       throw CLI::RequiredError("--candidate or --candidate-image");
     const Case c = read_case_file(opt->case_file);
     const Candidate candidate = read_candidate_file(opt->candidate_file, c);
