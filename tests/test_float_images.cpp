@@ -272,7 +272,8 @@ TEST_CASE("CLI: render on a slab scene points to rayint slab --scene", "[image]"
 TEST_CASE("CLI: gate --junit and check --junit name the failing check with measured, limit, factor", "[image]") {
   TempDir dir;
   const std::string fig2 = (fs::path(RAYINT_SOURCE_DIR) / "cases" / "paper-figure-2.json").string();
-  dir.write("gates.json", R"({"corpus": {"cases": [")" + fig2 + R"("], "methods": {
+  const std::string smooth = (fs::path(RAYINT_SOURCE_DIR) / "cases" / "smooth-convergence.json").string();
+  dir.write("gates.json", R"({"corpus": {"cases": [")" + smooth + R"("], "methods": {
       "exact": {"max_rel_error": 1e-13},
       "riemann:n=4": {"max_rel_error": 1e-9}}}})");
   const auto g = run_cli(dir.path, "gate --config gates.json --junit g.xml --quiet");
@@ -281,7 +282,7 @@ TEST_CASE("CLI: gate --junit and check --junit name the failing check with measu
   const std::string junit = junit_failures(dir.path / "g.xml");
   INFO(junit);
   CHECK(junit.rfind("OK 2 1", 0) == 0);
-  CHECK(junit.find("corpus.paper-figure-2.riemann:n=4.max_rel_error |") != std::string::npos);
+  CHECK(junit.find("corpus.smooth-convergence.riemann:n=4.max_rel_error |") != std::string::npos);
   CHECK(junit.find("limit 1e-09, factor ") != std::string::npos);
   // check --candidate --junit: one testcase per ray.
   dir.write("cand.json", R"({"case": "paper-figure-2", "rays": [{"intensity": [0, 0, 0]},
