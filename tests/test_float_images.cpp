@@ -345,30 +345,33 @@ struct AbsorberScene {
 
 }  // namespace
 
-TEST_CASE("z-test: false-failure rate on rayint's path tracer, and power against a 3% bias", "[image][ztest]") {
+TEST_CASE("z-test: false-failure rate on rayint's path tracer, and power against a 25% and a 3% bias", "[image][ztest]") {
   // Seeds: 200 by default; RAYINT_ZTEST_SEEDS=N measures on N (README figure).
   const char* env = std::getenv("RAYINT_ZTEST_SEEDS");
   const int seeds = env ? std::atoi(env) : 200;
   const int spp = 256;
   const AbsorberScene scene(24, 0.7);
   ZTestOptions o;  // alpha 0.01 (Holm), min_fraction 0.9975
-  int false_failures = 0, any_rejection = 0, caught = 0;
+  int false_failures = 0, any_rejection = 0, caught = 0, caught_small = 0;
   for (int s = 1; s <= seeds; ++s) {
     const auto [mean, var] = scene.render(static_cast<std::uint64_t>(s), spp);
     const ZTestResult z = z_test_images(scene.exact, mean, var, o);
     false_failures += z.pass ? 0 : 1;
     any_rejection += z.rejected > 0 ? 1 : 0;
     if (s <= 20) {
-      const auto [bmean, bvar] = scene.render(static_cast<std::uint64_t>(s), spp, 1.03);
+      const auto [bmean, bvar] = scene.render(static_cast<std::uint64_t>(s), spp, 1.25);
       caught += z_test_images(scene.exact, bmean, bvar, o).pass ? 0 : 1;
+      const auto [smean, svar] = scene.render(static_cast<std::uint64_t>(s), spp, 1.03);
+      caught_small += z_test_images(scene.exact, smean, svar, o).pass ? 0 : 1;
     }
   }
   WARN("z-test on " << seeds << " path-traced images (24 x 24, " << spp << " spp, absorbing box): "
                     << false_failures << " false failures, " << any_rejection
-                    << " with at least one rejected pixel channel; 3% bias caught " << caught << " of 20");
+                    << " with at least one rejected pixel channel; a 25% bias caught " << caught
+                    << " of 20, a 3% bias " << caught_small << " of 20");
   // Holm bounds P(any rejection) by alpha = 1 % for a correct renderer (if the normal
   // approximation held); allow the binomial 99.9 % upper range of 1 % of `seeds`.
   const double expected = 0.01 * seeds;
   CHECK(false_failures <= expected + 3.1 * std::sqrt(expected) + 3);
-  CHECK(caught == 20);
+  CHECK(caught == 20);  // a 3% bias is ~0.3 sigma per pixel at 256 spp: not expected to be caught
 }
