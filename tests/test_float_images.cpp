@@ -375,3 +375,39 @@ TEST_CASE("z-test: false-failure rate on rayint's path tracer, and power against
   CHECK(false_failures <= expected + 3.1 * std::sqrt(expected) + 3);
   CHECK(caught == 20);  // a 3% bias is ~0.3 sigma per pixel at 256 spp: not expected to be caught
 }
+
+TEST_CASE("CLI: check --candidate-variance runs the z-test and names it in JUnit", "[image]") {
+  TempDir dir;
+  dir.write("cam.json", kCameraCase);
+  REQUIRE(run_cli(dir.path, "render cam.json -o exact.npy --quiet").status == 0);
+  const Image exact = read_image((dir.path / "exact.npy").string());
+  // A "Monte Carlo" candidate 1 sigma off in every channel (sigma^2 = 1e-6 per sample, 100
+  // samples): every p = 0.32, nothing rejected. Then a 0.01 bias, 10 sigma: every test rejected.
+  Image one_sigma = exact, biased = exact, var(exact.width, exact.height, Rgb{1e-6, 1e-6, 1e-6});
+  for (auto& p : one_sigma.pixels) for (double& v : p) v += 1e-4;
+  for (auto& p : biased.pixels) for (double& v : p) v += 1e-2;
+  write_image((dir.path / "mc.npy").string(), one_sigma);
+  write_image((dir.path / "biased.npy").string(), biased);
+  write_image((dir.path / "var.npy").string(), var);
+  const auto ok = run_cli(dir.path, "check cam.json --candidate-image mc.npy --candidate-variance var.npy --samples 100 -o d.json --junit j.xml");
+  INFO(ok.err);
+  CHECK(ok.status == 0);
+  const auto d = nlohmann::json::parse(slurp(dir.path / "d.json"));
+  CHECK(d["decided_by"] == "z_test");
+  CHECK(d["z_test"]["rejected"] == 0);
+  CHECK(d["z_test"]["tests"] == 16 * 12 * 3);
+  CHECK(d["z_test"]["min_p"].get<double>() == Approx(std::erfc(1.0 / std::sqrt(2.0))).epsilon(1e-6));
+  const auto bad = run_cli(dir.path, "check cam.json --candidate-image biased.npy --candidate-variance var.npy --samples 100 -o d.json --junit j.xml");
+  CHECK(bad.status == 1);
+  const std::string junit = junit_failures(dir.path / "j.xml");
+  INFO(junit);
+  CHECK(junit.rfind("OK 1 1", 0) == 0);
+  CHECK(junit.find("z_test_fraction_passing | fraction of pixel channels passing the z-test measured 0, limit 0.998") != std::string::npos);
+  // A negative variance is bad input.
+  var.at(2, 3)[0] = -1.0;
+  write_image((dir.path / "var.npy").string(), var);
+  const auto neg = run_cli(dir.path, "check cam.json --candidate-image mc.npy --candidate-variance var.npy -o d2.json");
+  CHECK(neg.status == 2);
+  CHECK(neg.err.find("var.npy: pixel(2,3): variance must be finite and >= 0") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path / "d2.json"));
+}
