@@ -176,7 +176,7 @@ TEST_CASE("image comparison: figures on a known difference", "[image]") {
   CHECK_THROWS_AS(compare_images(exact, test_image(4, 5), o), std::invalid_argument);
 }
 
-TEST_CASE("CLI: render writes pfm, exr and npy; the exact image passes its own check", "[image]") {
+TEST_CASE("CLI: render writes pfm, exr and npy, and the exact image passes its own check", "[image]") {
   TempDir dir;
   dir.write("cam.json", kCameraCase);
   for (const std::string ext : {"npy", "pfm", "exr"}) {
