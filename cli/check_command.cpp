@@ -6,8 +6,11 @@
 #include <memory>
 #include <string>
 
+#include "check_image.hpp"
 #include "commands.hpp"
 #include "options.hpp"
+#include "rayint/core/atomic_file.hpp"
+#include "rayint/report/junit.hpp"
 #include "rayint/studies/check.hpp"
 #include "rayint/input/candidate_reader.hpp"
 #include "rayint/report/check_json.hpp"
@@ -37,14 +40,45 @@ void set_check_command(CLI::App& app) {
     CheckOptions check;
     bool no_reference = false;
     MeshReadOptions mesh;
+    ImageCheckOptions image;  // --candidate-image
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "check", "Compare another renderer's per-ray intensities with the exact values");
   cmd->add_option("case", opt->case_file, "Case file (JSON)")->required();
-  cmd->add_option("--candidate", opt->candidate_file,
-                  "The renderer's intensities (JSON, docs/candidate-format.md)")
-      ->required();
+  auto* candidate_json = cmd->add_option("--candidate", opt->candidate_file,
+                                    "The renderer's intensities (JSON, docs/candidate-format.md)");
+  auto* candidate_image = cmd->add_option(
+      "--candidate-image", opt->image.candidate_image,
+      "The renderer's image of a mesh case's camera (.pfm, .exr, .npy; .png only to ~1/255), "
+      "compared pixel by pixel with the exact image (README, \"Checking a renderer's image\")");
+  candidate_json->excludes(candidate_image);
+  cmd->add_flag("--flip-x", opt->image.flip_x, "Images: mirror the candidate left-right first");
+  cmd->add_flag("--flip-y", opt->image.flip_y,
+                "Images: mirror the candidate top-bottom first (rows stored bottom-up, e.g. OpenGL)");
+  cmd->add_option("--worst", opt->image.worst, "Images: how many worst pixels to write as case files")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_option("--artifacts", opt->image.artifacts,
+                  "Images: directory for error_heat_map.png and worst_pixel_<i>.json")
+      ->capture_default_str();
+  cmd->add_option("--junit", opt->image.junit, "Also write the result as JUnit XML to this file");
+  add_threads_option(cmd, opt->image.threads, "Images: render threads (0: all cores)");
+  cmd->add_option("--candidate-variance", opt->image.candidate_variance,
+                  "Monte Carlo images: per-pixel variance of the candidate's mean (or per sample, "
+                  "with --samples); switches to the per-pixel z-test with Holm's correction")
+      ->needs(candidate_image);
+  cmd->add_option("--samples", opt->image.samples,
+                  "Monte Carlo images: samples per pixel; the variance image is then per sample")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--alpha", opt->image.alpha,
+                  "z-test: family-wise significance level (Holm-Bonferroni)")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str();
+  cmd->add_option("--min-fraction", opt->image.min_fraction,
+                  "z-test: pass when at least this fraction of pixel channels pass (Mitsuba 3: 0.9975)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--rel-tol", opt->check.rel_tol,
                   "Relative tolerance: a channel passes if "
                   "|got - expected| <= max(abs-tol, rel-tol * |expected|)")
@@ -57,13 +91,26 @@ void set_check_command(CLI::App& app) {
                 "Skip the 50-digit reference (reported for context only; costs time on big cases)");
   cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");
   add_strict_mesh_flag(cmd, opt->mesh.strict);
-  cmd->callback([opt] {
+  cmd->callback([opt, candidate_json, candidate_image] {
+    if (candidate_image->count() > 0) {
+      ImageCheckOptions io = opt->image;
+      io.case_file = opt->case_file;
+      io.rel_tol = opt->check.rel_tol;
+      io.abs_tol = opt->check.abs_tol;
+      io.output = opt->output;
+      run_image_check(io);
+      return;
+    }
+    if (candidate_json->count() == 0)
+      throw CLI::RequiredError("--candidate or --candidate-image");
     const Case c = read_case_file(opt->case_file, opt->mesh);
     const Candidate candidate = read_candidate_file(opt->candidate_file, c);
     CheckOptions co = opt->check;
     co.with_reference = !opt->no_reference;
     const CheckResult result = check_candidate(c, candidate, co);
     emit(check_report_json(result).dump(2), opt->output);
+    if (!opt->image.junit.empty())
+      write_file_atomically(opt->image.junit, junit_xml({check_junit(result)}));
     std::cout.flush();
     std::cerr << check_summary_line(result) << std::endl;
     // The callback cannot return an exit code and main() maps exceptions to 2 (bad input), so a

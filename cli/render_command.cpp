@@ -8,14 +8,26 @@
 #include "render_kinds.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
+#include "rayint/render/float_image.hpp"
 
 namespace rayint::cli {
+namespace {
+
+// A slab scene (input/slab_scene_reader.hpp) has "medium": {"type": "slab", ...}.
+bool is_slab_scene(const nlohmann::json& root) {
+  if (!root.is_object() || !root.contains("medium")) return false;
+  const nlohmann::json& m = root["medium"];
+  return m.is_object() && m.contains("type") && m["type"].is_string() && m["type"] == "slab";
+}
+
+}  // namespace
 
 void set_render_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("render", "Render a mesh case or a scene to a PNG image");
+  auto* cmd = app.add_subcommand("render", "Render a mesh case or a scene to an image (PNG preview; PFM, EXR, NPY floats)");
   auto opts = std::make_shared<RenderOptions>();
   cmd->add_option("file", opts->input, "mesh case or scene JSON")->required();
-  cmd->add_option("-o,--output", opts->output, "PNG image to write")->required();
+  cmd->add_option("-o,--output", opts->output, "image to write, format by extension: .png (8-bit sRGB preview), "
+                  ".pfm, .exr (float32), .npy (float64)")->required();
   cmd->add_option("--compare", opts->compare,
                   "method to compare against the exact/reference image (error heat map)");
   cmd->add_option("--stats", opts->stats_path, "write statistics / per-effect costs as JSON here");
@@ -33,6 +45,11 @@ void set_render_command(CLI::App& app) {
   cmd->callback([opts] {
     const nlohmann::json root =
         json_source::parse(json_source::read_text_file(opts->input), opts->input);
+    image_format_of(opts->output);  // an unknown extension is refused before the render
+    if (is_slab_scene(root))
+      throw InputError(opts->input +
+                       ": medium.type: \"slab\" is a plane-parallel slab with detectors, not an "
+                       "image; solve it with `rayint slab --scene " + opts->input + "`");
     if (root.is_object() && (root.contains("effects") || root.contains("medium")))
       render_scene_file(root, *opts);
     else if (root.is_object() && (root.contains("mesh") || root.contains("mesh_file")))

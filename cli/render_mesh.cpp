@@ -13,6 +13,7 @@
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
+#include "rayint/render/float_image.hpp"
 #include "rayint/render/image.hpp"
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/report/mesh_render_json.hpp"
@@ -52,7 +53,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   const MeshRender r = render_mesh(mc, mesh, *exact, compare.get(), settings);
   PngOptions png;
   png.exposure = options.exposure;
-  write_png(options.output, r.image, png);
+  write_image(options.output, r.image, png);
   if (compare) write_png(comparison.heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
   if (!options.stats_path.empty())
     write_file_atomically(options.stats_path,

@@ -10,6 +10,7 @@
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/report/scene_render_table.hpp"
 #include "rayint/report/scene_report_json.hpp"
+#include "rayint/render/float_image.hpp"
 #include "rayint/render/image.hpp"
 #include "rayint/scene/effect.hpp"
 #include "rayint/scene/pipeline.hpp"
@@ -64,7 +65,7 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
   if (!options.quiet) std::cerr << "\r";
   PngOptions png;
   png.exposure = options.exposure;
-  write_png(options.output, result.image, png);
+  write_image(options.output, result.image, png);
   if (!options.stats_path.empty()) emit(scene_report_json(scene, result).dump(2) + "\n", options.stats_path);
   if (!options.quiet) std::cerr << scene_render_table(result);
 }

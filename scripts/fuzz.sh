@@ -16,6 +16,7 @@
 # meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
 # RAYINT_FUZZ_TARGET selects the target (default case_parser); preset_parser (ParaView presets)
 # seeds from fuzz/seeds/preset/.
+# The image readers pfm_reader, exr_reader, npy_reader seed from fuzz/seeds/<format>/.
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -39,7 +40,9 @@ case "$target" in
   gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
   tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
   preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen or preset_parser" >&2; exit 2 ;;
+  pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
+    fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, pfm_reader, exr_reader or npy_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"
@@ -75,7 +78,8 @@ echo "fuzz.sh: fuzzing $what for ${seconds} s" \
      "(seeds: $(ls "$seeds" | wc -l) files, corpus: $corpus, log: $log)"
 set +e
 UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
-"$fuzzer" "$corpus" "$seeds" -dict="$root/fuzz/$target.dict" \
+dict=(); [ -f "$root/fuzz/$target.dict" ] && dict=(-dict="$root/fuzz/$target.dict")
+"$fuzzer" "$corpus" "$seeds" "${dict[@]}" \
   -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   -artifact_prefix="$artifacts/" "$@" >"$log" 2>&1
 status=$?

@@ -5,6 +5,7 @@ packages=(build-essential cmake pkg-config
           libboost-dev          # Boost.Math quadrature, Boost.Multiprecision, Boost.Odeint
           libeigen3-dev         # 3-D geometry: cells (Eq. 9), cameras, scenes
           libpng-dev            # PNG images: rendered output and background images
+          libopenexr-dev        # OpenEXR float images: render -o x.exr, check --candidate-image x.exr
           libembree-dev         # Embree 3: first hit on tetrahedral mesh boundaries
           libcli11-dev          # command-line parsing of the rayint executable
           nlohmann-json3-dev    # case files and JSON reports

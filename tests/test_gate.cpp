@@ -108,12 +108,13 @@ TEST_CASE("gate: the project's config is valid and holds (stress sample cut down
     CHECK(fs::path(f).parent_path() == fs::path(RAYINT_SOURCE_DIR "/cases").lexically_normal());
     CHECK(fs::path(f).filename() != "gates.json");
   }
-  // exact on the corpus: the issue's target, with the underflow rule.
+  // exact on the corpus: at least as strict as the issue's target (1e-13), with the underflow
+  // rule; since issue 18 the limits sit within 2x of the measured error (1.5x, tighten-gates.py).
   const auto exact = std::find_if(cfg.corpus_methods.begin(), cfg.corpus_methods.end(),
                                   [](const GateMethod& m) { return m.spec.label() == "exact"; });
   REQUIRE(exact != cfg.corpus_methods.end());
-  CHECK(exact->limits.at("max_rel_error") == 1e-13);
-  CHECK(exact->limits.at("max_abs_error_underflow") == 1e-300);
+  CHECK(exact->limits.at("max_rel_error") <= 1e-13);
+  CHECK(exact->limits.at("max_abs_error_underflow") <= 1e-300);
   CHECK(exact->only.empty());
   REQUIRE(cfg.stress);
   CHECK(cfg.stress_regimes.empty());  // every regime

@@ -141,9 +141,17 @@ void run_corpus(const GateConfig& cfg, GateReport& report,
       report.checks.push_back(std::move(c));
       continue;
     }
-    for (std::size_t k = 0; k < out.methods.size(); ++k)
+    for (std::size_t k = 0; k < out.methods.size(); ++k) {
       add_checks(report, prefix, cfg.corpus_methods[out.methods[k]],
                  summarise(out.evaluation, out.spec[k]), "");
+      std::vector<Rgb>& rays = report.corpus_results[cfg.corpus_methods[out.methods[k]].spec.label()][cases[i].name];
+      if (!rays.empty()) continue;  // the same method under another limit set
+      for (const RayEvaluation& ray : out.evaluation.rays) {
+        const MethodOutcome& o = ray.methods[out.spec[k]];
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        rays.push_back(o.failure.empty() ? o.result.intensity : Rgb{nan, nan, nan});
+      }
+    }
   }
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/studies/drift.hpp"
 #include "rayint/studies/stress.hpp"
 
 namespace rayint {
@@ -54,6 +55,9 @@ struct GateCheck {
 
 struct GateReport {
   std::vector<GateCheck> checks;
+  // Per corpus method (spec label): its per-ray intensities on every case it ran on, for the
+  // drift baselines (studies/drift.hpp); NaN where the method threw.
+  std::map<std::string, RayResults> corpus_results;
   bool pass() const;
   long failures() const;
 };
