@@ -11,7 +11,8 @@ packages=(build-essential cmake pkg-config
           catch2                # unit tests (Catch2 2.13)
           libcerf-dev           # erfcx and Dawson functions for the closed forms
           libbenchmark-dev      # Google Benchmark micro-benchmarks
-          python3-matplotlib)   # plots in reports/
+          python3-matplotlib    # plots in reports/
+          slurm-wlm munge)      # CTest slurm_cluster: a local Slurm cluster runs sharded jobs (scripts/slurm/)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
