@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "shard.hpp"
 #ifdef RAYINT_WITH_VTK
 #include "rayint/vtk/vtk_integrators.hpp"
 #include "rayint/vtk/vtk_mesh_reader.hpp"
@@ -20,6 +21,24 @@ void emit(const std::string& text, const std::string& path) {
   }
 }
 
+// Every subcommand on `app` (main's app, and the app `rayint merge` replays a run on).
+void build_app(CLI::App& app) {
+  set_eval_command(app);
+  set_bench_command(app);
+  set_stress_command(app);
+  set_gate_command(app);
+  set_check_command(app);
+  set_render_command(app);
+  set_scene_sweep_command(app);
+  set_generate_mesh_command(app);
+  set_mesh_agreement_command(app);
+  set_cells_command(app);
+  set_slab_command(app);
+  set_scatter_command(app);
+  set_tf_command(app);
+  set_merge_command(app, build_app);
+}
+
 }  // namespace rayint::cli
 
 int main(int argc, char** argv) {
@@ -30,19 +49,8 @@ int main(int argc, char** argv) {
 #endif
   CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
   app.require_subcommand(1);
-  rayint::cli::set_eval_command(app);
-  rayint::cli::set_bench_command(app);
-  rayint::cli::set_stress_command(app);
-  rayint::cli::set_gate_command(app);
-  rayint::cli::set_check_command(app);
-  rayint::cli::set_render_command(app);
-  rayint::cli::set_scene_sweep_command(app);
-  rayint::cli::set_generate_mesh_command(app);
-  rayint::cli::set_mesh_agreement_command(app);
-  rayint::cli::set_cells_command(app);
-  rayint::cli::set_slab_command(app);
-  rayint::cli::set_scatter_command(app);
-  rayint::cli::set_tf_command(app);
+  rayint::cli::build_app(app);
+  for (int i = 2; i < argc; ++i) rayint::cli::shard_context().args.push_back(argv[i]);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

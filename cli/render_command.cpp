@@ -39,6 +39,9 @@ void set_render_command(CLI::App& app) {
   cmd->add_option("--method", opts->methods,
                   "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "
                   "shadows=two_pass:grid=64");
+  cmd->add_option("--shard", opts->shard,
+                  "mesh cases: I/N, render band I of N of the rows and write a shard file to -o; "
+                  "`rayint merge` joins the bands into the image and statistics");
   cmd->add_option("--errors", opts->error_grid,
                   "scenes: measure each term against its reference on K x K pixels (all explicit rays)")
       ->check(CLI::Range(0, 4096));

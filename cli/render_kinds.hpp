@@ -17,6 +17,7 @@ struct RenderOptions {
   bool strict_mesh = false;          // mesh cases: --strict-mesh
   std::vector<std::string> methods;  // scenes: EFFECT=SPEC overrides of the scene's "methods"
   int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
+  std::string shard;                 // mesh cases: --shard I/N (rows)
 };
 
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);   // render_mesh.cpp

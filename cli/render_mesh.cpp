@@ -9,6 +9,9 @@
 
 #include "commands.hpp"
 #include "render_kinds.hpp"
+#include "shard.hpp"
+#include "rayint/input/shard_reader.hpp"
+#include "rayint/report/shard_json.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/input/case_reader.hpp"
@@ -50,7 +53,28 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
       if (done == total) std::fputc('\n', stderr);
       std::fflush(stderr);
     };
-  const MeshRender r = render_mesh(mc, mesh, *exact, compare.get(), settings);
+  // --shard I/N: render the shard's band of rows and write it as a shard file (-o); merging:
+  // the image and its figures assembled from the shards' bands, written as a single run would.
+  const bool in_shard = !options.shard.empty();
+  settings.shard = begin_shard(options.shard);
+  std::vector<std::string> inputs{options.input};
+  if (!mc.mesh_source.empty() && mc.mesh_source != options.input) inputs.push_back(mc.mesh_source);
+  if (in_shard) {
+    const MeshRender part = render_mesh(mc, mesh, *exact, compare.get(), settings);
+    write_shard(options.output, "render", settings.shard, inputs, to_json(mesh_render_part(part, settings.shard)));
+    return;
+  }
+  MeshRender r;
+  if (merging()) {
+    check_merge_inputs("render", inputs);
+    const ShardContext& c = shard_context();
+    std::vector<MeshRenderPart> parts;
+    for (std::size_t i = 0; i < c.data.size(); ++i)
+      if (!c.data[i].is_null()) parts.push_back(mesh_render_part_from_json(c.data[i], c.files[i], "data"));
+    r = assemble_mesh_render(parts);
+  } else {
+    r = render_mesh(mc, mesh, *exact, compare.get(), settings);
+  }
   PngOptions png;
   png.exposure = options.exposure;
   write_image(options.output, r.image, png);

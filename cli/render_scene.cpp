@@ -39,6 +39,8 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& overrides) {
 }  // namespace
 
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options) {
+  if (!options.shard.empty())
+    throw InputError(options.input + ": --shard applies to mesh cases (rows); scenes are not sharded yet");
   if (!options.compare.empty())
     throw InputError(options.input + ": --compare applies to mesh cases; for scenes use --errors K");
   Scene scene = parse_scene(root, options.input, dir_of(options.input));

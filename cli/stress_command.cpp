@@ -11,6 +11,9 @@
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "shard.hpp"
+#include "rayint/input/shard_reader.hpp"
+#include "rayint/report/shard_json.hpp"
 #include "rayint/studies/stress.hpp"
 #include "rayint/report/stress_json.hpp"
 #include "rayint/report/stress_table.hpp"
@@ -29,6 +32,7 @@ void set_stress_command(CLI::App& app) {
     std::string worst_dir = "reports/stress-worst";
     bool no_worst = false;
     bool quiet = false;
+    std::string shard;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -57,6 +61,7 @@ void set_stress_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-worst", opt->no_worst, "Do not write the worst samples");
   add_quiet_flag(cmd, opt->quiet);
+  add_shard_option(cmd, opt->shard);
   cmd->callback([opt] {
     StressOptions so;
     so.count = opt->count;
@@ -78,7 +83,23 @@ void set_stress_command(CLI::App& app) {
     }
     if (!opt->quiet)
       so.progress = [](const StressProgress& p) { std::fputs(stress_progress_line(p).c_str(), stderr); };
-    StressReport report = run_stress(so);
+    const bool in_shard = !opt->shard.empty();
+    so.shard = begin_shard(opt->shard);
+    if (in_shard) {  // this shard's part of the run, for `rayint merge`
+      write_shard(opt->output, "stress", so.shard, {}, to_json(run_stress_part(so)));
+      return;
+    }
+    StressReport report;
+    if (merging()) {
+      check_merge_inputs("stress", {});
+      const ShardContext& c = shard_context();
+      std::vector<StressPartial> parts;
+      for (std::size_t i = 0; i < c.data.size(); ++i)
+        if (!c.data[i].is_null()) parts.push_back(stress_partial_from_json(c.data[i], c.files[i], "data"));
+      report = finish_stress(so, parts);
+    } else {
+      report = run_stress(so);
+    }
     if (!opt->no_worst) write_worst_cases(report, opt->worst_dir);
     emit(opt->json ? to_json(report).dump(2) : stress_table(report), opt->output);
   });

@@ -20,7 +20,8 @@ packages=(build-essential cmake pkg-config
           pybind11-dev          # the Python module (src/python/): pybind11 headers + CMake config
           python3-dev           # Python.h and the interpreter's config, to compile that module
           python3-numpy         # the module's array arguments and results (exact_pieces, ...)
-          python3-pytest)       # the module's tests (tests/python/, CTest test python_module)
+          python3-pytest        # the module's tests (tests/python/, CTest test python_module)
+          slurm-wlm munge)      # CTest slurm_cluster: a local Slurm cluster runs sharded jobs (scripts/slurm/)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -29,6 +29,32 @@ long count_pieces(const std::vector<double>& bps, const Segment& s) {
   return 1 + (b > a ? static_cast<long>(b - a) : 0L);
 }
 
+// The error summary of `rel`, the errors of the pixels `pixel` (all pixels when empty).
+void summarize_errors(MeshRender& out, const std::vector<double>& rel, std::vector<std::size_t> pixel = {}) {
+  if (pixel.empty())
+    for (std::size_t i = 0; i < rel.size(); ++i) pixel.push_back(i);
+  {
+    ErrorSummary& s = out.error;
+    s.pixels = static_cast<long>(rel.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < rel.size(); ++i) {
+      if (!std::isfinite(rel[i])) ++s.non_finite;
+      else sum += rel[i];
+      const Rgb& a = out.image.pixels[pixel[i]];
+      const Rgb& b = out.compared.pixels[pixel[i]];
+      for (int ch = 0; ch < kChannels; ++ch) s.max_abs = std::max(s.max_abs, std::fabs(a[ch] - b[ch]));
+    }
+    if (!rel.empty()) {
+      const ErrorStats st = error_stats(rel);
+      s.max_rel = st.max;
+      s.median_rel = st.median;
+      s.p99_rel = st.p99;
+      const long finite = s.pixels - s.non_finite;
+      s.mean_rel = finite > 0 ? sum / static_cast<double>(finite) : 0.0;
+    }
+  }
+}
+
 }  // namespace
 
 MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIntegrator& method,
@@ -47,11 +73,13 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   if (mc.shading.enabled) gradients = std::make_unique<GradientField>(mesh, mc.shading.gradient);
   const std::vector<double> bps = mc.transfer.breakpoints();
 
+  const IndexRange rows = shard_range(static_cast<std::size_t>(height), settings.shard);
+  const int band = static_cast<int>(rows.size());
   std::atomic<int> rows_done{0};
   std::vector<MeshRenderCost> per_thread(threads);
   std::vector<RayTrace> traces(threads);  // scratch per worker
   auto render_row = [&](long long row, unsigned id) {
-    const int y = static_cast<int>(row);
+    const int y = static_cast<int>(rows.begin) + static_cast<int>(row);
     MeshRenderCost& cost = per_thread[id];
     RayTrace& trace = traces[id];
     for (int x = 0; x < width; ++x) {
@@ -91,11 +119,11 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   };
   const auto start = Clock::now();
   // Progress every 0.2 s from this thread (the callback runs on this thread only).
-  parallel_for(height, settings.threads, render_row, 0.2, [&] {
+  parallel_for(band, settings.threads, render_row, 0.2, [&] {
     const int reported = rows_done.load();
-    if (settings.progress && reported < height) settings.progress(reported, height);
+    if (settings.progress && reported < band) settings.progress(reported, band);
   });
-  if (settings.progress) settings.progress(height, height);  // always once at the end
+  if (settings.progress) settings.progress(band, band);  // always once at the end
   out.cost.wall_seconds = seconds(Clock::now() - start);
   out.cost.threads = threads;
   for (const auto& c : per_thread) {
@@ -106,27 +134,73 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
     out.cost.pieces += c.pieces;
     out.cost.traversal.add(c.traversal);
   }
-  if (compare) {
-    ErrorSummary& s = out.error;
-    const std::vector<double>& rel = out.rel_error;
-    s.pixels = static_cast<long>(rel.size());
-    double sum = 0.0;
-    for (std::size_t i = 0; i < rel.size(); ++i) {
-      if (!std::isfinite(rel[i])) ++s.non_finite;
-      else sum += rel[i];
-      const Rgb& a = out.image.pixels[i];
-      const Rgb& b = out.compared.pixels[i];
-      for (int ch = 0; ch < kChannels; ++ch) s.max_abs = std::max(s.max_abs, std::fabs(a[ch] - b[ch]));
-    }
-    if (!rel.empty()) {
-      const ErrorStats st = error_stats(rel);
-      s.max_rel = st.max;
-      s.median_rel = st.median;
-      s.p99_rel = st.p99;
-      const long finite = s.pixels - s.non_finite;
-      s.mean_rel = finite > 0 ? sum / static_cast<double>(finite) : 0.0;
-    }
+  if (compare) summarize_errors(out, out.rel_error);
+  return out;
+}
+
+MeshRenderPart mesh_render_part(const MeshRender& r, const ShardSpec& shard) {
+  MeshRenderPart p;
+  p.width = r.image.width;
+  p.height = r.image.height;
+  const IndexRange rows = shard_range(static_cast<std::size_t>(p.height), shard);
+  p.row_begin = static_cast<int>(rows.begin);
+  p.row_end = static_cast<int>(rows.end);
+  p.compared = !r.rel_error.empty();
+  const auto first = static_cast<std::size_t>(p.row_begin) * static_cast<std::size_t>(p.width);
+  const auto last = static_cast<std::size_t>(p.row_end) * static_cast<std::size_t>(p.width);
+  p.image.assign(r.image.pixels.begin() + static_cast<long>(first), r.image.pixels.begin() + static_cast<long>(last));
+  if (p.compared) {
+    p.compared_image.assign(r.compared.pixels.begin() + static_cast<long>(first),
+                            r.compared.pixels.begin() + static_cast<long>(last));
+    p.rel_error.assign(r.rel_error.begin() + static_cast<long>(first), r.rel_error.begin() + static_cast<long>(last));
   }
+  p.cost = r.cost;
+  return p;
+}
+
+MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts) {
+  if (parts.empty()) throw std::invalid_argument("mesh render: no parts to assemble");
+  const int width = parts.front().width, height = parts.front().height;
+  const bool compared = parts.front().compared;
+  MeshRender out;
+  out.image = Image(width, height);
+  if (compared) {
+    out.compared = Image(width, height);
+    out.rel_error.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
+  }
+  std::vector<std::size_t> pixel;
+  std::vector<double> rel;
+  std::vector<const MeshRenderPart*> ordered;
+  for (const auto& p : parts) ordered.push_back(&p);
+  std::sort(ordered.begin(), ordered.end(), [](auto* a, auto* b) { return a->row_begin < b->row_begin; });
+  int covered_to = 0;
+  for (const MeshRenderPart* p : ordered) {
+    const std::size_t n = static_cast<std::size_t>(p->row_end - p->row_begin) * static_cast<std::size_t>(width);
+    if (p->width != width || p->height != height || p->compared != compared || p->row_begin < covered_to ||
+        p->row_end > height || p->image.size() != n || (compared && (p->compared_image.size() != n || p->rel_error.size() != n)))
+      throw std::invalid_argument("mesh render: parts of different renders, or overlapping");
+    covered_to = p->row_end;
+    const std::size_t first = static_cast<std::size_t>(p->row_begin) * static_cast<std::size_t>(width);
+    std::copy(p->image.begin(), p->image.end(), out.image.pixels.begin() + static_cast<long>(first));
+    if (compared) {
+      std::copy(p->compared_image.begin(), p->compared_image.end(), out.compared.pixels.begin() + static_cast<long>(first));
+      std::copy(p->rel_error.begin(), p->rel_error.end(), out.rel_error.begin() + static_cast<long>(first));
+      for (std::size_t i = 0; i < n; ++i) {
+        pixel.push_back(first + i);
+        rel.push_back(p->rel_error[i]);
+      }
+    }
+    const MeshRenderCost& c = p->cost;
+    out.cost.wall_seconds += c.wall_seconds;
+    out.cost.traversal_seconds += c.traversal_seconds;
+    out.cost.integration_seconds += c.integration_seconds;
+    out.cost.rays += c.rays;
+    out.cost.segments += c.segments;
+    out.cost.pieces += c.pieces;
+    out.cost.threads = std::max(out.cost.threads, c.threads);
+    out.cost.traversal.add(c.traversal);
+  }
+  if (compared && !pixel.empty()) summarize_errors(out, rel, pixel);
   return out;
 }
 

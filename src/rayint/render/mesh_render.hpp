@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/shard.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/mesh/mesh_case.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
@@ -21,6 +22,9 @@ struct MeshRenderSettings {
   unsigned threads = 0;  // 0: all cores
   // Called every ~0.2 s and once at the end with (rows done, rows total).
   std::function<void(int, int)> progress;
+  // Shard (core/shard.hpp): render only the band of rows shard_range(height, shard); the other
+  // rows stay black. {0, 1}: every row.
+  ShardSpec shard;
 };
 
 struct MeshRenderCost {
@@ -54,6 +58,22 @@ struct MeshRender {
 MeshRender render_mesh(const MeshCase& mesh_case, const TetTraversal& mesh,
                        const RayIntegrator& method, const RayIntegrator* compare,
                        const MeshRenderSettings& settings);
+
+// A shard's band of rows (row_begin..row_end) of a render: the pixels of both images, the
+// per-pixel errors and the cost counters (rays, segments, pieces, traversal statistics are
+// integers; the seconds are wall and busy times, summed when merged).
+struct MeshRenderPart {
+  int width = 0, height = 0;
+  int row_begin = 0, row_end = 0;
+  bool compared = false;
+  std::vector<Rgb> image, compared_image;  // (row_end - row_begin) * width, row-major
+  std::vector<double> rel_error;            // likewise, when compared
+  MeshRenderCost cost;
+};
+MeshRenderPart mesh_render_part(const MeshRender& render, const ShardSpec& shard);
+// The render from its parts (all of them: the single run's render exactly; some: a partial
+// merge, the missing rows black and left out of the error summary).
+MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts);
 
 // The heat map of a per-pixel relative error: log10 of the error mapped from 1e-16 (dark blue)
 // through 1e-8 (green) to >= 1 (white); an error of exactly 0 is black, a non-finite one magenta.

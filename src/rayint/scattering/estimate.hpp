@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace rayint {
@@ -30,6 +31,11 @@ struct Estimate {
 class ScoreSums {
  public:
   explicit ScoreSums(std::size_t scores = 0) : sum_(scores, 0.0), sum2_(scores, 0.0) {}
+  // Sums as carried by a shard file (sum.size() == sum2.size()).
+  ScoreSums(std::vector<double> sum, std::vector<double> sum2, long long n)
+      : sum_(std::move(sum)), sum2_(std::move(sum2)), n_(n) {}
+  const std::vector<double>& sums() const { return sum_; }
+  const std::vector<double>& sums_of_squares() const { return sum2_; }
   std::size_t size() const { return sum_.size(); }
   long long samples() const { return n_; }
   // Scores of one sample (one photon): `score[k]` for estimator k.

@@ -29,7 +29,7 @@ SlabEstimates solve_slab_monte_carlo(const SlabProblem& p, const SlabMonteCarloO
   const std::size_t n_scores = 3 + n_up + n_down;
   const std::size_t blocks =
       static_cast<std::size_t>((o.photons + kBlockPhotons - 1) / kBlockPhotons);
-  std::atomic<long long> collisions{0};
+  std::atomic<long long> block_collisions_total{0};
   const double omega = p.albedo, tau = p.tau;
 
   auto run_block = [&](std::size_t b) {
@@ -88,18 +88,19 @@ SlabEstimates solve_slab_monte_carlo(const SlabProblem& p, const SlabMonteCarloO
       }
       sums.add(score);
     }
-    collisions += block_collisions;
+    block_collisions_total += block_collisions;
     return sums;
   };
 
-  const auto start = std::chrono::steady_clock::now();
-  const ScoreSums total = sum_sample_blocks(blocks, o.threads, run_block);
-  const auto stop = std::chrono::steady_clock::now();
+  long long collisions = 0;
+  double seconds = 0;
+  const ScoreSums total = solve_sample_blocks(blocks, n_scores, o.threads, o.shard_io, run_block,
+                                              block_collisions_total, collisions, seconds);
 
   SlabEstimates e;
   e.photons = total.samples();
   e.collisions = collisions;
-  e.seconds = std::chrono::duration<double>(stop - start).count();
+  e.seconds = seconds;
   e.flux_up_top = total.estimate(0, kPi);
   e.diffuse_down_bottom = total.estimate(1, kPi);
   e.direct_down_bottom = total.estimate(2, kPi);

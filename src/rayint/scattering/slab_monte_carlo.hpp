@@ -24,12 +24,13 @@
 // solve_slab_monte_carlo_split).
 //
 // Reproducibility: photons are split into blocks of kBlockPhotons; block b draws from
-// block_rng(seed, b) and sums are merged in block order, so results are identical for any
-// thread count (tested).
+// block_rng(seed, b) and block sums are reduced over a fixed pairwise tree (sample_blocks.hpp),
+// so results are identical for any thread count and any split into shards (tested).
 #include <cstdint>
 #include <functional>
 
 #include "rayint/scattering/estimate.hpp"
+#include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/slab.hpp"
 
 namespace rayint {
@@ -40,6 +41,9 @@ struct SlabMonteCarloOptions {
   unsigned threads = 0;  // 0: all cores
   int max_order = 0;  // 0: no truncation
   int min_order = 0;  // score only light scattered at least this often (0: everything)
+  // Shards (core/shard.hpp, sample_blocks.hpp): null runs every block; else record this shard's
+  // blocks, or replay a merge. Not owned.
+  MonteCarloShardIO* shard_io = nullptr;
 };
 
 struct SlabEstimates {

@@ -61,39 +61,9 @@ std::string slug(const std::string& s) {
   return out;
 }
 
-// Severity of one method on one sample, ordered as WorstSample describes.
-struct Severity {
-  int tier = -1;  // 2 non-finite or failed, 1 has scored channels, 0 underflow only, -1 none
-  double error = 0.0;
-  long index = -1;
-  bool worse_than(const Severity& o) const {
-    if (tier != o.tier) return tier > o.tier;
-    if (error != o.error) return error > o.error;
-    return index >= 0 && (o.index < 0 || index < o.index);
-  }
-};
-
-struct Candidate {
-  Severity severity;
-  WorstSample worst;
-};
-
-// Per-worker accumulator for one (regime, method).
-struct MethodAccumulator {
-  long scored = 0, non_finite = 0, failures = 0, underflow = 0, negative = 0;
-  double max_abs_underflow = 0.0;
-  std::map<std::string, long> branches;
-  Candidate worst;         // over all samples
-  Candidate worst_finite;  // over the finite ones
-};
-
-struct RegimeAccumulator {
-  double max_reference_rel_bound = 0.0;
-  long reference_failures = 0;
-  long first_reference_failure = -1;
-  std::string reference_failure;
-  std::vector<MethodAccumulator> methods;
-};
+using Severity = StressCandidate;  // its tier, error and index order the samples
+using MethodAccumulator = StressMethodPartial;
+using RegimeAccumulator = StressRegimePartial;
 
 struct RegimePlan {
   Regime regime;
@@ -157,10 +127,12 @@ void run_method(const MethodSpec& spec, const RaySample& sample,
       acc.max_abs_underflow = std::max(acc.max_abs_underflow, abs_underflow);
     }
   }
-  auto keep = [&](Candidate& into) {
-    if (!sev.worse_than(into.severity)) return;
-    WorstSample& w = into.worst;
-    into.severity = sev;
+  auto keep = [&](StressCandidate& into) {
+    if (!sev.worse_than(into)) return;
+    WorstSample& w = into.sample;
+    into.tier = sev.tier;
+    into.error = sev.error;
+    into.index = sev.index;
     w.present = true;
     w.index = index;
     w.sample_seed = seed_of_sample;
@@ -188,11 +160,26 @@ void add_counts(MethodAccumulator& into, const MethodAccumulator& from) {
   for (const auto& [k, v] : from.branches) into.branches[k] += v;
 }
 
-void merge_into(MethodAccumulator& into, MethodAccumulator& from) {
+void merge_into(MethodAccumulator& into, const MethodAccumulator& from) {
   add_counts(into, from);
-  if (from.worst.severity.worse_than(into.worst.severity)) into.worst = std::move(from.worst);
-  if (from.worst_finite.severity.worse_than(into.worst_finite.severity))
-    into.worst_finite = std::move(from.worst_finite);
+  if (from.worst.worse_than(into.worst)) into.worst = from.worst;
+  if (from.worst_finite.worse_than(into.worst_finite)) into.worst_finite = from.worst_finite;
+}
+
+void merge_regime(RegimeAccumulator& into, const RegimeAccumulator& from) {
+  into.max_reference_rel_bound = std::max(into.max_reference_rel_bound, from.max_reference_rel_bound);
+  into.reference_failures += from.reference_failures;
+  if (from.first_reference_failure >= 0 &&
+      (into.first_reference_failure < 0 || from.first_reference_failure < into.first_reference_failure)) {
+    into.first_reference_failure = from.first_reference_failure;
+    into.reference_failure = from.reference_failure;
+  }
+  if (into.methods.size() < from.methods.size()) into.methods.resize(from.methods.size());
+  for (std::size_t m = 0; m < from.methods.size(); ++m) {
+    merge_into(into.methods[m], from.methods[m]);
+    into.methods[m].rel.insert(into.methods[m].rel.end(), from.methods[m].rel.begin(), from.methods[m].rel.end());
+    into.methods[m].ulp.insert(into.methods[m].ulp.end(), from.methods[m].ulp.begin(), from.methods[m].ulp.end());
+  }
 }
 
 std::vector<RegimePlan> plan(const StressOptions& opt, const std::vector<Regime>& regimes) {
@@ -253,8 +240,8 @@ MethodStress to_method_stress(const std::string& label, MethodAccumulator& acc,
   keep(ulp);
   m.rel = error_stats(rel);
   m.ulp = error_stats(ulp);
-  m.worst = std::move(acc.worst.worst);
-  if (m.worst.non_finite) m.worst_finite = std::move(acc.worst_finite.worst);
+  m.worst = std::move(acc.worst.sample);
+  if (m.worst.non_finite) m.worst_finite = std::move(acc.worst_finite.sample);
   return m;
 }
 
@@ -304,12 +291,25 @@ RaySample stress_sample(std::uint64_t seed, Regime regime, long index) {
   return sample_ray(regime, rng);
 }
 
-StressReport run_stress(const StressOptions& opt) {
+bool StressCandidate::worse_than(const StressCandidate& o) const {
+  if (tier != o.tier) return tier > o.tier;
+  if (error != o.error) return error > o.error;
+  return index >= 0 && (o.index < 0 || index < o.index);
+}
+
+namespace {
+
+std::vector<MethodSpec> methods_of(const StressOptions& opt) {
+  return opt.methods.empty() ? std::vector<MethodSpec>{parse_method_spec("exact")} : opt.methods;
+}
+
+}  // namespace
+
+StressPartial run_stress_part(const StressOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const std::vector<Regime> regimes = opt.regimes.empty() ? stress_regimes() : opt.regimes;
-  const std::vector<MethodSpec> methods =
-      opt.methods.empty() ? std::vector<MethodSpec>{parse_method_spec("exact")} : opt.methods;
+  const std::vector<MethodSpec> methods = methods_of(opt);
   if (opt.count < 1) throw std::invalid_argument("stress: count must be >= 1");
   {  // fail now, not once per sample, for a method that cannot be built at all
     const RaySample probe = stress_sample(opt.seed, Regime::moderate, 0);
@@ -318,26 +318,32 @@ StressReport run_stress(const StressOptions& opt) {
 
   const std::vector<RegimePlan> plans = plan(opt, regimes);
   const std::size_t n_methods = methods.size();
-  std::vector<WorkItem> items;
-  long total_pieces = 0;
+  std::vector<WorkItem> all_items;
   for (std::size_t r = 0; r < plans.size(); ++r) {
-    total_pieces += plans[r].pieces;
     if (!is_ray_regime(plans[r].regime)) continue;
     for (long i = 0; i < plans[r].samples; ++i)
-      items.push_back({r, i, plans[r].sample_pieces[static_cast<std::size_t>(i)]});
+      all_items.push_back({r, i, plans[r].sample_pieces[static_cast<std::size_t>(i)]});
   }
   // Ray samples first, largest first (they bound the run time); then the piece samples
   // interleaved across regimes so the progress rate is representative from the start.
-  std::stable_sort(items.begin(), items.end(),
+  std::stable_sort(all_items.begin(), all_items.end(),
                    [](const WorkItem& a, const WorkItem& b) { return a.pieces > b.pieces; });
   long max_piece_samples = 0;
   for (const auto& p : plans)
     if (!is_ray_regime(p.regime)) max_piece_samples = std::max(max_piece_samples, p.samples);
   for (long i = 0; i < max_piece_samples; ++i)
     for (std::size_t r = 0; r < plans.size(); ++r)
-      if (!is_ray_regime(plans[r].regime) && i < plans[r].samples) items.push_back({r, i, 1});
+      if (!is_ray_regime(plans[r].regime) && i < plans[r].samples) all_items.push_back({r, i, 1});
+  // This shard's items: k mod N == I (round-robin over the cost-sorted list).
+  std::vector<WorkItem> items;
+  long total_pieces = 0;
+  for (std::size_t k = 0; k < all_items.size(); ++k)
+    if (static_cast<long>(k % static_cast<std::size_t>(opt.shard.count)) == opt.shard.index) {
+      items.push_back(all_items[k]);
+      total_pieces += all_items[k].pieces;
+    }
 
-  // Slots: rel[r][m][i], ulp[r][m][i]; NaN = not scored.
+  // Slots: rel[r][m][i], ulp[r][m][i]; NaN = not scored (or not in this shard).
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::vector<std::vector<double>>> rel(plans.size()), ulp(plans.size());
   for (std::size_t r = 0; r < plans.size(); ++r) {
@@ -396,8 +402,7 @@ StressReport run_stress(const StressOptions& opt) {
     pieces_done += item.pieces;
   };
 
-  long total_samples = 0;
-  for (const auto& p : plans) total_samples += p.samples;
+  const long total_samples = static_cast<long>(items.size());
   auto report_progress = [&] {
     if (!opt.progress) return;
     StressProgress p;
@@ -413,7 +418,37 @@ StressReport run_stress(const StressOptions& opt) {
                std::max(0.05, opt.progress_interval_seconds), report_progress);
   report_progress();
 
-  // Merge the per-worker accumulators (worker 0 collects).
+  // Merge the per-worker accumulators (worker 0 collects); the scored slots become value lists.
+  StressPartial part;
+  for (std::size_t r = 0; r < plans.size(); ++r) {
+    RegimeAccumulator& into = acc[0][r];
+    for (unsigned t = 1; t < n_workers; ++t) merge_regime(into, acc[t][r]);
+    for (std::size_t m = 0; m < n_methods; ++m) {
+      for (const double x : rel[r][m])
+        if (!std::isnan(x)) into.methods[m].rel.push_back(x);
+      for (const double x : ulp[r][m])
+        if (!std::isnan(x)) into.methods[m].ulp.push_back(x);
+    }
+    part.regimes.push_back(std::move(into));
+  }
+  return part;
+}
+
+StressReport finish_stress(const StressOptions& opt, const std::vector<StressPartial>& parts) {
+  const std::vector<Regime> regimes = opt.regimes.empty() ? stress_regimes() : opt.regimes;
+  const std::vector<MethodSpec> methods = methods_of(opt);
+  const std::vector<RegimePlan> plans = plan(opt, regimes);
+  const std::size_t n_methods = methods.size();
+  for (const auto& part : parts) {
+    if (part.regimes.size() != plans.size())
+      throw std::invalid_argument("stress: a part has " + std::to_string(part.regimes.size()) +
+                                  " regimes, the run " + std::to_string(plans.size()));
+    for (const auto& ra : part.regimes)
+      if (ra.methods.size() != n_methods)
+        throw std::invalid_argument("stress: a part has " + std::to_string(ra.methods.size()) +
+                                    " methods, the run " + std::to_string(n_methods));
+  }
+
   StressReport report;
   report.seed = opt.seed;
   report.count = opt.count;
@@ -421,18 +456,9 @@ StressReport run_stress(const StressOptions& opt) {
   std::vector<MethodAccumulator> pooled_acc(n_methods);
   std::vector<std::vector<double>> pooled_rel(n_methods), pooled_ulp(n_methods);
   for (std::size_t r = 0; r < plans.size(); ++r) {
-    RegimeAccumulator& into = acc[0][r];
-    for (unsigned t = 1; t < n_workers; ++t) {
-      RegimeAccumulator& from = acc[t][r];
-      into.max_reference_rel_bound = std::max(into.max_reference_rel_bound, from.max_reference_rel_bound);
-      into.reference_failures += from.reference_failures;
-      if (from.first_reference_failure >= 0 &&
-          (into.first_reference_failure < 0 || from.first_reference_failure < into.first_reference_failure)) {
-        into.first_reference_failure = from.first_reference_failure;
-        into.reference_failure = from.reference_failure;
-      }
-      for (std::size_t m = 0; m < n_methods; ++m) merge_into(into.methods[m], from.methods[m]);
-    }
+    RegimeAccumulator into;
+    into.methods.resize(n_methods);
+    for (const auto& part : parts) merge_regime(into, part.regimes[r]);
     RegimeStress rs;
     rs.regime = regime_name(plans[r].regime);
     rs.ray_level = is_ray_regime(plans[r].regime);
@@ -443,12 +469,12 @@ StressReport run_stress(const StressOptions& opt) {
     rs.reference_failure = into.reference_failure;
     for (std::size_t m = 0; m < n_methods; ++m) {
       MethodAccumulator& ma = into.methods[m];
-      // pooled figures first (to_method_stress consumes the slots)
+      // pooled figures first (to_method_stress consumes the value lists)
       add_counts(pooled_acc[m], ma);
-      for (const double x : rel[r][m]) pooled_rel[m].push_back(x);
-      for (const double x : ulp[r][m]) pooled_ulp[m].push_back(x);
+      pooled_rel[m].insert(pooled_rel[m].end(), ma.rel.begin(), ma.rel.end());
+      pooled_ulp[m].insert(pooled_ulp[m].end(), ma.ulp.begin(), ma.ulp.end());
 
-      MethodStress ms = to_method_stress(report.methods[m], ma, rel[r][m], ulp[r][m]);
+      MethodStress ms = to_method_stress(report.methods[m], ma, ma.rel, ma.ulp);
       auto replay = [&](WorstSample& w, const std::string& suffix) {
         if (!w.present) return;
         const RaySample s = stress_sample(opt.seed, plans[r].regime, w.index);
@@ -471,6 +497,12 @@ StressReport run_stress(const StressOptions& opt) {
     report.overall.back().worst_finite = WorstSample{};
   }
   return report;
+}
+
+StressReport run_stress(const StressOptions& opt) {
+  StressOptions whole = opt;
+  whole.shard = ShardSpec{};
+  return finish_stress(whole, {run_stress_part(whole)});
 }
 
 }  // namespace rayint

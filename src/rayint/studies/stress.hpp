@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/shard.hpp"
 #include "rayint/core/statistics.hpp"  // ErrorStats, error_stats, kUnderflowFloor
 #include "rayint/generators/regimes.hpp"
 #include "rayint/integrators/integrator.hpp"
@@ -67,6 +68,9 @@ struct StressOptions {
   // the end; may be empty.
   std::function<void(const StressProgress&)> progress;
   double progress_interval_seconds = 2.0;
+  // Shard (core/shard.hpp): the work items, most expensive first, are dealt round-robin, item k
+  // to shard k mod N, so every shard gets its share of the long rays. {0, 1}: the whole run.
+  ShardSpec shard;
 };
 
 // The engine seed of sample `index` of `regime`: a hash of the run seed, the regime's name and
@@ -134,6 +138,42 @@ struct StressReport {
 };
 
 // Throws std::invalid_argument for a method that cannot be built.
+// run_stress(o) is finish_stress(o, {run_stress_part(o)}) with o.shard the whole run.
 StressReport run_stress(const StressOptions& options);
+
+// What a part of the run (a shard, or the whole run) carries to make every figure of the report
+// exact after merging: counts and maxima (order-free), the branch counts, the worst candidates
+// (a total order: severity, then the lower index) and, for the quantiles, every scored sample's
+// relative and ulp error (the median and p99 of the union need all of them: 2 doubles per
+// scored sample and method). Regimes in the order of the run's plan, methods in option order.
+struct StressCandidate {
+  int tier = -1;  // 2 non-finite or failed, 1 has scored channels, 0 underflow only, -1 none
+  double error = 0.0;
+  long index = -1;
+  WorstSample sample;  // without its replay case (finish_stress builds it)
+  bool worse_than(const StressCandidate& o) const;
+};
+struct StressMethodPartial {
+  long scored = 0, non_finite = 0, failures = 0, underflow = 0, negative = 0;
+  double max_abs_underflow = 0.0;
+  std::map<std::string, long> branches;
+  StressCandidate worst, worst_finite;
+  std::vector<double> rel, ulp;  // per scored sample of this part
+};
+struct StressRegimePartial {
+  double max_reference_rel_bound = 0.0;
+  long reference_failures = 0;
+  long first_reference_failure = -1;
+  std::string reference_failure;
+  std::vector<StressMethodPartial> methods;
+};
+struct StressPartial {
+  std::vector<StressRegimePartial> regimes;
+};
+
+// The part options.shard does.
+StressPartial run_stress_part(const StressOptions& options);
+// The report of the whole run from its parts (all of them, or -- a partial merge -- some).
+StressReport finish_stress(const StressOptions& options, const std::vector<StressPartial>& parts);
 
 }  // namespace rayint

@@ -1,0 +1,196 @@
+// --shard I/N and `rayint merge` (shard.hpp).
+#include "shard.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "rayint/core/atomic_file.hpp"
+#include "rayint/core/error.hpp"
+#include "rayint/input/json_source.hpp"
+
+namespace rayint::cli {
+namespace {
+
+constexpr int kShardFormat = 1;
+
+// The run's arguments without the shard, the output and -q/--quiet (`args` of a shard file);
+// for the fingerprint also without --threads, which changes no figure.
+std::vector<std::string> canonical_args(const std::vector<std::string>& args, bool keep_threads) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--shard" || a == "-o" || a == "--output" || (a == "--threads" && !keep_threads)) {
+      ++i;  // and its value
+      continue;
+    }
+    if (a.rfind("--shard=", 0) == 0 || a.rfind("--output=", 0) == 0 ||
+        (a.rfind("--threads=", 0) == 0 && !keep_threads) ||
+        (a.rfind("-o", 0) == 0 && a.size() > 2 && a[2] != '-') || a == "-q" || a == "--quiet")
+      continue;
+    out.push_back(a);
+  }
+  return out;
+}
+
+std::string file_bytes(const std::string& path) {
+  return json_source::read_file_bytes(path, [&](const std::string& reason) {
+    throw InputError(path + ": cannot read file (" + reason + ")");
+  });
+}
+
+struct ShardFile {
+  std::string path, command, fingerprint;
+  std::vector<std::string> args;
+  ShardSpec shard;
+  nlohmann::json data;
+};
+
+ShardFile read_shard_file(const std::string& path) {
+  const nlohmann::json j = json_source::parse(json_source::read_text_file(path), path);
+  ShardFile f;
+  f.path = path;
+  if (!j.is_object() || !j.contains("rayint_shard"))
+    field::fail(path, "rayint_shard", "missing: not a shard file (written by a command run with --shard I/N)");
+  if (j["rayint_shard"] != kShardFormat)
+    field::fail(path, "rayint_shard", "unsupported shard format (expected " + std::to_string(kShardFormat) + ")");
+  for (const char* key : {"command", "fingerprint"})
+    if (!j.contains(key) || !j[key].is_string()) field::fail(path, key, "must be a string");
+  f.command = j["command"];
+  f.fingerprint = j["fingerprint"];
+  if (!j.contains("args") || !j["args"].is_array()) field::fail(path, "args", "must be an array of strings");
+  for (std::size_t i = 0; i < j["args"].size(); ++i) {
+    if (!j["args"][i].is_string()) field::fail(path, field::index_path("args", i), "must be a string");
+    f.args.push_back(j["args"][i]);
+  }
+  const nlohmann::json* s = j.contains("shard") ? &j["shard"] : nullptr;
+  if (!s || !s->is_object() || !s->contains("index") || !s->contains("count") ||
+      !(*s)["index"].is_number_integer() || !(*s)["count"].is_number_integer())
+    field::fail(path, "shard", "must be {\"index\": I, \"count\": N}");
+  f.shard.index = (*s)["index"];
+  f.shard.count = (*s)["count"];
+  if (f.shard.count < 1 || f.shard.index < 0 || f.shard.index >= f.shard.count)
+    field::fail(path, "shard", "needs 0 <= index < count");
+  if (!j.contains("data")) field::fail(path, "data", "missing");
+  f.data = j["data"];
+  return f;
+}
+
+}  // namespace
+
+ShardContext& shard_context() {
+  static ShardContext context;
+  return context;
+}
+
+CLI::Option* add_shard_option(CLI::App* cmd, std::string& text) {
+  return cmd->add_option("--shard", text,
+                         "I/N: do shard I of N of this run (same seed and count) and write a shard "
+                         "file to -o; `rayint merge` joins the shards into the run's report");
+}
+
+ShardSpec begin_shard(const std::string& text) {
+  if (text.empty()) return {};
+  if (merging()) throw std::invalid_argument("--shard: not in a merge");
+  const ShardSpec s = parse_shard(text);
+  shard_context().mode = ShardContext::Mode::shard;
+  return s;
+}
+
+bool merging() { return shard_context().mode == ShardContext::Mode::merge; }
+
+std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files) {
+  std::vector<std::string> parts{"rayint-run", command};
+  for (const auto& a : canonical_args(shard_context().args, false)) parts.push_back(a);
+  parts.push_back("inputs");
+  for (const auto& f : input_files) parts.push_back(file_bytes(f));
+  return fingerprint(parts);
+}
+
+void write_shard(const std::string& path, const std::string& command, const ShardSpec& shard,
+                 const std::vector<std::string>& input_files, nlohmann::json data) {
+  if (path.empty() || path == "-") throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+  nlohmann::json j;
+  j["rayint_shard"] = kShardFormat;
+  j["command"] = command;
+  j["args"] = canonical_args(shard_context().args, true);
+  j["fingerprint"] = run_fingerprint(command, input_files);
+  j["shard"] = {{"index", shard.index}, {"count", shard.count}};
+  j["data"] = std::move(data);
+  write_file_atomically(path, j.dump() + "\n");
+}
+
+void check_merge_inputs(const std::string& command, const std::vector<std::string>& input_files) {
+  const std::string now = run_fingerprint(command, input_files);
+  if (now != shard_context().fingerprint)
+    throw std::invalid_argument("merge: the run's input files changed since the shards ran (fingerprint " +
+                                now + ", shards " + shard_context().fingerprint + ")");
+}
+
+void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build) {
+  struct Options {
+    std::vector<std::string> shards;
+    std::string output;
+    bool allow_partial = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge", "Join the shard files of one run (--shard I/N) into the report the single run writes");
+  cmd->add_option("shards", opt->shards, "shard files")->required();
+  cmd->add_option("-o,--output", opt->output, "the merged report (or image) to write")->required();
+  cmd->add_flag("--allow-partial", opt->allow_partial,
+                "merge the shards present even if some are missing, and say what they cover");
+  cmd->callback([opt, build] {
+    std::vector<ShardFile> files;
+    for (const auto& p : opt->shards) files.push_back(read_shard_file(p));
+    const ShardFile& first = files.front();
+    std::map<long, const ShardFile*> by_index;
+    for (const ShardFile& f : files) {
+      if (f.fingerprint != first.fingerprint || f.command != first.command || f.shard.count != first.shard.count)
+        throw InputError(f.path + ": fingerprint: a shard of a different run (" + f.fingerprint + " " +
+                         f.command + " " + f.shard.label() + ", but " + first.path + " is " +
+                         first.fingerprint + " " + first.command + " " + first.shard.label() + ")");
+      const auto [it, fresh] = by_index.emplace(f.shard.index, &f);
+      if (!fresh)
+        throw InputError(f.path + ": shard: duplicate of shard " + f.shard.label() + " (also " +
+                         it->second->path + ")");
+    }
+    const long count = first.shard.count;
+    std::string missing;
+    for (long i = 0; i < count; ++i)
+      if (!by_index.count(i)) missing += (missing.empty() ? "" : ", ") + ShardSpec{i, count}.label();
+    if (!missing.empty() && !opt->allow_partial)
+      throw InputError("merge: missing shard " + missing + " of run " + first.fingerprint +
+                       " (--allow-partial merges the shards present)");
+    ShardContext& c = shard_context();
+    c.mode = ShardContext::Mode::merge;
+    c.fingerprint = first.fingerprint;
+    c.data.assign(static_cast<std::size_t>(count), nlohmann::json());
+    c.files.assign(static_cast<std::size_t>(count), std::string());
+    for (const auto& [i, f] : by_index) {
+      c.data[static_cast<std::size_t>(i)] = f->data;
+      c.files[static_cast<std::size_t>(i)] = f->path;
+    }
+    c.args = first.args;
+    if (!missing.empty())
+      std::cerr << "rayint merge: partial: " << by_index.size() << " of " << count
+                << " shards (missing " << missing << "); the report covers only their part of the run\n";
+    // Replay the run: the same subcommand and arguments, its output to merge's -o.
+    CLI::App replay{"rayint"};
+    replay.require_subcommand(1);
+    build(replay);
+    std::vector<std::string> argv{first.command};
+    for (const auto& a : first.args) argv.push_back(a);
+    argv.push_back("-o");
+    argv.push_back(opt->output);
+    argv.push_back("--quiet");
+    std::reverse(argv.begin(), argv.end());  // CLI11 parses a reversed vector
+    replay.parse(argv);
+  });
+}
+
+}  // namespace rayint::cli

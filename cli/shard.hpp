@@ -1,0 +1,52 @@
+#pragma once
+// `--shard I/N` and `rayint merge` in the CLI (README, "Shards and merge"; core/shard.hpp).
+//
+// A sharded subcommand, given --shard I/N, does shard I's part of the run and writes a shard
+// file (-o) instead of its report: {"rayint_shard": 1, "command", "args", "fingerprint",
+// "shard": {"index", "count"}, "data"}. `args` are the run's arguments without --shard,
+// -o/--output, --threads and -q/--quiet (those do not change a figure); the fingerprint hashes
+// the command, those arguments and the bytes of the run's input files.
+// `rayint merge` checks the shards belong together, then runs the recorded command again in
+// merge mode: the subcommand takes its figures from the shards' data instead of computing
+// them, and writes its report (to merge's -o) through the same code as a single run.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rayint/core/shard.hpp"
+
+namespace rayint::cli {
+
+struct ShardContext {
+  enum class Mode { none, shard, merge } mode = Mode::none;
+  std::vector<std::string> args;  // the process's arguments after the subcommand (main sets them)
+  // merge: the shards' data, indexed by shard (null where a shard is missing: --allow-partial)
+  std::vector<nlohmann::json> data;
+  std::vector<std::string> files;  // merge: the shard file each came from (empty if missing)
+  std::string fingerprint;         // merge: the shards' fingerprint
+};
+ShardContext& shard_context();
+
+// Registers --shard I/N on a subcommand (the text lands in `text`).
+CLI::Option* add_shard_option(CLI::App* cmd, std::string& text);
+
+// The shard a subcommand runs: whole when `text` is empty; sets the context's mode.
+ShardSpec begin_shard(const std::string& text);
+bool merging();
+
+// The run's fingerprint: the command, its canonical arguments and the bytes of `input_files`.
+std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files);
+
+// Shard mode: writes the shard file atomically to `path` (required: -o).
+void write_shard(const std::string& path, const std::string& command, const ShardSpec& shard,
+                 const std::vector<std::string>& input_files, nlohmann::json data);
+
+// Merge mode: checks the recorded fingerprint against the inputs as they are now.
+void check_merge_inputs(const std::string& command, const std::vector<std::string>& input_files);
+
+// `rayint merge`; `build` registers every subcommand on a fresh app (to replay the run).
+void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build);
+
+}  // namespace rayint::cli

@@ -1,0 +1,67 @@
+// libFuzzer target for the shard-data readers of `rayint merge` (input/shard_reader.hpp) on
+// arbitrary bytes parsed as JSON, followed by what the merge does with what they accept
+// (finish a Monte Carlo tree, assemble a mesh render). Run it with
+// `RAYINT_FUZZ_TARGET=shard_reader scripts/fuzz.sh`. A finding is any of:
+//   - a crash, sanitizer report, hang or leak;
+//   - an exception other than rayint::InputError (readers) or std::invalid_argument (the
+//     merge's consistency checks) escaping;
+//   - an InputError whose message is not one line starting with "<source>: ".
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "rayint/input/json_source.hpp"
+#include "rayint/input/shard_reader.hpp"
+
+namespace {
+
+constexpr const char* kSource = "fuzz-shard.json";
+
+void require(bool ok) {
+  if (!ok) __builtin_trap();
+}
+
+void check_message(const std::string& what) {
+  const std::string prefix = std::string(kSource) + ": ";
+  require(what.compare(0, prefix.size(), prefix) == 0);
+  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  nlohmann::json j;
+  try {
+    j = rayint::json_source::parse(text, kSource);
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+    return 0;
+  }
+  try {
+    const rayint::MonteCarloPart p = rayint::monte_carlo_part_from_json(j, kSource, "data");
+    if (p.blocks < (1u << 20)) {
+      rayint::BlockSumTree tree(p.blocks);
+      for (const auto& [key, sums] : p.nodes) tree.insert(key.first, key.second, sums);
+      tree.reduce();
+      (void)tree.total(p.scores);
+    }
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  }
+  try {
+    (void)rayint::stress_partial_from_json(j, kSource, "data");
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  }
+  try {
+    const rayint::MeshRenderPart p = rayint::mesh_render_part_from_json(j, kSource, "data");
+    (void)rayint::assemble_mesh_render({p});
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  } catch (const std::invalid_argument&) {
+  }
+  return 0;
+}

@@ -1,0 +1,112 @@
+// Shard data as JSON (shard_json.hpp); input/shard_reader.cpp reads it back.
+#include "rayint/report/shard_json.hpp"
+
+#include <cmath>
+
+namespace rayint {
+namespace {
+
+nlohmann::json numbers(const std::vector<double>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const double x : v) a.push_back(exact_json(x));
+  return a;
+}
+
+nlohmann::json rgb(const Rgb& c) { return {exact_json(c[0]), exact_json(c[1]), exact_json(c[2])}; }
+
+nlohmann::json pixels(const std::vector<Rgb>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const Rgb& c : v)
+    for (const double x : c) a.push_back(exact_json(x));
+  return a;
+}
+
+nlohmann::json worst_json(const StressCandidate& c) {
+  const WorstSample& w = c.sample;
+  nlohmann::json stats = nlohmann::json::object();
+  for (const auto& [k, v] : w.diagnostics.stats) stats[k] = exact_json(v);
+  return {{"tier", c.tier},
+          {"error", exact_json(c.error)},
+          {"index", c.index},
+          {"present", w.present},
+          {"sample_index", w.index},
+          {"sample_seed", w.sample_seed},
+          {"non_finite", w.non_finite},
+          {"failure", w.failure},
+          {"rel_error", exact_json(w.rel_error)},
+          {"ulp_error", exact_json(w.ulp_error)},
+          {"abs_error", exact_json(w.abs_error)},
+          {"value", rgb(w.value)},
+          {"reference", rgb(w.reference)},
+          {"branches", w.diagnostics.branches},
+          {"stats", stats}};
+}
+
+}  // namespace
+
+nlohmann::json exact_json(double x) {
+  if (std::isfinite(x)) return x;
+  return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+}
+
+nlohmann::json to_json(const MonteCarloPart& part) {
+  nlohmann::json nodes = nlohmann::json::array();
+  for (const auto& [key, sums] : part.nodes)
+    nodes.push_back({key.first, key.second, sums.samples(), numbers(sums.sums()), numbers(sums.sums_of_squares())});
+  return {{"blocks", part.blocks},   {"scores", part.scores}, {"collisions", part.collisions},
+          {"seconds", part.seconds}, {"nodes", nodes}};
+}
+
+nlohmann::json to_json(const StressPartial& partial) {
+  nlohmann::json regimes = nlohmann::json::array();
+  for (const auto& r : partial.regimes) {
+    nlohmann::json methods = nlohmann::json::array();
+    for (const auto& m : r.methods)
+      methods.push_back({{"scored", m.scored},
+                         {"non_finite", m.non_finite},
+                         {"failures", m.failures},
+                         {"underflow", m.underflow},
+                         {"negative", m.negative},
+                         {"max_abs_underflow", exact_json(m.max_abs_underflow)},
+                         {"branches", m.branches},
+                         {"worst", worst_json(m.worst)},
+                         {"worst_finite", worst_json(m.worst_finite)},
+                         {"rel", numbers(m.rel)},
+                         {"ulp", numbers(m.ulp)}});
+    regimes.push_back({{"max_reference_rel_bound", exact_json(r.max_reference_rel_bound)},
+                       {"reference_failures", r.reference_failures},
+                       {"first_reference_failure", r.first_reference_failure},
+                       {"reference_failure", r.reference_failure},
+                       {"methods", methods}});
+  }
+  return {{"regimes", regimes}};
+}
+
+nlohmann::json to_json(const MeshRenderPart& p) {
+  const MeshRenderCost& c = p.cost;
+  const TraversalStats& t = c.traversal;
+  nlohmann::json j = {{"width", p.width},
+                      {"height", p.height},
+                      {"row_begin", p.row_begin},
+                      {"row_end", p.row_end},
+                      {"compared", p.compared},
+                      {"image", pixels(p.image)},
+                      {"cost",
+                       {{"wall_seconds", c.wall_seconds},
+                        {"traversal_seconds", c.traversal_seconds},
+                        {"integration_seconds", c.integration_seconds},
+                        {"rays", c.rays},
+                        {"segments", c.segments},
+                        {"pieces", c.pieces},
+                        {"threads", c.threads},
+                        {"traversal",
+                         {t.rays, t.crossings, t.face_steps, t.zero_length_steps, t.star_searches,
+                          t.first_hit_queries, t.budget_exhausted}}}}};
+  if (p.compared) {
+    j["compared_image"] = pixels(p.compared_image);
+    j["rel_error"] = numbers(p.rel_error);
+  }
+  return j;
+}
+
+}  // namespace rayint

@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# CTest shard_merge_<kind>: a 4-shard run merged with `rayint merge` equals the single run.
+#   shard_merge_test.sh RAYINT SOURCE_DIR KIND       KIND: stress | slab | slab_benchmark | render | refusals | rerun
+# Reports are compared by tests/compare_reports.py: identical except wall-time fields (keys
+# ending in seconds / per_second / _share); the stress report and every image byte for byte.
+set -euo pipefail
+rayint=$1 src=$2 kind=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmp_reports() { /usr/bin/python3 "$src/tests/compare_reports.py" "$1" "$2"; }
+shards() {  # shards PREFIX ARGS... : runs shards 0..3 of the run ARGS into PREFIX.I.json
+  local prefix=$1; shift
+  for i in 0 1 2 3; do "$rayint" "$@" --shard "$i/4" -o "$prefix.$i.json" --quiet; done
+}
+case $kind in
+  stress)
+    args=(stress --count 600 --seed 7 --methods exact,riemann:n=8,rk4:n=4 --json)
+    # the reports name the worst-case files: both runs write them to $work/worst (the single
+    # run's moved to worst1 before the merge writes its own)
+    "$rayint" "${args[@]}" --worst-dir "$work/worst" -o "$work/one.json" -q
+    mv "$work/worst" "$work/worst1"
+    shards "$work/s" "${args[@]}" --worst-dir "$work/worst"
+    [ ! -e "$work/worst" ] || { echo "a shard wrote worst cases"; exit 1; }
+    "$rayint" merge "$work"/s.{3,1,0,2}.json -o "$work/merged.json"
+    cmp "$work/one.json" "$work/merged.json"
+    for f in "$work"/worst1/*; do cmp "$f" "$work/worst/$(basename "$f")"; done
+    [ "$(ls "$work/worst1" | wc -l)" = "$(ls "$work/worst" | wc -l)" ]
+    echo "stress: 4-shard merge == one run, byte for byte ($(wc -c <"$work/one.json") bytes, $(ls "$work/worst1" | wc -l) worst cases)"
+    ;;
+  slab)
+    args=(slab --tau 1 --albedo 0.9 --phase hg:0.7 --mu-up 0.1,0.5 --mu-down 0.1,1 --method monte_carlo
+          --photons 200000 --seed 3)
+    "$rayint" "${args[@]}" -o "$work/one.json" --quiet
+    shards "$work/s" "${args[@]}"
+    "$rayint" merge "$work"/s.{0,1,2,3}.json -o "$work/merged.json"
+    cmp_reports "$work/one.json" "$work/merged.json"
+    "$rayint" "${args[@]}" --mc-analog -o "$work/one_analog.json" --quiet
+    shards "$work/a" "${args[@]}" --mc-analog
+    "$rayint" merge "$work"/a.{2,0,3,1}.json -o "$work/merged_analog.json"
+    cmp_reports "$work/one_analog.json" "$work/merged_analog.json"
+    echo "slab: 4-shard merge == one run (split and analog estimators), except wall-time fields"
+    ;;
+  slab_benchmark)
+    args=(slab --benchmark "$src/cases/scattering/disort_slab.json" --problems 3a,1b --photons 100000 --seed 5 --json)
+    rc1=0; "$rayint" "${args[@]}" -o "$work/one.json" --quiet || rc1=$?
+    shards "$work/s" "${args[@]}"
+    rc2=0; "$rayint" merge "$work"/s.{0,1,2,3}.json -o "$work/merged.json" || rc2=$?
+    [ "$rc1" = "$rc2" ] || { echo "exit codes differ: $rc1 vs $rc2"; exit 1; }
+    cmp_reports "$work/one.json" "$work/merged.json"
+    echo "slab --benchmark: 4-shard merge == one run (exit $rc1 both), except wall-time fields"
+    ;;
+  render)
+    # the stats name the image's heat map: both runs write the same paths (the single run's
+    # outputs moved aside before the merge writes its own)
+    args=(render "$src/cases/mesh-ball-radial.json" --compare riemann:n=4 --stats "$work/stats.json")
+    "$rayint" "${args[@]}" -o "$work/img.png" --quiet
+    for f in img.png img.error.png stats.json; do mv "$work/$f" "$work/one.$f"; done
+    shards "$work/s" "${args[@]}"
+    [ ! -e "$work/stats.json" ] || { echo "a shard wrote the stats"; exit 1; }
+    "$rayint" merge "$work"/s.{1,3,2,0}.json -o "$work/img.png"
+    cmp "$work/one.img.png" "$work/img.png"
+    cmp "$work/one.img.error.png" "$work/img.error.png"
+    cmp_reports "$work/one.stats.json" "$work/stats.json"
+    echo "render: 4-shard merge == one run (image and heat map byte for byte; stats except wall-time fields)"
+    ;;
+  refusals)
+    args=(slab --tau 1 --albedo 0.9 --phase isotropic --mu-up 0.5 --method monte_carlo --photons 50000)
+    shards "$work/s" "${args[@]}" --seed 1
+    "$rayint" "${args[@]}" --seed 2 --shard 1/4 -o "$work/other.1.json" --quiet
+    expect_fail() {  # expect_fail PATTERN CMD...: exit 2, one line on stderr matching PATTERN, no output
+      local pattern=$1; shift
+      rm -f "$work/out.json"
+      local rc=0; "$@" 2>"$work/err" >/dev/null || rc=$?
+      [ "$rc" = 2 ] || { echo "expected exit 2, got $rc: $*"; cat "$work/err"; exit 1; }
+      [ "$(wc -l <"$work/err")" = 1 ] || { echo "expected one line:"; cat "$work/err"; exit 1; }
+      grep -q -- "$pattern" "$work/err" || { echo "expected '$pattern' in:"; cat "$work/err"; exit 1; }
+      [ ! -e "$work/out.json" ] || { echo "partial output written"; exit 1; }
+    }
+    expect_fail "missing shard 2/4" "$rayint" merge "$work"/s.{0,1,3}.json -o "$work/out.json"
+    expect_fail "duplicate of shard 1/4" "$rayint" merge "$work"/s.{0,1,1,2,3}.json -o "$work/out.json"
+    expect_fail "different run" "$rayint" merge "$work"/s.{0,2,3}.json "$work/other.1.json" -o "$work/out.json"
+    expect_fail "not a shard file" "$rayint" merge "$src/cases/scattering/disort_slab.json" -o "$work/out.json"
+    "$rayint" merge --allow-partial "$work"/s.{0,1,3}.json -o "$work/partial.json" 2>"$work/err"
+    grep -q "partial: 3 of 4 shards (missing 2/4)" "$work/err"
+    /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); n=r['monte_carlo']['photons']; assert 0 < n < 50000, n; print('partial merge covers', n, 'photons')" "$work/partial.json"
+    echo "refusals: missing, duplicate, different run, not a shard: one line, exit 2, no output"
+    ;;
+  rerun)
+    # A shard killed mid-run leaves no file; running it again reproduces it (the shard data are
+    # the same bit for bit except its wall-time fields).
+    args=(slab --tau 2 --albedo 0.95 --phase hg:0.5 --mu-up 0.5 --mu-down 0.1 --method monte_carlo --photons 3000000 --seed 9)
+    "$rayint" "${args[@]}" --shard 2/4 -o "$work/first.json" --quiet
+    "$rayint" "${args[@]}" --shard 2/4 -o "$work/killed.json" --quiet &
+    pid=$!
+    sleep 0.3
+    kill -KILL "$pid" 2>/dev/null || true
+    wait "$pid" 2>/dev/null || true
+    if [ -e "$work/killed.json" ]; then echo "note: the shard finished before the kill"; else echo "killed shard left no file"; fi
+    ls "$work" | grep -q 'killed.json.tmp' && { echo "temporary file left"; exit 1; }
+    "$rayint" "${args[@]}" --shard 2/4 -o "$work/killed.json" --quiet
+    cmp_reports "$work/first.json" "$work/killed.json"
+    echo "rerun: a re-run shard equals the first run of it (except wall-time fields)"
+    ;;
+  *) echo "unknown kind $kind"; exit 2 ;;
+esac
