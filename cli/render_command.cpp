@@ -48,7 +48,8 @@ void set_render_command(CLI::App& app) {
   cmd->callback([opts] {
     const nlohmann::json root =
         json_source::parse(json_source::read_text_file(opts->input), opts->input);
-    image_format_of(opts->output);  // an unknown extension is refused before the render
+    if (opts->shard.empty())  // a shard writes a shard file; `rayint merge -o` names the image
+      image_format_of(opts->output);  // an unknown extension is refused before the render
     if (is_slab_scene(root))
       throw InputError(opts->input +
                        ": medium.type: \"slab\" is a plane-parallel slab with detectors, not an "

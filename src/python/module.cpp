@@ -51,19 +51,29 @@ struct Document {
   std::string source;
 };
 
-Case load_case(const Document& d) {
-  return d.is_path ? rayint::read_case_file(d.text) : rayint::parse_case_text(d.text, d.source);
+// For a mesh case, `*repairs` (when given) receives what reading its mesh reoriented and dropped.
+Case load_case(const Document& d, std::optional<rayint::TetRepairs>* repairs = nullptr) {
+  return d.is_path ? rayint::read_case_file(d.text, {}, repairs)
+                   : rayint::parse_case_text(d.text, d.source, {}, repairs);
 }
 
-std::vector<Case> load_cases(const std::vector<Document>& docs) {
+// Every case the documents name (a folder: every case file in it, as `rayint eval`), each with
+// its mesh repairs (empty for a case without a mesh).
+std::vector<Case> load_cases(const std::vector<Document>& docs,
+                             std::vector<std::optional<rayint::TetRepairs>>& repairs) {
   std::vector<Case> cases;
+  const auto add = [&](auto&& read) {
+    repairs.emplace_back();
+    cases.push_back(read(&repairs.back()));
+  };
   for (const Document& d : docs) {
-    if (d.is_path && std::filesystem::is_directory(d.text)) {  // every case file in it, as `rayint eval`
+    if (d.is_path && std::filesystem::is_directory(d.text)) {
       const std::vector<std::string> files = rayint::list_case_files(d.text);
       if (files.empty()) throw rayint::InputError(d.text + ": folder holds no case files (*.json)");
-      for (const auto& f : files) cases.push_back(rayint::read_case_file(f));
+      for (const auto& f : files)
+        add([&](std::optional<rayint::TetRepairs>* r) { return rayint::read_case_file(f, {}, r); });
     } else {
-      cases.push_back(load_case(d));
+      add([&](std::optional<rayint::TetRepairs>* r) { return load_case(d, r); });
     }
   }
   return cases;
@@ -116,12 +126,16 @@ std::string evaluate(const std::vector<Document>& docs, const std::string& metho
                      bool timing, unsigned threads) {
   const std::vector<rayint::MethodSpec> methods = methods_of(methods_csv);
   py::gil_scoped_release release;
-  const std::vector<Case> cases = load_cases(docs);  // validate all before evaluating any
+  std::vector<std::optional<rayint::TetRepairs>> repairs;
+  const std::vector<Case> cases = load_cases(docs, repairs);  // validate all before evaluating any
   rayint::EvalOptions eo;
   eo.measure_time = timing;
   eo.threads = threads;
   std::vector<rayint::CaseEvaluation> results;
-  for (const auto& c : cases) results.push_back(rayint::evaluate_case(c, methods, eo));
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    results.push_back(rayint::evaluate_case(cases[i], methods, eo));
+    results.back().mesh_repairs = repairs[i];
+  }
   return rayint::eval_report_json(results).dump();
 }
 

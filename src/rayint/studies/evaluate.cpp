@@ -78,7 +78,7 @@ std::vector<ReferenceRay> reference_rays(
 
 CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& methods,
                              const EvalOptions& opt) {
-  CaseEvaluation out{c.name, c.description, c.source, {}, opt.with_reference};
+  CaseEvaluation out{c.name, c.description, c.source, {}, opt.with_reference, {}};
   std::vector<ReferenceRay> refs(c.rays.size());
   if (opt.with_reference) {
     std::function<void(std::size_t, std::size_t)> tick;
