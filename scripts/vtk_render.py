@@ -302,8 +302,11 @@ def vtk_unproject(camera, aspect, ndc_x, ndc_y):
     return pts[0], d / np.linalg.norm(d)
 
 
-def render(case, case_path, mapper, integrator, camera_mode, colour_nodes_at_density=True):
-    """One VTK render; returns (rgba float array (H, W, 4) with row 0 at the TOP, info dict)."""
+def render(case, case_path, mapper, integrator, camera_mode, colour_nodes_at_density=True, transparent=False):
+    """One VTK render; returns (rgba float array (H, W, 4) with row 0 at the TOP, info dict).
+    `transparent`: the background is transparent black (alpha 0), so the frame buffer holds the
+    volume's premultiplied colour and its alpha (both mappers blend with GL_ONE_MINUS_SRC_ALPHA),
+    to be composited over the case's background by `rayint check --candidate-alpha premultiplied`."""
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
     cam = case["camera"]
@@ -334,7 +337,12 @@ def render(case, case_path, mapper, integrator, camera_mode, colour_nodes_at_den
     win.SetSize(w, h)
     ren = vtk.vtkRenderer()
     win.AddRenderer(ren)
-    ren.SetBackground(*case.get("background", [0.0, 0.0, 0.0]))
+    if transparent:
+        win.SetAlphaBitPlanes(1)
+        ren.SetBackground(0.0, 0.0, 0.0)
+        ren.SetBackgroundAlpha(0.0)
+    else:
+        ren.SetBackground(*case.get("background", [0.0, 0.0, 0.0]))
     ren.AddVolume(vol)
     settings = vtk_camera_settings(cam, mapper, camera_mode)
     ren.SetActiveCamera(make_vtk_camera(cam, settings))
@@ -359,7 +367,6 @@ def render(case, case_path, mapper, integrator, camera_mode, colour_nodes_at_den
 
 def self_check(verbose=True):
     """Returns the list of failures (empty: all passed)."""
-    import vtk
     failures = []
     worst = {"raycast texel": 0.0, "raycast display": 0.0, "projected": 0.0, "tf": 0.0}
     for _, case, _ in derived_cases():
@@ -470,11 +477,14 @@ def run(args):
     fails = self_check()
     if fails:
         raise SystemExit("self-check failed: " + ", ".join(fails))
-    configs = [("raycast", k, "exact", "workaround") for k in INTEGRATORS] + \
-              [("projected", None, "exact", "workaround")]
+    configs = [("raycast", k, "exact", "workaround", "opaque") for k in INTEGRATORS] + \
+              [("projected", None, "exact", "workaround", "opaque")]
     if args.nominal:
-        configs.append(("raycast", "linear", "nominal", "workaround"))
-    configs.append(("raycast", "linear", "exact", "literal"))
+        configs.append(("raycast", "linear", "nominal", "workaround", "opaque"))
+    configs.append(("raycast", "linear", "exact", "literal", "opaque"))
+    # Premultiplied RGBA over a transparent background, composited by rayint (check --candidate-alpha).
+    configs.append(("raycast", "linear", "exact", "workaround", "transparent"))
+    configs.append(("projected", None, "exact", "workaround", "transparent"))
     results = []
     summary = {"vtk_version": vtk.vtkVersion.GetVTKVersion(), "runs": results,
                "opacity_control_point_bug": opacity_bug_demo()}
@@ -499,27 +509,28 @@ def run(args):
             for dx in (-1, 0, 1):
                 interior &= np.roll(np.roll(hit, dy, 0), dx, 1)
         interior[0, :] = interior[-1, :] = interior[:, 0] = interior[:, -1] = False
-        for mapper, integrator, mode, tfmode in configs:
+        for mapper, integrator, mode, tfmode, bgmode in configs:
             label = (f"raycast-{integrator}" if mapper == "raycast" else "projected-tetrahedra") + \
                     ("" if mode == "exact" else "-nominal-camera") + \
-                    ("" if tfmode == "workaround" else "-colour-nodes-only")
+                    ("" if tfmode == "workaround" else "-colour-nodes-only") + \
+                    ("" if bgmode == "opaque" else "-rgba-premultiplied")
             img = os.path.join(cdir, label + ".npy")
             rgba_file = os.path.join(cdir, label + ".rgba.npy")
             # Each render in its own process: a VTK crash is a result, not the end of the run.
             child = subprocess.run([sys.executable, os.path.abspath(__file__), "--render-one", case_path,
-                                    mapper, str(integrator), mode, tfmode, rgba_file],
+                                    mapper, str(integrator), mode, tfmode, bgmode, rgba_file],
                                    stdout=subprocess.PIPE, text=True)
             if child.returncode != 0:
                 why = (f"killed by signal {-child.returncode}" if child.returncode < 0
                        else f"exit {child.returncode}")
                 print(f"{name:24s} {label:34s} VTK CRASHED ({why})", flush=True)
                 results.append({"case": name, "change": change, "mapper": mapper, "integrator": integrator,
-                                "camera": mode, "tf": tfmode, "label": label, "crashed": why})
+                                "camera": mode, "tf": tfmode, "background": bgmode, "label": label, "crashed": why})
                 continue
             info = json.loads(child.stdout.strip().splitlines()[-1])
             rgba = np.load(rgba_file)
             os.remove(rgba_file)
-            np.save(img, np.ascontiguousarray(rgba[:, :, :3]))
+            np.save(img, np.ascontiguousarray(rgba if bgmode == "transparent" else rgba[:, :, :3]))
             art = os.path.join(cdir, label)
             if os.path.isdir(art):
                 shutil.rmtree(art)
@@ -528,7 +539,7 @@ def run(args):
             cmd = [args.rayint, "check", case_path, "--candidate-image", img,
                    "--rel-tol", str(args.rel_tol), "--abs-tol", str(args.abs_tol),
                    "--artifacts", art, "-o", diff, "--junit", os.path.join(art, "junit.xml"),
-                   "--worst", "3"]
+                   "--worst", "3"] + (["--candidate-alpha", "premultiplied"] if bgmode == "transparent" else [])
             rc = subprocess.run(cmd).returncode
             if rc not in (0, 1):
                 raise SystemExit(f"rayint check exited {rc}: {' '.join(cmd)}")
@@ -537,10 +548,12 @@ def run(args):
             ray_check = None
             if d.get("worst_pixels") and d["worst_pixels"][0].get("case_file"):
                 ray_check = check_worst_pixel_ray(case, d["worst_pixels"][0]["case_file"])
+            if bgmode == "transparent":  # what rayint compared: premultiplied RGB over the background
+                rgba = np.concatenate([rgba[:, :, :3] + (1 - rgba[:, :, 3:]) * bg, rgba[:, :, 3:]], axis=2)
             err = np.abs(rgba[:, :, :3] - exact)
             q255, q65535 = quantisation(rgba)
             r = {"case": name, "change": change, "mapper": mapper, "integrator": integrator,
-                 "camera": mode, "tf": tfmode, "label": label, "exit": rc, "candidate": os.path.relpath(img, out),
+                 "camera": mode, "tf": tfmode, "background": bgmode, "label": label, "exit": rc, "candidate": os.path.relpath(img, out),
                  "diff": os.path.relpath(diff, out), "unit_distance": info["unit_distance"],
                  "vtk_camera": info["camera"], "color_buffer_bits": info["color_buffer_bits"],
                  "opengl": info["opengl"],
@@ -578,8 +591,10 @@ def figure(case, cdir, exact, runs, out):
                     f"8-bit floor 2/255 = {2 / 255:.4f}", fontsize=7, va="center")
     for k, r in enumerate(runs, start=1):
         img = np.load(os.path.join(out, r["candidate"]))
+        if img.shape[2] == 4:  # premultiplied RGBA: over the case's background, as rayint composites it
+            img = img[:, :, :3] + (1 - img[:, :, 3:]) * np.array(case.get("background", [0, 0, 0]), float)
         axes[0, k].imshow(srgb(img), interpolation="nearest")
-        axes[0, k].set_title(r["label"].replace("raycast-", "raycast\n"), fontsize=7)
+        axes[0, k].set_title(r["label"].replace("raycast-", "raycast\n").replace("-rgba", "\nrgba"), fontsize=7)
         err = np.abs(img - exact).max(axis=2)
         im = axes[1, k].imshow(np.log10(np.maximum(err, 1e-4)), vmin=-4, vmax=0, cmap="magma",
                                interpolation="nearest")
@@ -606,15 +621,16 @@ def main():
     ap.add_argument("--no-nominal", dest="nominal", action="store_false",
                     help="skip the ray caster with rayint's camera copied literally")
     ap.add_argument("--self-check", action="store_true", help="only the translation checks")
-    ap.add_argument("--render-one", nargs=6, metavar=("CASE", "MAPPER", "INTEGRATOR", "CAMERA", "TF", "OUT"),
+    ap.add_argument("--render-one", nargs=7,
+                    metavar=("CASE", "MAPPER", "INTEGRATOR", "CAMERA", "TF", "BACKGROUND", "OUT"),
                     help="(internal) one render, RGBA float64 with row 0 at the top, to OUT (.npy)")
     args = ap.parse_args()
     if args.render_one:
-        case_path, mapper, integrator, mode, tfmode, out = args.render_one
+        case_path, mapper, integrator, mode, tfmode, bgmode, out = args.render_one
         with open(case_path) as f:
             case = json.load(f)
         rgba, info = render(case, case_path, mapper, None if integrator == "None" else integrator, mode,
-                            tfmode == "workaround")
+                            tfmode == "workaround", bgmode == "transparent")
         np.save(out, rgba)
         print(json.dumps(info))
         return
