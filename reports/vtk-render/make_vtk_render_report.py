@@ -37,6 +37,8 @@ def region_stats(out, r):
     got = np.load(os.path.join(out, r["candidate"]))
     with open(os.path.join(out, "cases", r["case"] + ".json")) as f:
         bg = np.array(json.load(f).get("background", [0, 0, 0]), float)
+    if got.shape[2] == 4:  # premultiplied RGBA, composited as `rayint check --candidate-alpha premultiplied` does
+        got = got[:, :, :3] + (1 - got[:, :, 3:]) * bg
     hit = np.any(np.abs(exact - bg) > 1e-12, axis=2)
     interior = hit.copy()
     for dy in range(-RING, RING + 1):
@@ -88,13 +90,17 @@ def main():
     print(f"VTK {res['vtk_version']} (Debian python3-vtk9)" + (": " + "; ".join(gl) if gl else "") + ".\n")
 
     print("### Read-back precision\n")
+    print("Every value of the candidate file as read back (RGB, and A for the RGBA runs), against the "
+          "nearest multiple of 1/255 and of 1/65535:\n")
     print("| case | run | colour buffer bits (R, G, B, A) | max distance of a read-back value from k/255 | from k/65535 |")
     print("|---|---|---|---:|---:|")
     for r in runs:
         if "crashed" in r:
             continue
-        print(f"| {r['case']} | {r['label']} | {r['color_buffer_bits']} | "
-              f"{g(r['readback_max_distance_from_k_over_255'])} | {g(r['readback_max_distance_from_k_over_65535'])} |")
+        v = np.load(os.path.join(out, r["candidate"]))
+        q255 = float(np.abs(v * 255 - np.round(v * 255)).max() / 255)
+        q65535 = float(np.abs(v * 65535 - np.round(v * 65535)).max() / 65535)
+        print(f"| {r['case']} | {r['label']} | {r['color_buffer_bits']} | {g(q255)} | {g(q65535)} |")
     print()
 
     cases = []
