@@ -56,6 +56,12 @@ void set_check_command(CLI::App& app) {
   cmd->add_flag("--flip-x", opt->image.flip_x, "Images: mirror the candidate left-right first");
   cmd->add_flag("--flip-y", opt->image.flip_y,
                 "Images: mirror the candidate top-bottom first (rows stored bottom-up, e.g. OpenGL)");
+  cmd->add_option("--candidate-alpha", opt->image.alpha_mode,
+                  "Images: how the candidate's alpha channel (.npy (H, W, 4), .exr A) is meant: ignore "
+                  "(compare RGB as is), premultiplied (RGB + (1 - A) * background) or straight "
+                  "(A * RGB + (1 - A) * background), composited over the case's background")
+      ->check(CLI::IsMember({"ignore", "premultiplied", "straight"}))
+      ->capture_default_str();
   cmd->add_option("--worst", opt->image.worst, "Images: how many worst pixels to write as case files")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();

@@ -44,7 +44,18 @@ void run_image_check(const ImageCheckOptions& o) {
                      "(per-ray cases are checked with --candidate)");
   const MeshCase mc = parse_mesh_case(root, o.case_file);
   if (!mc.camera) throw InputError(o.case_file + ": camera: --candidate-image needs the case's \"camera\"");
-  const Image candidate = flipped(read_image(o.candidate_image), o.flip_x, o.flip_y);
+  // --candidate-alpha: composite the candidate over the case's background first (render/image_compare.hpp).
+  const AlphaMode alpha_mode = o.alpha_mode == "premultiplied" ? AlphaMode::premultiplied
+                               : o.alpha_mode == "straight"    ? AlphaMode::straight
+                                                               : AlphaMode::ignore;
+  const ImageWithAlpha raw = read_image_with_alpha(o.candidate_image);
+  Image composited;
+  try {
+    composited = composite_over(raw.rgb, raw.alpha, mc.background, alpha_mode);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.candidate_image + ": --candidate-alpha " + o.alpha_mode + ": " + e.what());
+  }
+  const Image candidate = flipped(composited, o.flip_x, o.flip_y);
   if (candidate.width != mc.camera->width || candidate.height != mc.camera->height)
     throw InputError(o.candidate_image + ": (image): " + std::to_string(candidate.width) + " x " +
                      std::to_string(candidate.height) + " pixels, the camera of " + o.case_file +
@@ -103,6 +114,7 @@ void run_image_check(const ImageCheckOptions& o) {
   ctx.abs_tol = o.abs_tol;
   ctx.flip_x = o.flip_x;
   ctx.flip_y = o.flip_y;
+  if (alpha_mode != AlphaMode::ignore) ctx.alpha_mode = o.alpha_mode;
   ctx.heat_map = join(o.artifacts, "error_heat_map.png");
   write_png(ctx.heat_map, error_heat_map(cmp.rel_error, cmp.width, cmp.height));
   // Each worst pixel as a one-ray case: the camera ray of that pixel traced through the mesh,

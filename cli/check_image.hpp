@@ -12,6 +12,7 @@ struct ImageCheckOptions {
   long samples = 0;                // Monte Carlo: samples per pixel; the variance image is then per sample
   double rel_tol = 1e-6, abs_tol = 0.0;
   bool flip_x = false, flip_y = false;
+  std::string alpha_mode = "ignore";  // --candidate-alpha: ignore | premultiplied | straight
   int worst = 3;
   std::string artifacts = ".";     // heat map and worst-pixel case files go here
   std::string output;              // JSON diff; empty: stdout

@@ -1,10 +1,13 @@
 // Float images (render/float_image.hpp), the image check (render/image_compare.hpp, `rayint
 // check --candidate-image`) and JUnit output (report/junit.hpp, `--junit` on check and gate).
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli_harness.hpp"
 #include "rayint/core/error.hpp"
@@ -410,4 +413,101 @@ TEST_CASE("CLI: check --candidate-variance runs the z-test and names it in JUnit
   CHECK(neg.status == 2);
   CHECK(neg.err.find("var.npy: pixel(2,3): variance must be finite and >= 0") != std::string::npos);
   CHECK_FALSE(fs::exists(dir.path / "d2.json"));
+}
+
+namespace {
+
+// An RGBA .npy (float64, shape (H, W, 4)) written byte by byte as NumPy's format 1.0 lays it out.
+void write_rgba_npy(const fs::path& file, const Image& rgb, const std::vector<double>& alpha) {
+  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rgb.height) +
+                       ", " + std::to_string(rgb.width) + ", 4), }";
+  header.append((64 - (10 + header.size() + 1) % 64) % 64, ' ');
+  header.push_back('\n');
+  std::string out("\x93NUMPY\x01\x00", 8);
+  out.push_back(static_cast<char>(header.size() & 0xff));
+  out.push_back(static_cast<char>(header.size() >> 8));
+  out += header;
+  auto put = [&](double v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); };  // x86: little-endian
+  for (std::size_t i = 0; i < alpha.size(); ++i) {
+    for (int c = 0; c < 3; ++c) put(rgb.pixels[i][c]);
+    put(alpha[i]);
+  }
+  std::ofstream(file, std::ios::binary) << out;
+}
+
+std::string with_background(std::string text, const std::string& background) {
+  const std::string key = "\"background\": [0.05, 0.1, 0.2]";
+  text.replace(text.find(key), key.size(), "\"background\": " + background);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("CLI: check --candidate-alpha composites a premultiplied or straight RGBA candidate over the case's background", "[image][alpha]") {
+  // Independent construction of the RGBA image: the exact image over a black background is the
+  // emitted colour C, over white it is C + T (the case's density is shared by r, g, b), so
+  // alpha = 1 - T. Composited over the case's own background it must equal the exact image
+  // rendered over that background, which rayint computes on its own.
+  TempDir dir;
+  dir.write("cam.json", kCameraCase);
+  dir.write("black.json", with_background(kCameraCase, "[0, 0, 0]"));
+  dir.write("white.json", with_background(kCameraCase, "[1, 1, 1]"));
+  for (const std::string c : {"cam", "black", "white"})
+    REQUIRE(run_cli(dir.path, "render " + c + ".json -o " + c + ".npy --quiet").status == 0);
+  const Image black = read_image((dir.path / "black.npy").string());
+  const Image white = read_image((dir.path / "white.npy").string());
+  const Image exact = read_image((dir.path / "cam.npy").string());
+  std::vector<double> alpha(black.pixels.size());
+  Image straight(black.width, black.height);
+  std::size_t see_through = 0;
+  for (std::size_t i = 0; i < alpha.size(); ++i) {
+    alpha[i] = std::clamp(1.0 - (white.pixels[i][0] - black.pixels[i][0]), 0.0, 1.0);
+    if (alpha[i] < 0.99) ++see_through;
+    for (int c = 0; c < 3; ++c) straight.pixels[i][c] = alpha[i] > 0.0 ? black.pixels[i][c] / alpha[i] : 0.0;
+  }
+  REQUIRE(see_through > alpha.size() / 2);  // the background shows through: the test has teeth
+  write_rgba_npy(dir.path / "premultiplied.npy", black, alpha);
+  write_rgba_npy(dir.path / "straight.npy", straight, alpha);
+
+  // Library: the composited images equal the exact one to rounding.
+  const Rgb bg{0.05, 0.1, 0.2};
+  const Image pre = composite_over(black, alpha, bg, AlphaMode::premultiplied);
+  const Image str = composite_over(straight, alpha, bg, AlphaMode::straight);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < alpha.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      worst = std::max({worst, std::fabs(pre.pixels[i][c] - exact.pixels[i][c]),
+                        std::fabs(str.pixels[i][c] - exact.pixels[i][c])});
+  CHECK(worst <= 1e-14);
+
+  // CLI: passes with the right --candidate-alpha at 1e-12, fails when the alpha is ignored.
+  for (const std::string mode : {"premultiplied", "straight"}) {
+    INFO(mode);
+    const auto r = run_cli(dir.path, "check cam.json --candidate-image " + mode + ".npy --candidate-alpha " + mode +
+                                         " --rel-tol 1e-12 --abs-tol 1e-14 -o d.json");
+    INFO(r.err);
+    CHECK(r.status == 0);
+    const auto diff = nlohmann::json::parse(slurp(dir.path / "d.json"));
+    CHECK(diff["candidate_alpha"].get<std::string>().rfind(mode, 0) == 0);
+  }
+  const auto ignored = run_cli(dir.path, "check cam.json --candidate-image premultiplied.npy --rel-tol 1e-12 -o d.json");
+  CHECK(ignored.status == 1);
+
+  // Bad input: no alpha channel, alpha outside [0, 1], unknown mode: exit 2, one line, no output.
+  alpha[5] = 1.5;
+  write_rgba_npy(dir.path / "bad_alpha.npy", black, alpha);
+  const auto before = dir.entries();
+  for (const std::string args : {"check cam.json --candidate-image cam.npy --candidate-alpha premultiplied -o o.json",
+                                 "check cam.json --candidate-image bad_alpha.npy --candidate-alpha straight -o o.json",
+                                 "check cam.json --candidate-image premultiplied.npy --candidate-alpha other -o o.json"}) {
+    const auto r = run_cli(dir.path, args);
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(line_count(r.err) == 1);
+    CHECK(dir.entries() == before);
+  }
+  CHECK(run_cli(dir.path, "check cam.json --candidate-image cam.npy --candidate-alpha premultiplied").err.find("no alpha channel") !=
+        std::string::npos);
+  CHECK(run_cli(dir.path, "check cam.json --candidate-image bad_alpha.npy --candidate-alpha straight").err.find("pixel(5,0)") !=
+        std::string::npos);
 }

@@ -263,7 +263,7 @@ std::string encode_exr(const Image& image) {
   return stream.data();
 }
 
-Image decode_exr(std::string_view bytes, const std::string& source) {
+ImageWithAlpha decode_exr_with_alpha(std::string_view bytes, const std::string& source) {
   // The magic number first: OpenEXR's own message for a non-EXR file is less direct.
   if (bytes.size() < 4 || static_cast<unsigned char>(bytes[0]) != 0x76 ||
       static_cast<unsigned char>(bytes[1]) != 0x2f || static_cast<unsigned char>(bytes[2]) != 0x31 ||
@@ -284,7 +284,9 @@ Image decode_exr(std::string_view bytes, const std::string& source) {
       if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
         fail(source, std::string("exr: channel ") + it.name() + " is subsampled");
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-    std::vector<float> r(n, 0.0f), g(n, 0.0f), b(n, 0.0f);
+    std::vector<float> r(n, 0.0f), g(n, 0.0f), b(n, 0.0f), a;
+    const bool has_alpha = channels.findChannel("A") != nullptr;
+    if (has_alpha) a.assign(n, 0.0f);
     // Slices are addressed by absolute pixel coordinates: shift the base by the data window.
     const std::size_t xs = sizeof(float), ys = sizeof(float) * static_cast<std::size_t>(w);
     auto base = [&](std::vector<float>& v) {
@@ -300,12 +302,14 @@ Image decode_exr(std::string_view bytes, const std::string& source) {
     } else {
       fb.insert("Y", Imf::Slice(Imf::FLOAT, base(r), xs, ys));
     }
+    if (has_alpha) fb.insert("A", Imf::Slice(Imf::FLOAT, base(a), xs, ys));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
-    Image image(static_cast<int>(w), static_cast<int>(h));
+    ImageWithAlpha out{Image(static_cast<int>(w), static_cast<int>(h)), {}};
     for (std::size_t i = 0; i < n; ++i)
-      image.pixels[i] = rgb ? Rgb{r[i], g[i], b[i]} : Rgb{r[i], r[i], r[i]};
-    return image;
+      out.rgb.pixels[i] = rgb ? Rgb{r[i], g[i], b[i]} : Rgb{r[i], r[i], r[i]};
+    out.alpha.assign(a.begin(), a.end());
+    return out;
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
@@ -333,7 +337,11 @@ std::string encode_npy(const Image& image) {
   return out;
 }
 
-Image decode_npy(std::string_view bytes, const std::string& source) {
+Image decode_exr(std::string_view bytes, const std::string& source) {
+  return decode_exr_with_alpha(bytes, source).rgb;
+}
+
+ImageWithAlpha decode_npy_with_alpha(std::string_view bytes, const std::string& source) {
   if (bytes.size() < 10 || bytes.substr(0, 6) != std::string_view("\x93NUMPY", 6))
     fail(source, "npy: not a NumPy .npy file (bad magic)");
   const int major = static_cast<unsigned char>(bytes[6]);
@@ -372,14 +380,23 @@ Image decode_npy(std::string_view bytes, const std::string& source) {
   if (bytes.size() - data < need)
     fail(source, "npy: " + std::to_string(bytes.size() - data) + " bytes of data, " +
                      std::to_string(need) + " needed");
-  Image image(static_cast<int>(shape[1]), static_cast<int>(shape[0]));
+  ImageWithAlpha out{Image(static_cast<int>(shape[1]), static_cast<int>(shape[0])), {}};
   const char* d = bytes.data() + data;
+  auto value = [&](std::size_t i, long long c) {
+    const std::size_t k = (i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)) * item;
+    return item == 8 ? load<double>(d + k, little) : static_cast<double>(load<float>(d + k, little));
+  };
   for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) {
-      const std::size_t k = (i * static_cast<std::size_t>(channels) + (channels == 1 ? 0 : c)) * item;
-      image.pixels[i][c] = item == 8 ? load<double>(d + k, little) : load<float>(d + k, little);
-    }
-  return image;
+    for (int c = 0; c < 3; ++c) out.rgb.pixels[i][c] = value(i, channels == 1 ? 0 : c);
+  if (channels == 4) {
+    out.alpha.resize(n);
+    for (std::size_t i = 0; i < n; ++i) out.alpha[i] = value(i, 3);
+  }
+  return out;
+}
+
+Image decode_npy(std::string_view bytes, const std::string& source) {
+  return decode_npy_with_alpha(bytes, source).rgb;
 }
 
 // ---------------------------------------------------------------- by extension
@@ -393,18 +410,20 @@ void write_image(const std::string& path, const Image& image, const PngOptions& 
   }
 }
 
-Image read_image(const std::string& path) {
+ImageWithAlpha read_image_with_alpha(const std::string& path) {
   const ImageFormat format = image_format_of(path);
-  if (format == ImageFormat::png) return read_png(path);
+  if (format == ImageFormat::png) return {read_png(path), {}};
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open file");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) fail(path, "cannot read file");
   switch (format) {
-    case ImageFormat::pfm: return decode_pfm(bytes, path);
-    case ImageFormat::exr: return decode_exr(bytes, path);
-    default: return decode_npy(bytes, path);
+    case ImageFormat::pfm: return {decode_pfm(bytes, path), {}};
+    case ImageFormat::exr: return decode_exr_with_alpha(bytes, path);
+    default: return decode_npy_with_alpha(bytes, path);
   }
 }
+
+Image read_image(const std::string& path) { return read_image_with_alpha(path).rgb; }
 
 }  // namespace rayint

@@ -16,7 +16,8 @@
 //         OpenEXR), a Y channel alone as grey, and any data window (its top-left is pixel 0, 0).
 //   .npy  NumPy array, FLOAT64 ('<f8'), shape (height, width, 3), C order: a[y, x, c] with y = 0
 //         the top row, as matplotlib's imshow shows it. Reading accepts '<f8', '<f4', '>f8',
-//         '>f4', shapes (H, W), (H, W, 1), (H, W, 3), (H, W, 4) (alpha dropped), C order only.
+//         '>f4', shapes (H, W), (H, W, 1), (H, W, 3), (H, W, 4) (alpha dropped by read_image,
+//         kept by read_image_with_alpha), C order only.
 //   .png  the 8-bit sRGB preview (render/image.hpp); read back linear, so only to ~1/255.
 //
 // Every reader throws InputError "<file>: <what>" (one line) on a malformed or unsupported file
@@ -24,6 +25,7 @@
 // libFuzzer target each, fuzz/).
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rayint/render/image.hpp"
 
@@ -50,5 +52,16 @@ Image decode_npy(std::string_view bytes, const std::string& source);
 void write_image(const std::string& path, const Image& image, const PngOptions& png_options = {});
 // Reads by extension (png: sRGB-decoded to linear). Throws InputError.
 Image read_image(const std::string& path);
+
+// An image with the alpha channel its file carries: .npy of shape (H, W, 4) (the 4th channel) or
+// .exr with an "A" channel; `alpha` is empty for every other file (PFM and RGB files have none,
+// PNG's alpha is folded into RGB by read_png). `rgb` is what read_image returns.
+struct ImageWithAlpha {
+  Image rgb;
+  std::vector<double> alpha;  // row-major like rgb.pixels, or empty
+};
+ImageWithAlpha read_image_with_alpha(const std::string& path);
+ImageWithAlpha decode_npy_with_alpha(std::string_view bytes, const std::string& source);
+ImageWithAlpha decode_exr_with_alpha(std::string_view bytes, const std::string& source);
 
 }  // namespace rayint

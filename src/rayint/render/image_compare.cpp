@@ -20,6 +20,28 @@ Image flipped(const Image& image, bool flip_x, bool flip_y) {
   return out;
 }
 
+Image composite_over(const Image& rgb, const std::vector<double>& alpha, const Rgb& background,
+                     AlphaMode mode) {
+  if (mode == AlphaMode::ignore) return rgb;
+  if (alpha.size() != rgb.pixels.size())
+    throw std::invalid_argument("the image has no alpha channel (an .npy of shape (height, width, 4) "
+                                "or an .exr with channel A is needed)");
+  Image out(rgb.width, rgb.height);
+  for (std::size_t i = 0; i < alpha.size(); ++i) {
+    const double a = alpha[i];
+    if (!(a >= 0.0 && a <= 1.0))
+      throw std::invalid_argument(
+          "pixel(" + std::to_string(i % static_cast<std::size_t>(rgb.width)) + "," +
+          std::to_string(i / static_cast<std::size_t>(rgb.width)) + "): alpha must be in [0, 1], got " +
+          std::to_string(a));
+    for (int c = 0; c < 3; ++c) {
+      const double emitted = mode == AlphaMode::premultiplied ? rgb.pixels[i][c] : a * rgb.pixels[i][c];
+      out.pixels[i][c] = emitted + (1.0 - a) * background[c];
+    }
+  }
+  return out;
+}
+
 ImageComparison compare_images(const Image& expected, const Image& candidate,
                                const ImageCompareOptions& o) {
   if (expected.width != candidate.width || expected.height != candidate.height)

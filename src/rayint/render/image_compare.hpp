@@ -94,6 +94,19 @@ ZTestResult z_test_images(const Image& exact, const Image& mean, const Image& va
 // Mirrors an image left-right and/or top-bottom.
 Image flipped(const Image& image, bool flip_x, bool flip_y);
 
+// How a candidate's alpha channel is meant: `ignore` (only RGB is compared, the renderer already
+// composited over the background), `premultiplied` (RGB = emitted colour C, alpha = 1 - T: the
+// pixel is C + (1 - alpha) * background, Porter-Duff "over" with associated alpha, which is what
+// VTK's ray caster stores and what glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA) leaves in a frame
+// buffer cleared to transparent black), `straight` (RGB = C / alpha: alpha * RGB + (1 - alpha) *
+// background).
+enum class AlphaMode { ignore, premultiplied, straight };
+
+// The candidate composited over a uniform background. Throws std::invalid_argument when `alpha`
+// does not have one value per pixel, or names the first pixel "(x, y)" whose alpha is not a
+// finite number in [0, 1].
+Image composite_over(const Image& rgb, const std::vector<double>& alpha, const Rgb& background, AlphaMode mode);
+
 // Throws std::invalid_argument when the sizes differ (the CLI reports it as bad input).
 ImageComparison compare_images(const Image& expected, const Image& candidate,
                                const ImageCompareOptions& options);

@@ -33,6 +33,8 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
   j["pixel_convention"] = pixel_convention_text();
   j["flip_x"] = ctx.flip_x;
   j["flip_y"] = ctx.flip_y;
+  if (!ctx.alpha_mode.empty())
+    j["candidate_alpha"] = ctx.alpha_mode + ": composited over the case's background before the comparison";
   j["rule"] = "|got - expected| <= max(abs_tol, rel_tol * |expected|) for every channel of every pixel";
   j["rel_tol"] = ctx.rel_tol;
   j["abs_tol"] = ctx.abs_tol;

@@ -14,6 +14,7 @@ struct ImageCheckContext {
   std::string case_name, case_source, candidate_source;
   double rel_tol = 0.0, abs_tol = 0.0;
   bool flip_x = false, flip_y = false;
+  std::string alpha_mode;               // --candidate-alpha premultiplied|straight, empty when ignored
   std::string heat_map;                 // path written, or empty
   std::vector<std::string> worst_cases; // per worst pixel: its case file (empty: none written)
   std::string note;                     // e.g. why no case files were written
