@@ -5,6 +5,7 @@
 // progress on stderr.
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -67,6 +68,8 @@ void set_cells_command(CLI::App& app) {
     // shards' samples (README, "Shards and merge").
     const bool in_shard = !opt->shard.empty();
     const ShardSpec shard = begin_shard(opt->shard);
+    if (in_shard && (opt->output.empty() || opt->output == "-"))  // before the work
+      throw std::invalid_argument("--shard: needs -o FILE for the shard file");
     if (in_shard) {
       write_shard(opt->output, "cells", shard, {}, to_json(run_cells_samples(so, shard)));
       return;

@@ -74,6 +74,8 @@ void set_scatter_command(CLI::App& app) {
     // merge: the comparison from the shards' parts (README, "Shards and merge").
     const bool in_shard = !s->shard.empty();
     const ShardSpec shard = begin_shard(s->shard);
+    if (in_shard && (s->output.empty() || s->output == "-"))  // before the work
+      throw std::invalid_argument("--shard: needs -o FILE for the shard file");
     SceneVolumeComparison r;
     if (in_shard || merging()) {
       SceneVolumeSetup setup = scene_volume_setup(scene, s->width, s->height, s->points);
