@@ -143,6 +143,11 @@ assert all(s["seconds_per_ray"] > 0 for x in r["methods"] for s in x["settings"]
 print("bench: settings", sum(len(x["settings"]) for x in r["methods"]), "rays", r["rays"],
       "particle failed on", p["failed_rays"], "rays")
 PY
+    # --allow-partial without shard 2/4 (rays floor(18*2/4) = 9 .. floor(18*3/4) = 13 of 18): the
+    # other 14 rays, 42 channels of exact
+    "$rayint" merge --allow-partial "$work"/s.{0,1,3}.json -o "$work/partial.json" 2>"$work/err" >/dev/null
+    grep -q "partial: 3 of 4 shards (missing 2/4)" "$work/err"
+    /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); e=r['methods'][0]['settings'][0]; assert r['methods'][0]['method']=='exact' and e['channels']==42, e['channels']; print('partial bench merge: exact on', e['channels'], 'channels')" "$work/partial.json"
     "$rayint" "${args[@]:0:$((${#args[@]}-2))}" --batch-seconds 2e-5 --shard 1/4 -o "$work/other.1.json" --quiet
     refuse_mixed "$work"/s.{0,2,3}.json "$work/other.1.json"
     echo "bench: 4-shard merge == one run on every error figure, count and worst case; merge refuses a shard of another run"

@@ -189,7 +189,7 @@ void summarise_setting(const std::vector<Case>& cases, const SweepSettingSamples
     std::vector<double> case_errors, case_times;
     for (std::size_t k = 0; k < sc.rays.size(); ++k) {
       const SweepRaySample& sample = sc.rays[k];
-      const std::size_t r = sc.first_ray + k;
+      const std::size_t r = sc.ray_numbers.empty() ? sc.first_ray + k : sc.ray_numbers[k];
       if (sample.failed) {
         ++cs.failed_rays;
         ++out.failed_rays;
@@ -233,6 +233,7 @@ void summarise_setting(const std::vector<Case>& cases, const SweepSettingSamples
 SweepSettingSamples join_samples(const std::vector<const SweepSettingSamples*>& parts, std::size_t n_cases) {
   SweepSettingSamples out;
   out.cases.resize(n_cases);
+  std::vector<std::size_t> next(n_cases, 0);  // the first ray after the parts joined so far
   for (const SweepSettingSamples* p : parts) {
     if (p->cases.size() != n_cases)
       throw std::invalid_argument("bench merge: a part holds " + std::to_string(p->cases.size()) +
@@ -244,11 +245,12 @@ SweepSettingSamples join_samples(const std::vector<const SweepSettingSamples*>& 
       if (from.covered == 0 && !from.setup_failed) continue;
       if (to.covered == 0 && !to.setup_failed) {
         to.first_ray = from.first_ray;
-      } else if (from.first_ray != to.first_ray + to.covered) {
+      } else if (from.first_ray < next[ci]) {
         throw std::invalid_argument("bench merge: case " + std::to_string(ci) + ": a part starts at ray " +
-                                    std::to_string(from.first_ray) + ", expected " +
-                                    std::to_string(to.first_ray + to.covered));
+                                    std::to_string(from.first_ray) + ", before the end of the previous one (" +
+                                    std::to_string(next[ci]) + ")");
       }
+      next[ci] = from.first_ray + from.covered;
       if (from.setup_failed && !to.setup_failed) {
         to.setup_failed = true;
         to.setup_failure = from.setup_failure;
@@ -257,6 +259,7 @@ SweepSettingSamples join_samples(const std::vector<const SweepSettingSamples*>& 
         throw std::invalid_argument("bench merge: case " + std::to_string(ci) + ": a part covers " +
                                     std::to_string(from.covered) + " rays but holds " +
                                     std::to_string(from.rays.size()));
+      for (std::size_t k = 0; k < from.rays.size(); ++k) to.ray_numbers.push_back(from.first_ray + k);
       to.covered += from.covered;
       to.setup_seconds += from.setup_seconds;
       to.rays.insert(to.rays.end(), from.rays.begin(), from.rays.end());

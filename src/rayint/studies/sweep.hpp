@@ -200,6 +200,9 @@ struct SweepCaseSamples {
   std::string setup_failure;  // its message
   double setup_seconds = 0.0;
   std::vector<SweepRaySample> rays;
+  // Joined parts of a partial merge (a shard missing): the ray number of each of `rays` (empty:
+  // first_ray, first_ray + 1, ...).
+  std::vector<std::size_t> ray_numbers;
 };
 struct SweepSettingSamples {
   std::vector<SweepCaseSamples> cases;  // one per case of the set (covered = 0 if none of its rays)
