@@ -10,6 +10,9 @@
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "shard.hpp"
+#include "rayint/input/shard_reader.hpp"
+#include "rayint/report/shard_json.hpp"
 #include "rayint/studies/sweep.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/report/sweep_json.hpp"
@@ -61,6 +64,7 @@ void set_bench_command(CLI::App& app) {
     SweepOptions sweep;
     bool quiet = false;
     MeshReadOptions mesh;
+    std::string shard;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -76,7 +80,7 @@ void set_bench_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--method-seconds", opt->sweep.method_max_seconds, "The same budget per method (0 = none)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("-o,--output", opt->output, "JSON output file ('-' = stdout)")
+  CLI::Option* output_option = cmd->add_option("-o,--output", opt->output, "JSON output file ('-' = stdout)")
       ->capture_default_str();
   cmd->add_option("--batches", opt->sweep.timing.timing_batches, "Timing batches per ray (median taken)")
       ->capture_default_str()
@@ -87,7 +91,8 @@ void set_bench_command(CLI::App& app) {
   add_threads_option(cmd, opt->sweep.timing.threads, "Threads for the reference (0 = all cores)");
   add_quiet_flag(cmd, opt->quiet);
   add_strict_mesh_flag(cmd, opt->mesh.strict);
-  cmd->callback([opt] {
+  add_shard_option(cmd, opt->shard);
+  cmd->callback([opt, output_option] {
     const std::vector<SweepAxis> axes = select_sweep_axes(split_names(opt->methods));
     const std::vector<std::string> files = case_files(opt->files);
     std::vector<Case> cases;
@@ -99,7 +104,27 @@ void set_bench_command(CLI::App& app) {
     SweepOptions so = opt->sweep;
     if (!opt->quiet)
       so.progress = [](const SweepProgress& p) { std::cerr << sweep_progress_line(p) << std::flush; };
-    const SweepResult result = run_sweep(cases, axes, so);
+    // --shard: every setting on this shard's rays, what each ray measured to the shard file;
+    // merge: the report from the shards' rays (README, "Shards and merge").
+    const bool in_shard = !opt->shard.empty();
+    const ShardSpec shard = begin_shard(opt->shard);
+    if (in_shard) {
+      if (output_option->count() == 0)
+        throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+      write_shard(opt->output, "bench", shard, files, to_json(run_sweep_part(cases, axes, so, shard)));
+      return;
+    }
+    SweepResult result;
+    if (merging()) {
+      check_merge_inputs("bench", files);
+      const ShardContext& c = shard_context();
+      std::vector<SweepPart> parts;
+      for (std::size_t i = 0; i < c.data.size(); ++i)
+        if (!c.data[i].is_null()) parts.push_back(sweep_part_from_json(c.data[i], c.files[i], "data"));
+      result = finish_sweep(cases, axes, so, parts);
+    } else {
+      result = run_sweep(cases, axes, so);
+    }
     emit(sweep_report_json(result).dump(1), opt->output);
     if (opt->output != "-") {
       std::cout << sweep_targets_table(result);

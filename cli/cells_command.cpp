@@ -5,10 +5,14 @@
 // progress on stderr.
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "shard.hpp"
+#include "rayint/input/shard_reader.hpp"
+#include "rayint/report/shard_json.hpp"
 #include "rayint/studies/cells_study.hpp"
 #include "rayint/report/cells_json.hpp"
 #include "rayint/report/cells_table.hpp"
@@ -20,6 +24,7 @@ void set_cells_command(CLI::App& app) {
     CellsStudyOptions study;
     std::string output;
     bool quiet = false;
+    std::string shard;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -55,10 +60,31 @@ void set_cells_command(CLI::App& app) {
   cmd->add_option("-o,--output", opt->output,
                   "Write the JSON report here (then print the table on stdout)");
   add_quiet_flag(cmd, opt->quiet);
+  add_shard_option(cmd, opt->shard);
   cmd->callback([opt] {
     CellsStudyOptions so = opt->study;
     if (!opt->quiet) so.progress = [](const std::string& msg) { std::cerr << "cells: " << msg << "\n"; };
-    const CellsReport report = run_cells_study(so);
+    // --shard: the samples of this shard's cells and voxel rays; merge: the report from the
+    // shards' samples (README, "Shards and merge").
+    const bool in_shard = !opt->shard.empty();
+    const ShardSpec shard = begin_shard(opt->shard);
+    if (in_shard && (opt->output.empty() || opt->output == "-"))  // before the work
+      throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+    if (in_shard) {
+      write_shard(opt->output, "cells", shard, {}, to_json(run_cells_samples(so, shard)));
+      return;
+    }
+    CellsReport report;
+    if (merging()) {
+      check_merge_inputs("cells", {});
+      const ShardContext& c = shard_context();
+      std::vector<CellsSamples> parts;
+      for (std::size_t i = 0; i < c.data.size(); ++i)
+        if (!c.data[i].is_null()) parts.push_back(cells_samples_from_json(c.data[i], c.files[i], "data"));
+      report = finish_cells_study(so, parts);
+    } else {
+      report = run_cells_study(so);
+    }
     const std::string json_text = to_json(report).dump(2);
     if (opt->output.empty()) {
       emit(json_text, "");

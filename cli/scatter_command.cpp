@@ -3,12 +3,16 @@
 // counts, and the zonal method, each against the reference with its cost
 // (src/rayint/scattering/volume_comparison.hpp). JSON report and PNG images.
 #include <iostream>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "shard.hpp"
 #include "rayint/input/scene_reader.hpp"
+#include "rayint/input/shard_reader.hpp"
+#include "rayint/report/shard_json.hpp"
 #include "rayint/report/volume_comparison_json.hpp"
 #include "rayint/effects/scene_volume_comparison.hpp"
 
@@ -22,6 +26,7 @@ struct ScatterOptions {
   std::string output, images;
   double exposure = 1.0;
   bool quiet = false;
+  std::string shard;  // --shard I/N
 };
 
 }  // namespace
@@ -46,6 +51,7 @@ void set_scatter_command(CLI::App& app) {
   cmd->add_option("--exposure", s->exposure, "PNG exposure (default 1)");
   cmd->add_option("-o,--output", s->output, "JSON report here (atomically) instead of stdout");
   cmd->add_flag("--quiet", s->quiet, "no progress on stderr");
+  add_shard_option(cmd, s->shard);
   cmd->callback([s]() {
     if (s->width < 1 || s->height < 1 || s->width > 4096 || s->height > 4096)
       throw std::invalid_argument("--width/--height: must be in [1, 4096]");
@@ -61,10 +67,35 @@ void set_scatter_command(CLI::App& app) {
     ComparisonOptions o = s->comparison;
     o.reference.threads = o.threads = s->threads;
     const bool quiet = s->quiet;
-    const SceneVolumeComparison r = compare_volume_methods_on_scene(
-        scene, s->width, s->height, s->points, o, [quiet](const std::string& m) {
-          if (!quiet) std::cerr << "rayint scatter: " << m << "\n";
-        });
+    const auto progress = [quiet](const std::string& m) {
+      if (!quiet) std::cerr << "rayint scatter: " << m << "\n";
+    };
+    // --shard: this shard's rows of the Monte Carlo references and its share of the method runs;
+    // merge: the comparison from the shards' parts (README, "Shards and merge").
+    const bool in_shard = !s->shard.empty();
+    const ShardSpec shard = begin_shard(s->shard);
+    if (in_shard && (s->output.empty() || s->output == "-"))  // before the work
+      throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+    SceneVolumeComparison r;
+    if (in_shard || merging()) {
+      SceneVolumeSetup setup = scene_volume_setup(scene, s->width, s->height, s->points);
+      if (in_shard) {
+        write_shard(s->output, "scatter", shard, {s->scene},
+                    to_json(compare_volume_methods_part(setup.volume, setup.camera, o, shard, progress)));
+        return;
+      }
+      check_merge_inputs("scatter", {s->scene});
+      const ShardContext& c = shard_context();
+      std::vector<VolumeComparisonPart> parts;
+      for (std::size_t i = 0; i < c.data.size(); ++i)
+        if (!c.data[i].is_null()) parts.push_back(volume_comparison_part_from_json(c.data[i], c.files[i], "data"));
+      r.volume = std::move(setup.volume);
+      r.comparison = finish_volume_comparison(parts);
+      if (r.comparison.width != s->width || r.comparison.height != s->height)
+        throw std::invalid_argument("merge: the shards' images are not --width x --height");
+    } else {
+      r = compare_volume_methods_on_scene(scene, s->width, s->height, s->points, o, progress);
+    }
     const VolumeComparison& c = r.comparison;
     const nlohmann::json j = volume_comparison_json(s->scene, s->points, r.volume, o, c);
     if (!s->images.empty()) write_volume_comparison_images(c, s->images, s->exposure);

@@ -1,6 +1,7 @@
 // libFuzzer target for the shard-data readers of `rayint merge` (input/shard_reader.hpp) on
 // arbitrary bytes parsed as JSON, followed by what the merge does with what they accept
-// (finish a Monte Carlo tree, assemble a mesh render). Run it with
+// (finish a Monte Carlo tree, assemble a mesh render, a scatter comparison, a cells report).
+// Seeds: fuzz/seeds/shard/ (the data of small shard files of every kind). Run it with
 // `RAYINT_FUZZ_TARGET=shard_reader scripts/fuzz.sh`. A finding is any of:
 //   - a crash, sanitizer report, hang or leak;
 //   - an exception other than rayint::InputError (readers) or std::invalid_argument (the
@@ -59,6 +60,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const rayint::MeshRenderPart p = rayint::mesh_render_part_from_json(j, kSource, "data");
     (void)rayint::assemble_mesh_render({p});
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    (void)rayint::sweep_part_from_json(j, kSource, "data");
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  }
+  try {
+    const rayint::VolumeComparisonPart p = rayint::volume_comparison_part_from_json(j, kSource, "data");
+    if (static_cast<long long>(p.width) * p.height <= (1 << 16)) (void)rayint::finish_volume_comparison({p});
+  } catch (const rayint::InputError& e) {
+    check_message(e.what());
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    const rayint::CellsSamples p = rayint::cells_samples_from_json(j, kSource, "data");
+    rayint::CellsStudyOptions o;
+    o.levels = {1, 2};
+    o.voxel_sizes = {4};
+    (void)rayint::finish_cells_study(o, {p});
   } catch (const rayint::InputError& e) {
     check_message(e.what());
   } catch (const std::invalid_argument&) {

@@ -16,7 +16,8 @@
 # meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
 # RAYINT_FUZZ_TARGET selects the target (default case_parser); preset_parser (ParaView presets)
 # seeds from fuzz/seeds/preset/.
-# The image readers pfm_reader, exr_reader, npy_reader seed from fuzz/seeds/<format>/.
+# The image readers pfm_reader, exr_reader, npy_reader seed from fuzz/seeds/<format>/;
+# shard_reader (the shard data `rayint merge` reads) from fuzz/seeds/shard/.
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -40,9 +41,10 @@ case "$target" in
   gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
   tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
   preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
+  shard_reader) seed_files=("$root"/fuzz/seeds/shard/*.json); what="rayint shard data readers (rayint merge)" ;;
   pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
     fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, pfm_reader, exr_reader or npy_reader" >&2; exit 2 ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

@@ -1,13 +1,25 @@
 #!/usr/bin/env bash
 # CTest shard_merge_<kind>: a 4-shard run merged with `rayint merge` equals the single run.
-#   shard_merge_test.sh RAYINT SOURCE_DIR KIND       KIND: stress | slab | slab_benchmark | render | refusals | rerun
+#   shard_merge_test.sh RAYINT SOURCE_DIR KIND
+#   KIND: stress | slab | slab_benchmark | render | refusals | rerun | bench | scatter | cells
 # Reports are compared by tests/compare_reports.py: identical except wall-time fields (keys
-# ending in seconds / per_second / _share); the stress report and every image byte for byte.
+# ending in seconds / per_second / _share; bench also its timing-derived fields, see there);
+# the stress report and every image byte for byte.
 set -euo pipefail
 rayint=$1 src=$2 kind=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cmp_reports() { /usr/bin/python3 "$src/tests/compare_reports.py" "$1" "$2"; }
+cmp_reports() { /usr/bin/python3 "$src/tests/compare_reports.py" "$@"; }
+# refuse_mixed MERGE-ARGS...: `rayint merge` of the given shard files (one of them from another
+# run) exits 2 with one line naming a shard of a different run, and writes nothing.
+refuse_mixed() {
+  rm -f "$work/mixed.out"
+  local rc=0; "$rayint" merge "$@" -o "$work/mixed.out" 2>"$work/mixed.err" >/dev/null || rc=$?
+  [ "$rc" = 2 ] || { echo "mixed merge: expected exit 2, got $rc"; cat "$work/mixed.err"; exit 1; }
+  [ "$(wc -l <"$work/mixed.err")" = 1 ] || { echo "mixed merge: expected one line:"; cat "$work/mixed.err"; exit 1; }
+  grep -q "a shard of a different run" "$work/mixed.err" || { echo "mixed merge:"; cat "$work/mixed.err"; exit 1; }
+  [ ! -e "$work/mixed.out" ] || { echo "mixed merge wrote output"; exit 1; }
+}
 shards() {  # shards PREFIX ARGS... : runs shards 0..3 of the run ARGS into PREFIX.I.json
   local prefix=$1; shift
   for i in 0 1 2 3; do "$rayint" "$@" --shard "$i/4" -o "$prefix.$i.json" --quiet; done
@@ -100,6 +112,75 @@ case $kind in
     "$rayint" "${args[@]}" --shard 2/4 -o "$work/killed.json" --quiet
     cmp_reports "$work/first.json" "$work/killed.json"
     echo "rerun: a re-run shard equals the first run of it (except wall-time fields)"
+    ;;
+  bench)
+    # Cases with every kind of outcome: a method failing on a case (particle on varying colour),
+    # underflow (thick-absorber-background), many segments; 4 shards split the rays unevenly
+    # and across case boundaries. Timing: 1 batch of >= 10 us per ray (fast; still measured).
+    cases=("$src"/cases/{paper-figure-2,constant-density-varying-color,many-segments-background,thick-absorber-background,narrow-pulse}.json)
+    args=(bench "${cases[@]}" --methods paper,particle,eq6,psi_table --batches 1 --batch-seconds 1e-5)
+    "$rayint" "${args[@]}" -o "$work/one.json" --quiet >/dev/null
+    shards "$work/s" "${args[@]}"
+    "$rayint" merge "$work"/s.{2,0,3,1}.json -o "$work/merged.json" >"$work/table.txt"
+    grep -q "wrote $work/merged.json" "$work/table.txt"
+    # Timing fields: every key ending in seconds or seconds_per_ray (times per ray are each measured once, in
+    # whichever run owns the ray), cost_vs_exact (a ratio of two times), the run's start time and
+    # load averages, and the target table (each choice is "least seconds_per_ray"): the target
+    # table of the merged report is checked against its own settings instead (compare_reports.py
+    # --bench-targets recomputes it from the documented rule).
+    cmp_reports "$work/one.json" "$work/merged.json" --ignore seconds_per_ray --ignore median_seconds_per_ray \
+      --ignore exact_seconds_per_ray --ignore cost_vs_exact --ignore started_at \
+      --ignore load_average_start --ignore load_average_end --ignore targets
+    cmp_reports --bench-targets "$work/merged.json"
+    cmp_reports --bench-targets "$work/one.json"
+    /usr/bin/python3 - "$work/merged.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+m = {x["method"]: x for x in r["methods"]}
+p = m["particle"]["settings"][0]
+assert p["failed_rays"] > 0 and "failure" in p, p  # a failing setting went through the merge
+assert all(s["seconds_per_ray"] > 0 for x in r["methods"] for s in x["settings"] if s["channels"])
+print("bench: settings", sum(len(x["settings"]) for x in r["methods"]), "rays", r["rays"],
+      "particle failed on", p["failed_rays"], "rays")
+PY
+    # --allow-partial without shard 2/4 (rays floor(18*2/4) = 9 .. floor(18*3/4) = 13 of 18): the
+    # other 14 rays, 42 channels of exact
+    "$rayint" merge --allow-partial "$work"/s.{0,1,3}.json -o "$work/partial.json" 2>"$work/err" >/dev/null
+    grep -q "partial: 3 of 4 shards (missing 2/4)" "$work/err"
+    /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); e=r['methods'][0]['settings'][0]; assert r['methods'][0]['method']=='exact' and e['channels']==42, e['channels']; print('partial bench merge: exact on', e['channels'], 'channels')" "$work/partial.json"
+    "$rayint" "${args[@]:0:$((${#args[@]}-2))}" --batch-seconds 2e-5 --shard 1/4 -o "$work/other.1.json" --quiet
+    refuse_mixed "$work"/s.{0,2,3}.json "$work/other.1.json"
+    echo "bench: 4-shard merge == one run on every error figure, count and worst case; merge refuses a shard of another run"
+    ;;
+  scatter)
+    args=(scatter "$src/cases/scenes/cloud-multiple-scattering.json" --width 14 --height 10 --spp 6
+          --points 12 --grids 4,6 --bins 1,2 --zonal-grids 3,4)
+    "$rayint" "${args[@]}" -o "$work/one.json" --images "$work/img" --quiet
+    mv "$work/img" "$work/img1"
+    shards "$work/s" "${args[@]}" --images "$work/img"
+    [ ! -e "$work/img" ] || { echo "a shard wrote images"; exit 1; }
+    "$rayint" merge "$work"/s.{3,0,2,1}.json -o "$work/merged.json"
+    cmp_reports "$work/one.json" "$work/merged.json"
+    n=0; for f in "$work"/img1/*.png; do cmp "$f" "$work/img/$(basename "$f")"; n=$((n+1)); done
+    [ "$n" = "$(ls "$work/img" | wc -l)" ] && [ "$n" -gt 2 ]
+    "$rayint" "${args[@]}" --seed 6 --shard 2/4 -o "$work/other.2.json" --quiet  # the default seed is 1
+    refuse_mixed "$work"/s.{0,1,3}.json "$work/other.2.json"
+    echo "scatter: 4-shard merge == one run (report except wall-time fields, $n PNG images byte for byte); merge refuses a shard of another run"
+    ;;
+  cells)
+    # 9 cells per type and 7 rays per voxel grid: the 4 shards get unequal parts
+    args=(cells --count 9 --seed 3 --rays 2 --levels 1,2,4 --voxel-sizes 4,6 --voxel-rays 7)
+    "$rayint" "${args[@]}" -o "$work/one.json" --quiet >/dev/null
+    shards "$work/s" "${args[@]}"
+    "$rayint" merge "$work"/s.{1,3,0,2}.json -o "$work/merged.json" >/dev/null
+    # times per ray (CPU microseconds, milliseconds) are measured per sample, in whichever run
+    # owns the sample: timing fields, like the keys ending in seconds
+    cmp_reports "$work/one.json" "$work/merged.json" --ignore decompose_us_per_ray --ignore exact_us_per_ray \
+      --ignore us_per_ray --ignore ms_per_ray --ignore reference_ms_per_ray
+    "$rayint" cells --count 9 --seed 4 --rays 2 --levels 1,2,4 --voxel-sizes 4,6 --voxel-rays 7 \
+      --shard 0/4 -o "$work/other.0.json" --quiet
+    refuse_mixed "$work/other.0.json" "$work"/s.{1,2,3}.json
+    echo "cells: 4-shard merge == one run (except wall/CPU-time fields); merge refuses a shard of another run"
     ;;
   *) echo "unknown kind $kind"; exit 2 ;;
 esac

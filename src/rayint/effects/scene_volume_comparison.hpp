@@ -17,6 +17,14 @@ struct SceneVolumeComparison {
   VolumeComparison comparison;
 };
 
+// The volume and camera compare_volume_methods_on_scene compares the methods on (for `rayint
+// scatter --shard I/N`, which runs compare_volume_methods_part on them, and the merge).
+struct SceneVolumeSetup {
+  ScatteringVolume volume;
+  Camera camera;
+};
+SceneVolumeSetup scene_volume_setup(const Scene& scene, int width, int height, int points);
+
 SceneVolumeComparison compare_volume_methods_on_scene(
     const Scene& scene, int width, int height, int points, const ComparisonOptions& options,
     const std::function<void(const std::string&)>& progress = {});

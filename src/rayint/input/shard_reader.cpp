@@ -1,6 +1,7 @@
 // Reads shard data (shard_reader.hpp). Structure problems are InputErrors naming the field.
 #include "rayint/input/shard_reader.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "rayint/core/error.hpp"
@@ -221,6 +222,186 @@ MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::st
                     &cost.traversal.first_hit_queries, &cost.traversal.budget_exhausted};
   for (std::size_t i = 0; i < 7; ++i) *fields[i] = static_cast<long>(r.integer(t[i], field::index_path(tp, i)));
   return p;
+}
+
+SweepPart sweep_part_from_json(const nlohmann::json& j, const std::string& source,
+                               const std::string& path) {
+  const Reader r{source};
+  SweepPart part;
+  const nlohmann::json& run = r.at(j, path, "run");
+  const std::string rp = field::member_path(path, "run");
+  part.started_at = r.string(run, rp, "started_at");
+  part.hardware_threads = static_cast<unsigned>(std::min<long long>(r.nonneg(run, rp, "hardware_threads"), 1 << 20));
+  for (const char* key : {"load_start", "load_end"}) {
+    const std::vector<double> v = r.numbers(run, rp, key);
+    if (v.size() != 3) r.fail(field::member_path(rp, key), "must hold 3 numbers");
+    (std::string(key) == "load_start" ? part.load_start : part.load_end) = {v[0], v[1], v[2]};
+  }
+  part.reference_seconds = r.number(run, rp, "reference_seconds");
+  part.measure_seconds = r.number(run, rp, "measure_seconds");
+  const nlohmann::json& methods = r.array(j, path, "methods");
+  const std::string mp = field::member_path(path, "methods");
+  for (std::size_t a = 0; a < methods.size(); ++a) {
+    const std::string ap = field::index_path(mp, a);
+    if (!methods[a].is_array()) r.fail(ap, "must be an array of settings");
+    std::vector<SweepSettingSamples> settings;
+    for (std::size_t k = 0; k < methods[a].size(); ++k) {
+      const std::string kp = field::index_path(ap, k);
+      const nlohmann::json& st = methods[a][k];
+      SweepSettingSamples out;
+      out.wall_seconds = r.number(st, kp, "wall_seconds");
+      const nlohmann::json& cases = r.array(st, kp, "cases");
+      const std::string cp = field::member_path(kp, "cases");
+      for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+        const std::string ip = field::index_path(cp, ci);
+        const nlohmann::json& c = cases[ci];
+        SweepCaseSamples cs;
+        cs.first_ray = static_cast<std::size_t>(r.nonneg(c, ip, "first_ray"));
+        cs.covered = static_cast<std::size_t>(r.nonneg(c, ip, "covered"));
+        cs.setup_seconds = r.number(c, ip, "setup_seconds");
+        if (c.contains("setup_failure")) {
+          cs.setup_failed = true;
+          cs.setup_failure = r.string(c, ip, "setup_failure");
+        }
+        const nlohmann::json& rays = r.array(c, ip, "rays");
+        const std::string yp = field::member_path(ip, "rays");
+        for (std::size_t k2 = 0; k2 < rays.size(); ++k2) {
+          const std::string rp2 = field::index_path(yp, k2);
+          SweepRaySample s;
+          if (rays[k2].is_object()) {
+            s.failed = true;
+            s.failure = r.string(rays[k2], rp2, "failure");
+          } else {
+            const std::vector<double> v = r.numbers(rays[k2], rp2);
+            if (v.size() != 5) r.fail(rp2, "must be [nonfinite bits, error r, g, b, seconds] or {\"failure\": message}");
+            const long long bits = r.integer(rays[k2][0], field::index_path(rp2, 0));
+            if (bits < 0 || bits > 7) r.fail(field::index_path(rp2, 0), "must be in [0, 7]");
+            s.nonfinite = static_cast<unsigned>(bits);
+            s.error = {v[1], v[2], v[3]};
+            s.seconds = v[4];
+          }
+          cs.rays.push_back(std::move(s));
+        }
+        if (!cs.setup_failed && cs.rays.size() != cs.covered) r.fail(ip, "must hold `covered` rays");
+        out.cases.push_back(std::move(cs));
+      }
+      settings.push_back(std::move(out));
+    }
+    part.methods.push_back(std::move(settings));
+  }
+  return part;
+}
+
+VolumeComparisonPart volume_comparison_part_from_json(const nlohmann::json& j, const std::string& source,
+                                                      const std::string& path) {
+  const Reader r{source};
+  VolumeComparisonPart p;
+  p.width = static_cast<int>(r.nonneg(j, path, "width"));
+  p.height = static_cast<int>(r.nonneg(j, path, "height"));
+  p.row_begin = static_cast<int>(r.nonneg(j, path, "row_begin"));
+  p.row_end = static_cast<int>(r.nonneg(j, path, "row_end"));
+  if (p.width < 1 || p.height < 1 || p.width > 4096 || p.height > 4096 || p.row_end > p.height ||
+      p.row_begin > p.row_end)
+    r.fail(path, "needs 1 <= width, height <= 4096 and 0 <= row_begin <= row_end <= height");
+  const std::size_t w = static_cast<std::size_t>(p.width);
+  const std::size_t rows = static_cast<std::size_t>(p.row_end - p.row_begin);
+  for (const char* key : {"reference_all", "reference_single"}) {
+    const std::string ep = field::member_path(path, key);
+    const nlohmann::json& e = r.at(j, path, key);
+    EstimateImage& img = std::string(key) == "reference_all" ? p.reference_all : p.reference_single;
+    img.width = p.width;
+    img.height = p.row_end - p.row_begin;
+    img.mean = r.numbers(e, ep, "mean");
+    img.std_error = r.numbers(e, ep, "std_error");
+    if (img.mean.size() != rows * w || img.std_error.size() != rows * w)
+      r.fail(ep, "mean and std_error must hold one number per pixel of rows [row_begin, row_end)");
+    const nlohmann::json& st = r.at(e, ep, "stats");
+    const std::string sp = field::member_path(ep, "stats");
+    if (!st.is_array() || st.size() != 5) r.fail(sp, "must be [paths, real collisions, tentative collisions, shadow rays, seconds]");
+    long long* counts[] = {&img.stats.paths, &img.stats.real_collisions, &img.stats.tentative_collisions,
+                           &img.stats.shadow_rays};
+    for (std::size_t i = 0; i < 4; ++i) {
+      *counts[i] = r.integer(st[i], field::index_path(sp, i));
+      if (*counts[i] < 0) r.fail(field::index_path(sp, i), "must be >= 0");
+    }
+    img.stats.seconds = r.number(st[4], field::index_path(sp, 4));
+  }
+  const nlohmann::json& runs = r.array(j, path, "runs");
+  const std::string rp = field::member_path(path, "runs");
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const std::string kp = field::index_path(rp, k);
+    const nlohmann::json& m = runs[k];
+    p.run_index.push_back(static_cast<std::size_t>(r.nonneg(m, kp, "index")));
+    MethodRun run;
+    run.method = r.string(m, kp, "method");
+    run.grid = static_cast<int>(std::min<long long>(r.nonneg(m, kp, "grid"), 1 << 20));
+    run.bins = static_cast<int>(std::min<long long>(r.nonneg(m, kp, "bins"), 1 << 20));
+    run.iterations = static_cast<int>(std::min<long long>(r.nonneg(m, kp, "iterations"), 1 << 30));
+    run.converged = r.boolean(m, kp, "converged");
+    run.setup_seconds = r.number(m, kp, "setup_seconds");
+    run.gather_seconds = r.number(m, kp, "gather_seconds");
+    run.image = r.numbers(m, kp, "image");
+    if (run.image.size() != w * static_cast<std::size_t>(p.height))
+      r.fail(field::member_path(kp, "image"), "must hold one number per pixel");
+    p.runs.push_back(std::move(run));
+  }
+  return p;
+}
+
+CellsSamples cells_samples_from_json(const nlohmann::json& j, const std::string& source,
+                                     const std::string& path) {
+  const Reader r{source};
+  CellsSamples part;
+  // A fixed-size array of numbers at j[i] (e.g. [error, seconds, steps]).
+  const auto fixed = [&](const nlohmann::json& a, const std::string& p, std::size_t n) {
+    const std::vector<double> v = r.numbers(a, p);
+    if (v.size() != n) r.fail(p, "must hold " + std::to_string(n) + " numbers");
+    return v;
+  };
+  const nlohmann::json& cells = r.array(j, path, "cells");
+  const std::string cp = field::member_path(path, "cells");
+  for (std::size_t t = 0; t < cells.size(); ++t) {
+    const std::string tp = field::index_path(cp, t);
+    if (!cells[t].is_array()) r.fail(tp, "must be an array of samples");
+    std::vector<CellRaySample> samples;
+    for (std::size_t i = 0; i < cells[t].size(); ++i) {
+      const std::string ip = field::index_path(tp, i);
+      const nlohmann::json& e = cells[t][i];
+      CellRaySample s;
+      s.level_error = r.numbers(e, ip, "level_error");
+      s.level_segments = r.numbers(e, ip, "level_segments");
+      s.level_decompose_s = r.numbers(e, ip, "level_decompose_s");
+      s.level_exact_s = r.numbers(e, ip, "level_exact_s");
+      const std::size_t levels = s.level_error.size();
+      if (s.level_segments.size() != levels || s.level_decompose_s.size() != levels ||
+          s.level_exact_s.size() != levels)
+        r.fail(ip, "level_error, level_segments, level_decompose_s, level_exact_s must be equally long");
+      const std::vector<double> ode = fixed(r.at(e, ip, "ode"), field::member_path(ip, "ode"), 3);
+      const std::vector<double> ref = fixed(r.at(e, ip, "reference"), field::member_path(ip, "reference"), 3);
+      s.ode_error = ode[0];
+      s.ode_s = ode[1];
+      s.ode_steps = ode[2];
+      s.reference_s = ref[0];
+      s.pieces = ref[1];
+      s.bound_rel = ref[2];
+      samples.push_back(std::move(s));
+    }
+    part.cells.push_back(std::move(samples));
+  }
+  const nlohmann::json& voxels = r.array(j, path, "voxels");
+  const std::string vp = field::member_path(path, "voxels");
+  for (std::size_t g = 0; g < voxels.size(); ++g) {
+    const std::string gp = field::index_path(vp, g);
+    if (!voxels[g].is_array()) r.fail(gp, "must be an array of samples");
+    std::vector<VoxelRaySample> samples;
+    for (std::size_t i = 0; i < voxels[g].size(); ++i) {
+      const std::vector<double> v = fixed(voxels[g][i], field::index_path(gp, i), 4);
+      samples.push_back({v[0], v[1], v[2], v[3]});
+    }
+    part.voxels.push_back(std::move(samples));
+  }
+  part.seconds = r.number(j, path, "seconds");
+  return part;
 }
 
 }  // namespace rayint

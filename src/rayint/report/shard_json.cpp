@@ -109,4 +109,93 @@ nlohmann::json to_json(const MeshRenderPart& p) {
   return j;
 }
 
+nlohmann::json to_json(const SweepPart& part) {
+  nlohmann::json methods = nlohmann::json::array();
+  for (const auto& axis : part.methods) {
+    nlohmann::json settings = nlohmann::json::array();
+    for (const SweepSettingSamples& st : axis) {
+      nlohmann::json cases = nlohmann::json::array();
+      for (const SweepCaseSamples& c : st.cases) {
+        nlohmann::json rays = nlohmann::json::array();
+        for (const SweepRaySample& r : c.rays) {
+          if (r.failed)
+            rays.push_back({{"failure", r.failure}});
+          else
+            rays.push_back({r.nonfinite, exact_json(r.error[0]), exact_json(r.error[1]),
+                            exact_json(r.error[2]), exact_json(r.seconds)});
+        }
+        nlohmann::json cj = {{"first_ray", c.first_ray},
+                             {"covered", c.covered},
+                             {"setup_seconds", exact_json(c.setup_seconds)},
+                             {"rays", rays}};
+        if (c.setup_failed) cj["setup_failure"] = c.setup_failure;
+        cases.push_back(std::move(cj));
+      }
+      settings.push_back({{"wall_seconds", exact_json(st.wall_seconds)}, {"cases", cases}});
+    }
+    methods.push_back(std::move(settings));
+  }
+  const auto load = [](const std::array<double, 3>& l) { return nlohmann::json{exact_json(l[0]), exact_json(l[1]), exact_json(l[2])}; };
+  return {{"run",
+           {{"started_at", part.started_at},
+            {"hardware_threads", part.hardware_threads},
+            {"load_start", load(part.load_start)},
+            {"load_end", load(part.load_end)},
+            {"reference_seconds", exact_json(part.reference_seconds)},
+            {"measure_seconds", exact_json(part.measure_seconds)}}},
+          {"methods", methods}};
+}
+
+nlohmann::json to_json(const VolumeComparisonPart& part) {
+  const auto estimate = [](const EstimateImage& e) {
+    const PathTraceStats& t = e.stats;
+    return nlohmann::json{{"mean", numbers(e.mean)},
+                          {"std_error", numbers(e.std_error)},
+                          {"stats", {t.paths, t.real_collisions, t.tentative_collisions, t.shadow_rays, exact_json(t.seconds)}}};
+  };
+  nlohmann::json runs = nlohmann::json::array();
+  for (std::size_t k = 0; k < part.runs.size(); ++k) {
+    const MethodRun& r = part.runs[k];
+    runs.push_back({{"index", part.run_index[k]},
+                    {"method", r.method},
+                    {"grid", r.grid},
+                    {"bins", r.bins},
+                    {"iterations", r.iterations},
+                    {"converged", r.converged},
+                    {"setup_seconds", exact_json(r.setup_seconds)},
+                    {"gather_seconds", exact_json(r.gather_seconds)},
+                    {"image", numbers(r.image)}});
+  }
+  return {{"width", part.width},
+          {"height", part.height},
+          {"row_begin", part.row_begin},
+          {"row_end", part.row_end},
+          {"reference_all", estimate(part.reference_all)},
+          {"reference_single", estimate(part.reference_single)},
+          {"runs", runs}};
+}
+
+nlohmann::json to_json(const CellsSamples& part) {
+  nlohmann::json cells = nlohmann::json::array();
+  for (const auto& type : part.cells) {
+    nlohmann::json samples = nlohmann::json::array();
+    for (const CellRaySample& s : type)
+      samples.push_back({{"level_error", numbers(s.level_error)},
+                         {"level_segments", numbers(s.level_segments)},
+                         {"level_decompose_s", numbers(s.level_decompose_s)},
+                         {"level_exact_s", numbers(s.level_exact_s)},
+                         {"ode", {exact_json(s.ode_error), exact_json(s.ode_s), exact_json(s.ode_steps)}},
+                         {"reference", {exact_json(s.reference_s), exact_json(s.pieces), exact_json(s.bound_rel)}}});
+    cells.push_back(std::move(samples));
+  }
+  nlohmann::json voxels = nlohmann::json::array();
+  for (const auto& grid : part.voxels) {
+    nlohmann::json samples = nlohmann::json::array();
+    for (const VoxelRaySample& s : grid)
+      samples.push_back({exact_json(s.error), exact_json(s.segments), exact_json(s.exact_s), exact_json(s.reference_s)});
+    voxels.push_back(std::move(samples));
+  }
+  return {{"cells", cells}, {"voxels", voxels}, {"seconds", part.seconds}};
+}
+
 }  // namespace rayint

@@ -7,7 +7,10 @@
 
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/scattering/sample_blocks.hpp"
+#include "rayint/scattering/volume_comparison.hpp"
+#include "rayint/studies/cells_study.hpp"
 #include "rayint/studies/stress.hpp"
+#include "rayint/studies/sweep.hpp"
 
 namespace rayint {
 
@@ -17,5 +20,17 @@ nlohmann::json exact_json(double x);
 nlohmann::json to_json(const MonteCarloPart& part);
 nlohmann::json to_json(const StressPartial& partial);
 nlohmann::json to_json(const MeshRenderPart& part);
+// {"cells": [[sample...] per type], "voxels": [[sample...] per grid], "seconds"}; a cell sample is
+// {"level_error", "level_segments", "level_decompose_s", "level_exact_s", "ode": [error, s, steps],
+// "reference": [s, pieces, bound_rel]}, a voxel sample [error, segments, exact_s, reference_s].
+nlohmann::json to_json(const CellsSamples& part);
+// {"run": {...}, "methods": [[setting...] per axis]}; a setting {"wall_seconds", "cases": [{"first_ray",
+// "covered", "setup_seconds", "rays": [ray...], and "setup_failure" if it failed}]}; a ray
+// [nonfinite bits, error r, error g, error b, seconds] or {"failure": message}.
+nlohmann::json to_json(const SweepPart& part);
+// {"width", "height", "row_begin", "row_end", "reference_all", "reference_single" (each {"mean",
+// "std_error", "stats": [paths, real, tentative, shadow rays, seconds]}), "runs": [{"index",
+// "method", "grid", "bins", "iterations", "converged", "setup_seconds", "gather_seconds", "image"}]}
+nlohmann::json to_json(const VolumeComparisonPart& part);
 
 }  // namespace rayint

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/shard.hpp"
 #include "rayint/geometry/camera.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
 
@@ -50,5 +51,27 @@ ImageError image_error(const std::vector<double>& image, const std::vector<doubl
 VolumeComparison compare_volume_methods(const ScatteringVolume& volume, const Camera& camera,
                                         const ComparisonOptions& options,
                                         const std::function<void(const std::string&)>& progress = {});
+
+// `rayint scatter --shard I/N` (README, "Shards and merge"): shard I traces the Monte Carlo
+// reference images' rows shard_range(height, I/N) (every pixel draws from its own stream, so
+// they are the single run's pixels) and runs the method runs shard_range(runs, I/N) of the
+// run list (discrete ordinates per grid and bins, then zonal per grid; each is deterministic
+// and independent of the thread count), keeping their images; errors are computed in the merge.
+struct VolumeComparisonPart {
+  int width = 0, height = 0;                         // the whole image
+  int row_begin = 0, row_end = 0;                    // the reference rows this part traced
+  EstimateImage reference_all, reference_single;     // those rows only
+  std::vector<std::size_t> run_index;                // positions in the run list
+  std::vector<MethodRun> runs;                       // those runs (image, iterations, times; no error)
+};
+// The number of method runs compare_volume_methods makes.
+std::size_t volume_run_count(const ScatteringVolume& volume, const ComparisonOptions& options);
+VolumeComparisonPart compare_volume_methods_part(const ScatteringVolume& volume, const Camera& camera,
+                                                 const ComparisonOptions& options, const ShardSpec& shard,
+                                                 const std::function<void(const std::string&)>& progress = {});
+// The comparison from its parts in shard order: the reference rows assembled (path counts and
+// seconds summed), then everything the single run derives from them (brightness, mean SE, each
+// run's error) by the same code. Throws std::invalid_argument if the parts do not fit together.
+VolumeComparison finish_volume_comparison(const std::vector<VolumeComparisonPart>& parts);
 
 }  // namespace rayint

@@ -101,27 +101,36 @@ Estimate trace_ray(const ScatteringVolume& v, const ViewRay& ray, int samples, s
 
 EstimateImage path_trace_image(const ScatteringVolume& v, const Camera& camera,
                                const PathTracerOptions& o) {
+  return path_trace_rows(v, camera, o, 0, camera.height);
+}
+
+EstimateImage path_trace_rows(const ScatteringVolume& v, const Camera& camera,
+                              const PathTracerOptions& o, int row_begin, int row_end) {
   v.validate();
   camera.validate();
   if (o.samples_per_pixel < 1) throw std::invalid_argument("path tracer: samples_per_pixel must be >= 1");
+  if (row_begin < 0 || row_end > camera.height || row_begin > row_end)
+    throw std::invalid_argument("path tracer: rows must lie in [0, height]");
   EstimateImage img;
   img.width = camera.width;
-  img.height = camera.height;
-  const std::size_t n = static_cast<std::size_t>(camera.width) * camera.height;
+  img.height = row_end - row_begin;
+  const std::size_t n = static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(img.height);
   img.mean.assign(n, 0.0);
   img.std_error.assign(n, 0.0);
   std::mutex stats_mutex;
   const double sigma_maj = v.majorant();
   const auto start = std::chrono::steady_clock::now();
-  parallel_for(camera.height, o.threads, [&](std::size_t row) {
+  parallel_for(img.height, o.threads, [&](std::size_t local_row) {
+    const std::size_t row = local_row + static_cast<std::size_t>(row_begin);
     PathTraceStats s;
     for (int x = 0; x < camera.width; ++x) {
       const std::size_t i = row * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
       const Estimate e = trace_ray(v, camera.ray_for_pixel(x, static_cast<int>(row)),
                                    o.samples_per_pixel, o.seed, i, o.max_order, &s, o.min_order,
                                    sigma_maj);
-      img.mean[i] = e.mean;
-      img.std_error[i] = e.std_error;
+      const std::size_t local = i - static_cast<std::size_t>(row_begin) * static_cast<std::size_t>(camera.width);
+      img.mean[local] = e.mean;
+      img.std_error[local] = e.std_error;
     }
     std::lock_guard<std::mutex> lock(stats_mutex);
     img.stats.paths += s.paths;

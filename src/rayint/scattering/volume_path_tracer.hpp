@@ -58,4 +58,9 @@ struct EstimateImage {
 EstimateImage path_trace_image(const ScatteringVolume& volume, const Camera& camera,
                                const PathTracerOptions& options);
 
+// The rows [row_begin, row_end) of path_trace_image, pixel for pixel the same (each pixel draws
+// from its own stream): width = camera.width, height = row_end - row_begin (`--shard`).
+EstimateImage path_trace_rows(const ScatteringVolume& volume, const Camera& camera,
+                              const PathTracerOptions& options, int row_begin, int row_end);
+
 }  // namespace rayint

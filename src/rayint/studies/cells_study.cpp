@@ -68,10 +68,7 @@ double fitted_order(const std::vector<double>& x, const std::vector<double>& y) 
   return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-struct CellSample {  // one ray
-  std::vector<double> level_error, level_segments, level_decompose_s, level_exact_s;
-  double ode_error = 0, ode_s = 0, ode_steps = 0, reference_s = 0, pieces = 0, bound_rel = 0;
-};
+using CellSample = CellRaySample;
 
 CellSample evaluate_cell_ray(const HigherOrderCell& cell, const TransferFunctions& tf,
                              const ViewRay& ray, const CellsStudyOptions& o) {
@@ -112,30 +109,38 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
-CellTypeResult study_cell_type(CellType type, const CellsStudyOptions& o, std::mutex& progress_mutex) {
-  const int n_rays = o.count * o.rays_per_cell;
-  std::vector<CellSample> samples(static_cast<std::size_t>(n_rays));
-  std::atomic<int> done{0};
+// The rays of the cells [cells.begin, cells.end) of one type, in order.
+std::vector<CellSample> sample_cell_type(CellType type, const CellsStudyOptions& o, IndexRange cells,
+                                         std::mutex& progress_mutex) {
+  const auto n_cells = static_cast<long long>(cells.size());
+  std::vector<CellSample> samples(cells.size() * static_cast<std::size_t>(o.rays_per_cell));
+  std::atomic<long long> done{0};
   const auto kind = static_cast<std::uint64_t>(type);
-  parallel_for(o.count, o.threads, [&](long long item) {
-    const auto i = static_cast<int>(item);
-    std::mt19937_64 rng = sample_rng(o.seed, kind, static_cast<std::uint64_t>(i));
+  parallel_for(n_cells, o.threads, [&](long long item) {
+    const auto i = static_cast<std::uint64_t>(cells.begin) + static_cast<std::uint64_t>(item);
+    std::mt19937_64 rng = sample_rng(o.seed, kind, i);
     const HigherOrderCell cell = random_cell(type, rng());
     const TransferFunctions tf = random_transfer_functions(rng());
     for (int r = 0; r < o.rays_per_cell; ++r) {
       const ViewRay ray = random_ray_through(cell, rng());
-      samples[static_cast<std::size_t>(i * o.rays_per_cell + r)] = evaluate_cell_ray(cell, tf, ray, o);
+      samples[static_cast<std::size_t>(item) * static_cast<std::size_t>(o.rays_per_cell) +
+              static_cast<std::size_t>(r)] = evaluate_cell_ray(cell, tf, ray, o);
     }
-    const int k = ++done;
-    if (o.progress && (k % std::max(1, o.count / 10) == 0 || k == o.count)) {
+    const long long k = ++done;
+    if (o.progress && (k % std::max(1LL, n_cells / 10) == 0 || k == n_cells)) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       o.progress(std::string(cell_type_name(type)) + ": " + std::to_string(k) + "/" +
-                 std::to_string(o.count) + " cells");
+                 std::to_string(n_cells) + " cells");
     }
   });
+  return samples;
+}
+
+CellTypeResult summarise_cell_type(CellType type, const CellsStudyOptions& o,
+                                   const std::vector<CellSample>& samples) {
   CellTypeResult out;
   out.type = cell_type_name(type);
-  out.samples = n_rays;
+  out.samples = static_cast<int>(samples.size());
   std::vector<double> levels, medians, maxima;
   for (std::size_t l = 0; l < o.levels.size(); ++l) {
     std::vector<double> err, seg, dec, ex;
@@ -181,7 +186,9 @@ double smooth_field(const Vec3& p) {
   return 0.5 + 0.3 * std::sin(2.0 * p.x() + 1.0) * std::cos(3.0 * p.y()) + 0.2 * p.z() * p.z();
 }
 
-VoxelResult study_voxels(bool random_values, int n, std::uint64_t kind, const CellsStudyOptions& o) {
+// The rays [rays.begin, rays.end) of one voxel grid, in order.
+std::vector<VoxelRaySample> sample_voxels(bool random_values, int n, std::uint64_t kind,
+                                          const CellsStudyOptions& o, IndexRange rays) {
   std::mt19937_64 grid_rng = sample_rng(o.seed, kind, 0);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   const double h = 1.0 / (n - 1);
@@ -194,14 +201,13 @@ VoxelResult study_voxels(bool random_values, int n, std::uint64_t kind, const Ce
   // A brick covering the unit box, only to draw rays through it.
   const HigherOrderCell box = make_brick(CellType::hex8, Vec3::Constant(0.5),
                                          0.5 * Eigen::Matrix3d::Identity(), std::vector<double>(8, 0.0));
-  struct Sample { double error = 0, segments = 0, exact_s = 0, reference_s = 0; };
-  std::vector<Sample> samples(static_cast<std::size_t>(o.voxel_rays));
-  parallel_for(o.voxel_rays, o.threads, [&](long long item) {
-    const auto i = static_cast<int>(item);
-    std::mt19937_64 rng = sample_rng(o.seed, kind, static_cast<std::uint64_t>(i) + 1);
+  std::vector<VoxelRaySample> samples(rays.size());
+  parallel_for(static_cast<long long>(rays.size()), o.threads, [&](long long item) {
+    const auto i = static_cast<std::uint64_t>(rays.begin) + static_cast<std::uint64_t>(item);
+    std::mt19937_64 rng = sample_rng(o.seed, kind, i + 1);
     const TransferFunctions tf = random_transfer_functions(rng());
     const ViewRay ray = random_ray_through(box, rng());
-    Sample& s = samples[static_cast<std::size_t>(i)];
+    VoxelRaySample& s = samples[static_cast<std::size_t>(item)];
     auto t0 = Clock::now();
     const ReferenceRay ref = reference_poly_ray(tf, trilinear_ray(grid, ray, kBackground));
     s.reference_s = seconds_since(t0);
@@ -213,10 +219,14 @@ VoxelResult study_voxels(bool random_values, int n, std::uint64_t kind, const Ce
     s.segments = static_cast<double>(linear.segments.size());
     s.error = ray_error(r, ref);
   });
+  return samples;
+}
+
+VoxelResult summarise_voxels(bool random_values, int n, const std::vector<VoxelRaySample>& samples) {
   VoxelResult out;
   out.field = random_values ? "random" : "smooth";
   out.points_per_axis = n;
-  out.samples = o.voxel_rays;
+  out.samples = static_cast<int>(samples.size());
   std::vector<double> err, seg, ex, rf;
   for (const auto& s : samples) {
     err.push_back(s.error);
@@ -298,7 +308,9 @@ ViewRay random_ray_through(const HigherOrderCell& cell, std::uint64_t seed) {
   }
 }
 
-CellsReport run_cells_study(const CellsStudyOptions& o) {
+namespace {
+
+void validate(const CellsStudyOptions& o) {
   if (o.count < 1 || o.rays_per_cell < 1 || o.levels.empty() || o.voxel_rays < 1 ||
       o.voxel_random_points < 2)
     throw std::invalid_argument("cells study: count, rays, levels, voxel rays must be >= 1");
@@ -306,20 +318,65 @@ CellsReport run_cells_study(const CellsStudyOptions& o) {
     if (l < 1 || l > 64) throw std::invalid_argument("cells study: levels must be in [1, 64]");
   for (int n : o.voxel_sizes)
     if (n < 2 || n > 256) throw std::invalid_argument("cells study: voxel sizes must be in [2, 256]");
+}
+
+constexpr CellType kCellTypes[] = {CellType::tet10, CellType::hex8, CellType::hex20};
+
+}  // namespace
+
+CellsSamples run_cells_samples(const CellsStudyOptions& o, const ShardSpec& shard) {
+  validate(o);
   const auto t0 = std::chrono::steady_clock::now();
-  CellsReport report;
-  report.options = o;
+  CellsSamples part;
   std::mutex progress_mutex;
-  for (CellType type : {CellType::tet10, CellType::hex8, CellType::hex20})
-    report.cells.push_back(study_cell_type(type, o, progress_mutex));
+  const IndexRange cells = shard_range(static_cast<std::size_t>(o.count), shard);
+  for (CellType type : kCellTypes) part.cells.push_back(sample_cell_type(type, o, cells, progress_mutex));
+  const IndexRange rays = shard_range(static_cast<std::size_t>(o.voxel_rays), shard);
   if (o.progress) o.progress("voxels: random values");
-  report.voxels.push_back(study_voxels(true, o.voxel_random_points, 100, o));
+  part.voxels.push_back(sample_voxels(true, o.voxel_random_points, 100, o, rays));
   for (int n : o.voxel_sizes) {
     if (o.progress) o.progress("voxels: smooth field, " + std::to_string(n) + " points per axis");
-    report.voxels.push_back(study_voxels(false, n, 200 + static_cast<std::uint64_t>(n), o));
+    part.voxels.push_back(sample_voxels(false, n, 200 + static_cast<std::uint64_t>(n), o, rays));
   }
-  report.seconds = wall_seconds_since(t0);
+  part.seconds = wall_seconds_since(t0);
+  return part;
+}
+
+CellsReport finish_cells_study(const CellsStudyOptions& o, const std::vector<CellsSamples>& parts) {
+  validate(o);
+  const std::size_t n_voxels = 1 + o.voxel_sizes.size();
+  for (const CellsSamples& p : parts) {
+    if (p.cells.size() != std::size(kCellTypes) || p.voxels.size() != n_voxels)
+      throw std::invalid_argument("cells study: a part holds " + std::to_string(p.cells.size()) +
+                                  " cell types and " + std::to_string(p.voxels.size()) +
+                                  " voxel grids, the run " + std::to_string(std::size(kCellTypes)) +
+                                  " and " + std::to_string(n_voxels));
+    for (const auto& type : p.cells)
+      for (const CellRaySample& s : type)
+        if (s.level_error.size() != o.levels.size() || s.level_segments.size() != o.levels.size() ||
+            s.level_decompose_s.size() != o.levels.size() || s.level_exact_s.size() != o.levels.size())
+          throw std::invalid_argument("cells study: a part's sample has " +
+                                      std::to_string(s.level_error.size()) + " levels, the run " +
+                                      std::to_string(o.levels.size()));
+  }
+  CellsReport report;
+  report.options = o;
+  for (std::size_t t = 0; t < std::size(kCellTypes); ++t) {
+    std::vector<CellSample> samples;
+    for (const CellsSamples& p : parts) samples.insert(samples.end(), p.cells[t].begin(), p.cells[t].end());
+    report.cells.push_back(summarise_cell_type(kCellTypes[t], o, samples));
+  }
+  for (std::size_t v = 0; v < n_voxels; ++v) {
+    std::vector<VoxelRaySample> samples;
+    for (const CellsSamples& p : parts) samples.insert(samples.end(), p.voxels[v].begin(), p.voxels[v].end());
+    report.voxels.push_back(summarise_voxels(v == 0, v == 0 ? o.voxel_random_points : o.voxel_sizes[v - 1], samples));
+  }
+  for (const CellsSamples& p : parts) report.seconds += p.seconds;
   return report;
+}
+
+CellsReport run_cells_study(const CellsStudyOptions& o) {
+  return finish_cells_study(o, {run_cells_samples(o, ShardSpec{})});
 }
 
 }  // namespace rayint

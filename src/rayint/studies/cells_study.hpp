@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "rayint/cells/cell.hpp"
+#include "rayint/core/shard.hpp"
 #include "rayint/core/statistics.hpp"  // ErrorStats, error_stats
 #include "rayint/model/transfer_function.hpp"
 
@@ -78,6 +79,30 @@ struct CellsReport {
 };
 
 CellsReport run_cells_study(const CellsStudyOptions& options);
+
+// What one ray measured (the summaries above are means, ErrorStats and fits over these).
+struct CellRaySample {  // a ray through a higher-order cell
+  std::vector<double> level_error, level_segments, level_decompose_s, level_exact_s;  // per level
+  double ode_error = 0, ode_s = 0, ode_steps = 0, reference_s = 0, pieces = 0, bound_rel = 0;
+};
+struct VoxelRaySample {  // a ray through a voxel grid
+  double error = 0, segments = 0, exact_s = 0, reference_s = 0;
+};
+
+// `--shard I/N` (README, "Shards and merge"): the samples of a part of the study. Shard I owns,
+// per cell type, the cells shard_range(count, I/N) (with all their rays) and, per voxel grid,
+// the rays shard_range(voxel_rays, I/N); every sample is seeded from (seed, kind, index) as in
+// the whole run, so the shards' samples are exactly the whole run's.
+struct CellsSamples {
+  std::vector<std::vector<CellRaySample>> cells;    // tet10, hex8, hex20: rays in order
+  std::vector<std::vector<VoxelRaySample>> voxels;  // random grid, then each of voxel_sizes
+  double seconds = 0.0;                             // wall time of the part
+};
+CellsSamples run_cells_samples(const CellsStudyOptions& options, const ShardSpec& shard);
+// The report from the parts in shard order (the whole run is the single whole part): the
+// samples concatenated, then summarised as the single run does, so every figure but the times
+// is identical; a time is the same mean over the same measured samples, `seconds` the sum.
+CellsReport finish_cells_study(const CellsStudyOptions& options, const std::vector<CellsSamples>& parts);
 
 // The sample generators, exposed for tests.
 HigherOrderCell random_cell(CellType type, std::uint64_t seed);

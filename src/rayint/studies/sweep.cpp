@@ -86,48 +86,120 @@ struct Budget {
   }
 };
 
-// Scores and times one setting over all cases. Returns false (and the reason) if a budget ran
-// out before it finished.
-bool measure_setting(const MethodSpec& spec, const std::vector<Case>& cases,
+// The rays of case ci that a part owns: [begin, end) of the case's rays.
+struct CaseCover {
+  std::size_t begin = 0, end = 0;
+  bool constructs = false;  // the part builds the case's integrator (it covers a ray, or the
+                            // case has none and this is the first part)
+};
+
+std::vector<CaseCover> case_covers(const std::vector<Case>& cases, const ShardSpec& shard) {
+  std::size_t total = 0;
+  for (const Case& c : cases) total += c.rays.size();
+  const IndexRange mine = shard_range(total, shard);
+  std::vector<CaseCover> out;
+  std::size_t offset = 0;
+  for (const Case& c : cases) {
+    CaseCover cv;
+    cv.begin = std::min(std::max(mine.begin, offset), offset + c.rays.size()) - offset;
+    cv.end = std::max(std::min(mine.end, offset + c.rays.size()), offset) - offset;
+    if (cv.end < cv.begin) cv.end = cv.begin;
+    cv.constructs = cv.end > cv.begin || (c.rays.empty() && shard.index == 0);
+    out.push_back(cv);
+    offset += c.rays.size();
+  }
+  return out;
+}
+
+// Measures one setting on the covered rays of every case: integrate once (diag = nullptr) to
+// score against the stored reference (refs[ci][r - cover.begin]), then time the ray. Returns
+// false (and the reason) if a budget ran out before it finished.
+bool measure_samples(const MethodSpec& spec, const std::vector<Case>& cases,
+                     const std::vector<CaseCover>& covers,
                      const std::vector<std::vector<ReferenceRay>>& refs, const SweepOptions& opt,
-                     const Budget& budget, SettingResult& out, std::string& stopped) {
+                     const Budget& budget, SweepSettingSamples& out, std::string& stopped) {
   const auto t0 = Clock::now();
-  std::vector<double> all_errors, all_times;
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
-    CaseScore cs;
-    cs.name = c.name;
-    cs.rays = c.rays.size();
-    out.rays += c.rays.size();
+    const CaseCover& cover = covers[ci];
+    SweepCaseSamples cs;
+    cs.first_ray = cover.begin;
+    cs.covered = cover.end - cover.begin;
+    if (!cover.constructs) {
+      out.cases.push_back(std::move(cs));
+      continue;
+    }
     std::unique_ptr<RayIntegrator> integrator;
     try {
       const auto setup_start = Clock::now();
       integrator = make_integrator(spec, c.transfer);
-      out.setup_seconds += seconds_since(setup_start);
+      cs.setup_seconds = seconds_since(setup_start);
     } catch (const std::exception& e) {
-      cs.failed_rays = c.rays.size();
-      out.failed_rays += c.rays.size();
-      if (out.failure.empty()) out.failure = c.name + ": " + e.what();
-      out.per_case.push_back(std::move(cs));
+      cs.setup_failed = true;
+      cs.setup_failure = e.what();
+      out.cases.push_back(std::move(cs));
       continue;
     }
-    std::vector<double> case_errors, case_times;
-    for (std::size_t r = 0; r < c.rays.size(); ++r) {
+    for (std::size_t r = cover.begin; r < cover.end; ++r) {
       stopped = budget.exhausted();
       if (!stopped.empty()) return false;
+      SweepRaySample sample;
       RayResult result;
       try {
         result = integrator->integrate(c.rays[r], nullptr);
       } catch (const std::exception& e) {
-        ++cs.failed_rays;
-        ++out.failed_rays;
-        if (out.failure.empty())
-          out.failure = c.name + " ray " + std::to_string(r) + ": " + e.what();
+        sample.failed = true;
+        sample.failure = e.what();
+        cs.rays.push_back(std::move(sample));
         continue;
       }
       for (int ch = 0; ch < kChannels; ++ch) {
-        const double e = scored_error(result.intensity[ch], refs[ci][r].intensity[ch]);
-        if (!std::isfinite(result.intensity[ch])) {
+        sample.error[ch] = scored_error(result.intensity[ch], refs[ci][r - cover.begin].intensity[ch]);
+        if (!std::isfinite(result.intensity[ch])) sample.nonfinite |= 1u << ch;
+      }
+      if (opt.timing.measure_time) sample.seconds = time_per_ray(*integrator, c.rays[r], opt.timing);
+      cs.rays.push_back(std::move(sample));
+    }
+    out.cases.push_back(std::move(cs));
+  }
+  out.wall_seconds = seconds_since(t0);
+  return true;
+}
+
+// The setting's scores from what it measured on every ray (the parts' samples joined case by
+// case, in ray order): the definitions of sweep.hpp.
+void summarise_setting(const std::vector<Case>& cases, const SweepSettingSamples& samples,
+                       const SweepOptions& opt, SettingResult& out) {
+  std::vector<double> all_errors, all_times;
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    const SweepCaseSamples& sc = samples.cases[ci];
+    CaseScore cs;
+    cs.name = c.name;
+    cs.rays = c.rays.size();
+    out.rays += c.rays.size();
+    out.setup_seconds += sc.setup_seconds;
+    if (sc.setup_failed) {
+      cs.failed_rays = sc.covered;
+      out.failed_rays += sc.covered;
+      if (out.failure.empty()) out.failure = c.name + ": " + sc.setup_failure;
+      out.per_case.push_back(std::move(cs));
+      continue;
+    }
+    std::vector<double> case_errors, case_times;
+    for (std::size_t k = 0; k < sc.rays.size(); ++k) {
+      const SweepRaySample& sample = sc.rays[k];
+      const std::size_t r = sc.ray_numbers.empty() ? sc.first_ray + k : sc.ray_numbers[k];
+      if (sample.failed) {
+        ++cs.failed_rays;
+        ++out.failed_rays;
+        if (out.failure.empty())
+          out.failure = c.name + " ray " + std::to_string(r) + ": " + sample.failure;
+        continue;
+      }
+      for (int ch = 0; ch < kChannels; ++ch) {
+        const double e = sample.error[ch];
+        if (sample.nonfinite & (1u << ch)) {
           ++cs.nonfinite;
           ++out.nonfinite;
         }
@@ -142,9 +214,8 @@ bool measure_setting(const MethodSpec& spec, const std::vector<Case>& cases,
         all_errors.push_back(e);
       }
       if (opt.timing.measure_time) {
-        const double t = time_per_ray(*integrator, c.rays[r], opt.timing);
-        case_times.push_back(t);
-        all_times.push_back(t);
+        case_times.push_back(sample.seconds);
+        all_times.push_back(sample.seconds);
       }
     }
     cs.median_error = median(case_errors);
@@ -155,8 +226,93 @@ bool measure_setting(const MethodSpec& spec, const std::vector<Case>& cases,
   out.median_error = median(all_errors);
   out.seconds_per_ray = mean_of(all_times);
   out.median_seconds_per_ray = median(all_times);
-  out.wall_seconds = seconds_since(t0);
-  return true;
+  out.wall_seconds = samples.wall_seconds;
+}
+
+// Joins the parts' samples of one setting: case by case, the parts' rays in shard order.
+SweepSettingSamples join_samples(const std::vector<const SweepSettingSamples*>& parts, std::size_t n_cases) {
+  SweepSettingSamples out;
+  out.cases.resize(n_cases);
+  std::vector<std::size_t> next(n_cases, 0);  // the first ray after the parts joined so far
+  for (const SweepSettingSamples* p : parts) {
+    if (p->cases.size() != n_cases)
+      throw std::invalid_argument("bench merge: a part holds " + std::to_string(p->cases.size()) +
+                                  " cases, the run " + std::to_string(n_cases));
+    out.wall_seconds += p->wall_seconds;
+    for (std::size_t ci = 0; ci < n_cases; ++ci) {
+      const SweepCaseSamples& from = p->cases[ci];
+      SweepCaseSamples& to = out.cases[ci];
+      if (from.covered == 0 && !from.setup_failed) continue;
+      if (to.covered == 0 && !to.setup_failed) {
+        to.first_ray = from.first_ray;
+      } else if (from.first_ray < next[ci]) {
+        throw std::invalid_argument("bench merge: case " + std::to_string(ci) + ": a part starts at ray " +
+                                    std::to_string(from.first_ray) + ", before the end of the previous one (" +
+                                    std::to_string(next[ci]) + ")");
+      }
+      next[ci] = from.first_ray + from.covered;
+      if (from.setup_failed && !to.setup_failed) {
+        to.setup_failed = true;
+        to.setup_failure = from.setup_failure;
+      }
+      if (!from.setup_failed && from.rays.size() != from.covered)
+        throw std::invalid_argument("bench merge: case " + std::to_string(ci) + ": a part covers " +
+                                    std::to_string(from.covered) + " rays but holds " +
+                                    std::to_string(from.rays.size()));
+      for (std::size_t k = 0; k < from.rays.size(); ++k) to.ray_numbers.push_back(from.first_ray + k);
+      to.covered += from.covered;
+      to.setup_seconds += from.setup_seconds;
+      to.rays.insert(to.rays.end(), from.rays.begin(), from.rays.end());
+    }
+  }
+  return out;
+}
+
+// The case-set figures of a result (names, files, rays, pieces).
+void describe_cases(const std::vector<Case>& cases, SweepResult& res) {
+  for (const Case& c : cases) {
+    std::size_t pieces = 0;
+    for (const Ray& ray : c.rays) pieces += split_ray(c.transfer, ray).size();
+    res.case_names.push_back(c.name);
+    res.case_files.push_back(c.source);
+    res.case_rays.push_back(c.rays.size());
+    res.case_pieces.push_back(pieces);
+    res.rays += c.rays.size();
+    res.pieces += pieces;
+  }
+}
+
+// The references of the covered rays of every case, in parallel over the rays of each case.
+std::vector<std::vector<ReferenceRay>> covered_references(const std::vector<Case>& cases,
+                                                          const std::vector<CaseCover>& covers,
+                                                          const SweepOptions& opt,
+                                                          Clock::time_point start) {
+  std::vector<std::vector<ReferenceRay>> refs;
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    const CaseCover& cv = covers[ci];
+    if (cv.begin == 0 && cv.end == c.rays.size()) {
+      refs.push_back(reference_rays(c, opt.timing.threads));
+    } else {
+      Case part;  // the covered rays only
+      part.name = c.name;
+      part.source = c.source;
+      part.transfer = c.transfer;
+      part.rays.assign(c.rays.begin() + static_cast<std::ptrdiff_t>(cv.begin),
+                       c.rays.begin() + static_cast<std::ptrdiff_t>(cv.end));
+      refs.push_back(part.rays.empty() ? std::vector<ReferenceRay>{} : reference_rays(part, opt.timing.threads));
+    }
+    if (opt.progress) {
+      SweepProgress p;
+      p.stage = SweepProgress::Stage::reference;
+      p.what = c.name;
+      p.done = ci + 1;
+      p.total = cases.size();
+      p.elapsed_seconds = seconds_since(start);
+      opt.progress(p);
+    }
+  }
+  return refs;
 }
 
 }  // namespace
@@ -262,6 +418,16 @@ std::vector<TargetChoice> target_table(const std::vector<MethodSweep>& methods,
   return out;
 }
 
+namespace {
+// exact's cost (the unit of every cost multiple) and the target table.
+void finish_targets(SweepResult& res) {
+  for (const MethodSweep& m : res.methods)
+    if (m.method == "exact" && !m.settings.empty() && m.settings.front().complete())
+      res.exact_seconds_per_ray = m.settings.front().seconds_per_ray;
+  res.targets = target_table(res.methods, res.exact_seconds_per_ray, sweep_targets());
+}
+}  // namespace
+
 SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
                       const SweepOptions& opt) {
   SweepResult res;
@@ -274,28 +440,9 @@ SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxi
   const auto start = Clock::now();
 
   // (1) references, once per ray, parallel over the rays of each case.
-  std::vector<std::vector<ReferenceRay>> refs;
-  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
-    const Case& c = cases[ci];
-    refs.push_back(reference_rays(c, opt.timing.threads));
-    std::size_t pieces = 0;
-    for (const Ray& ray : c.rays) pieces += split_ray(c.transfer, ray).size();
-    res.case_names.push_back(c.name);
-    res.case_files.push_back(c.source);
-    res.case_rays.push_back(c.rays.size());
-    res.case_pieces.push_back(pieces);
-    res.rays += c.rays.size();
-    res.pieces += pieces;
-    if (opt.progress) {
-      SweepProgress p;
-      p.stage = SweepProgress::Stage::reference;
-      p.what = c.name;
-      p.done = ci + 1;
-      p.total = cases.size();
-      p.elapsed_seconds = seconds_since(start);
-      opt.progress(p);
-    }
-  }
+  describe_cases(cases, res);
+  const std::vector<CaseCover> covers = case_covers(cases, ShardSpec{});
+  const std::vector<std::vector<ReferenceRay>> refs = covered_references(cases, covers, opt, start);
   res.reference_seconds = seconds_since(start);
 
   // (2) every setting, scored against the stored references and timed.
@@ -317,7 +464,9 @@ SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxi
       s.label = specs[k].label();
       s.knob_value = axis.knob.empty() ? "" : axis.values[k];
       std::string stopped = m.truncated ? m.truncation : budget.exhausted();
-      if (stopped.empty() && measure_setting(specs[k], cases, refs, opt, budget, s, stopped)) {
+      SweepSettingSamples samples;
+      if (stopped.empty() && measure_samples(specs[k], cases, covers, refs, opt, budget, samples, stopped)) {
+        summarise_setting(cases, samples, opt, s);
         m.settings.push_back(std::move(s));
         ++done;
         if (opt.progress) {
@@ -357,10 +506,98 @@ SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxi
   res.measure_seconds = seconds_since(budget.sweep_start);
   res.load_end = load_average();
 
-  for (const MethodSweep& m : res.methods)
-    if (m.method == "exact" && !m.settings.empty() && m.settings.front().complete())
-      res.exact_seconds_per_ray = m.settings.front().seconds_per_ray;
-  res.targets = target_table(res.methods, res.exact_seconds_per_ray, sweep_targets());
+  finish_targets(res);
+  return res;
+}
+
+SweepPart run_sweep_part(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
+                         const SweepOptions& opt, const ShardSpec& shard) {
+  if (opt.max_seconds > 0 || opt.method_max_seconds > 0)
+    throw std::invalid_argument(
+        "--shard: a sharded bench cannot have a time budget (--max-seconds, --method-seconds): "
+        "what it measures would depend on the clock");
+  SweepPart part;
+  part.hardware_threads = hardware_threads();
+  part.started_at = utc_now();
+  part.load_start = load_average();
+  const auto start = Clock::now();
+  const std::vector<CaseCover> covers = case_covers(cases, shard);
+  const std::vector<std::vector<ReferenceRay>> refs = covered_references(cases, covers, opt, start);
+  part.reference_seconds = seconds_since(start);
+  const auto measure_start = Clock::now();
+  const Budget budget;  // none
+  std::size_t total = 0, done = 0;
+  for (const auto& a : axes) total += a.knob.empty() ? 1 : a.values.size();
+  for (const SweepAxis& axis : axes) {
+    part.methods.emplace_back();
+    for (const MethodSpec& spec : axis.settings()) {
+      SweepSettingSamples samples;
+      std::string stopped;
+      measure_samples(spec, cases, covers, refs, opt, budget, samples, stopped);
+      ++done;
+      if (opt.progress) {
+        SettingResult shard_figures;  // the shard's rays only, for the progress line
+        summarise_setting(cases, samples, opt, shard_figures);
+        SweepProgress p;
+        p.setting = &shard_figures;
+        p.stage = SweepProgress::Stage::setting;
+        p.what = spec.label() + " (shard " + shard.label() + ")";
+        p.done = done;
+        p.total = total;
+        p.elapsed_seconds = seconds_since(start);
+        opt.progress(p);
+      }
+      part.methods.back().push_back(std::move(samples));
+    }
+  }
+  part.measure_seconds = seconds_since(measure_start);
+  part.load_end = load_average();
+  return part;
+}
+
+SweepResult finish_sweep(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
+                         const SweepOptions& opt, const std::vector<SweepPart>& parts) {
+  if (parts.empty()) throw std::invalid_argument("bench merge: no parts");
+  SweepResult res;
+  res.timing = opt.timing;
+  res.max_seconds = opt.max_seconds;
+  res.method_max_seconds = opt.method_max_seconds;
+  res.started_at = parts.front().started_at;
+  res.load_start = parts.front().load_start;
+  res.load_end = parts.back().load_end;
+  for (const SweepPart& p : parts) {
+    res.hardware_threads = std::max(res.hardware_threads, p.hardware_threads);
+    res.reference_seconds += p.reference_seconds;
+    res.measure_seconds += p.measure_seconds;
+    if (p.methods.size() != axes.size())
+      throw std::invalid_argument("bench merge: a part holds " + std::to_string(p.methods.size()) +
+                                  " methods, the run " + std::to_string(axes.size()));
+  }
+  describe_cases(cases, res);
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const SweepAxis& axis = axes[a];
+    MethodSweep m;
+    m.method = axis.method;
+    m.knob = axis.knob;
+    const std::vector<MethodSpec> specs = axis.settings();
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      std::vector<const SweepSettingSamples*> mine;
+      for (const SweepPart& p : parts) {
+        if (p.methods[a].size() != specs.size())
+          throw std::invalid_argument("bench merge: " + axis.method + ": a part holds " +
+                                      std::to_string(p.methods[a].size()) + " settings, the run " +
+                                      std::to_string(specs.size()));
+        mine.push_back(&p.methods[a][k]);
+      }
+      SettingResult s;
+      s.label = specs[k].label();
+      s.knob_value = axis.knob.empty() ? "" : axis.values[k];
+      summarise_setting(cases, join_samples(mine, cases.size()), opt, s);
+      m.settings.push_back(std::move(s));
+    }
+    res.methods.push_back(std::move(m));
+  }
+  finish_targets(res);
   return res;
 }
 

@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/shard.hpp"
 #include "rayint/studies/evaluate.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/metrics/error_metrics.hpp"  // scored_error, the error of one channel
@@ -175,6 +176,55 @@ struct SweepOptions {
 // outlive the call.
 SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
                       const SweepOptions& options);
+
+// --- Shards (`rayint bench --shard I/N`, README "Shards and merge") ---------------------------
+// Shard I of N measures every setting on the rays shard_range(R, I/N) of the case set's R rays
+// (numbered case by case, in order) and keeps what each ray measured; the merge concatenates the
+// shards' rays in order and summarises them with the code the single run uses, so every error
+// figure, count and worst case is identical, and each time is the same statistic (mean, median)
+// over the same per-ray times (each measured once, in whichever shard owns the ray).
+
+// What one setting measured on one ray.
+struct SweepRaySample {
+  bool failed = false;                    // the method threw on the ray (no errors)
+  std::string failure;                    // its message
+  std::array<double, kChannels> error{};  // scored_error per channel
+  unsigned nonfinite = 0;                 // bit c: channel c's intensity was not finite
+  double seconds = 0.0;                   // time_per_ray (0 when timing is off)
+};
+// What one setting measured on the rays of one case that a part covers.
+struct SweepCaseSamples {
+  std::size_t first_ray = 0;  // the rays [first_ray, first_ray + covered) of the case
+  std::size_t covered = 0;
+  bool setup_failed = false;  // make_integrator threw (then `rays` is empty)
+  std::string setup_failure;  // its message
+  double setup_seconds = 0.0;
+  std::vector<SweepRaySample> rays;
+  // Joined parts of a partial merge (a shard missing): the ray number of each of `rays` (empty:
+  // first_ray, first_ray + 1, ...).
+  std::vector<std::size_t> ray_numbers;
+};
+struct SweepSettingSamples {
+  std::vector<SweepCaseSamples> cases;  // one per case of the set (covered = 0 if none of its rays)
+  double wall_seconds = 0.0;
+};
+struct SweepPart {
+  std::vector<std::vector<SweepSettingSamples>> methods;  // per axis, per setting
+  double reference_seconds = 0.0, measure_seconds = 0.0;
+  unsigned hardware_threads = 0;
+  std::array<double, 3> load_start{}, load_end{};
+  std::string started_at;
+};
+
+// Shard `shard` of run_sweep. Budgets (max_seconds, method_max_seconds) depend on the clock, so
+// a sharded sweep cannot have one: std::invalid_argument.
+SweepPart run_sweep_part(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
+                         const SweepOptions& options, const ShardSpec& shard);
+// The sweep's result from its parts in shard order (a missing shard: leave it out). The run's
+// time fields: reference_seconds and measure_seconds are the sums over the parts, started_at
+// and load_start the first part's, load_end the last part's, hardware_threads the largest.
+SweepResult finish_sweep(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
+                         const SweepOptions& options, const std::vector<SweepPart>& parts);
 
 // Index into m.settings of the cheapest complete setting whose error statistic is <= target.
 std::optional<std::size_t> cheapest_setting(const MethodSweep& m, double target,
