@@ -3,9 +3,10 @@
 //
 // The formulas, regions and thresholds are exactly those of exact.cpp (kThinDepth, kQ2Relative,
 // the same series and closed forms); what differs is how they are evaluated:
-//   1. one branch-free scalar pass computes a = rho_exit L, b = rho_far L, T, B and appends each
-//      piece to its branch's contiguous columns (transparent pieces to a list written with
-//      transmittance 1, emission 0), in chunks of 4096 piece-channels so the columns stay in cache;
+//   1. one scalar pass computes a = rho_exit L, b = rho_far L, T, B and appends each piece to its
+//      branch's contiguous columns (the choice branch-free; transparent pieces are written at
+//      once: transmittance 1, emission 0), in chunks of 4096 piece-channels so the columns stay
+//      in cache;
 //   2. each branch's columns, padded to whole vectors (the lane count of the target, not more)
 //      with copies of the group's first piece, are evaluated lane-parallel:
 //        thin_series  the midpoint Taylor recurrence of exact.cpp run on all lanes until every lane
@@ -181,7 +182,7 @@ std::size_t lanes() {
 }
 
 struct Scratch {
-  GroupColumns group[kGroups + 1];  // the last: transparent pieces
+  GroupColumns group[kGroups];
   Scratch() {
     for (auto& g : group) {  // room for a whole chunk in one group, plus the padding
       for (auto* col : {&g.a, &g.b, &g.ke, &g.kf, &g.tr, &g.em, &g.terms}) col->resize(kChunk + lanes());
@@ -193,22 +194,28 @@ struct Scratch {
 constexpr ExactBranch kGroupBranch[kGroups] = {ExactBranch::thin_series, ExactBranch::q2_series,
                                                ExactBranch::erfcx, ExactBranch::dawson};
 
-// 1. classify one piece-channel as exact_piece does and append it to its branch's columns
-// (transparent ones to a fifth list, written at the end). Branch-free: in a mixed batch the
-// branch taken is unpredictable, and a mispredicted jump per piece cost a third of the batch.
-inline void classify(Scratch& s, std::size_t i, double length, double rho_far, double rho_exit,
-                     double kappa_far, double kappa_exit) {
+// 1. classify one piece-channel as exact_piece does: a transparent one is written at once, the
+// others appended to their branch's columns. The choice among the four branches is branch-free:
+// in a mixed batch it is unpredictable.
+inline void classify(Scratch& s, const OpticsColumns& out, std::size_t i, double length, double rho_far,
+                     double rho_exit, double kappa_far, double kappa_exit) {
   const double a = rho_exit * length;
   const double b = rho_far * length;
   const double T = 0.5 * (a + b);
+  if (!(T > 0.0)) {
+    out.transmittance[i] = 1.0;
+    out.emission[i] = 0.0;
+    if (out.branch) out.branch[i] = ExactBranch::transparent;
+    if (out.terms) out.terms[i] = 0;
+    if (out.converged) out.converged[i] = 1;
+    return;
+  }
   const double B = 0.5 * (b - a);
-  // thin 0, q2 1, erfcx 2, dawson 3 (the tests of exact_piece, in its order); transparent 4
+  // thin 0, q2 1, erfcx 2, dawson 3: the tests of exact_piece, in its order
   const int not_thin = T > kThinDepth;
   const int not_q2 = !(std::fabs(B) <= kQ2Relative * a * a);
   const int dawson = !(B > 0.0);
-  const int opaque = T > 0.0;
-  const int g = opaque * (not_thin * (1 + not_q2 * (1 + dawson))) + (1 - opaque) * kGroups;
-  GroupColumns& col = s.group[g];
+  GroupColumns& col = s.group[not_thin * (1 + not_q2 * (1 + dawson))];
   const std::size_t k = col.size++;
   col.a[k] = a;
   col.b[k] = b;
@@ -220,16 +227,6 @@ inline void classify(Scratch& s, std::size_t i, double length, double rho_far, d
 // 2. evaluate each group on its contiguous columns, padded to whole vectors with copies of the
 // group's first piece; 3. scatter the results back to the pieces' places.
 void evaluate_groups(Scratch& s, const OpticsColumns& out) {
-  GroupColumns& transparent = s.group[kGroups];
-  for (std::size_t k = 0; k < transparent.size; ++k) {  // nothing absorbed or emitted
-    const std::size_t i = transparent.index[k];
-    out.transmittance[i] = 1.0;
-    out.emission[i] = 0.0;
-    if (out.branch) out.branch[i] = ExactBranch::transparent;
-    if (out.terms) out.terms[i] = 0;
-    if (out.converged) out.converged[i] = 1;
-  }
-  transparent.size = 0;
   const std::size_t L = lanes();
   for (int g = 0; g < kGroups; ++g) {
     GroupColumns& col = s.group[g];
@@ -270,7 +267,7 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
   for (std::size_t begin = 0; begin < in.size; begin += kChunk) {
     const std::size_t end = std::min(in.size, begin + kChunk);
     for (std::size_t i = begin; i < end; ++i)
-      classify(s, i, in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]);
+      classify(s, out, i, in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]);
     evaluate_groups(s, out);
   }
 }
@@ -283,7 +280,7 @@ void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
     for (std::size_t p = begin; p < end; ++p) {
       const Piece& piece = pieces[p];
       for (std::size_t c = 0; c < kChannels; ++c)
-        classify(s, kChannels * p + c, piece.length, piece.rho_far[c], piece.rho_exit[c],
+        classify(s, out, kChannels * p + c, piece.length, piece.rho_far[c], piece.rho_exit[c],
                  piece.kappa_far[c], piece.kappa_exit[c]);
     }
     evaluate_groups(s, out);
