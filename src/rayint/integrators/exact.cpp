@@ -168,33 +168,23 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   if (path_ == Path::scalar) return integrate_scalar(ray, diag);
-  // Columns of every piece-channel of the ray, piece-major (index 3 k + c), then one batch.
+  // Every piece of the ray (far -> near), then one batch over all its piece-channels, results
+  // piece-major (index 3 k + c).
   struct Columns {
-    std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit, transmittance, emission;
+    std::vector<Piece> pieces;
+    std::vector<double> transmittance, emission;
     std::vector<ExactBranch> branch;
     std::vector<std::int32_t> terms;
     std::vector<unsigned char> converged;
   };
   thread_local Columns col;
-  col.length.clear();
-  col.rho_far.clear();
-  col.rho_exit.clear();
-  col.kappa_far.clear();
-  col.kappa_exit.clear();
-  for (const auto& seg : ray.segments) {
-    for (const auto& piece : splitter_.pieces(seg)) {
-      for (int c = 0; c < kChannels; ++c) {
-        col.length.push_back(piece.length);
-        col.rho_far.push_back(piece.rho_far[c]);
-        col.rho_exit.push_back(piece.rho_exit[c]);
-        col.kappa_far.push_back(piece.kappa_far[c]);
-        col.kappa_exit.push_back(piece.kappa_exit[c]);
-      }
-    }
+  col.pieces.clear();
+  for (const auto& seg : ray.segments) splitter_.append(seg, col.pieces);
+  const std::size_t n = kChannels * col.pieces.size();
+  if (col.transmittance.size() < n) {
+    col.transmittance.resize(n);
+    col.emission.resize(n);
   }
-  const std::size_t n = col.length.size();
-  col.transmittance.resize(n);
-  col.emission.resize(n);
   OpticsColumns out{col.transmittance.data(), col.emission.data()};
   if (diag) {
     col.branch.resize(n);
@@ -204,9 +194,7 @@ RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
     out.terms = col.terms.data();
     out.converged = col.converged.data();
   }
-  exact_batch({col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
-               col.kappa_exit.data(), n},
-              out);
+  exact_batch(col.pieces.data(), col.pieces.size(), out);
   RayResult r = RayResult::of_background(ray.background);
   for (std::size_t k = 0; k < n; k += kChannels) {
     for (int c = 0; c < kChannels; ++c) {

@@ -3,10 +3,12 @@
 //
 // The formulas, regions and thresholds are exactly those of exact.cpp (kThinDepth, kQ2Relative,
 // the same series and closed forms); what differs is how they are evaluated:
-//   1. a scalar pass computes a = rho_exit L, b = rho_far L, T, B, and sorts the piece indices into
-//      the four branches (transparent pieces are written at once: transmittance 1, emission 0);
-//   2. each branch's pieces are copied into contiguous columns (padded to whole vectors with a
-//      copy of the group's first piece) and evaluated lane-parallel:
+//   1. one scalar pass computes a = rho_exit L, b = rho_far L, T, B and appends each piece to its
+//      branch's contiguous columns (the choice branch-free; transparent pieces are written at
+//      once: transmittance 1, emission 0), in chunks of 4096 piece-channels so the columns stay
+//      in cache;
+//   2. each branch's columns, padded to whole vectors (the lane count of the target, not more)
+//      with copies of the group's first piece, are evaluated lane-parallel:
 //        thin_series  the midpoint Taylor recurrence of exact.cpp run on all lanes until every lane
 //                     met its own stop test (a lane stops accumulating at the same term as the
 //                     scalar loop), weights from Expm1;
@@ -25,6 +27,7 @@
 // within 1 ulp of the scalar path's.
 #include "rayint/integrators/exact_batch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -42,7 +45,6 @@ namespace rayint::exact_batch_detail {
 // Branch groups evaluated by the vector kernels (transparent pieces never reach them).
 enum Group : int { kThin = 0, kQ2 = 1, kErfcx = 2, kDawson = 3, kGroups = 4 };
 constexpr int kSeriesBudget = 100;  // as exact.cpp
-constexpr std::size_t kPad = 16;    // columns are padded to a multiple of this (>= any lane count)
 struct Reciprocals {                // 1/(n+1), as exact.cpp
   double r[kSeriesBudget + 2];
   constexpr Reciprocals() : r() {
@@ -148,6 +150,7 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
 }
 
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
+std::size_t DoubleLanes() { return hn::Lanes(hn::ScalableTag<double>()); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace rayint
@@ -157,17 +160,103 @@ HWY_AFTER_NAMESPACE();
 namespace rayint {
 HWY_EXPORT(GroupKernel);
 HWY_EXPORT(TargetName);
+HWY_EXPORT(DoubleLanes);
 
 namespace {
 using namespace exact_batch_detail;
 
-struct Scratch {
-  std::vector<std::size_t> index[kGroups];
+// One branch's pieces of the current chunk: inputs, results, and where each goes back to.
+struct GroupColumns {
   std::vector<double> a, b, ke, kf, tr, em, terms;
+  std::vector<std::size_t> index;
+  std::size_t size = 0;
+};
+
+// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (4 groups x 8
+// columns) stays ~1 MB, in cache, however large the batch.
+constexpr std::size_t kChunk = 4096;
+
+std::size_t lanes() {
+  static const std::size_t lanes = HWY_DYNAMIC_DISPATCH(DoubleLanes)();
+  return lanes;
+}
+
+struct Scratch {
+  GroupColumns group[kGroups];
+  Scratch() {
+    for (auto& g : group) {  // room for a whole chunk in one group, plus the padding
+      for (auto* col : {&g.a, &g.b, &g.ke, &g.kf, &g.tr, &g.em, &g.terms}) col->resize(kChunk + lanes());
+      g.index.resize(kChunk + lanes());
+    }
+  }
 };
 
 constexpr ExactBranch kGroupBranch[kGroups] = {ExactBranch::thin_series, ExactBranch::q2_series,
                                                ExactBranch::erfcx, ExactBranch::dawson};
+
+// 1. classify one piece-channel as exact_piece does: a transparent one is written at once, the
+// others appended to their branch's columns. The choice among the four branches is branch-free:
+// in a mixed batch it is unpredictable.
+inline void classify(Scratch& s, const OpticsColumns& out, std::size_t i, double length, double rho_far,
+                     double rho_exit, double kappa_far, double kappa_exit) {
+  const double a = rho_exit * length;
+  const double b = rho_far * length;
+  const double T = 0.5 * (a + b);
+  if (!(T > 0.0)) {
+    out.transmittance[i] = 1.0;
+    out.emission[i] = 0.0;
+    if (out.branch) out.branch[i] = ExactBranch::transparent;
+    if (out.terms) out.terms[i] = 0;
+    if (out.converged) out.converged[i] = 1;
+    return;
+  }
+  const double B = 0.5 * (b - a);
+  // thin 0, q2 1, erfcx 2, dawson 3: the tests of exact_piece, in its order
+  const int not_thin = T > kThinDepth;
+  const int not_q2 = !(std::fabs(B) <= kQ2Relative * a * a);
+  const int dawson = !(B > 0.0);
+  GroupColumns& col = s.group[not_thin * (1 + not_q2 * (1 + dawson))];
+  const std::size_t k = col.size++;
+  col.a[k] = a;
+  col.b[k] = b;
+  col.ke[k] = kappa_exit;
+  col.kf[k] = kappa_far;
+  col.index[k] = i;
+}
+
+// 2. evaluate each group on its contiguous columns, padded to whole vectors with copies of the
+// group's first piece; 3. scatter the results back to the pieces' places.
+void evaluate_groups(Scratch& s, const OpticsColumns& out) {
+  const std::size_t L = lanes();
+  for (int g = 0; g < kGroups; ++g) {
+    GroupColumns& col = s.group[g];
+    const std::size_t m = col.size;
+    if (m == 0) continue;
+    col.size = 0;
+    const std::size_t padded = (m + L - 1) / L * L;
+    for (std::size_t k = m; k < padded; ++k) {
+      col.a[k] = col.a[0];
+      col.b[k] = col.b[0];
+      col.ke[k] = col.ke[0];
+      col.kf[k] = col.kf[0];
+    }
+    HWY_DYNAMIC_DISPATCH(GroupKernel)(g, col.a.data(), col.b.data(), col.ke.data(), col.kf.data(), padded,
+                                      col.tr.data(), col.em.data(), col.terms.data());
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = col.index[k];
+      out.transmittance[i] = col.tr[k];
+      out.emission[i] = col.em[k];
+    }
+    if (out.branch || out.terms || out.converged) {
+      for (std::size_t k = 0; k < m; ++k) {
+        const std::size_t i = col.index[k];
+        if (out.branch) out.branch[i] = kGroupBranch[g];
+        if (out.terms) out.terms[i] = static_cast<std::int32_t>(col.terms[k]);
+        if (out.converged) out.converged[i] = col.terms[k] <= kSeriesBudget ? 1 : 0;
+      }
+    }
+  }
+}
 
 }  // namespace
 
@@ -175,53 +264,26 @@ const char* exact_batch_target() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 
 void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
   thread_local Scratch s;
-  for (auto& v : s.index) v.clear();
-  // 1. classify, as exact_piece does
-  for (std::size_t i = 0; i < in.size; ++i) {
-    const double a = in.rho_exit[i] * in.length[i];
-    const double b = in.rho_far[i] * in.length[i];
-    const double T = 0.5 * (a + b);
-    if (!(T > 0.0)) {
-      out.transmittance[i] = 1.0;
-      out.emission[i] = 0.0;
-      if (out.branch) out.branch[i] = ExactBranch::transparent;
-      if (out.terms) out.terms[i] = 0;
-      if (out.converged) out.converged[i] = 1;
-      continue;
-    }
-    const double B = 0.5 * (b - a);
-    Group g;
-    if (T <= kThinDepth) g = kThin;
-    else if (std::fabs(B) <= kQ2Relative * a * a) g = kQ2;
-    else if (B > 0.0) g = kErfcx;
-    else g = kDawson;
-    s.index[g].push_back(i);
+  for (std::size_t begin = 0; begin < in.size; begin += kChunk) {
+    const std::size_t end = std::min(in.size, begin + kChunk);
+    for (std::size_t i = begin; i < end; ++i)
+      classify(s, out, i, in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]);
+    evaluate_groups(s, out);
   }
-  // 2. evaluate each group on contiguous, padded columns; 3. scatter back
-  for (int g = 0; g < kGroups; ++g) {
-    const std::vector<std::size_t>& idx = s.index[g];
-    const std::size_t m = idx.size();
-    if (m == 0) continue;
-    const std::size_t padded = (m + kPad - 1) / kPad * kPad;
-    for (auto* col : {&s.a, &s.b, &s.ke, &s.kf, &s.tr, &s.em, &s.terms})
-      if (col->size() < padded) col->resize(padded);
-    for (std::size_t k = 0; k < padded; ++k) {
-      const std::size_t i = idx[k < m ? k : 0];
-      s.a[k] = in.rho_exit[i] * in.length[i];
-      s.b[k] = in.rho_far[i] * in.length[i];
-      s.ke[k] = in.kappa_exit[i];
-      s.kf[k] = in.kappa_far[i];
+}
+
+void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
+  thread_local Scratch s;
+  constexpr std::size_t kChunkPieces = kChunk / kChannels;
+  for (std::size_t begin = 0; begin < n; begin += kChunkPieces) {
+    const std::size_t end = std::min(n, begin + kChunkPieces);
+    for (std::size_t p = begin; p < end; ++p) {
+      const Piece& piece = pieces[p];
+      for (std::size_t c = 0; c < kChannels; ++c)
+        classify(s, out, kChannels * p + c, piece.length, piece.rho_far[c], piece.rho_exit[c],
+                 piece.kappa_far[c], piece.kappa_exit[c]);
     }
-    HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a.data(), s.b.data(), s.ke.data(), s.kf.data(), padded,
-                                      s.tr.data(), s.em.data(), s.terms.data());
-    for (std::size_t k = 0; k < m; ++k) {
-      const std::size_t i = idx[k];
-      out.transmittance[i] = s.tr[k];
-      out.emission[i] = s.em[k];
-      if (out.branch) out.branch[i] = kGroupBranch[g];
-      if (out.terms) out.terms[i] = static_cast<std::int32_t>(s.terms[k]);
-      if (out.converged) out.converged[i] = s.terms[k] <= kSeriesBudget ? 1 : 0;
-    }
+    evaluate_groups(s, out);
   }
 }
 

@@ -313,11 +313,16 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
 
 Ray ray_from_trace(const RayTrace& trace, const Rgb& background) {
   Ray r;
+  ray_from_trace(trace, background, r);
+  return r;
+}
+
+void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& r) {
   r.background = background;
+  r.segments.clear();
   r.segments.reserve(trace.crossings.size());
   for (auto it = trace.crossings.rbegin(); it != trace.crossings.rend(); ++it)
     r.segments.push_back(Segment{it->t_out - it->t_in, it->s_out, it->s_in});
-  return r;
 }
 
 Ray mesh_ray(const TetTraversal& mesh, const ViewRay& ray, const Rgb& background, TraversalStats* stats) {

@@ -137,6 +137,8 @@ class TetTraversal {
 // background entering at the far end. A ray that misses the mesh has no segments (only the
 // background reaches the eye).
 Ray ray_from_trace(const RayTrace& trace, const Rgb& background);
+// The same into `out`, reusing its storage (no allocation per ray in a render loop).
+void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& out);
 Ray mesh_ray(const TetTraversal& mesh, const ViewRay& ray, const Rgb& background,
              TraversalStats* stats = nullptr);
 

@@ -8,7 +8,10 @@ double PiecewiseLinear::operator()(double s) const {
   if (s <= scalar.front()) return value.front();
   if (s >= scalar.back()) return value.back();
   const auto it = std::upper_bound(scalar.begin(), scalar.end(), s);
-  const auto k = static_cast<std::size_t>(it - scalar.begin());  // scalar[k-1] <= s < scalar[k]
+  return interpolate(s, static_cast<std::size_t>(it - scalar.begin()));  // scalar[k-1] <= s < scalar[k]
+}
+
+double PiecewiseLinear::interpolate(double s, std::size_t k) const {
   const double s0 = scalar[k - 1], s1 = scalar[k];
   if (s == s0) return value[k - 1];
   // Interpolate from the nearer end, with that end's distance computed directly: near a

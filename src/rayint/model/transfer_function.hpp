@@ -3,6 +3,7 @@
 // chromaticity kappa for r, g, b, each piecewise linear in the scalar and constant beyond its
 // first and last point.
 #include <array>
+#include <cstddef>
 #include <vector>
 
 namespace rayint {
@@ -17,6 +18,9 @@ struct PiecewiseLinear {
   // Linear interpolation; the end value holds outside [scalar.front(), scalar.back()].
   // At a breakpoint it returns the stored value exactly.
   double operator()(double s) const;
+  // operator() for scalar.front() < s < scalar.back() with k = the index upper_bound(scalar, s)
+  // returns (scalar[k-1] <= s < scalar[k]), known to the caller: the same arithmetic, bit for bit.
+  double interpolate(double s, std::size_t k) const;
 };
 
 struct TransferFunctions {

@@ -78,15 +78,17 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   std::atomic<int> rows_done{0};
   std::vector<MeshRenderCost> per_thread(threads);
   std::vector<RayTrace> traces(threads);  // scratch per worker
+  std::vector<Ray> ray_buffers(threads);  // likewise
   auto render_row = [&](long long row, unsigned id) {
     const int y = static_cast<int>(rows.begin) + static_cast<int>(row);
     MeshRenderCost& cost = per_thread[id];
     RayTrace& trace = traces[id];
+    Ray& ray = ray_buffers[id];
     for (int x = 0; x < width; ++x) {
       const ViewRay vr = cam.ray_for_pixel(x, y);
       const auto t0 = Clock::now();
       mesh.trace(vr, trace, &cost.traversal);
-      const Ray ray = ray_from_trace(trace, mc.background);
+      ray_from_trace(trace, mc.background, ray);
       const auto t1 = Clock::now();
       const RayResult r = mc.shading.enabled
                               ? integrate_shaded(method, trace, mc.background, mc.shading, *gradients)

@@ -1,0 +1,81 @@
+// PieceSplitter (model/pieces.hpp, the tabulated splitter every piece integrator uses) against
+// append_pieces, the plain splitting it must reproduce bit for bit: random transfer functions
+// (few and many breakpoints, constant functions, shared and separate breakpoints) and segments
+// that start, end or stay on breakpoints, run backwards, leave the functions' range or have
+// zero length.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <random>
+#include <vector>
+
+#include "rayint/model/pieces.hpp"
+
+using namespace rayint;
+
+namespace {
+
+PiecewiseLinear random_function(std::mt19937_64& rng, int points, const std::vector<double>& shared) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> s = shared;
+  while (static_cast<int>(s.size()) < points) s.push_back(u(rng));
+  std::sort(s.begin(), s.end());
+  s.erase(std::unique(s.begin(), s.end()), s.end());
+  PiecewiseLinear f;
+  f.scalar = s;
+  for (std::size_t i = 0; i < s.size(); ++i) f.value.push_back(u(rng) < 0.15 ? 0.0 : 3.0 * u(rng));
+  return f;
+}
+
+TransferFunctions random_tf(std::mt19937_64& rng, int max_points) {
+  std::uniform_int_distribution<int> pts(1, max_points);
+  const std::vector<double> shared = {0.25, 0.5};
+  TransferFunctions tf;
+  for (int c = 0; c < kChannels; ++c) {
+    tf.density[static_cast<std::size_t>(c)] = random_function(rng, pts(rng), c == 0 ? shared : std::vector<double>{});
+    tf.color[static_cast<std::size_t>(c)] = random_function(rng, pts(rng), c == 1 ? shared : std::vector<double>{});
+  }
+  return tf;
+}
+
+bool same(const Piece& a, const Piece& b) {
+  return a.length == b.length && a.scalar_far == b.scalar_far && a.scalar_exit == b.scalar_exit &&
+         a.rho_far == b.rho_far && a.rho_exit == b.rho_exit && a.kappa_far == b.kappa_far &&
+         a.kappa_exit == b.kappa_exit;
+}
+
+}  // namespace
+
+TEST_CASE("PieceSplitter gives append_pieces' pieces bit for bit", "[splitter]") {
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  long segments = 0, pieces = 0, on_breakpoints = 0;
+  for (int t = 0; t < 60; ++t) {
+    const TransferFunctions tf = random_tf(rng, t % 2 == 0 ? 3 : 9);  // union of <= 8 and > 8 points
+    const std::vector<double> bps = tf.breakpoints();
+    const PieceSplitter splitter(tf);
+    std::uniform_int_distribution<std::size_t> pick(0, bps.size() - 1);
+    for (int i = 0; i < 2000; ++i) {
+      const auto any = [&] {
+        const double r = u(rng);
+        if (r < 0.25) { ++on_breakpoints; return bps[pick(rng)]; }
+        if (r < 0.3) return bps[pick(rng)] + (u(rng) - 0.5) * 1e-14;
+        return 1.4 * u(rng) - 0.2;  // beyond both ends of every function too
+      };
+      Segment seg{u(rng) < 0.02 ? 0.0 : 2.0 * u(rng), any(), 0.0};
+      seg.scalar_exit = u(rng) < 0.05 ? seg.scalar_far : any();
+      std::vector<Piece> expected;
+      append_pieces(tf, seg, bps, expected);
+      const std::vector<Piece>& got = splitter.pieces(seg);
+      REQUIRE(got.size() == expected.size());
+      for (std::size_t k = 0; k < got.size(); ++k) REQUIRE(same(got[k], expected[k]));
+      std::vector<Piece> appended(1);  // append() keeps what is there
+      splitter.append(seg, appended);
+      REQUIRE(appended.size() == expected.size() + 1);
+      for (std::size_t k = 0; k < expected.size(); ++k) REQUIRE(same(appended[k + 1], expected[k]));
+      ++segments;
+      pieces += static_cast<long>(got.size());
+    }
+  }
+  CHECK(pieces > segments);          // segments did cross breakpoints
+  CHECK(on_breakpoints > 10000);     // and started or ended on them
+}
