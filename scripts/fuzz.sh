@@ -57,6 +57,11 @@ done
 command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found after installing clang" >&2; exit 2; }
 
 mkdir -p "$build"
+# RAYINT_FUZZ_NO_BUILD=1: run the fuzzer already built in $build (e.g. while a build of other
+# targets runs in the same directory, which a second configure would disturb).
+if [ "${RAYINT_FUZZ_NO_BUILD:-0}" = 1 ]; then
+  [ -x "$build/fuzz/${target}_fuzzer" ] || { echo "fuzz.sh: $build/fuzz/${target}_fuzzer not built" >&2; exit 2; }
+else
 # -O1 with line tables only (libFuzzer's advice: -O1 or more): the instrumented library compiles
 # in about half the time of -O2 -g, and stack traces still name file and line. ccache when present.
 launcher=(); command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
@@ -69,6 +74,7 @@ if ! { cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILE
   tail -n 30 "$build_log" >&2
   echo "fuzz.sh: building ${target}_fuzzer failed (log: $build_log)" >&2
   exit 2
+fi
 fi
 fuzzer="$build/fuzz/${target}_fuzzer"
 
