@@ -99,7 +99,7 @@ TEST_CASE("scene image check: z-test mode, wrong size and slab scenes", "[image]
   dir.write("scene.json", kScene);
   fs::create_directories(dir.path / "art");
   REQUIRE(run_cli(dir.path, "render scene.json -o render.npy --quiet").status == 0);
-  REQUIRE(run_cli(dir.path, "check scene.json --candidate-image render.npy --artifacts art -o d.json --quiet").status == 0);
+  REQUIRE(run_cli(dir.path, "check scene.json --candidate-image render.npy --artifacts art -o d.json").status == 0);
   const Image ref = read_image((dir.path / "art" / "reference.npy").string());
   // 1 sigma off everywhere (variance of the mean 1e-8): passes; 10 sigma: fails.
   Image one_sigma = ref, biased = ref, var(ref.width, ref.height, Rgb{1e-8, 1e-8, 1e-8});
@@ -115,7 +115,7 @@ TEST_CASE("scene image check: z-test mode, wrong size and slab scenes", "[image]
   CHECK(z["decided_by"] == "z_test");
   CHECK(z["z_test"]["rejected"] == 0);
   CHECK(z["reference"].contains("z_test"));
-  CHECK(run_cli(dir.path, "check scene.json --candidate-image biased.npy --candidate-variance var.npy --artifacts art -o z.json --quiet").status == 1);
+  CHECK(run_cli(dir.path, "check scene.json --candidate-image biased.npy --candidate-variance var.npy --artifacts art -o z.json").status == 1);
 
   // A candidate of the wrong size: exit 2, one line naming the image and the scene's camera.
   write_image((dir.path / "small.npy").string(), Image(4, 3));
