@@ -12,8 +12,7 @@
 # candidate_parser: fuzz/seeds/candidate/) with the dictionary fuzz/<target>.dict, and keeps the
 # inputs it finds interesting in RAYINT_FUZZ_CORPUS (default fuzz-corpus/<target>/, reused by the
 # next run). Seeds: case_parser cases/*.json; candidate_parser fuzz/seeds/candidate/; scene_parser
-# cases/scenes/*.json; shard_reader fuzz/seeds/shard/ (README there); vtk_legacy
-# fuzz/seeds/vtk_legacy/ + cases/meshes/linear-box.vtk + the
+# cases/scenes/*.json; vtk_legacy fuzz/seeds/vtk_legacy/ + cases/meshes/linear-box.vtk + the
 # meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
 # RAYINT_FUZZ_TARGET selects the target (default case_parser); preset_parser (ParaView presets)
 # seeds from fuzz/seeds/preset/.
@@ -41,10 +40,9 @@ case "$target" in
   gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
   tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
   preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
-  shard_reader) seed_files=("$root"/fuzz/seeds/shard/*.json); what="rayint shard readers (rayint merge)" ;;
   pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
     fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, shard_reader, pfm_reader, exr_reader or npy_reader" >&2; exit 2 ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, pfm_reader, exr_reader or npy_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"
