@@ -50,8 +50,9 @@ void set_check_command(CLI::App& app) {
                                     "The renderer's intensities (JSON, docs/candidate-format.md)");
   auto* candidate_image = cmd->add_option(
       "--candidate-image", opt->image.candidate_image,
-      "The renderer's image of a mesh case's camera (.pfm, .exr, .npy; .png only to ~1/255), "
-      "compared pixel by pixel with the exact image (README, \"Checking a renderer's image\")");
+      "The renderer's image of a mesh case's camera or of a scene (.pfm, .exr, .npy; .png only to "
+      "~1/255), compared pixel by pixel with the exact image or the scene's reference image "
+      "(README, \"Checking a renderer's image\")");
   candidate_json->excludes(candidate_image);
   cmd->add_flag("--flip-x", opt->image.flip_x, "Images: mirror the candidate left-right first");
   cmd->add_flag("--flip-y", opt->image.flip_y,

@@ -1,15 +1,19 @@
-// rayint check CASE --candidate-image IMAGE: the exact image of a mesh case's camera (render/
-// mesh_render.hpp with `exact`) against the renderer's float image, pixel by pixel
-// (render/image_compare.hpp); JSON diff, heat map, worst pixels as replayable case files, JUnit.
+// rayint check CASE_OR_SCENE --candidate-image IMAGE: the exact image of a mesh case's camera
+// (render/mesh_render.hpp with `exact`), or a scene's reference image (scene/pipeline.hpp
+// reference_image), against the renderer's float image, pixel by pixel (render/image_compare.hpp);
+// JSON diff, heat map, worst pixels as replayable case (or one-ray scene) files, JUnit.
 #include "check_image.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "render_kinds.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
@@ -20,6 +24,8 @@
 #include "rayint/render/float_image.hpp"
 #include "rayint/render/image_compare.hpp"
 #include "rayint/render/mesh_render.hpp"
+#include "rayint/input/scene_reader.hpp"
+#include "rayint/scene/pipeline.hpp"
 #include "rayint/report/case_writer.hpp"
 #include "rayint/report/image_check_json.hpp"
 #include "rayint/report/junit.hpp"
@@ -35,31 +41,37 @@ std::string vec_text(const Vec3& v) {
   return "[" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) + "]";
 }
 
-}  // namespace
 
-void run_image_check(const ImageCheckOptions& o) {
-  const nlohmann::json root = json_source::parse(json_source::read_text_file(o.case_file), o.case_file);
-  if (!root.is_object() || !(root.contains("mesh") || root.contains("mesh_file")))
-    throw InputError(o.case_file + ": camera: --candidate-image needs a mesh case with a \"camera\" "
-                     "(per-ray cases are checked with --candidate)");
-  const MeshCase mc = parse_mesh_case(root, o.case_file);
-  if (!mc.camera) throw InputError(o.case_file + ": camera: --candidate-image needs the case's \"camera\"");
-  // --candidate-alpha: composite the candidate over the case's background first (render/image_compare.hpp).
+// The candidate (and variance) image, flipped, checked against the expected size. `what` names
+// the source of the expected size in the message ("the camera of cam.json"). With
+// --candidate-alpha, an RGBA candidate is first composited over `background`
+// (render/image_compare.hpp); nullptr: no single background colour (scenes), the option is refused.
+Image read_candidate(const ImageCheckOptions& o, int width, int height, const std::string& what,
+                     const Rgb* background) {
   const AlphaMode alpha_mode = o.alpha_mode == "premultiplied" ? AlphaMode::premultiplied
                                : o.alpha_mode == "straight"    ? AlphaMode::straight
                                                                : AlphaMode::ignore;
+  if (alpha_mode != AlphaMode::ignore && background == nullptr)
+    throw InputError(o.case_file + ": background: --candidate-alpha " + o.alpha_mode +
+                     " needs a mesh case (one background colour to composite over)");
   const ImageWithAlpha raw = read_image_with_alpha(o.candidate_image);
   Image composited;
   try {
-    composited = composite_over(raw.rgb, raw.alpha, mc.background, alpha_mode);
+    composited = alpha_mode == AlphaMode::ignore ? raw.rgb
+                                                 : composite_over(raw.rgb, raw.alpha, *background, alpha_mode);
   } catch (const std::invalid_argument& e) {
     throw InputError(o.candidate_image + ": --candidate-alpha " + o.alpha_mode + ": " + e.what());
   }
   const Image candidate = flipped(composited, o.flip_x, o.flip_y);
-  if (candidate.width != mc.camera->width || candidate.height != mc.camera->height)
+  if (candidate.width != width || candidate.height != height)
     throw InputError(o.candidate_image + ": (image): " + std::to_string(candidate.width) + " x " +
-                     std::to_string(candidate.height) + " pixels, the camera of " + o.case_file +
-                     " has " + std::to_string(mc.camera->width) + " x " + std::to_string(mc.camera->height));
+                     std::to_string(candidate.height) + " pixels, " + what + " has " +
+                     std::to_string(width) + " x " + std::to_string(height));
+  return candidate;
+}
+
+// The variance of the candidate's mean per pixel (empty image without --candidate-variance).
+Image read_variance(const ImageCheckOptions& o, const Image& candidate) {
   Image variance;
   if (!o.candidate_variance.empty()) {
     variance = flipped(read_image(o.candidate_variance), o.flip_x, o.flip_y);
@@ -81,34 +93,32 @@ void run_image_check(const ImageCheckOptions& o) {
   }
   if (!std::filesystem::is_directory(o.artifacts))
     throw InputError(o.artifacts + ": --artifacts: not a directory");
+  return variance;
+}
 
-  const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
-  const TetTraversal mesh(mc.mesh, mc.mesh_source);
-  MeshRenderSettings settings;
-  settings.threads = o.threads;
-  const MeshRender render = render_mesh(mc, mesh, *exact, nullptr, settings);
-
+// Compares, runs the z-test when there is a variance image, writes the heat map, lets
+// `write_worst` write the worst pixels' files into ctx.worst_cases, then the diff and JUnit.
+void finish_check(const ImageCheckOptions& o, const Image& expected, const Image& candidate,
+                  const Image& variance, ImageCheckContext& ctx,
+                  const std::function<void(const ImageComparison&, ImageCheckContext&)>& write_worst) {
   ImageCompareOptions co;
   co.rel_tol = o.rel_tol;
   co.abs_tol = o.abs_tol;
   co.worst = o.worst;
-  const ImageComparison cmp = compare_images(render.image, candidate, co);
+  const ImageComparison cmp = compare_images(expected, candidate, co);
 
   ZTestResult z;
-  ImageCheckContext ctx;
   if (!o.candidate_variance.empty()) {
     ZTestOptions zo;
     zo.alpha = o.alpha;
     zo.min_fraction = o.min_fraction;
-    z = z_test_images(render.image, candidate, variance, zo);
+    z = z_test_images(expected, candidate, variance, zo);
     ctx.z_test = &z;
     ctx.alpha = o.alpha;
     ctx.min_fraction = o.min_fraction;
     ctx.samples = o.samples;
     ctx.variance_source = o.candidate_variance;
   }
-  ctx.case_name = mc.name;
-  ctx.case_source = o.case_file;
   ctx.candidate_source = o.candidate_image;
   ctx.rel_tol = o.rel_tol;
   ctx.abs_tol = o.abs_tol;
@@ -117,11 +127,144 @@ void run_image_check(const ImageCheckOptions& o) {
   if (alpha_mode != AlphaMode::ignore) ctx.alpha_mode = o.alpha_mode;
   ctx.heat_map = join(o.artifacts, "error_heat_map.png");
   write_png(ctx.heat_map, error_heat_map(cmp.rel_error, cmp.width, cmp.height));
-  // Each worst pixel as a one-ray case: the camera ray of that pixel traced through the mesh,
-  // with the case's transfer functions and background, so `rayint eval` replays it.
-  if (mc.shading.enabled) {
-    ctx.note = "the case has surface shading, which a segment case cannot hold: no worst-pixel case files";
-  } else {
+  write_worst(cmp, ctx);
+  emit(image_check_json(ctx, cmp).dump(2) + "\n", o.output);
+  if (!o.junit.empty())
+    write_file_atomically(o.junit, junit_xml({ctx.z_test ? z_test_junit(ctx.case_name, z, o.min_fraction)
+                                                         : image_check_junit(ctx.case_name, cmp)}));
+  std::cout.flush();
+  if (!o.quiet) std::cerr << image_check_summary_line(ctx, cmp) << std::endl;
+  if (!(ctx.z_test ? z.pass : cmp.pass)) throw ChecksFailed{};
+}
+
+std::string dir_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
+// Every "grid_file" in a scene, made absolute, so a scene written elsewhere still finds it.
+void absolute_grid_files(nlohmann::json& j, const std::string& base_dir) {
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (it.key() == "grid_file" && it->is_string()) {
+        const std::filesystem::path p(it->get<std::string>());
+        if (p.is_relative()) *it = std::filesystem::absolute(std::filesystem::path(base_dir) / p).lexically_normal().string();
+      } else {
+        absolute_grid_files(*it, base_dir);
+      }
+    }
+  } else if (j.is_array()) {
+    for (nlohmann::json& e : j) absolute_grid_files(e, base_dir);
+  }
+}
+
+nlohmann::json vec_json(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+// `rayint check SCENE --candidate-image IMAGE`: the expected image is the scene's reference image
+// (ScenePipeline::reference_image). A worst pixel cannot be a segment case (a scene's terms are
+// not segments), so it is written as the same scene with that pixel's ray as its one explicit ray
+// and that pixel's background as a constant colour: `rayint check worst_pixel_<i>.json
+// --candidate-image ONE_PIXEL.npy` replays the check of that pixel, and `rayint render
+// worst_pixel_<i>.json -o p.npy --errors 1` the scene's own methods and reference on it.
+void run_scene_image_check(const ImageCheckOptions& o, const nlohmann::json& root) {
+  if (is_slab_scene(root))
+    throw InputError(o.case_file + ": medium.type: \"slab\" is a plane-parallel slab with detectors, not an "
+                     "image; check its detectors with `rayint slab --scene " + o.case_file + "`");
+  Scene scene = parse_scene(root, o.case_file, dir_of(o.case_file));
+  std::unique_ptr<ScenePipeline> pipeline;
+  try {
+    pipeline = std::make_unique<ScenePipeline>(scene, o.threads);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(o.case_file + ": (root): " + json_source::one_line(e.what()));
+  }
+  const int width = scene.camera ? scene.camera->width : static_cast<int>(scene.rays.size());
+  const int height = scene.camera ? scene.camera->height : 1;
+  const Image candidate = read_candidate(o, width, height,
+                                         scene.camera ? "the camera of " + o.case_file
+                                                      : "the " + std::to_string(width) + " rays (x 1) of " + o.case_file,
+                                         nullptr);
+  Image variance = read_variance(o, candidate);
+
+  const ReferenceImage ref = pipeline->reference_image(o.threads);
+  ImageCheckContext::SceneReference info;
+  info.image = join(o.artifacts, "reference.npy");
+  write_image(info.image, ref.value);
+  info.max_error = ref.max_error;
+  info.unconverged = ref.unconverged;
+  info.evaluations = ref.evaluations;
+  info.seconds = ref.seconds;
+  if (!o.candidate_variance.empty()) {
+    // A Monte Carlo reference (multiple_scattering) has a variance of its own: its error estimate
+    // is two standard errors, so (error / 2)^2 joins the candidate's variance of the mean.
+    for (std::size_t i = 0; i < variance.pixels.size(); ++i)
+      for (int c = 0; c < kChannels; ++c) {
+        const double s = 0.5 * ref.error.pixels[i][c];
+        variance.pixels[i][c] += s * s;
+      }
+    info.variance_added = true;
+  }
+  ImageCheckContext ctx;
+  ctx.case_name = scene.name;
+  ctx.case_source = o.case_file;
+  ctx.scene_reference = &info;
+  if (ref.unconverged > 0)
+    ctx.note = std::to_string(ref.unconverged) + " pixels' references reported non-convergence "
+               "(the scene's \"reference\" tolerances); their expected values are less certain";
+  finish_check(o, ref.value, candidate, variance, ctx, [&](const ImageComparison& cmp, ImageCheckContext& c) {
+    for (std::size_t i = 0; i < cmp.worst.size(); ++i) {
+      const PixelDiff& w = cmp.worst[i];
+      const PixelRay pr = pipeline->ray(static_cast<long long>(w.y) * width + w.x);
+      nlohmann::json pixel = root;
+      absolute_grid_files(pixel, dir_of(o.case_file));
+      const std::string name = scene.name + "-pixel-" + std::to_string(w.x) + "-" + std::to_string(w.y);
+      pixel["name"] = name;
+      pixel["description"] =
+          "Generated by `rayint check " + o.case_file + " --candidate-image " + o.candidate_image +
+          "`: pixel (" + std::to_string(w.x) + ", " + std::to_string(w.y) + ") of the scene, as its one "
+          "explicit ray, with that pixel's background as a constant colour. Candidate " +
+          format_number(w.got) + " in channel " + "rgb"[w.channel] + ", reference " + format_number(w.expected) +
+          " (reference error estimate " + format_number(ref.error.at(w.x, w.y)[w.channel]) + ").";
+      pixel.erase("camera");
+      pixel["rays"] = nlohmann::json::array({{{"origin", vec_json(pr.ray.origin)}, {"direction", vec_json(pr.ray.direction)}}});
+      pixel["background"] = {{"color", nlohmann::json::array({pr.background[0], pr.background[1], pr.background[2]})}};
+      const std::string path = join(o.artifacts, "worst_pixel_" + std::to_string(i) + ".json");
+      write_file_atomically(path, pixel.dump(2) + "\n");
+      c.worst_cases.push_back(path);
+    }
+  });
+}
+
+}  // namespace
+
+void run_image_check(const ImageCheckOptions& o) {
+  const nlohmann::json root = json_source::parse(json_source::read_text_file(o.case_file), o.case_file);
+  if (root.is_object() && (root.contains("effects") || root.contains("medium")))
+    return run_scene_image_check(o, root);
+  if (!root.is_object() || !(root.contains("mesh") || root.contains("mesh_file")))
+    throw InputError(o.case_file + ": camera: --candidate-image needs a mesh case with a \"camera\" "
+                     "or a scene (per-ray cases are checked with --candidate)");
+  const MeshCase mc = parse_mesh_case(root, o.case_file);
+  if (!mc.camera) throw InputError(o.case_file + ": camera: --candidate-image needs the case's \"camera\"");
+  const Image candidate = read_candidate(o, mc.camera->width, mc.camera->height, "the camera of " + o.case_file,
+                                         &mc.background);
+  const Image variance = read_variance(o, candidate);
+
+  const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
+  const TetTraversal mesh(mc.mesh, mc.mesh_source);
+  MeshRenderSettings settings;
+  settings.threads = o.threads;
+  const MeshRender render = render_mesh(mc, mesh, *exact, nullptr, settings);
+
+  ImageCheckContext ctx;
+  ctx.case_name = mc.name;
+  ctx.case_source = o.case_file;
+  finish_check(o, render.image, candidate, variance, ctx, [&](const ImageComparison& cmp, ImageCheckContext& c) {
+    // Each worst pixel as a one-ray case: the camera ray of that pixel traced through the mesh,
+    // with the case's transfer functions and background, so `rayint eval` replays it.
+    if (mc.shading.enabled) {
+      c.note = "the case has surface shading, which a segment case cannot hold: no worst-pixel case files";
+      return;
+    }
     RayTrace trace;
     for (std::size_t i = 0; i < cmp.worst.size(); ++i) {
       const PixelDiff& w = cmp.worst[i];
@@ -139,16 +282,9 @@ void run_image_check(const ImageCheckOptions& o) {
       pixel.rays.push_back(ray_from_trace(trace, mc.background));
       const std::string path = join(o.artifacts, "worst_pixel_" + std::to_string(i) + ".json");
       write_case_file(path, pixel);
-      ctx.worst_cases.push_back(path);
+      c.worst_cases.push_back(path);
     }
-  }
-  emit(image_check_json(ctx, cmp).dump(2) + "\n", o.output);
-  if (!o.junit.empty())
-    write_file_atomically(o.junit, junit_xml({ctx.z_test ? z_test_junit(mc.name, z, o.min_fraction)
-                                                         : image_check_junit(mc.name, cmp)}));
-  std::cout.flush();
-  if (!o.quiet) std::cerr << image_check_summary_line(ctx, cmp) << std::endl;
-  if (!(ctx.z_test ? z.pass : cmp.pass)) throw ChecksFailed{};
+  });
 }
 
 }  // namespace rayint::cli

@@ -11,7 +11,6 @@
 #include "rayint/render/float_image.hpp"
 
 namespace rayint::cli {
-namespace {
 
 // A slab scene (input/slab_scene_reader.hpp) has "medium": {"type": "slab", ...}.
 bool is_slab_scene(const nlohmann::json& root) {
@@ -19,8 +18,6 @@ bool is_slab_scene(const nlohmann::json& root) {
   const nlohmann::json& m = root["medium"];
   return m.is_object() && m.contains("type") && m["type"].is_string() && m["type"] == "slab";
 }
-
-}  // namespace
 
 void set_render_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a mesh case or a scene to an image (PNG preview; PFM, EXR, NPY floats)");

@@ -20,6 +20,8 @@ struct RenderOptions {
   std::string shard;                 // mesh cases: --shard I/N (rows)
 };
 
+// A slab scene (medium.type "slab"): `rayint slab --scene`, not render or check --candidate-image.
+bool is_slab_scene(const nlohmann::json& root);  // render_command.cpp
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);   // render_mesh.cpp
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options);  // render_scene.cpp
 

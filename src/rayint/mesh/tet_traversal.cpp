@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
 #include "rayint/mesh/first_hit.hpp"
 
 namespace rayint {
@@ -25,9 +26,22 @@ void TraversalStats::add(const TraversalStats& o) {
 namespace {
 // Local face k of a tet is the one opposite point k.
 constexpr std::array<std::array<int, 3>, 4> kFacePoints{{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
+// The largest point coordinate the boundary ray tracer takes. Embree works in single precision
+// and asserts ray.valid(): |origin|, |direction| <= FLT_LARGE = 1.844e18 (embree
+// common/math/constants.h); a coordinate beyond float's range even becomes inf. The walk's
+// origin lies within 1% of the box diagonal outside the box (trace below), so points within
+// +-1e18 keep it below 1.04e18. Found by fuzz/gmsh_fuzzer and fuzz/vtk_legacy_fuzzer (a point
+// at 4e252: Embree's assertion aborted the process; tests/test_mesh_io.cpp).
+constexpr double kMaxCoordinate = 1e18;
 }  // namespace
 
 TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std::move(mesh)) {
+  for (std::size_t i = 0; i < mesh_.points.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::fabs(mesh_.points[i][k]) <= kMaxCoordinate))
+        throw InputError(source + ": points[" + std::to_string(i) + "][" + std::to_string(k) +
+                         "]: coordinate " + format_number(mesh_.points[i][k]) +
+                         " beyond +-1e18, the range of the boundary ray tracer (Embree, single precision)");
   const std::size_t n = mesh_.tets.size();
   // Faces: sort (sorted point triple, tet, k) records and merge equal triples.
   struct Rec {

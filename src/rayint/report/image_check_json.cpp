@@ -28,7 +28,21 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
   j["pass"] = z ? z->pass : c.pass;
   j["decided_by"] = z ? "z_test" : "tolerance";
   j["case"] = ctx.case_name;
-  j["case_file"] = ctx.case_source;
+  j[ctx.scene_reference ? "scene_file" : "case_file"] = ctx.case_source;
+  if (const ImageCheckContext::SceneReference* r = ctx.scene_reference) {
+    nlohmann::ordered_json ref;
+    ref["what"] = "the scene's reference image: each named term by its effect's independent reference, "
+                  "summed as rayint render sums the terms";
+    ref["image"] = r->image.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r->image);
+    ref["max_error_estimate"] = number(r->max_error);
+    ref["unconverged_pixels"] = r->unconverged;
+    ref["evaluations"] = r->evaluations;
+    ref["seconds"] = r->seconds;
+    if (r->variance_added)
+      ref["z_test"] = "the reference's error estimate is taken as two standard errors: (error / 2)^2 is "
+                      "added to the candidate's variance";
+    j["reference"] = ref;
+  }
   j["candidate_image"] = ctx.candidate_source;
   j["pixel_convention"] = pixel_convention_text();
   j["flip_x"] = ctx.flip_x;
@@ -63,7 +77,8 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
     p["rel_error"] = number(w.rel_error);
     p["allowed"] = number(w.allowed);
     p["pass"] = w.pass;
-    if (i < ctx.worst_cases.size() && !ctx.worst_cases[i].empty()) p["case_file"] = ctx.worst_cases[i];
+    if (i < ctx.worst_cases.size() && !ctx.worst_cases[i].empty())
+      p[ctx.scene_reference ? "scene_file" : "case_file"] = ctx.worst_cases[i];
     worst.push_back(p);
   }
   j["worst_pixels"] = worst;

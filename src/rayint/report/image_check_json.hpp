@@ -1,7 +1,8 @@
 #pragma once
 // The JSON diff of `rayint check CASE --candidate-image IMAGE` (README, "Checking a renderer's
 // image"): verdict, pixel convention, tolerances, error figures, PSNR, the fraction within
-// tolerance, the heat map's path and the worst pixels with their replayable case files.
+// tolerance, the heat map's path and the worst pixels with their replayable case files (for a
+// scene: the reference's own error and scene files holding each worst pixel's ray).
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -23,6 +24,18 @@ struct ImageCheckContext {
   double alpha = 0.0, min_fraction = 0.0;
   long samples = 0;                     // 0: the variance image is already of the mean
   std::string variance_source;
+  // A scene (`rayint check SCENE --candidate-image`): the expected image is the scene's reference
+  // image (scene/pipeline.hpp ReferenceImage), and the worst pixels are scene files with that
+  // pixel's ray. Null for a mesh case.
+  struct SceneReference {
+    std::string image;               // the reference image written to the artifacts, or empty
+    double max_error = 0.0;          // the references' own largest error estimate (absolute)
+    long long unconverged = 0;       // pixels where a reference did not converge
+    long long evaluations = 0;
+    double seconds = 0.0;
+    bool variance_added = false;     // z-test: (error / 2)^2 added to the candidate's variance
+  };
+  const SceneReference* scene_reference = nullptr;
 };
 
 // The pixel convention in one sentence, as the README states it (printed in every diff).

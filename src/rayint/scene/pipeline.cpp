@@ -265,6 +265,52 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
   return out;
 }
 
+ReferenceImage ScenePipeline::reference_image(unsigned threads,
+                                              const std::function<void(double)>& progress) const {
+  ReferenceImage out;
+  const Clock::time_point t0 = Clock::now();
+  const long long count = ray_count();
+  const int width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
+  const int height = scene_.camera ? scene_.camera->height : 1;
+  out.value = Image(width, height);
+  out.error = Image(width, height);
+  const bool absorption = scene_.has("absorption");
+  std::vector<long long> evaluations(static_cast<std::size_t>(height), 0);
+  std::vector<long long> unconverged(static_cast<std::size_t>(height), 0);
+  std::mutex progress_mutex;
+  long long rows_done = 0;
+  parallel_for(height, threads != 0 ? threads : threads_, [&](long long row) {
+    for (int x = 0; x < width; ++x) {
+      const PixelRay pr = ray(row * width + x);
+      Rgb value = absorption ? Rgb{} : pr.background;
+      Rgb error{};
+      bool converged = true;
+      for (const std::unique_ptr<Effect>& effect : effects_) {
+        const ReferenceValue ref = effect->reference(pr);
+        for (int c = 0; c < kChannels; ++c) {
+          value[c] += ref.value[c];
+          error[c] += ref.error_estimate[c];
+        }
+        evaluations[static_cast<std::size_t>(row)] += ref.evaluations;
+        converged = converged && ref.converged;
+      }
+      out.value.at(x, static_cast<int>(row)) = value;
+      out.error.at(x, static_cast<int>(row)) = error;
+      if (!converged) ++unconverged[static_cast<std::size_t>(row)];
+    }
+    if (progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress(static_cast<double>(++rows_done) / static_cast<double>(height));
+    }
+  });
+  for (long long e : evaluations) out.evaluations += e;
+  for (long long u : unconverged) out.unconverged += u;
+  for (const Rgb& e : out.error.pixels)
+    for (int c = 0; c < kChannels; ++c) out.max_error = std::max(out.max_error, e[c]);
+  out.seconds = seconds_since(t0);
+  return out;
+}
+
 bool Scene::has(const std::string& effect) const {
   for (const std::string& e : effects)
     if (e == effect) return true;

@@ -62,6 +62,23 @@ struct SceneRenderResult {
   std::vector<std::vector<Rgb>> ray_terms;
 };
 
+// The scene's reference image (`rayint check SCENE --candidate-image`): every pixel (or explicit
+// ray) is what the pipeline would give if each named term were computed by its effect's
+// independent reference (Effect::reference: adaptive Gauss-Kronrod to the scene's
+// "reference" tolerances for the deterministic terms, 1,024-sample path tracing for
+// multiple_scattering), summed as render sums the terms, plus the unattenuated background when
+// `absorption` is not named. `error` is the sum over the terms of each reference's own error
+// estimate (absolute, per channel; for Monte Carlo terms two standard errors). Deterministic:
+// each pixel is computed on its own, so the image does not depend on the thread count.
+struct ReferenceImage {
+  Image value;
+  Image error;
+  long long evaluations = 0;      // integrand evaluations or path samples, over all pixels
+  long long unconverged = 0;      // pixels where a reference reported non-convergence
+  double max_error = 0.0;         // largest entry of `error`
+  double seconds = 0.0;           // wall time
+};
+
 class ScenePipeline {
  public:
   // Throws std::invalid_argument for an effect or method that cannot run on this scene.
@@ -75,6 +92,8 @@ class ScenePipeline {
   const Shadowing& shadowing() const { return *shadowing_; }
 
   SceneRenderResult render(const SceneRenderOptions& options) const;
+  ReferenceImage reference_image(unsigned threads = 0,
+                                 const std::function<void(double fraction)>& progress = {}) const;
 
  private:
   const Scene& scene_;
