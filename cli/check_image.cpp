@@ -124,7 +124,7 @@ void finish_check(const ImageCheckOptions& o, const Image& expected, const Image
   ctx.abs_tol = o.abs_tol;
   ctx.flip_x = o.flip_x;
   ctx.flip_y = o.flip_y;
-  if (alpha_mode != AlphaMode::ignore) ctx.alpha_mode = o.alpha_mode;
+  if (o.alpha_mode == "premultiplied" || o.alpha_mode == "straight") ctx.alpha_mode = o.alpha_mode;
   ctx.heat_map = join(o.artifacts, "error_heat_map.png");
   write_png(ctx.heat_map, error_heat_map(cmp.rel_error, cmp.width, cmp.height));
   write_worst(cmp, ctx);
