@@ -107,7 +107,7 @@ void set_bench_command(CLI::App& app) {
     // --shard: every setting on this shard's rays, what each ray measured to the shard file;
     // merge: the report from the shards' rays (README, "Shards and merge").
     const bool in_shard = !opt->shard.empty();
-    const ShardSpec shard = begin_shard(opt->shard);
+    const ShardSpec shard = begin_shard(opt->shard, opt->output);
     if (in_shard) {
       if (output_option->count() == 0)
         throw std::invalid_argument("--shard: needs -o FILE for the shard file");

@@ -5,7 +5,6 @@
 // progress on stderr.
 #include <iostream>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -67,9 +66,7 @@ void set_cells_command(CLI::App& app) {
     // --shard: the samples of this shard's cells and voxel rays; merge: the report from the
     // shards' samples (README, "Shards and merge").
     const bool in_shard = !opt->shard.empty();
-    const ShardSpec shard = begin_shard(opt->shard);
-    if (in_shard && (opt->output.empty() || opt->output == "-"))  // before the work
-      throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+    const ShardSpec shard = begin_shard(opt->shard, opt->output);
     if (in_shard) {
       write_shard(opt->output, "cells", shard, {}, to_json(run_cells_samples(so, shard)));
       return;

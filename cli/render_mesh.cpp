@@ -56,7 +56,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   // --shard I/N: render the shard's band of rows and write it as a shard file (-o); merging:
   // the image and its figures assembled from the shards' bands, written as a single run would.
   const bool in_shard = !options.shard.empty();
-  settings.shard = begin_shard(options.shard);
+  settings.shard = begin_shard(options.shard, options.output);
   std::vector<std::string> inputs{options.input};
   if (!mc.mesh_source.empty() && mc.mesh_source != options.input) inputs.push_back(mc.mesh_source);
   if (in_shard) {

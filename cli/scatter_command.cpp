@@ -73,9 +73,7 @@ void set_scatter_command(CLI::App& app) {
     // --shard: this shard's rows of the Monte Carlo references and its share of the method runs;
     // merge: the comparison from the shards' parts (README, "Shards and merge").
     const bool in_shard = !s->shard.empty();
-    const ShardSpec shard = begin_shard(s->shard);
-    if (in_shard && (s->output.empty() || s->output == "-"))  // before the work
-      throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+    const ShardSpec shard = begin_shard(s->shard, s->output);
     SceneVolumeComparison r;
     if (in_shard || merging()) {
       SceneVolumeSetup setup = scene_volume_setup(scene, s->width, s->height, s->points);

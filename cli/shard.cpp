@@ -93,10 +93,17 @@ CLI::Option* add_shard_option(CLI::App* cmd, std::string& text) {
                          "file to -o; `rayint merge` joins the shards into the run's report");
 }
 
-ShardSpec begin_shard(const std::string& text) {
+namespace {
+void require_shard_file(const std::string& path) {
+  if (path.empty() || path == "-") throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+}
+}  // namespace
+
+ShardSpec begin_shard(const std::string& text, const std::string& output) {
   if (text.empty()) return {};
   if (merging()) throw std::invalid_argument("--shard: not in a merge");
   const ShardSpec s = parse_shard(text);
+  require_shard_file(output);
   shard_context().mode = ShardContext::Mode::shard;
   return s;
 }
@@ -113,7 +120,7 @@ std::string run_fingerprint(const std::string& command, const std::vector<std::s
 
 void write_shard(const std::string& path, const std::string& command, const ShardSpec& shard,
                  const std::vector<std::string>& input_files, nlohmann::json data) {
-  if (path.empty() || path == "-") throw std::invalid_argument("--shard: needs -o FILE for the shard file");
+  require_shard_file(path);
   nlohmann::json j;
   j["rayint_shard"] = kShardFormat;
   j["command"] = command;

@@ -32,8 +32,9 @@ ShardContext& shard_context();
 // Registers --shard I/N on a subcommand (the text lands in `text`).
 CLI::Option* add_shard_option(CLI::App* cmd, std::string& text);
 
-// The shard a subcommand runs: whole when `text` is empty; sets the context's mode.
-ShardSpec begin_shard(const std::string& text);
+// The shard a subcommand runs: whole when `text` is empty; sets the context's mode. A shard
+// needs `output` (-o FILE) for its shard file: refused here, before the work.
+ShardSpec begin_shard(const std::string& text, const std::string& output);
 bool merging();
 
 // The run's fingerprint: the command, its canonical arguments and the bytes of `input_files`.

@@ -174,7 +174,7 @@ void set_slab_command(CLI::App& app) {
     // Shards: every solver runs as in the single run, but the Monte Carlo only over the shard's
     // blocks (or, merging, from the shards' block sums); the deterministic solvers run again.
     const bool in_shard = !s->shard.empty();
-    const ShardSpec shard = begin_shard(s->shard);
+    const ShardSpec shard = begin_shard(s->shard, s->output);
     std::vector<std::string> inputs;
     for (const auto* f : {&s->benchmark, &s->scene})
       if (!f->empty()) inputs.push_back(*f);

@@ -84,7 +84,7 @@ void set_stress_command(CLI::App& app) {
     if (!opt->quiet)
       so.progress = [](const StressProgress& p) { std::fputs(stress_progress_line(p).c_str(), stderr); };
     const bool in_shard = !opt->shard.empty();
-    so.shard = begin_shard(opt->shard);
+    so.shard = begin_shard(opt->shard, opt->output);
     if (in_shard) {  // this shard's part of the run, for `rayint merge`
       write_shard(opt->output, "stress", so.shard, {}, to_json(run_stress_part(so)));
       return;

@@ -92,10 +92,14 @@ case $kind in
     expect_fail "duplicate of shard 1/4" "$rayint" merge "$work"/s.{0,1,1,2,3}.json -o "$work/out.json"
     expect_fail "different run" "$rayint" merge "$work"/s.{0,2,3}.json "$work/other.1.json" -o "$work/out.json"
     expect_fail "not a shard file" "$rayint" merge "$src/cases/scattering/disort_slab.json" -o "$work/out.json"
+    # a shard without -o is refused before the work (a run of hours here would hit the timeout)
+    expect_fail "needs -o FILE" timeout 60 "$rayint" slab --tau 1 --albedo 0.9 --phase isotropic --mu-up 0.5 \
+      --method monte_carlo --photons 100000000000 --seed 1 --shard 0/4
+    expect_fail "needs -o FILE" timeout 60 "$rayint" stress --count 100000000 --seed 1 --shard 0/4
     "$rayint" merge --allow-partial "$work"/s.{0,1,3}.json -o "$work/partial.json" 2>"$work/err"
     grep -q "partial: 3 of 4 shards (missing 2/4)" "$work/err"
     /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); n=r['monte_carlo']['photons']; assert 0 < n < 50000, n; print('partial merge covers', n, 'photons')" "$work/partial.json"
-    echo "refusals: missing, duplicate, different run, not a shard: one line, exit 2, no output"
+    echo "refusals: missing, duplicate, different run, not a shard, shard without -o: one line, exit 2, no output"
     ;;
   rerun)
     # A shard killed mid-run leaves no file; running it again reproduces it (the shard data are
