@@ -52,6 +52,17 @@ struct Reciprocals {                // 1/(n+1), as exact.cpp
   }
 };
 inline constexpr Reciprocals kRecip;
+// Where classification appends each branch's pieces: per group the columns a, b, kappa_exit,
+// kappa_far and the piece's index (kGroups + 1 lists: the last one holds transparent pieces,
+// which need no kernel), and how many each holds so far.
+struct GroupSink {
+  double* a[kGroups];
+  double* b[kGroups];
+  double* ke[kGroups];
+  double* kf[kGroups];
+  std::int64_t* index[kGroups + 1];
+  std::size_t count[kGroups + 1];
+};
 }  // namespace rayint::exact_batch_detail
 #endif
 
@@ -61,8 +72,153 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 using namespace exact_batch_detail;
 
-// One group's columns: a, b, kappa_exit, kappa_far in; transmittance, emission, terms out.
-// n is a multiple of the lane count.
+// 1. Classification, lane-parallel: a = rho_exit L, b = rho_far L, T = (a + b)/2, B = (b - a)/2
+// with the scalar path's operations in its order, the branch tests of exact_piece as masks, and
+// each lane appended to its branch's columns with a compressing store (no branch per piece, no
+// dependency of one piece's store on the previous piece's branch). n is a multiple of the lane
+// count; lanes at or beyond n_valid are ignored; index_base + i is lane i's piece index.
+void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT rho_far,
+                     const double* HWY_RESTRICT rho_exit, const double* HWY_RESTRICT kappa_far,
+                     const double* HWY_RESTRICT kappa_exit, std::size_t n, std::size_t n_valid,
+                     std::int64_t index_base, GroupSink* HWY_RESTRICT sink) {
+  using D = hn::ScalableTag<double>;
+  const D d;
+  const hn::RebindToSigned<D> di;
+  const std::size_t L = hn::Lanes(d);
+  const auto zero = hn::Zero(d), half = hn::Set(d, 0.5), thin_depth = hn::Set(d, kThinDepth),
+             q2_relative = hn::Set(d, kQ2Relative);
+  const auto lane = hn::Iota(di, 0);
+  // The lists' ends in locals (the compressing stores could alias the sink's fields otherwise).
+  double *A[kGroups], *Bc[kGroups], *KE[kGroups], *KF[kGroups];
+  std::int64_t* I[kGroups + 1];
+  std::size_t count[kGroups + 1];
+  for (int g = 0; g <= kGroups; ++g) {
+    if (g < kGroups) {
+      A[g] = sink->a[g];
+      Bc[g] = sink->b[g];
+      KE[g] = sink->ke[g];
+      KF[g] = sink->kf[g];
+    }
+    I[g] = sink->index[g];
+    count[g] = sink->count[g];
+  }
+  for (std::size_t i = 0; i < n; i += L) {
+    const auto valid = hn::FirstN(d, n_valid > i ? n_valid - i : 0);
+    const auto length = hn::LoadU(d, len + i);
+    const auto a = hn::Mul(hn::LoadU(d, rho_exit + i), length);
+    const auto b = hn::Mul(hn::LoadU(d, rho_far + i), length);
+    const auto T = hn::Mul(half, hn::Add(a, b));
+    const auto B = hn::Mul(half, hn::Sub(b, a));
+    const auto positive = hn::Gt(T, zero);  // false for NaN, as !(T > 0) in exact_piece
+    const auto live = hn::And(positive, valid);
+    const auto deep = hn::And(live, hn::Gt(T, thin_depth));
+    const auto q2 = hn::Le(hn::Abs(B), hn::Mul(hn::Mul(q2_relative, a), a));
+    const auto closed = hn::AndNot(q2, deep);
+    const auto up = hn::Gt(B, zero);
+    const decltype(valid) mask[kGroups] = {hn::AndNot(deep, live), hn::And(deep, q2), hn::And(closed, up),
+                                           hn::AndNot(up, closed)};
+    const auto index = hn::Add(lane, hn::Set(di, index_base + static_cast<std::int64_t>(i)));
+    const auto ke = hn::LoadU(d, kappa_exit + i), kf = hn::LoadU(d, kappa_far + i);
+    for (int g = 0; g < kGroups; ++g) {
+      const std::size_t c = count[g];
+      hn::CompressStore(a, mask[g], d, A[g] + c);
+      hn::CompressStore(b, mask[g], d, Bc[g] + c);
+      hn::CompressStore(ke, mask[g], d, KE[g] + c);
+      hn::CompressStore(kf, mask[g], d, KF[g] + c);
+      count[g] = c + hn::CompressStore(index, hn::RebindMask(di, mask[g]), di, I[g] + c);
+    }
+    const auto transparent = hn::AndNot(positive, valid);
+    count[kGroups] += hn::CompressStore(index, hn::RebindMask(di, transparent), di, I[kGroups] + count[kGroups]);
+  }
+  for (int g = 0; g <= kGroups; ++g) sink->count[g] = count[g];
+}
+
+// The midpoint Taylor recurrence of exact.cpp (thin_weights) on two vectors at once (its
+// recurrence is a chain of dependent multiplies: two independent chains keep the FMA units
+// busy). Each lane stops accumulating at the term where the scalar loop stops: its activity is
+// a vector of 1.0 / 0.0 (an inactive lane adds (e_{n+1}/(n+2)) * 0 = 0, an active one the exact
+// product by 1, so the sum is the scalar loop's, bit for bit), and its term count is 1 + the
+// iterations it was active in. The loop runs until every lane of both vectors has stopped.
+// (Masks for the activity cost as much again: mask-register operations have one port.)
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_minus_1, V& terms0,
+                               V& s1_minus_1, V& terms1) {
+  const V P0 = hn::Mul(hn::Set(d, -0.5), T0), P1 = hn::Mul(hn::Set(d, -0.5), T1);
+  const V Q20 = hn::Mul(hn::Set(d, -0.25), hn::Sub(b0, a0));  // 2 Q, Q = -B/4 = -(b - a)/8
+  const V Q21 = hn::Mul(hn::Set(d, -0.25), hn::Sub(b1, a1));
+  const V stop0 = hn::Mul(hn::Set(d, 0x1p-56 * 0.25), T0), stop1 = hn::Mul(hn::Set(d, 0x1p-56 * 0.25), T1);
+  const V one = hn::Set(d, 1.0);
+  V e0_prev = one, e0 = P0, e1_prev = one, e1 = P1;
+  V s0 = hn::Zero(d), s1 = hn::Zero(d);
+  V active0 = one, active1 = one;  // 1.0 while the lane's series runs
+  V iterations0 = hn::Zero(d), iterations1 = hn::Zero(d);
+  int nn = 1;
+  for (; nn < kSeriesBudget; ++nn) {
+    const V r = hn::Set(d, kRecip.r[nn]);
+    const V e0_next = hn::Mul(hn::MulAdd(P0, e0, hn::Mul(Q20, e0_prev)), r);
+    const V e1_next = hn::Mul(hn::MulAdd(P1, e1, hn::Mul(Q21, e1_prev)), r);
+    if ((nn & 1) == 1) {
+      const V r2 = hn::Set(d, kRecip.r[nn + 1]);
+      s0 = hn::MulAdd(hn::Mul(e0_next, r2), active0, s0);
+      s1 = hn::MulAdd(hn::Mul(e1_next, r2), active1, s1);
+    }
+    iterations0 = hn::Add(iterations0, active0);
+    iterations1 = hn::Add(iterations1, active1);
+    e0_prev = e0;
+    e0 = e0_next;
+    e1_prev = e1;
+    e1 = e1_next;
+    active0 = hn::IfThenZeroElse(hn::Le(hn::Add(hn::Abs(e0), hn::Abs(e0_prev)), stop0), active0);
+    active1 = hn::IfThenZeroElse(hn::Le(hn::Add(hn::Abs(e1), hn::Abs(e1_prev)), stop1), active1);
+    if (hn::AllTrue(d, hn::Eq(hn::Add(active0, active1), hn::Zero(d)))) break;
+  }
+  s0_minus_1 = s0;
+  s1_minus_1 = s1;
+  // a lane still active used the whole budget: kSeriesBudget + 1 terms, as exact.cpp reports
+  const V budget = hn::Set(d, kSeriesBudget + 1.0);
+  terms0 = hn::IfThenElse(hn::Eq(active0, one), budget, hn::Add(iterations0, one));
+  terms1 = hn::IfThenElse(hn::Eq(active1, one), budget, hn::Add(iterations1, one));
+}
+
+// The weights of the thin branch from S - 1 (exact.cpp, thin_weights).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void ThinWeights(D d, V a, V b, V s_minus_1, V& w_exit, V& w_far) {
+  const V eighth = hn::Set(d, 0.125), three = hn::Set(d, 3.0);
+  const V em1_mid = hn::Expm1(d, hn::Neg(hn::Mul(eighth, hn::MulAdd(three, a, b))));
+  const V em1_rest = hn::Expm1(d, hn::Neg(hn::Mul(eighth, hn::MulAdd(three, b, a))));
+  const V decay_mid = hn::Add(hn::Set(d, 1.0), em1_mid);
+  w_exit = hn::NegMulAdd(decay_mid, s_minus_1, hn::Neg(em1_mid));
+  w_far = hn::Mul(decay_mid, hn::Sub(s_minus_1, em1_rest));
+}
+
+// e0 of the q2 branch (exact.cpp, q2_series_e0). m0 = -expm1(-A)/A is divided as in the scalar
+// path; the corrections m2, m4 and the huge-A form use 1/A once (they enter multiplied by
+// |B| <= kQ2Relative A^2, so their last-bit differences are below 1e-22 of e0): two divisions
+// per vector instead of eight.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V Q2SeriesE0(D d, V A, V B, V em1_A) {
+  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const V m0 = hn::Div(hn::Neg(em1_A), A);
+  const V inv_A = hn::Div(one, A);
+  const V eA = hn::Add(one, em1_A);
+  const V A2 = hn::Mul(A, A);
+  const V A3 = hn::Mul(A2, A);
+  const V p2 = hn::Add(hn::Add(one, A), hn::Mul(half, A2));
+  const V p4 = hn::Add(hn::Add(p2, hn::Mul(A3, hn::Set(d, 1.0 / 6.0))), hn::Mul(hn::Mul(A2, A2), hn::Set(d, 1.0 / 24.0)));
+  const V inv_A2 = hn::Mul(inv_A, inv_A);
+  const V inv_A3 = hn::Mul(inv_A2, inv_A);
+  const V m2 = hn::Mul(hn::Add(inv_A3, inv_A3), hn::NegMulAdd(eA, p2, one));
+  const V m4 = hn::Mul(hn::Mul(hn::Set(d, 24.0), hn::Mul(inv_A3, inv_A2)), hn::NegMulAdd(eA, p4, one));
+  const V series = hn::Add(hn::NegMulAdd(B, m2, m0), hn::Mul(hn::Mul(half, hn::Mul(B, B)), m4));
+  // A^5 overflows (A > ~1e61): (1 - 2r + 12 r^2)/A with r = B/A^2, as exact.cpp
+  const V r = hn::Mul(hn::Mul(B, inv_A), inv_A);
+  const V huge_A = hn::Mul(hn::MulAdd(hn::Mul(hn::Set(d, 12.0), r), r, hn::NegMulAdd(hn::Set(d, 2.0), r, one)), inv_A);
+  const V general = hn::IfThenElse(hn::IsFinite(hn::Mul(hn::Mul(A2, A2), A)), series, huge_A);
+  return hn::IfThenElse(hn::Eq(B, hn::Zero(d)), m0, general);  // B == 0: m0 alone, as exact.cpp
+}
+
+// 2. One group's columns: a, b, kappa_exit, kappa_far in; transmittance, emission, terms out.
+// n is a multiple of twice the lane count.
 void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_RESTRICT b_col,
                  const double* HWY_RESTRICT ke_col, const double* HWY_RESTRICT kf_col, std::size_t n,
                  double* HWY_RESTRICT tr_col, double* HWY_RESTRICT em_col,
@@ -71,81 +227,54 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
   using V = hn::Vec<D>;
   const D d;
   const std::size_t L = hn::Lanes(d);
-  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5), eighth = hn::Set(d, 0.125);
+  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const auto finish = [&](std::size_t i, V trans, V w_exit, V w_far, V terms) {
+    const V emission = hn::MulAdd(hn::LoadU(d, ke_col + i), w_exit, hn::Mul(hn::LoadU(d, kf_col + i), w_far));
+    hn::StoreU(trans, d, tr_col + i);
+    hn::StoreU(emission, d, em_col + i);
+    hn::StoreU(terms, d, terms_col + i);
+  };
+  if (group == kThin) {
+    for (std::size_t i = 0; i < n; i += 2 * L) {
+      const V a0 = hn::LoadU(d, a_col + i), b0 = hn::LoadU(d, b_col + i);
+      const V a1 = hn::LoadU(d, a_col + i + L), b1 = hn::LoadU(d, b_col + i + L);
+      const V T0 = hn::Mul(half, hn::Add(a0, b0)), T1 = hn::Mul(half, hn::Add(a1, b1));
+      V s0, terms0, s1, terms1, w_exit, w_far;
+      ThinSeriesPair(d, T0, a0, b0, T1, a1, b1, s0, terms0, s1, terms1);
+      ThinWeights(d, a0, b0, s0, w_exit, w_far);
+      finish(i, hn::Exp(d, hn::Neg(T0)), w_exit, w_far, terms0);
+      ThinWeights(d, a1, b1, s1, w_exit, w_far);
+      finish(i + L, hn::Exp(d, hn::Neg(T1)), w_exit, w_far, terms1);
+    }
+    return;
+  }
   for (std::size_t i = 0; i < n; i += L) {
     const V a = hn::LoadU(d, a_col + i);
     const V b = hn::LoadU(d, b_col + i);
     const V T = hn::Mul(half, hn::Add(a, b));
     const V trans = hn::Exp(d, hn::Neg(T));
-    V w_exit, w_far, terms = hn::Zero(d);
-    if (group == kThin) {
-      const V P = hn::Mul(hn::Set(d, -0.5), T);
-      const V Q2 = hn::Mul(hn::Set(d, -0.25), hn::Sub(b, a));  // 2 Q, Q = -B/4 = -(b - a)/8
-      const V stop = hn::Mul(hn::Set(d, 0x1p-56 * 0.25), T);
-      V e_prev = one, e = P, s_minus_1 = hn::Zero(d);
-      auto active = hn::Eq(e_prev, e_prev);  // all lanes
-      int nn = 1;
-      for (; nn < kSeriesBudget; ++nn) {
-        const V e_next = hn::Mul(hn::MulAdd(P, e, hn::Mul(Q2, e_prev)), hn::Set(d, kRecip.r[nn]));
-        if ((nn & 1) == 1)
-          s_minus_1 = hn::Add(s_minus_1, hn::IfThenElseZero(active, hn::Mul(e_next, hn::Set(d, kRecip.r[nn + 1]))));
-        e_prev = e;
-        e = e_next;
-        const auto done = hn::Le(hn::Add(hn::Abs(e), hn::Abs(e_prev)), stop);
-        terms = hn::IfThenElse(hn::And(active, done), hn::Set(d, nn + 1.0), terms);
-        active = hn::AndNot(done, active);
-        if (hn::AllFalse(d, active)) break;
-      }
-      terms = hn::IfThenElse(active, hn::Set(d, kSeriesBudget + 1.0), terms);
-      const V tau_m = hn::Mul(eighth, hn::MulAdd(hn::Set(d, 3.0), a, b));
-      const V em1_mid = hn::Expm1(d, hn::Neg(tau_m));
-      const V em1_rest = hn::Expm1(d, hn::Neg(hn::Mul(eighth, hn::MulAdd(hn::Set(d, 3.0), b, a))));
-      const V decay_mid = hn::Add(one, em1_mid);
-      w_exit = hn::NegMulAdd(decay_mid, s_minus_1, hn::Neg(em1_mid));
-      w_far = hn::Mul(decay_mid, hn::Sub(s_minus_1, em1_rest));
+    const V A = a;
+    const V B = hn::Mul(half, hn::Sub(b, a));
+    V e0;
+    if (group == kQ2) {
+      e0 = Q2SeriesE0(d, A, B, hn::Expm1(d, hn::Neg(A)));
+    } else if (group == kErfcx) {
+      const V beta = hn::Sqrt(B);
+      const V z0 = hn::Div(A, hn::Add(beta, beta));
+      const V z1 = hn::Add(z0, beta);
+      const V bracket = hn::NegMulAdd(trans, special::HWY_NAMESPACE::ErfcxNonneg(d, z1),
+                                      special::HWY_NAMESPACE::ErfcxNonneg(d, z0));
+      e0 = hn::Mul(hn::Div(hn::Set(d, 1.7724538509055160273), hn::Add(beta, beta)), bracket);
     } else {
-      const V A = a;
-      const V B = hn::Mul(half, hn::Sub(b, a));
-      V e0;
-      if (group == kQ2) {
-        const V em1_A = hn::Expm1(d, hn::Neg(A));
-        const V m0 = hn::Div(hn::Neg(em1_A), A);
-        const V eA = hn::Add(one, em1_A);
-        const V A2 = hn::Mul(A, A);
-        const V p2 = hn::Add(hn::Add(one, A), hn::Mul(half, A2));
-        const V p4 = hn::Add(hn::Add(p2, hn::Div(hn::Mul(A2, A), hn::Set(d, 6.0))),
-                             hn::Div(hn::Mul(A2, A2), hn::Set(d, 24.0)));
-        const V m2 = hn::Mul(hn::Div(hn::Set(d, 2.0), hn::Mul(A2, A)), hn::NegMulAdd(eA, p2, one));
-        const V m4 = hn::Mul(hn::Div(hn::Set(d, 24.0), hn::Mul(hn::Mul(A2, A2), A)), hn::NegMulAdd(eA, p4, one));
-        const V series = hn::Add(hn::NegMulAdd(B, m2, m0), hn::Mul(hn::Mul(half, hn::Mul(B, B)), m4));
-        // A^5 overflows (A > ~1e61): (1 - 2r + 12 r^2)/A with r = B/A^2, as exact.cpp
-        const V r = hn::Div(hn::Div(B, A), A);
-        const V huge_A = hn::Div(hn::MulAdd(hn::Mul(hn::Set(d, 12.0), r), r, hn::NegMulAdd(hn::Set(d, 2.0), r, one)), A);
-        const V general = hn::IfThenElse(hn::IsFinite(hn::Mul(hn::Mul(A2, A2), A)), series, huge_A);
-        e0 = hn::IfThenElse(hn::Eq(B, hn::Zero(d)), m0, general);  // B == 0: m0 alone, as exact.cpp
-      } else if (group == kErfcx) {
-        const V beta = hn::Sqrt(B);
-        const V z0 = hn::Div(A, hn::Add(beta, beta));
-        const V z1 = hn::Add(z0, beta);
-        const V bracket = hn::NegMulAdd(trans, special::HWY_NAMESPACE::ErfcxNonneg(d, z1),
-                                        special::HWY_NAMESPACE::ErfcxNonneg(d, z0));
-        e0 = hn::Mul(hn::Div(hn::Set(d, 1.7724538509055160273), hn::Add(beta, beta)), bracket);
-      } else {
-        const V gamma = hn::Sqrt(hn::Neg(B));
-        const V two_gamma = hn::Add(gamma, gamma);
-        const V y0 = hn::Div(A, two_gamma);
-        const V y1 = hn::Div(b, two_gamma);
-        const V bracket = hn::NegMulAdd(trans, special::HWY_NAMESPACE::DawsonNonneg(d, y1),
-                                        special::HWY_NAMESPACE::DawsonNonneg(d, y0));
-        e0 = hn::Div(bracket, gamma);
-      }
-      w_exit = hn::Sub(one, e0);
-      w_far = hn::Sub(e0, trans);
+      const V gamma = hn::Sqrt(hn::Neg(B));
+      const V two_gamma = hn::Add(gamma, gamma);
+      const V y0 = hn::Div(A, two_gamma);
+      const V y1 = hn::Div(b, two_gamma);
+      const V bracket = hn::NegMulAdd(trans, special::HWY_NAMESPACE::DawsonNonneg(d, y1),
+                                      special::HWY_NAMESPACE::DawsonNonneg(d, y0));
+      e0 = hn::Div(bracket, gamma);
     }
-    const V emission = hn::MulAdd(hn::LoadU(d, ke_col + i), w_exit, hn::Mul(hn::LoadU(d, kf_col + i), w_far));
-    hn::StoreU(trans, d, tr_col + i);
-    hn::StoreU(emission, d, em_col + i);
-    hn::StoreU(terms, d, terms_col + i);
+    finish(i, trans, hn::Sub(one, e0), hn::Sub(e0, trans), hn::Zero(d));
   }
 }
 
@@ -158,6 +287,7 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace rayint {
+HWY_EXPORT(ClassifyColumns);
 HWY_EXPORT(GroupKernel);
 HWY_EXPORT(TargetName);
 HWY_EXPORT(DoubleLanes);
@@ -165,15 +295,8 @@ HWY_EXPORT(DoubleLanes);
 namespace {
 using namespace exact_batch_detail;
 
-// One branch's pieces of the current chunk: inputs, results, and where each goes back to.
-struct GroupColumns {
-  std::vector<double> a, b, ke, kf, tr, em, terms;
-  std::vector<std::size_t> index;
-  std::size_t size = 0;
-};
-
-// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (4 groups x 8
-// columns) stays ~1 MB, in cache, however large the batch.
+// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (input columns,
+// 4 groups x 8 columns) stays ~1.3 MB, in cache, however large the batch.
 constexpr std::size_t kChunk = 4096;
 
 std::size_t lanes() {
@@ -181,12 +304,27 @@ std::size_t lanes() {
   return lanes;
 }
 
+// One thread's scratch: the chunk's input columns (whole pieces are transposed into them), each
+// group's columns and results, and the lists classification appends to.
 struct Scratch {
-  GroupColumns group[kGroups];
+  std::vector<double> len, rho_far, rho_exit, kappa_far, kappa_exit;
+  std::vector<double> a[kGroups], b[kGroups], ke[kGroups], kf[kGroups], tr[kGroups], em[kGroups], terms[kGroups];
+  std::vector<std::int64_t> index[kGroups + 1];
+  GroupSink sink{};
   Scratch() {
-    for (auto& g : group) {  // room for a whole chunk in one group, plus the padding
-      for (auto* col : {&g.a, &g.b, &g.ke, &g.kf, &g.tr, &g.em, &g.terms}) col->resize(kChunk + lanes());
-      g.index.resize(kChunk + lanes());
+    // room for a whole chunk in one group, plus a vector tail and the padding to two vectors
+    const std::size_t room = kChunk + 3 * lanes();
+    for (auto* col : {&len, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(room);
+    for (int g = 0; g < kGroups; ++g) {
+      for (auto* col : {&a[g], &b[g], &ke[g], &kf[g], &tr[g], &em[g], &terms[g]}) col->resize(room);
+      sink.a[g] = a[g].data();
+      sink.b[g] = b[g].data();
+      sink.ke[g] = ke[g].data();
+      sink.kf[g] = kf[g].data();
+    }
+    for (int g = 0; g <= kGroups; ++g) {
+      index[g].resize(room);
+      sink.index[g] = index[g].data();
     }
   }
 };
@@ -194,67 +332,60 @@ struct Scratch {
 constexpr ExactBranch kGroupBranch[kGroups] = {ExactBranch::thin_series, ExactBranch::q2_series,
                                                ExactBranch::erfcx, ExactBranch::dawson};
 
-// 1. classify one piece-channel as exact_piece does: a transparent one is written at once, the
-// others appended to their branch's columns. The choice among the four branches is branch-free:
-// in a mixed batch it is unpredictable.
-inline void classify(Scratch& s, const OpticsColumns& out, std::size_t i, double length, double rho_far,
-                     double rho_exit, double kappa_far, double kappa_exit) {
-  const double a = rho_exit * length;
-  const double b = rho_far * length;
-  const double T = 0.5 * (a + b);
-  if (!(T > 0.0)) {
+// 1. classify n_valid piece-channels from the columns (n: n_valid rounded up to whole vectors,
+// readable), appending to the scratch's lists.
+void classify(Scratch& s, const double* len, const double* rho_far, const double* rho_exit,
+              const double* kappa_far, const double* kappa_exit, std::size_t n, std::size_t n_valid,
+              std::size_t index_base) {
+  HWY_DYNAMIC_DISPATCH(ClassifyColumns)(len, rho_far, rho_exit, kappa_far, kappa_exit, n, n_valid,
+                                        static_cast<std::int64_t>(index_base), &s.sink);
+}
+
+// 2. evaluate each group on its contiguous columns, padded to whole pairs of vectors with copies
+// of the group's first piece; 3. scatter the results back to the pieces' places, and write the
+// transparent pieces (transmittance 1, emission 0).
+void evaluate_groups(Scratch& s, const OpticsColumns& out) {
+  const std::size_t step = 2 * lanes();
+  for (int g = 0; g < kGroups; ++g) {
+    const std::size_t m = s.sink.count[g];
+    if (m == 0) continue;
+    s.sink.count[g] = 0;
+    const std::size_t padded = (m + step - 1) / step * step;
+    for (std::size_t k = m; k < padded; ++k) {
+      s.a[g][k] = s.a[g][0];
+      s.b[g][k] = s.b[g][0];
+      s.ke[g][k] = s.ke[g][0];
+      s.kf[g][k] = s.kf[g][0];
+    }
+    HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), s.ke[g].data(), s.kf[g].data(), padded,
+                                      s.tr[g].data(), s.em[g].data(), s.terms[g].data());
+    const std::int64_t* index = s.index[g].data();
+    const double* tr = s.tr[g].data();
+    const double* em = s.em[g].data();
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto i = static_cast<std::size_t>(index[k]);
+      out.transmittance[i] = tr[k];
+      out.emission[i] = em[k];
+    }
+    if (out.branch || out.terms || out.converged) {
+      for (std::size_t k = 0; k < m; ++k) {
+        const auto i = static_cast<std::size_t>(index[k]);
+        const double terms = s.terms[g][k];
+        if (out.branch) out.branch[i] = kGroupBranch[g];
+        if (out.terms) out.terms[i] = static_cast<std::int32_t>(terms);
+        if (out.converged) out.converged[i] = terms <= kSeriesBudget ? 1 : 0;
+      }
+    }
+  }
+  const std::size_t m = s.sink.count[kGroups];
+  s.sink.count[kGroups] = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const auto i = static_cast<std::size_t>(s.index[kGroups][k]);
     out.transmittance[i] = 1.0;
     out.emission[i] = 0.0;
     if (out.branch) out.branch[i] = ExactBranch::transparent;
     if (out.terms) out.terms[i] = 0;
     if (out.converged) out.converged[i] = 1;
-    return;
-  }
-  const double B = 0.5 * (b - a);
-  // thin 0, q2 1, erfcx 2, dawson 3: the tests of exact_piece, in its order
-  const int not_thin = T > kThinDepth;
-  const int not_q2 = !(std::fabs(B) <= kQ2Relative * a * a);
-  const int dawson = !(B > 0.0);
-  GroupColumns& col = s.group[not_thin * (1 + not_q2 * (1 + dawson))];
-  const std::size_t k = col.size++;
-  col.a[k] = a;
-  col.b[k] = b;
-  col.ke[k] = kappa_exit;
-  col.kf[k] = kappa_far;
-  col.index[k] = i;
-}
-
-// 2. evaluate each group on its contiguous columns, padded to whole vectors with copies of the
-// group's first piece; 3. scatter the results back to the pieces' places.
-void evaluate_groups(Scratch& s, const OpticsColumns& out) {
-  const std::size_t L = lanes();
-  for (int g = 0; g < kGroups; ++g) {
-    GroupColumns& col = s.group[g];
-    const std::size_t m = col.size;
-    if (m == 0) continue;
-    col.size = 0;
-    const std::size_t padded = (m + L - 1) / L * L;
-    for (std::size_t k = m; k < padded; ++k) {
-      col.a[k] = col.a[0];
-      col.b[k] = col.b[0];
-      col.ke[k] = col.ke[0];
-      col.kf[k] = col.kf[0];
-    }
-    HWY_DYNAMIC_DISPATCH(GroupKernel)(g, col.a.data(), col.b.data(), col.ke.data(), col.kf.data(), padded,
-                                      col.tr.data(), col.em.data(), col.terms.data());
-    for (std::size_t k = 0; k < m; ++k) {
-      const std::size_t i = col.index[k];
-      out.transmittance[i] = col.tr[k];
-      out.emission[i] = col.em[k];
-    }
-    if (out.branch || out.terms || out.converged) {
-      for (std::size_t k = 0; k < m; ++k) {
-        const std::size_t i = col.index[k];
-        if (out.branch) out.branch[i] = kGroupBranch[g];
-        if (out.terms) out.terms[i] = static_cast<std::int32_t>(col.terms[k]);
-        if (out.converged) out.converged[i] = col.terms[k] <= kSeriesBudget ? 1 : 0;
-      }
-    }
   }
 }
 
@@ -264,25 +395,52 @@ const char* exact_batch_target() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 
 void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
   thread_local Scratch s;
+  const std::size_t L = lanes();
   for (std::size_t begin = 0; begin < in.size; begin += kChunk) {
     const std::size_t end = std::min(in.size, begin + kChunk);
-    for (std::size_t i = begin; i < end; ++i)
-      classify(s, out, i, in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]);
+    const std::size_t whole = (end - begin) / L * L;  // whole vectors read in place
+    classify(s, in.length + begin, in.rho_far + begin, in.rho_exit + begin, in.kappa_far + begin,
+             in.kappa_exit + begin, whole, whole, begin);
+    if (begin + whole < end) {  // the tail, copied into one padded vector
+      const std::size_t tail = end - begin - whole, at = begin + whole;
+      for (std::size_t k = 0; k < L; ++k) {
+        const bool in_tail = k < tail;
+        s.len[k] = in_tail ? in.length[at + k] : 0.0;
+        s.rho_far[k] = in_tail ? in.rho_far[at + k] : 0.0;
+        s.rho_exit[k] = in_tail ? in.rho_exit[at + k] : 0.0;
+        s.kappa_far[k] = in_tail ? in.kappa_far[at + k] : 0.0;
+        s.kappa_exit[k] = in_tail ? in.kappa_exit[at + k] : 0.0;
+      }
+      classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), s.kappa_far.data(), s.kappa_exit.data(), L,
+               tail, at);
+    }
     evaluate_groups(s, out);
   }
 }
 
 void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
   thread_local Scratch s;
+  const std::size_t L = lanes();
   constexpr std::size_t kChunkPieces = kChunk / kChannels;
   for (std::size_t begin = 0; begin < n; begin += kChunkPieces) {
     const std::size_t end = std::min(n, begin + kChunkPieces);
+    // whole pieces -> channel columns, piece-major (index kChannels * piece + channel)
+    std::size_t k = 0;
     for (std::size_t p = begin; p < end; ++p) {
       const Piece& piece = pieces[p];
-      for (std::size_t c = 0; c < kChannels; ++c)
-        classify(s, out, kChannels * p + c, piece.length, piece.rho_far[c], piece.rho_exit[c],
-                 piece.kappa_far[c], piece.kappa_exit[c]);
+      for (std::size_t c = 0; c < kChannels; ++c, ++k) {
+        s.len[k] = piece.length;
+        s.rho_far[k] = piece.rho_far[c];
+        s.rho_exit[k] = piece.rho_exit[c];
+        s.kappa_far[k] = piece.kappa_far[c];
+        s.kappa_exit[k] = piece.kappa_exit[c];
+      }
     }
+    const std::size_t padded = (k + L - 1) / L * L;
+    for (std::size_t j = k; j < padded; ++j)
+      s.len[j] = s.rho_far[j] = s.rho_exit[j] = s.kappa_far[j] = s.kappa_exit[j] = 0.0;
+    classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), s.kappa_far.data(), s.kappa_exit.data(),
+             padded, k, kChannels * begin);
     evaluate_groups(s, out);
   }
 }
