@@ -11,6 +11,7 @@
 #include "rayint/integrators/exact_batch.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 #include "rayint/reference/reference.hpp"
+#include "simd_targets.hpp"
 #include "tolerances.hpp"
 #include "transfer_builders.hpp"
 
@@ -53,8 +54,9 @@ bool within(double x, const ExtendedValue& ref, double rel) {
 
 }  // namespace
 
-TEST_CASE("exact_batch against the reference and exact_piece, all regimes in one batch",
-          "[exact_batch]") {
+namespace {
+
+void check_all_regimes_in_one_batch() {
   std::mt19937_64 rng(7);
   std::vector<std::pair<Regime, RegimeSample>> drawn;
   for (const Regime regime : all_regimes())
@@ -108,6 +110,20 @@ TEST_CASE("exact_batch against the reference and exact_piece, all regimes in one
   CHECK(worst_vs_scalar <= SimdTolerances::batch_vs_scalar_rel);
   CHECK(med_batch <= Tolerances::exact_median_ulp);
   CHECK(med_batch <= med_scalar + 1.0);  // issue 17: median within 1 ulp of the scalar path
+}
+
+}  // namespace
+
+TEST_CASE("exact_batch against the reference and exact_piece, all regimes in one batch",
+          "[exact_batch]") {
+  check_all_regimes_in_one_batch();
+}
+
+TEST_CASE("exact_batch on every SIMD target this CPU runs, all regimes in one batch", "[exact_batch][simd_targets]") {
+  for_each_simd_target([] {
+    INFO("dispatched target " << exact_batch_target());
+    check_all_regimes_in_one_batch();
+  });
 }
 
 TEST_CASE("exact_batch: sizes that leave vector tails, edge pieces, results in place",

@@ -11,6 +11,7 @@
 #include "rayint/special/erfcx_simd.hpp"
 #include "rayint/special/simd_tables.hpp"
 #include "rayint/special/special_functions.hpp"
+#include "simd_targets.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
@@ -19,7 +20,7 @@ using rayint::test::SimdTolerances;
 namespace {
 
 // x >= 0 covering both regions: linear steps on [0, 24] (the table and the start of the
-// asymptotic region), each table interval's ends and the 12 boundary to the ulp, and
+// asymptotic region), each table interval's ends and the 16 boundary to the ulp, and
 // log-spaced points from 1e-300 to 1e6.
 std::vector<double> arguments() {
   std::vector<double> x{0.0, 5e-324, 1e-300, 1e-20, 1e-8};
@@ -66,6 +67,19 @@ TEST_CASE("vector erfcx against 50 digits and libcerf", "[special_simd]") {
   CHECK(m.max_cerf <= SimdTolerances::vs_libcerf_rel);
   WARN("erfcx_simd (" << special::simd_target_name() << "): max rel " << m.max_ref << " at " << m.at_ref
                       << "; vs libcerf " << m.max_cerf << " at " << m.at_cerf);
+}
+
+TEST_CASE("vector erfcx and Dawson on every SIMD target this CPU runs", "[special_simd][simd_targets]") {
+  rayint::test::for_each_simd_target([] {
+    const Measured e = measure(special::erfcx_array, erfcx_reference, special::erfcx);
+    const Measured w = measure(special::dawson_array, dawson_reference, special::dawson);
+    INFO("target " << special::simd_target_name() << ": erfcx max rel " << e.max_ref << " at x = " << e.at_ref
+                   << ", Dawson " << w.max_ref << " at x = " << w.at_ref);
+    CHECK(e.max_ref <= SimdTolerances::erfcx_rel);
+    CHECK(w.max_ref <= SimdTolerances::dawson_rel);
+    CHECK(e.max_cerf <= SimdTolerances::vs_libcerf_rel);
+    CHECK(w.max_cerf <= SimdTolerances::vs_libcerf_rel);
+  });
 }
 
 TEST_CASE("vector Dawson against 50 digits and libcerf", "[special_simd]") {

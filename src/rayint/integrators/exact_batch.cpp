@@ -53,15 +53,23 @@ struct Reciprocals {                // 1/(n+1), as exact.cpp
 };
 inline constexpr Reciprocals kRecip;
 // Where classification appends each branch's pieces: per group the columns a, b, kappa_exit,
-// kappa_far and the piece's index (kGroups + 1 lists: the last one holds transparent pieces,
-// which need no kernel), and how many each holds so far.
+// kappa_far and how many each holds so far; and, per vector of pieces, each group's lanes as mask
+// bits (kGroups + 1 slots of kMaskBytes: the last slot marks transparent pieces, which need no
+// kernel), from which the results are put back in piece order.
+constexpr std::size_t kMaskBytes = 8;  // up to 64 lanes
+constexpr std::size_t kMaskSlots = kGroups + 1;
 struct GroupSink {
   double* a[kGroups];
   double* b[kGroups];
   double* ke[kGroups];
   double* kf[kGroups];
-  std::int64_t* index[kGroups + 1];
-  std::size_t count[kGroups + 1];
+  std::size_t count[kGroups];
+  unsigned char* bits;  // [vector][slot][kMaskBytes]
+};
+// A group's results, in the order of its columns.
+struct GroupResults {
+  const double* tr[kGroups];
+  const double* em[kGroups];
 };
 }  // namespace rayint::exact_batch_detail
 #endif
@@ -75,34 +83,30 @@ using namespace exact_batch_detail;
 // 1. Classification, lane-parallel: a = rho_exit L, b = rho_far L, T = (a + b)/2, B = (b - a)/2
 // with the scalar path's operations in its order, the branch tests of exact_piece as masks, and
 // each lane appended to its branch's columns with a compressing store (no branch per piece, no
-// dependency of one piece's store on the previous piece's branch). n is a multiple of the lane
-// count; lanes at or beyond n_valid are ignored; index_base + i is lane i's piece index.
+// dependency of one piece's store on the previous piece's branch); the masks are kept as bits.
+// n is a multiple of the lane count; lanes at or beyond n_valid belong to no group; the masks
+// are written from vector number first_vector on.
 void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT rho_far,
                      const double* HWY_RESTRICT rho_exit, const double* HWY_RESTRICT kappa_far,
                      const double* HWY_RESTRICT kappa_exit, std::size_t n, std::size_t n_valid,
-                     std::int64_t index_base, GroupSink* HWY_RESTRICT sink) {
+                     std::size_t first_vector, GroupSink* HWY_RESTRICT sink) {
   using D = hn::ScalableTag<double>;
   const D d;
-  const hn::RebindToSigned<D> di;
   const std::size_t L = hn::Lanes(d);
   const auto zero = hn::Zero(d), half = hn::Set(d, 0.5), thin_depth = hn::Set(d, kThinDepth),
              q2_relative = hn::Set(d, kQ2Relative);
-  const auto lane = hn::Iota(di, 0);
   // The lists' ends in locals (the compressing stores could alias the sink's fields otherwise).
   double *A[kGroups], *Bc[kGroups], *KE[kGroups], *KF[kGroups];
-  std::int64_t* I[kGroups + 1];
-  std::size_t count[kGroups + 1];
-  for (int g = 0; g <= kGroups; ++g) {
-    if (g < kGroups) {
-      A[g] = sink->a[g];
-      Bc[g] = sink->b[g];
-      KE[g] = sink->ke[g];
-      KF[g] = sink->kf[g];
-    }
-    I[g] = sink->index[g];
+  std::size_t count[kGroups];
+  for (int g = 0; g < kGroups; ++g) {
+    A[g] = sink->a[g];
+    Bc[g] = sink->b[g];
+    KE[g] = sink->ke[g];
+    KF[g] = sink->kf[g];
     count[g] = sink->count[g];
   }
-  for (std::size_t i = 0; i < n; i += L) {
+  unsigned char* bits = sink->bits + first_vector * kMaskSlots * kMaskBytes;
+  for (std::size_t i = 0; i < n; i += L, bits += kMaskSlots * kMaskBytes) {
     const auto valid = hn::FirstN(d, n_valid > i ? n_valid - i : 0);
     const auto length = hn::LoadU(d, len + i);
     const auto a = hn::Mul(hn::LoadU(d, rho_exit + i), length);
@@ -117,20 +121,18 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
     const auto up = hn::Gt(B, zero);
     const decltype(valid) mask[kGroups] = {hn::AndNot(deep, live), hn::And(deep, q2), hn::And(closed, up),
                                            hn::AndNot(up, closed)};
-    const auto index = hn::Add(lane, hn::Set(di, index_base + static_cast<std::int64_t>(i)));
     const auto ke = hn::LoadU(d, kappa_exit + i), kf = hn::LoadU(d, kappa_far + i);
     for (int g = 0; g < kGroups; ++g) {
       const std::size_t c = count[g];
       hn::CompressStore(a, mask[g], d, A[g] + c);
       hn::CompressStore(b, mask[g], d, Bc[g] + c);
       hn::CompressStore(ke, mask[g], d, KE[g] + c);
-      hn::CompressStore(kf, mask[g], d, KF[g] + c);
-      count[g] = c + hn::CompressStore(index, hn::RebindMask(di, mask[g]), di, I[g] + c);
+      count[g] = c + hn::CompressStore(kf, mask[g], d, KF[g] + c);
+      hn::StoreMaskBits(d, mask[g], bits + static_cast<std::size_t>(g) * kMaskBytes);
     }
-    const auto transparent = hn::AndNot(positive, valid);
-    count[kGroups] += hn::CompressStore(index, hn::RebindMask(di, transparent), di, I[kGroups] + count[kGroups]);
+    hn::StoreMaskBits(d, hn::AndNot(positive, valid), bits + kGroups * kMaskBytes);
   }
-  for (int g = 0; g <= kGroups; ++g) sink->count[g] = count[g];
+  for (int g = 0; g < kGroups; ++g) sink->count[g] = count[g];
 }
 
 // The midpoint Taylor recurrence of exact.cpp (thin_weights) on two vectors at once (its
@@ -152,12 +154,13 @@ HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_mi
   V s0 = hn::Zero(d), s1 = hn::Zero(d);
   V active0 = one, active1 = one;  // 1.0 while the lane's series runs
   V iterations0 = hn::Zero(d), iterations1 = hn::Zero(d);
-  int nn = 1;
-  for (; nn < kSeriesBudget; ++nn) {
+  // One term; the odd ones (n + 1 even) are accumulated. The exit test runs once per two terms:
+  // a lane that stopped adds nothing more, so a term past the last lane's stop is harmless.
+  const auto term = [&](int nn, bool accumulate) {
     const V r = hn::Set(d, kRecip.r[nn]);
     const V e0_next = hn::Mul(hn::MulAdd(P0, e0, hn::Mul(Q20, e0_prev)), r);
     const V e1_next = hn::Mul(hn::MulAdd(P1, e1, hn::Mul(Q21, e1_prev)), r);
-    if ((nn & 1) == 1) {
+    if (accumulate) {
       const V r2 = hn::Set(d, kRecip.r[nn + 1]);
       s0 = hn::MulAdd(hn::Mul(e0_next, r2), active0, s0);
       s1 = hn::MulAdd(hn::Mul(e1_next, r2), active1, s1);
@@ -170,6 +173,11 @@ HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_mi
     e1 = e1_next;
     active0 = hn::IfThenZeroElse(hn::Le(hn::Add(hn::Abs(e0), hn::Abs(e0_prev)), stop0), active0);
     active1 = hn::IfThenZeroElse(hn::Le(hn::Add(hn::Abs(e1), hn::Abs(e1_prev)), stop1), active1);
+  };
+  static_assert(kSeriesBudget % 2 == 0, "terms n = 1 .. kSeriesBudget - 1 in pairs, then the last");
+  for (int nn = 1; nn < kSeriesBudget; nn += 2) {
+    term(nn, true);
+    if (nn + 1 < kSeriesBudget) term(nn + 1, false);
     if (hn::AllTrue(d, hn::Eq(hn::Add(active0, active1), hn::Zero(d)))) break;
   }
   s0_minus_1 = s0;
@@ -278,6 +286,51 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
   }
 }
 
+// 3. The results back in piece order, vector by vector: each group's lanes take the group's next
+// results (AVX-512: an expanding load per group; other targets lane by lane), transparent lanes
+// transmittance 1 and emission 0. n: whole vectors; only the first n_valid results are stored.
+void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
+                const GroupResults* HWY_RESTRICT res, double* HWY_RESTRICT tr_out, double* HWY_RESTRICT em_out) {
+  using D = hn::ScalableTag<double>;
+  using V = hn::Vec<D>;
+  const D d;
+  const std::size_t L = hn::Lanes(d);
+  std::size_t pos[kGroups] = {};
+  for (std::size_t i = 0; i < n; i += L, bits += kMaskSlots * kMaskBytes) {
+    V tr = hn::Set(d, 1.0), em = hn::Zero(d);
+    for (int g = 0; g < kGroups; ++g) {
+      const unsigned char* group_bits = bits + static_cast<std::size_t>(g) * kMaskBytes;
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+      const __mmask8 k = group_bits[0];
+      tr = V{_mm512_mask_expandloadu_pd(tr.raw, k, res->tr[g] + pos[g])};
+      em = V{_mm512_mask_expandloadu_pd(em.raw, k, res->em[g] + pos[g])};
+      pos[g] += static_cast<std::size_t>(__builtin_popcount(k));
+#else
+      HWY_ALIGN double tr_lanes[HWY_MAX_BYTES / sizeof(double)], em_lanes[HWY_MAX_BYTES / sizeof(double)];
+      hn::Store(tr, d, tr_lanes);
+      hn::Store(em, d, em_lanes);
+      for (std::size_t j = 0; j < L; ++j) {
+        if ((group_bits[j / 8] >> (j % 8)) & 1) {
+          tr_lanes[j] = res->tr[g][pos[g]];
+          em_lanes[j] = res->em[g][pos[g]];
+          ++pos[g];
+        }
+      }
+      tr = hn::Load(d, tr_lanes);
+      em = hn::Load(d, em_lanes);
+#endif
+    }
+    if (i + L <= n_valid) {
+      hn::StoreU(tr, d, tr_out + i);
+      hn::StoreU(em, d, em_out + i);
+    } else if (i < n_valid) {
+      const auto head = hn::FirstN(d, n_valid - i);
+      hn::BlendedStore(tr, head, d, tr_out + i);
+      hn::BlendedStore(em, head, d, em_out + i);
+    }
+  }
+}
+
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 std::size_t DoubleLanes() { return hn::Lanes(hn::ScalableTag<double>()); }
 
@@ -289,6 +342,7 @@ HWY_AFTER_NAMESPACE();
 namespace rayint {
 HWY_EXPORT(ClassifyColumns);
 HWY_EXPORT(GroupKernel);
+HWY_EXPORT(ExpandBack);
 HWY_EXPORT(TargetName);
 HWY_EXPORT(DoubleLanes);
 
@@ -296,24 +350,25 @@ namespace {
 using namespace exact_batch_detail;
 
 // Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (input columns,
-// 4 groups x 8 columns) stays ~1.3 MB, in cache, however large the batch.
+// 4 groups x 7 columns) stays ~1.2 MB, in cache, however large the batch.
 constexpr std::size_t kChunk = 4096;
 
-std::size_t lanes() {
-  static const std::size_t lanes = HWY_DYNAMIC_DISPATCH(DoubleLanes)();
-  return lanes;
-}
+// The lane count of the target dispatched now (not cached: tests switch targets), and a bound on
+// it for every target (SVE's 2048-bit vectors; x86 has at most 8 doubles).
+std::size_t lanes() { return HWY_DYNAMIC_DISPATCH(DoubleLanes)(); }
+constexpr std::size_t kMaxLanes = 32;
 
 // One thread's scratch: the chunk's input columns (whole pieces are transposed into them), each
-// group's columns and results, and the lists classification appends to.
+// group's columns and results, and the mask bits of every vector of the chunk.
 struct Scratch {
   std::vector<double> len, rho_far, rho_exit, kappa_far, kappa_exit;
   std::vector<double> a[kGroups], b[kGroups], ke[kGroups], kf[kGroups], tr[kGroups], em[kGroups], terms[kGroups];
-  std::vector<std::int64_t> index[kGroups + 1];
+  std::vector<unsigned char> bits;
   GroupSink sink{};
+  GroupResults results{};
   Scratch() {
     // room for a whole chunk in one group, plus a vector tail and the padding to two vectors
-    const std::size_t room = kChunk + 3 * lanes();
+    const std::size_t room = kChunk + 3 * kMaxLanes;
     for (auto* col : {&len, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(room);
     for (int g = 0; g < kGroups; ++g) {
       for (auto* col : {&a[g], &b[g], &ke[g], &kf[g], &tr[g], &em[g], &terms[g]}) col->resize(room);
@@ -321,11 +376,11 @@ struct Scratch {
       sink.b[g] = b[g].data();
       sink.ke[g] = ke[g].data();
       sink.kf[g] = kf[g].data();
+      results.tr[g] = tr[g].data();
+      results.em[g] = em[g].data();
     }
-    for (int g = 0; g <= kGroups; ++g) {
-      index[g].resize(room);
-      sink.index[g] = index[g].data();
-    }
+    bits.resize((room + 1) * kMaskSlots * kMaskBytes);  // one vector may hold a single lane
+    sink.bits = bits.data();
   }
 };
 
@@ -333,18 +388,41 @@ constexpr ExactBranch kGroupBranch[kGroups] = {ExactBranch::thin_series, ExactBr
                                                ExactBranch::erfcx, ExactBranch::dawson};
 
 // 1. classify n_valid piece-channels from the columns (n: n_valid rounded up to whole vectors,
-// readable), appending to the scratch's lists.
+// readable), their masks written from vector first_vector on.
 void classify(Scratch& s, const double* len, const double* rho_far, const double* rho_exit,
               const double* kappa_far, const double* kappa_exit, std::size_t n, std::size_t n_valid,
-              std::size_t index_base) {
-  HWY_DYNAMIC_DISPATCH(ClassifyColumns)(len, rho_far, rho_exit, kappa_far, kappa_exit, n, n_valid,
-                                        static_cast<std::int64_t>(index_base), &s.sink);
+              std::size_t first_vector) {
+  HWY_DYNAMIC_DISPATCH(ClassifyColumns)(len, rho_far, rho_exit, kappa_far, kappa_exit, n, n_valid, first_vector,
+                                        &s.sink);
+}
+
+// The introspection columns (branch, terms, converged), lane by lane from the mask bits: only
+// diagnostics ask for them.
+void write_introspection(const Scratch& s, std::size_t n_valid, std::size_t first, const OpticsColumns& out) {
+  const std::size_t L = lanes();
+  std::size_t pos[kGroups] = {};
+  for (std::size_t i = 0; i < n_valid; ++i) {
+    const unsigned char* bits = s.bits.data() + (i / L) * kMaskSlots * kMaskBytes;
+    const std::size_t lane = i % L;
+    const auto in = [&](std::size_t slot) { return (bits[slot * kMaskBytes + lane / 8] >> (lane % 8)) & 1; };
+    ExactBranch branch = ExactBranch::transparent;
+    double terms = 0.0;
+    for (int g = 0; g < kGroups; ++g) {
+      if (in(static_cast<std::size_t>(g))) {
+        branch = kGroupBranch[g];
+        terms = s.terms[g][pos[g]++];
+      }
+    }
+    if (out.branch) out.branch[first + i] = branch;
+    if (out.terms) out.terms[first + i] = static_cast<std::int32_t>(terms);
+    if (out.converged) out.converged[first + i] = terms <= kSeriesBudget ? 1 : 0;
+  }
 }
 
 // 2. evaluate each group on its contiguous columns, padded to whole pairs of vectors with copies
-// of the group's first piece; 3. scatter the results back to the pieces' places, and write the
-// transparent pieces (transmittance 1, emission 0).
-void evaluate_groups(Scratch& s, const OpticsColumns& out) {
+// of the group's first piece; 3. put the results back in piece order: the chunk's n_valid
+// piece-channels (n: whole vectors) go to out from index `first` on.
+void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t first, const OpticsColumns& out) {
   const std::size_t step = 2 * lanes();
   for (int g = 0; g < kGroups; ++g) {
     const std::size_t m = s.sink.count[g];
@@ -359,34 +437,10 @@ void evaluate_groups(Scratch& s, const OpticsColumns& out) {
     }
     HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), s.ke[g].data(), s.kf[g].data(), padded,
                                       s.tr[g].data(), s.em[g].data(), s.terms[g].data());
-    const std::int64_t* index = s.index[g].data();
-    const double* tr = s.tr[g].data();
-    const double* em = s.em[g].data();
-    for (std::size_t k = 0; k < m; ++k) {
-      const auto i = static_cast<std::size_t>(index[k]);
-      out.transmittance[i] = tr[k];
-      out.emission[i] = em[k];
-    }
-    if (out.branch || out.terms || out.converged) {
-      for (std::size_t k = 0; k < m; ++k) {
-        const auto i = static_cast<std::size_t>(index[k]);
-        const double terms = s.terms[g][k];
-        if (out.branch) out.branch[i] = kGroupBranch[g];
-        if (out.terms) out.terms[i] = static_cast<std::int32_t>(terms);
-        if (out.converged) out.converged[i] = terms <= kSeriesBudget ? 1 : 0;
-      }
-    }
   }
-  const std::size_t m = s.sink.count[kGroups];
-  s.sink.count[kGroups] = 0;
-  for (std::size_t k = 0; k < m; ++k) {
-    const auto i = static_cast<std::size_t>(s.index[kGroups][k]);
-    out.transmittance[i] = 1.0;
-    out.emission[i] = 0.0;
-    if (out.branch) out.branch[i] = ExactBranch::transparent;
-    if (out.terms) out.terms[i] = 0;
-    if (out.converged) out.converged[i] = 1;
-  }
+  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, out.transmittance + first,
+                                   out.emission + first);
+  if (out.branch || out.terms || out.converged) write_introspection(s, n_valid, first, out);
 }
 
 }  // namespace
@@ -400,8 +454,9 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
     const std::size_t end = std::min(in.size, begin + kChunk);
     const std::size_t whole = (end - begin) / L * L;  // whole vectors read in place
     classify(s, in.length + begin, in.rho_far + begin, in.rho_exit + begin, in.kappa_far + begin,
-             in.kappa_exit + begin, whole, whole, begin);
-    if (begin + whole < end) {  // the tail, copied into one padded vector
+             in.kappa_exit + begin, whole, whole, 0);
+    std::size_t n = whole;
+    if (whole < end - begin) {  // the tail, copied into one padded vector
       const std::size_t tail = end - begin - whole, at = begin + whole;
       for (std::size_t k = 0; k < L; ++k) {
         const bool in_tail = k < tail;
@@ -412,9 +467,10 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
         s.kappa_exit[k] = in_tail ? in.kappa_exit[at + k] : 0.0;
       }
       classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), s.kappa_far.data(), s.kappa_exit.data(), L,
-               tail, at);
+               tail, whole / L);
+      n += L;
     }
-    evaluate_groups(s, out);
+    evaluate_groups(s, n, end - begin, begin, out);
   }
 }
 
@@ -440,8 +496,8 @@ void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
     for (std::size_t j = k; j < padded; ++j)
       s.len[j] = s.rho_far[j] = s.rho_exit[j] = s.kappa_far[j] = s.kappa_exit[j] = 0.0;
     classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), s.kappa_far.data(), s.kappa_exit.data(),
-             padded, k, kChannels * begin);
-    evaluate_groups(s, out);
+             padded, k, 0);
+    evaluate_groups(s, padded, k, kChannels * begin, out);
   }
 }
 

@@ -3,17 +3,19 @@
 // include it after hwy/highway.h inside a HWY_TARGET_INCLUDE file, see exact_batch.cpp).
 //
 // Methods by region (the scalar reference is libcerf, special_functions.hpp):
-//   - 0 <= x < 12: piecewise polynomials of degree 11 on 96 intervals of width 1/8 (tables in
+//   - 0 <= x < 16: piecewise polynomials of degree 17 on 16 intervals of width 1 (tables in
 //     simd_tables.hpp/.cpp, Chebyshev interpolants generated in 50 digits by
 //     tools/gen_special_simd_tables.cpp); erfcx directly, D as x * (D(x)/x) so the relative
-//     accuracy holds down to x = 0 (D(0) = 0 exactly). Coefficients are gathered per lane.
-//   - x >= 12: the asymptotic series (A&S 7.1.23 and its Dawson companion) in w = 1/(2x^2),
+//     accuracy holds down to x = 0 (D(0) = 0 exactly). Coefficients are looked up per lane
+//     (AVX-512: a two-vector permute; other targets: a gather).
+//   - x >= 16: the asymptotic series (A&S 7.1.23 and its Dawson companion) in w = 1/(2x^2),
 //       erfcx(x) = 1/(sqrt(pi) x) sum_{n<=12} (-1)^n (2n-1)!! w^n,
 //       D(x)     = 1/(2x)         sum_{n<=12}        (2n-1)!! w^n;
-//     at x = 12 (w = 1/288) the first omitted term is below 1e-19 relative, and it only falls
-//     from there on; 1/x and w underflow gracefully, so huge x (1e300) and +inf give 1/x-like
-//     values and 0.
-//   12 is where 13 asymptotic terms reach double accuracy; the table covers the rest.
+//     at x = 16 (w = 1/512) the first omitted term is below 1e-22 relative (at 12 it was 1e-19),
+//     and it only falls from there on; 1/x and w underflow gracefully, so huge x (1e300) and +inf
+//     give 1/x-like values and 0.
+//   The table ends at 16 (not at 12, where 13 asymptotic terms already reach double accuracy)
+//   so that it has 16 intervals, the permute's size.
 // The sign convention x >= 0 is all exact_batch needs (every erfcx and Dawson argument of the
 // closed forms is >= 0); negative x is outside the domain (lanes give unspecified values). NaN
 // lanes give NaN.
@@ -39,6 +41,8 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 // The table polynomial at x in [0, kSimdTableEnd) (lanes outside must be set to 0 by the caller).
+// Each coefficient is looked up per lane: on AVX-512 (8 lanes, 16 intervals) with one two-vector
+// permute, elsewhere with a gather.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V SimdTablePoly(D d, const double* HWY_RESTRICT table, V x) {
   const hn::RebindToSigned<D> di;
@@ -47,9 +51,17 @@ HWY_INLINE V SimdTablePoly(D d, const double* HWY_RESTRICT table, V x) {
   const V fi = hn::ConvertTo(d, idx);
   // t = 2 (x - x_i) / h - 1 = 2 scaled - (2 i + 1), exact
   const V t = hn::Sub(hn::Add(scaled, scaled), hn::MulAdd(fi, hn::Set(d, 2.0), hn::Set(d, 1.0)));
-  V p = hn::GatherIndex(d, table + kSimdTableDegree * kSimdTableIntervals, idx);
-  for (int k = kSimdTableDegree - 1; k >= 0; --k)
-    p = hn::MulAdd(p, t, hn::GatherIndex(d, table + k * kSimdTableIntervals, idx));
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+  static_assert(kSimdTableIntervals == 16, "the permute looks up 16 intervals in two vectors");
+  const auto coefficient = [&](int k) {
+    const double* row = table + k * kSimdTableIntervals;
+    return V{_mm512_permutex2var_pd(hn::LoadU(d, row).raw, idx.raw, hn::LoadU(d, row + 8).raw)};
+  };
+#else
+  const auto coefficient = [&](int k) { return hn::GatherIndex(d, table + k * kSimdTableIntervals, idx); };
+#endif
+  V p = coefficient(kSimdTableDegree);
+  for (int k = kSimdTableDegree - 1; k >= 0; --k) p = hn::MulAdd(p, t, coefficient(k));
   return p;
 }
 
