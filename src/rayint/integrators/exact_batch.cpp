@@ -2,29 +2,35 @@
 // kappa linear, Sec. 3.3) on structure-of-arrays batches, vectorised with Google Highway.
 //
 // The formulas, regions and thresholds are exactly those of exact.cpp (kThinDepth, kQ2Relative,
-// the same series and closed forms); what differs is how they are evaluated:
-//   1. one scalar pass computes a = rho_exit L, b = rho_far L, T, B and appends each piece to its
-//      branch's contiguous columns (the choice branch-free; transparent pieces are written at
-//      once: transmittance 1, emission 0), in chunks of 4096 piece-channels so the columns stay
-//      in cache;
-//   2. each branch's columns, padded to whole vectors (the lane count of the target, not more)
-//      with copies of the group's first piece, are evaluated lane-parallel:
-//        thin_series  the midpoint Taylor recurrence of exact.cpp run on all lanes until every lane
-//                     met its own stop test (a lane stops accumulating at the same term as the
-//                     scalar loop), weights from Expm1;
+// the same series and closed forms); what differs is how they are evaluated, in chunks of 4096
+// piece-channels so that every column stays in cache:
+//   0. whole pieces are transposed into channel columns (the columns form is read in place);
+//   1. classification, lane-parallel (ClassifyColumns): a = rho_exit L, b = rho_far L, T, B and
+//      the branch tests of exact_piece as masks; each lane is appended to its branch's columns
+//      with a compressing store, and the masks are kept as bits per vector. (A scalar pass
+//      that wrote each piece to its branch's columns cost a third of the batch: every store
+//      waited for the previous piece's count.)
+//   2. each branch's columns, padded to whole pairs of vectors with copies of the group's first
+//      piece, are evaluated lane-parallel (GroupKernel):
+//        thin_series  the midpoint Taylor recurrence of exact.cpp on two vectors at once until
+//                     every lane met its own stop test (a lane stops accumulating at the same
+//                     term as the scalar loop), weights from Expm1; pieces with T < 1/64 form a
+//                     group of their own so they do not wait for the deeper ones' terms;
 //        q2_series    the three-term series in B with Expm1;
 //        erfcx        erfcx from special/erfcx_simd-inl.hpp (table + asymptotic, x >= 0);
 //        dawson       Dawson from the same file;
 //      exp(-T) is Highway's Exp (documented 1 ulp; -T below -1000 gives 0), expm1 Highway's
 //      Expm1 (documented 4 ulp);
-//   3. results are scattered back to the pieces' places.
+//   3. the results go back in piece order (ExpandBack): per vector, each group's lanes take the
+//      group's next results (an expanding load on AVX-512), transparent lanes 1 and 0.
 // The run-time dispatch (HWY_DYNAMIC_DISPATCH over hwy/foreach_target.h) picks SSE4, AVX2 or
-// AVX-512 on x86-64, so one binary runs on any of them; exact_batch_target() names the choice.
+// AVX-512 on x86-64, so one binary runs on any of them; exact_batch_target() names the choice,
+// and tests/test_exact_batch.cpp runs every target this CPU supports.
 // Accuracy (against the 50-digit reference): `rayint stress --count 100000 --seed 1 --methods
-// exact,exact:path=scalar` gives max relative error 5.22e-14 and median 0.361 ulp over 104,018
-// pieces (scalar exact_piece in the same run: 5.25e-14, 0.406 ulp); tests/test_exact_batch.cpp
-// asserts 1e-13 in every regime, the same branch and series terms as exact_piece, and a median
-// within 1 ulp of the scalar path's.
+// exact,exact:path=scalar --no-worst` gives max relative error 5.23e-14 and median 0.36 ulp over
+// 104,018 pieces (scalar exact_piece in the same run: 5.25e-14, 0.406 ulp; 2026-12-03, after the
+// width-1 tables); tests/test_exact_batch.cpp asserts 1e-13 in every regime, the same branch and
+// series terms as exact_piece, and a median within 1 ulp of the scalar path's.
 #include "rayint/integrators/exact_batch.hpp"
 
 #include <algorithm>
@@ -43,7 +49,11 @@
 #define RAYINT_EXACT_BATCH_SHARED
 namespace rayint::exact_batch_detail {
 // Branch groups evaluated by the vector kernels (transparent pieces never reach them).
-enum Group : int { kThin = 0, kQ2 = 1, kErfcx = 2, kDawson = 3, kGroups = 4 };
+// The thin branch is split by depth: its series runs until the slowest lane of a vector pair has
+// converged (about 20 terms at T = 1, 6 at T = 1e-3), so pieces thinner than kShortThinDepth
+// are kept apart from the others instead of waiting for them.
+enum Group : int { kThin = 0, kQ2 = 1, kErfcx = 2, kDawson = 3, kThinShort = 4, kGroups = 5 };
+constexpr double kShortThinDepth = 1.0 / 64;
 constexpr int kSeriesBudget = 100;  // as exact.cpp
 struct Reciprocals {                // 1/(n+1), as exact.cpp
   double r[kSeriesBudget + 2];
@@ -119,8 +129,10 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
     const auto q2 = hn::Le(hn::Abs(B), hn::Mul(hn::Mul(q2_relative, a), a));
     const auto closed = hn::AndNot(q2, deep);
     const auto up = hn::Gt(B, zero);
-    const decltype(valid) mask[kGroups] = {hn::AndNot(deep, live), hn::And(deep, q2), hn::And(closed, up),
-                                           hn::AndNot(up, closed)};
+    const auto thin = hn::AndNot(deep, live);
+    const auto short_thin = hn::Lt(T, hn::Set(d, kShortThinDepth));
+    const decltype(valid) mask[kGroups] = {hn::AndNot(short_thin, thin), hn::And(deep, q2), hn::And(closed, up),
+                                           hn::AndNot(up, closed), hn::And(thin, short_thin)};
     const auto ke = hn::LoadU(d, kappa_exit + i), kf = hn::LoadU(d, kappa_far + i);
     for (int g = 0; g < kGroups; ++g) {
       const std::size_t c = count[g];
@@ -242,7 +254,7 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
     hn::StoreU(emission, d, em_col + i);
     hn::StoreU(terms, d, terms_col + i);
   };
-  if (group == kThin) {
+  if (group == kThin || group == kThinShort) {
     for (std::size_t i = 0; i < n; i += 2 * L) {
       const V a0 = hn::LoadU(d, a_col + i), b0 = hn::LoadU(d, b_col + i);
       const V a1 = hn::LoadU(d, a_col + i + L), b1 = hn::LoadU(d, b_col + i + L);
@@ -349,8 +361,8 @@ HWY_EXPORT(DoubleLanes);
 namespace {
 using namespace exact_batch_detail;
 
-// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (input columns,
-// 4 groups x 7 columns) stays ~1.2 MB, in cache, however large the batch.
+// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (5 input columns,
+// 5 groups x 7 columns) stays ~1.3 MB, in cache, however large the batch.
 constexpr std::size_t kChunk = 4096;
 
 // The lane count of the target dispatched now (not cached: tests switch targets), and a bound on
@@ -385,7 +397,7 @@ struct Scratch {
 };
 
 constexpr ExactBranch kGroupBranch[kGroups] = {ExactBranch::thin_series, ExactBranch::q2_series,
-                                               ExactBranch::erfcx, ExactBranch::dawson};
+                                               ExactBranch::erfcx, ExactBranch::dawson, ExactBranch::thin_series};
 
 // 1. classify n_valid piece-channels from the columns (n: n_valid rounded up to whole vectors,
 // readable), their masks written from vector first_vector on.
