@@ -80,6 +80,7 @@ struct GroupSink {
 struct GroupResults {
   const double* tr[kGroups];
   const double* em[kGroups];
+  const double* terms[kGroups];
 };
 }  // namespace rayint::exact_batch_detail
 #endif
@@ -388,8 +389,6 @@ struct Scratch {
       sink.b[g] = b[g].data();
       sink.ke[g] = ke[g].data();
       sink.kf[g] = kf[g].data();
-      results.tr[g] = tr[g].data();
-      results.em[g] = em[g].data();
     }
     bits.resize((room + 1) * kMaskSlots * kMaskBytes);  // one vector may hold a single lane
     sink.bits = bits.data();
@@ -422,7 +421,7 @@ void write_introspection(const Scratch& s, std::size_t n_valid, std::size_t firs
     for (int g = 0; g < kGroups; ++g) {
       if (in(static_cast<std::size_t>(g))) {
         branch = kGroupBranch[g];
-        terms = s.terms[g][pos[g]++];
+        terms = s.results.terms[g][pos[g]++];
       }
     }
     if (out.branch) out.branch[first + i] = branch;
@@ -435,11 +434,32 @@ void write_introspection(const Scratch& s, std::size_t n_valid, std::size_t firs
 // of the group's first piece; 3. put the results back in piece order: the chunk's n_valid
 // piece-channels (n: whole vectors) go to out from index `first` on.
 void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t first, const OpticsColumns& out) {
-  const std::size_t step = 2 * lanes();
+  const std::size_t L = lanes();
+  for (int g = 0; g < kGroups; ++g) {
+    s.results.tr[g] = s.tr[g].data();
+    s.results.em[g] = s.em[g].data();
+    s.results.terms[g] = s.terms[g].data();
+  }
+  // Short thin pieces too few (or too few long ones) to fill a pair of vectors: the split would
+  // cost more padding than it saves, so they run with the long ones, after them in the columns.
+  std::size_t& m_thin = s.sink.count[kThin];
+  std::size_t& m_short = s.sink.count[kThinShort];
+  if (m_short > 0 && (m_short < 2 * L || m_thin < 2 * L)) {
+    std::copy_n(s.a[kThinShort].begin(), m_short, s.a[kThin].begin() + static_cast<long>(m_thin));
+    std::copy_n(s.b[kThinShort].begin(), m_short, s.b[kThin].begin() + static_cast<long>(m_thin));
+    std::copy_n(s.ke[kThinShort].begin(), m_short, s.ke[kThin].begin() + static_cast<long>(m_thin));
+    std::copy_n(s.kf[kThinShort].begin(), m_short, s.kf[kThin].begin() + static_cast<long>(m_thin));
+    s.results.tr[kThinShort] = s.tr[kThin].data() + m_thin;
+    s.results.em[kThinShort] = s.em[kThin].data() + m_thin;
+    s.results.terms[kThinShort] = s.terms[kThin].data() + m_thin;
+    m_thin += m_short;
+    m_short = 0;
+  }
   for (int g = 0; g < kGroups; ++g) {
     const std::size_t m = s.sink.count[g];
     if (m == 0) continue;
     s.sink.count[g] = 0;
+    const std::size_t step = g == kThin || g == kThinShort ? 2 * L : L;  // the thin kernel takes pairs
     const std::size_t padded = (m + step - 1) / step * step;
     for (std::size_t k = m; k < padded; ++k) {
       s.a[g][k] = s.a[g][0];
