@@ -22,7 +22,9 @@
 //      exp(-T) is Highway's Exp (documented 1 ulp; -T below -1000 gives 0), expm1 Highway's
 //      Expm1 (documented 4 ulp);
 //   3. the results go back in piece order (ExpandBack): per vector, each group's lanes take the
-//      group's next results (an expanding load on AVX-512), transparent lanes 1 and 0.
+//      group's next transmittance and weights (an expanding load on AVX-512), and the emission
+//      kappa_exit w_exit + kappa_far w_far is formed there with the pieces' kappas read in order
+//      (compressing the kappas into the groups cost more); transparent lanes get 1 and 0.
 // The run-time dispatch (HWY_DYNAMIC_DISPATCH over hwy/foreach_target.h) picks SSE4, AVX2 or
 // AVX-512 on x86-64, so one binary runs on any of them; exact_batch_target() names the choice,
 // and tests/test_exact_batch.cpp runs every target this CPU supports.
@@ -62,8 +64,8 @@ struct Reciprocals {                // 1/(n+1), as exact.cpp
   }
 };
 inline constexpr Reciprocals kRecip;
-// Where classification appends each branch's pieces: per group the columns a, b, kappa_exit,
-// kappa_far and how many each holds so far; and, per vector of pieces, each group's lanes as mask
+// Where classification appends each branch's pieces: per group the columns a and b and how many
+// each holds so far; and, per vector of pieces, each group's lanes as mask
 // bits (kGroups + 1 slots of kMaskBytes: the last slot marks transparent pieces, which need no
 // kernel), from which the results are put back in piece order.
 constexpr std::size_t kMaskBytes = 8;  // up to 64 lanes
@@ -71,15 +73,15 @@ constexpr std::size_t kMaskSlots = kGroups + 1;
 struct GroupSink {
   double* a[kGroups];
   double* b[kGroups];
-  double* ke[kGroups];
-  double* kf[kGroups];
   std::size_t count[kGroups];
   unsigned char* bits;  // [vector][slot][kMaskBytes]
 };
-// A group's results, in the order of its columns.
+// A group's results, in the order of its columns: transmittance, the two emission weights
+// (emission = kappa_exit w_exit + kappa_far w_far, formed in piece order) and the series terms.
 struct GroupResults {
   const double* tr[kGroups];
-  const double* em[kGroups];
+  const double* w_exit[kGroups];
+  const double* w_far[kGroups];
   const double* terms[kGroups];
 };
 }  // namespace rayint::exact_batch_detail
@@ -98,8 +100,7 @@ using namespace exact_batch_detail;
 // n is a multiple of the lane count; lanes at or beyond n_valid belong to no group; the masks
 // are written from vector number first_vector on.
 void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT rho_far,
-                     const double* HWY_RESTRICT rho_exit, const double* HWY_RESTRICT kappa_far,
-                     const double* HWY_RESTRICT kappa_exit, std::size_t n, std::size_t n_valid,
+                     const double* HWY_RESTRICT rho_exit, std::size_t n, std::size_t n_valid,
                      std::size_t first_vector, GroupSink* HWY_RESTRICT sink) {
   using D = hn::ScalableTag<double>;
   const D d;
@@ -107,13 +108,11 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
   const auto zero = hn::Zero(d), half = hn::Set(d, 0.5), thin_depth = hn::Set(d, kThinDepth),
              q2_relative = hn::Set(d, kQ2Relative);
   // The lists' ends in locals (the compressing stores could alias the sink's fields otherwise).
-  double *A[kGroups], *Bc[kGroups], *KE[kGroups], *KF[kGroups];
+  double *A[kGroups], *Bc[kGroups];
   std::size_t count[kGroups];
   for (int g = 0; g < kGroups; ++g) {
     A[g] = sink->a[g];
     Bc[g] = sink->b[g];
-    KE[g] = sink->ke[g];
-    KF[g] = sink->kf[g];
     count[g] = sink->count[g];
   }
   unsigned char* bits = sink->bits + first_vector * kMaskSlots * kMaskBytes;
@@ -134,13 +133,10 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
     const auto short_thin = hn::Lt(T, hn::Set(d, kShortThinDepth));
     const decltype(valid) mask[kGroups] = {hn::AndNot(short_thin, thin), hn::And(deep, q2), hn::And(closed, up),
                                            hn::AndNot(up, closed), hn::And(thin, short_thin)};
-    const auto ke = hn::LoadU(d, kappa_exit + i), kf = hn::LoadU(d, kappa_far + i);
     for (int g = 0; g < kGroups; ++g) {
       const std::size_t c = count[g];
       hn::CompressStore(a, mask[g], d, A[g] + c);
-      hn::CompressStore(b, mask[g], d, Bc[g] + c);
-      hn::CompressStore(ke, mask[g], d, KE[g] + c);
-      count[g] = c + hn::CompressStore(kf, mask[g], d, KF[g] + c);
+      count[g] = c + hn::CompressStore(b, mask[g], d, Bc[g] + c);
       hn::StoreMaskBits(d, mask[g], bits + static_cast<std::size_t>(g) * kMaskBytes);
     }
     hn::StoreMaskBits(d, hn::AndNot(positive, valid), bits + kGroups * kMaskBytes);
@@ -238,11 +234,10 @@ HWY_INLINE V Q2SeriesE0(D d, V A, V B, V em1_A) {
   return hn::IfThenElse(hn::Eq(B, hn::Zero(d)), m0, general);  // B == 0: m0 alone, as exact.cpp
 }
 
-// 2. One group's columns: a, b, kappa_exit, kappa_far in; transmittance, emission, terms out.
+// 2. One group's columns: a, b in; transmittance, w_exit, w_far, terms out.
 // n is a multiple of twice the lane count.
-void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_RESTRICT b_col,
-                 const double* HWY_RESTRICT ke_col, const double* HWY_RESTRICT kf_col, std::size_t n,
-                 double* HWY_RESTRICT tr_col, double* HWY_RESTRICT em_col,
+void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_RESTRICT b_col, std::size_t n,
+                 double* HWY_RESTRICT tr_col, double* HWY_RESTRICT w_exit_col, double* HWY_RESTRICT w_far_col,
                  double* HWY_RESTRICT terms_col) {
   using D = hn::ScalableTag<double>;
   using V = hn::Vec<D>;
@@ -250,9 +245,9 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
   const std::size_t L = hn::Lanes(d);
   const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   const auto finish = [&](std::size_t i, V trans, V w_exit, V w_far, V terms) {
-    const V emission = hn::MulAdd(hn::LoadU(d, ke_col + i), w_exit, hn::Mul(hn::LoadU(d, kf_col + i), w_far));
     hn::StoreU(trans, d, tr_col + i);
-    hn::StoreU(emission, d, em_col + i);
+    hn::StoreU(w_exit, d, w_exit_col + i);
+    hn::StoreU(w_far, d, w_far_col + i);
     hn::StoreU(terms, d, terms_col + i);
   };
   if (group == kThin || group == kThinShort) {
@@ -300,39 +295,49 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
 }
 
 // 3. The results back in piece order, vector by vector: each group's lanes take the group's next
-// results (AVX-512: an expanding load per group; other targets lane by lane), transparent lanes
-// transmittance 1 and emission 0. n: whole vectors; only the first n_valid results are stored.
+// transmittance and weights (AVX-512: an expanding load per group and column; other targets lane
+// by lane), and the emission kappa_exit w_exit + kappa_far w_far is formed with the pieces' own
+// kappas (the arithmetic of exact_piece); transparent lanes get transmittance 1 and emission 0.
+// n: whole vectors; only the first n_valid results are stored.
 void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
-                const GroupResults* HWY_RESTRICT res, double* HWY_RESTRICT tr_out, double* HWY_RESTRICT em_out) {
+                const GroupResults* HWY_RESTRICT res, const double* HWY_RESTRICT kappa_exit,
+                const double* HWY_RESTRICT kappa_far, double* HWY_RESTRICT tr_out, double* HWY_RESTRICT em_out) {
   using D = hn::ScalableTag<double>;
   using V = hn::Vec<D>;
   const D d;
   const std::size_t L = hn::Lanes(d);
   std::size_t pos[kGroups] = {};
   for (std::size_t i = 0; i < n; i += L, bits += kMaskSlots * kMaskBytes) {
-    V tr = hn::Set(d, 1.0), em = hn::Zero(d);
+    V tr = hn::Set(d, 1.0), w_exit = hn::Zero(d), w_far = hn::Zero(d);
     for (int g = 0; g < kGroups; ++g) {
       const unsigned char* group_bits = bits + static_cast<std::size_t>(g) * kMaskBytes;
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
       const __mmask8 k = group_bits[0];
       tr = V{_mm512_mask_expandloadu_pd(tr.raw, k, res->tr[g] + pos[g])};
-      em = V{_mm512_mask_expandloadu_pd(em.raw, k, res->em[g] + pos[g])};
+      w_exit = V{_mm512_mask_expandloadu_pd(w_exit.raw, k, res->w_exit[g] + pos[g])};
+      w_far = V{_mm512_mask_expandloadu_pd(w_far.raw, k, res->w_far[g] + pos[g])};
       pos[g] += static_cast<std::size_t>(__builtin_popcount(k));
 #else
-      HWY_ALIGN double tr_lanes[HWY_MAX_BYTES / sizeof(double)], em_lanes[HWY_MAX_BYTES / sizeof(double)];
-      hn::Store(tr, d, tr_lanes);
-      hn::Store(em, d, em_lanes);
+      HWY_ALIGN double lanes[3][HWY_MAX_BYTES / sizeof(double)];
+      hn::Store(tr, d, lanes[0]);
+      hn::Store(w_exit, d, lanes[1]);
+      hn::Store(w_far, d, lanes[2]);
       for (std::size_t j = 0; j < L; ++j) {
         if ((group_bits[j / 8] >> (j % 8)) & 1) {
-          tr_lanes[j] = res->tr[g][pos[g]];
-          em_lanes[j] = res->em[g][pos[g]];
+          lanes[0][j] = res->tr[g][pos[g]];
+          lanes[1][j] = res->w_exit[g][pos[g]];
+          lanes[2][j] = res->w_far[g][pos[g]];
           ++pos[g];
         }
       }
-      tr = hn::Load(d, tr_lanes);
-      em = hn::Load(d, em_lanes);
+      tr = hn::Load(d, lanes[0]);
+      w_exit = hn::Load(d, lanes[1]);
+      w_far = hn::Load(d, lanes[2]);
 #endif
     }
+    const auto transparent = hn::LoadMaskBits(d, bits + kGroups * kMaskBytes);
+    const V em = hn::IfThenZeroElse(
+        transparent, hn::MulAdd(hn::LoadU(d, kappa_exit + i), w_exit, hn::Mul(hn::LoadU(d, kappa_far + i), w_far)));
     if (i + L <= n_valid) {
       hn::StoreU(tr, d, tr_out + i);
       hn::StoreU(em, d, em_out + i);
@@ -363,7 +368,7 @@ namespace {
 using namespace exact_batch_detail;
 
 // Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (5 input columns,
-// 5 groups x 7 columns) stays ~1.3 MB, in cache, however large the batch.
+// 5 groups x 6 columns) stays ~1.2 MB, in cache, however large the batch.
 constexpr std::size_t kChunk = 4096;
 
 // The lane count of the target dispatched now (not cached: tests switch targets), and a bound on
@@ -375,7 +380,7 @@ constexpr std::size_t kMaxLanes = 32;
 // group's columns and results, and the mask bits of every vector of the chunk.
 struct Scratch {
   std::vector<double> len, rho_far, rho_exit, kappa_far, kappa_exit;
-  std::vector<double> a[kGroups], b[kGroups], ke[kGroups], kf[kGroups], tr[kGroups], em[kGroups], terms[kGroups];
+  std::vector<double> a[kGroups], b[kGroups], tr[kGroups], w_exit[kGroups], w_far[kGroups], terms[kGroups];
   std::vector<unsigned char> bits;
   GroupSink sink{};
   GroupResults results{};
@@ -384,11 +389,9 @@ struct Scratch {
     const std::size_t room = kChunk + 3 * kMaxLanes;
     for (auto* col : {&len, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(room);
     for (int g = 0; g < kGroups; ++g) {
-      for (auto* col : {&a[g], &b[g], &ke[g], &kf[g], &tr[g], &em[g], &terms[g]}) col->resize(room);
+      for (auto* col : {&a[g], &b[g], &tr[g], &w_exit[g], &w_far[g], &terms[g]}) col->resize(room);
       sink.a[g] = a[g].data();
       sink.b[g] = b[g].data();
-      sink.ke[g] = ke[g].data();
-      sink.kf[g] = kf[g].data();
     }
     bits.resize((room + 1) * kMaskSlots * kMaskBytes);  // one vector may hold a single lane
     sink.bits = bits.data();
@@ -400,11 +403,9 @@ constexpr ExactBranch kGroupBranch[kGroups] = {ExactBranch::thin_series, ExactBr
 
 // 1. classify n_valid piece-channels from the columns (n: n_valid rounded up to whole vectors,
 // readable), their masks written from vector first_vector on.
-void classify(Scratch& s, const double* len, const double* rho_far, const double* rho_exit,
-              const double* kappa_far, const double* kappa_exit, std::size_t n, std::size_t n_valid,
-              std::size_t first_vector) {
-  HWY_DYNAMIC_DISPATCH(ClassifyColumns)(len, rho_far, rho_exit, kappa_far, kappa_exit, n, n_valid, first_vector,
-                                        &s.sink);
+void classify(Scratch& s, const double* len, const double* rho_far, const double* rho_exit, std::size_t n,
+              std::size_t n_valid, std::size_t first_vector) {
+  HWY_DYNAMIC_DISPATCH(ClassifyColumns)(len, rho_far, rho_exit, n, n_valid, first_vector, &s.sink);
 }
 
 // The introspection columns (branch, terms, converged), lane by lane from the mask bits: only
@@ -437,7 +438,8 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t
   const std::size_t L = lanes();
   for (int g = 0; g < kGroups; ++g) {
     s.results.tr[g] = s.tr[g].data();
-    s.results.em[g] = s.em[g].data();
+    s.results.w_exit[g] = s.w_exit[g].data();
+    s.results.w_far[g] = s.w_far[g].data();
     s.results.terms[g] = s.terms[g].data();
   }
   // Short thin pieces too few (or too few long ones) to fill a pair of vectors: the split would
@@ -447,10 +449,9 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t
   if (m_short > 0 && (m_short < 2 * L || m_thin < 2 * L)) {
     std::copy_n(s.a[kThinShort].begin(), m_short, s.a[kThin].begin() + static_cast<long>(m_thin));
     std::copy_n(s.b[kThinShort].begin(), m_short, s.b[kThin].begin() + static_cast<long>(m_thin));
-    std::copy_n(s.ke[kThinShort].begin(), m_short, s.ke[kThin].begin() + static_cast<long>(m_thin));
-    std::copy_n(s.kf[kThinShort].begin(), m_short, s.kf[kThin].begin() + static_cast<long>(m_thin));
     s.results.tr[kThinShort] = s.tr[kThin].data() + m_thin;
-    s.results.em[kThinShort] = s.em[kThin].data() + m_thin;
+    s.results.w_exit[kThinShort] = s.w_exit[kThin].data() + m_thin;
+    s.results.w_far[kThinShort] = s.w_far[kThin].data() + m_thin;
     s.results.terms[kThinShort] = s.terms[kThin].data() + m_thin;
     m_thin += m_short;
     m_short = 0;
@@ -464,14 +465,12 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t
     for (std::size_t k = m; k < padded; ++k) {
       s.a[g][k] = s.a[g][0];
       s.b[g][k] = s.b[g][0];
-      s.ke[g][k] = s.ke[g][0];
-      s.kf[g][k] = s.kf[g][0];
     }
-    HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), s.ke[g].data(), s.kf[g].data(), padded,
-                                      s.tr[g].data(), s.em[g].data(), s.terms[g].data());
+    HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), padded, s.tr[g].data(), s.w_exit[g].data(),
+                                      s.w_far[g].data(), s.terms[g].data());
   }
-  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, out.transmittance + first,
-                                   out.emission + first);
+  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, s.kappa_exit.data(), s.kappa_far.data(),
+                                   out.transmittance + first, out.emission + first);
   if (out.branch || out.terms || out.converged) write_introspection(s, n_valid, first, out);
 }
 
@@ -483,26 +482,25 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
   thread_local Scratch s;
   const std::size_t L = lanes();
   for (std::size_t begin = 0; begin < in.size; begin += kChunk) {
-    const std::size_t end = std::min(in.size, begin + kChunk);
-    const std::size_t whole = (end - begin) / L * L;  // whole vectors read in place
-    classify(s, in.length + begin, in.rho_far + begin, in.rho_exit + begin, in.kappa_far + begin,
-             in.kappa_exit + begin, whole, whole, 0);
-    std::size_t n = whole;
-    if (whole < end - begin) {  // the tail, copied into one padded vector
-      const std::size_t tail = end - begin - whole, at = begin + whole;
+    const std::size_t end = std::min(in.size, begin + kChunk), size = end - begin;
+    const std::size_t whole = size / L * L;  // whole vectors classified in place
+    classify(s, in.length + begin, in.rho_far + begin, in.rho_exit + begin, whole, whole, 0);
+    const std::size_t n = (size + L - 1) / L * L;
+    if (whole < size) {  // the tail, copied into one padded vector
       for (std::size_t k = 0; k < L; ++k) {
-        const bool in_tail = k < tail;
-        s.len[k] = in_tail ? in.length[at + k] : 0.0;
-        s.rho_far[k] = in_tail ? in.rho_far[at + k] : 0.0;
-        s.rho_exit[k] = in_tail ? in.rho_exit[at + k] : 0.0;
-        s.kappa_far[k] = in_tail ? in.kappa_far[at + k] : 0.0;
-        s.kappa_exit[k] = in_tail ? in.kappa_exit[at + k] : 0.0;
+        const bool in_tail = whole + k < size;
+        s.len[k] = in_tail ? in.length[begin + whole + k] : 0.0;
+        s.rho_far[k] = in_tail ? in.rho_far[begin + whole + k] : 0.0;
+        s.rho_exit[k] = in_tail ? in.rho_exit[begin + whole + k] : 0.0;
       }
-      classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), s.kappa_far.data(), s.kappa_exit.data(), L,
-               tail, whole / L);
-      n += L;
+      classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), L, size - whole, whole / L);
     }
-    evaluate_groups(s, n, end - begin, begin, out);
+    // the kappas in piece order for the emission, padded to whole vectors
+    std::copy_n(in.kappa_exit + begin, size, s.kappa_exit.begin());
+    std::copy_n(in.kappa_far + begin, size, s.kappa_far.begin());
+    std::fill(s.kappa_exit.begin() + static_cast<long>(size), s.kappa_exit.begin() + static_cast<long>(n), 0.0);
+    std::fill(s.kappa_far.begin() + static_cast<long>(size), s.kappa_far.begin() + static_cast<long>(n), 0.0);
+    evaluate_groups(s, n, size, begin, out);
   }
 }
 
@@ -527,8 +525,7 @@ void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
     const std::size_t padded = (k + L - 1) / L * L;
     for (std::size_t j = k; j < padded; ++j)
       s.len[j] = s.rho_far[j] = s.rho_exit[j] = s.kappa_far[j] = s.kappa_exit[j] = 0.0;
-    classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), s.kappa_far.data(), s.kappa_exit.data(),
-             padded, k, 0);
+    classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), padded, k, 0);
     evaluate_groups(s, padded, k, kChannels * begin, out);
   }
 }
