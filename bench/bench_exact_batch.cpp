@@ -117,6 +117,32 @@ void BM_dawson_simd(benchmark::State& state) {
   state.SetLabel(rayint::special::simd_target_name());
 }
 
+// Highway's Exp and Expm1 (contrib/math) on the same kind of arguments, negated: every batch
+// piece takes one Exp (its transmittance) and one or two Expm1.
+void BM_exp_simd(benchmark::State& state) {
+  std::vector<double> x = special_args();
+  for (auto& v : x) v = -v;
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    rayint::special::exp_array(x.data(), y.data(), x.size());
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
+  state.SetLabel(rayint::special::simd_target_name());
+}
+
+void BM_expm1_simd(benchmark::State& state) {
+  std::vector<double> x = special_args();
+  for (auto& v : x) v = -v;
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    rayint::special::expm1_array(x.data(), y.data(), x.size());
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
+  state.SetLabel(rayint::special::simd_target_name());
+}
+
 void BM_erfcx_cerf(benchmark::State& state) {
   const std::vector<double> x = special_args();
   std::vector<double> y(x.size());
@@ -144,5 +170,7 @@ BENCHMARK(BM_exact_scalar_loop_mixed)->Threads(1)->Threads(2)->UseRealTime();
 BENCHMARK(BM_exact_batch_regime)->DenseRange(0, static_cast<int>(rayint::all_regimes().size()) - 1);
 BENCHMARK(BM_erfcx_simd);
 BENCHMARK(BM_dawson_simd);
+BENCHMARK(BM_exp_simd);
+BENCHMARK(BM_expm1_simd);
 BENCHMARK(BM_erfcx_cerf);
 BENCHMARK(BM_dawson_cerf);

@@ -298,25 +298,37 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
 // transmittance and weights (AVX-512: an expanding load per group and column; other targets lane
 // by lane), and the emission kappa_exit w_exit + kappa_far w_far is formed with the pieces' own
 // kappas (the arithmetic of exact_piece); transparent lanes get transmittance 1 and emission 0.
-// n: whole vectors; only the first n_valid results are stored.
+// n: whole vectors; only the first n_valid results are stored. The kappas are read in place up
+// to the last whole vector of n_valid, and from tail_kappa_exit/far (one padded vector) after it.
 void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
                 const GroupResults* HWY_RESTRICT res, const double* HWY_RESTRICT kappa_exit,
-                const double* HWY_RESTRICT kappa_far, double* HWY_RESTRICT tr_out, double* HWY_RESTRICT em_out) {
+                const double* HWY_RESTRICT kappa_far, const double* HWY_RESTRICT tail_kappa_exit,
+                const double* HWY_RESTRICT tail_kappa_far, double* HWY_RESTRICT tr_out,
+                double* HWY_RESTRICT em_out) {
   using D = hn::ScalableTag<double>;
   using V = hn::Vec<D>;
   const D d;
   const std::size_t L = hn::Lanes(d);
-  std::size_t pos[kGroups] = {};
+  // each group's next results, in locals (the stores below could alias *res otherwise)
+  const double *next_tr[kGroups], *next_w_exit[kGroups], *next_w_far[kGroups];
+  for (int g = 0; g < kGroups; ++g) {
+    next_tr[g] = res->tr[g];
+    next_w_exit[g] = res->w_exit[g];
+    next_w_far[g] = res->w_far[g];
+  }
   for (std::size_t i = 0; i < n; i += L, bits += kMaskSlots * kMaskBytes) {
     V tr = hn::Set(d, 1.0), w_exit = hn::Zero(d), w_far = hn::Zero(d);
     for (int g = 0; g < kGroups; ++g) {
       const unsigned char* group_bits = bits + static_cast<std::size_t>(g) * kMaskBytes;
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
       const __mmask8 k = group_bits[0];
-      tr = V{_mm512_mask_expandloadu_pd(tr.raw, k, res->tr[g] + pos[g])};
-      w_exit = V{_mm512_mask_expandloadu_pd(w_exit.raw, k, res->w_exit[g] + pos[g])};
-      w_far = V{_mm512_mask_expandloadu_pd(w_far.raw, k, res->w_far[g] + pos[g])};
-      pos[g] += static_cast<std::size_t>(__builtin_popcount(k));
+      tr = V{_mm512_mask_expandloadu_pd(tr.raw, k, next_tr[g])};
+      w_exit = V{_mm512_mask_expandloadu_pd(w_exit.raw, k, next_w_exit[g])};
+      w_far = V{_mm512_mask_expandloadu_pd(w_far.raw, k, next_w_far[g])};
+      const int taken = __builtin_popcount(k);
+      next_tr[g] += taken;
+      next_w_exit[g] += taken;
+      next_w_far[g] += taken;
 #else
       HWY_ALIGN double lanes[3][HWY_MAX_BYTES / sizeof(double)];
       hn::Store(tr, d, lanes[0]);
@@ -324,10 +336,9 @@ void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size
       hn::Store(w_far, d, lanes[2]);
       for (std::size_t j = 0; j < L; ++j) {
         if ((group_bits[j / 8] >> (j % 8)) & 1) {
-          lanes[0][j] = res->tr[g][pos[g]];
-          lanes[1][j] = res->w_exit[g][pos[g]];
-          lanes[2][j] = res->w_far[g][pos[g]];
-          ++pos[g];
+          lanes[0][j] = *next_tr[g]++;
+          lanes[1][j] = *next_w_exit[g]++;
+          lanes[2][j] = *next_w_far[g]++;
         }
       }
       tr = hn::Load(d, lanes[0]);
@@ -336,9 +347,11 @@ void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size
 #endif
     }
     const auto transparent = hn::LoadMaskBits(d, bits + kGroups * kMaskBytes);
-    const V em = hn::IfThenZeroElse(
-        transparent, hn::MulAdd(hn::LoadU(d, kappa_exit + i), w_exit, hn::Mul(hn::LoadU(d, kappa_far + i), w_far)));
-    if (i + L <= n_valid) {
+    const bool whole = i + L <= n_valid;
+    const V ke = hn::LoadU(d, whole ? kappa_exit + i : tail_kappa_exit);
+    const V kf = hn::LoadU(d, whole ? kappa_far + i : tail_kappa_far);
+    const V em = hn::IfThenZeroElse(transparent, hn::MulAdd(ke, w_exit, hn::Mul(kf, w_far)));
+    if (whole) {
       hn::StoreU(tr, d, tr_out + i);
       hn::StoreU(em, d, em_out + i);
     } else if (i < n_valid) {
@@ -434,7 +447,11 @@ void write_introspection(const Scratch& s, std::size_t n_valid, std::size_t firs
 // 2. evaluate each group on its contiguous columns, padded to whole pairs of vectors with copies
 // of the group's first piece; 3. put the results back in piece order: the chunk's n_valid
 // piece-channels (n: whole vectors) go to out from index `first` on.
-void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t first, const OpticsColumns& out) {
+// kappa_exit/far: the chunk's kappas in piece order, readable up to the last whole vector;
+// tail_kappa_exit/far: the partial last vector's, padded to a whole vector.
+void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, const double* kappa_exit,
+                     const double* kappa_far, const double* tail_kappa_exit, const double* tail_kappa_far,
+                     std::size_t first, const OpticsColumns& out) {
   const std::size_t L = lanes();
   for (int g = 0; g < kGroups; ++g) {
     s.results.tr[g] = s.tr[g].data();
@@ -469,8 +486,8 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, std::size_t
     HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), padded, s.tr[g].data(), s.w_exit[g].data(),
                                       s.w_far[g].data(), s.terms[g].data());
   }
-  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, s.kappa_exit.data(), s.kappa_far.data(),
-                                   out.transmittance + first, out.emission + first);
+  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, kappa_exit, kappa_far, tail_kappa_exit,
+                                   tail_kappa_far, out.transmittance + first, out.emission + first);
   if (out.branch || out.terms || out.converged) write_introspection(s, n_valid, first, out);
 }
 
@@ -489,18 +506,17 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
     if (whole < size) {  // the tail, copied into one padded vector
       for (std::size_t k = 0; k < L; ++k) {
         const bool in_tail = whole + k < size;
-        s.len[k] = in_tail ? in.length[begin + whole + k] : 0.0;
-        s.rho_far[k] = in_tail ? in.rho_far[begin + whole + k] : 0.0;
-        s.rho_exit[k] = in_tail ? in.rho_exit[begin + whole + k] : 0.0;
+        const std::size_t at = begin + whole + k;
+        s.len[k] = in_tail ? in.length[at] : 0.0;
+        s.rho_far[k] = in_tail ? in.rho_far[at] : 0.0;
+        s.rho_exit[k] = in_tail ? in.rho_exit[at] : 0.0;
+        s.kappa_far[k] = in_tail ? in.kappa_far[at] : 0.0;
+        s.kappa_exit[k] = in_tail ? in.kappa_exit[at] : 0.0;
       }
       classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), L, size - whole, whole / L);
     }
-    // the kappas in piece order for the emission, padded to whole vectors
-    std::copy_n(in.kappa_exit + begin, size, s.kappa_exit.begin());
-    std::copy_n(in.kappa_far + begin, size, s.kappa_far.begin());
-    std::fill(s.kappa_exit.begin() + static_cast<long>(size), s.kappa_exit.begin() + static_cast<long>(n), 0.0);
-    std::fill(s.kappa_far.begin() + static_cast<long>(size), s.kappa_far.begin() + static_cast<long>(n), 0.0);
-    evaluate_groups(s, n, size, begin, out);
+    evaluate_groups(s, n, size, in.kappa_exit + begin, in.kappa_far + begin, s.kappa_exit.data(),
+                    s.kappa_far.data(), begin, out);
   }
 }
 
@@ -526,7 +542,9 @@ void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
     for (std::size_t j = k; j < padded; ++j)
       s.len[j] = s.rho_far[j] = s.rho_exit[j] = s.kappa_far[j] = s.kappa_exit[j] = 0.0;
     classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), padded, k, 0);
-    evaluate_groups(s, padded, k, kChannels * begin, out);
+    const std::size_t tail = k / L * L;  // the partial last vector, padded with zeros above
+    evaluate_groups(s, padded, k, s.kappa_exit.data(), s.kappa_far.data(), s.kappa_exit.data() + tail,
+                    s.kappa_far.data() + tail, kChannels * begin, out);
   }
 }
 
