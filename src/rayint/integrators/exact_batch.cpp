@@ -134,10 +134,11 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
     const decltype(valid) mask[kGroups] = {hn::AndNot(short_thin, thin), hn::And(deep, q2), hn::And(closed, up),
                                            hn::AndNot(up, closed), hn::And(thin, short_thin)};
     for (int g = 0; g < kGroups; ++g) {
+      hn::StoreMaskBits(d, mask[g], bits + static_cast<std::size_t>(g) * kMaskBytes);
+      if (hn::AllFalse(d, mask[g])) continue;
       const std::size_t c = count[g];
       hn::CompressStore(a, mask[g], d, A[g] + c);
       count[g] = c + hn::CompressStore(b, mask[g], d, Bc[g] + c);
-      hn::StoreMaskBits(d, mask[g], bits + static_cast<std::size_t>(g) * kMaskBytes);
     }
     hn::StoreMaskBits(d, hn::AndNot(positive, valid), bits + kGroups * kMaskBytes);
   }
@@ -322,6 +323,7 @@ void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size
       const unsigned char* group_bits = bits + static_cast<std::size_t>(g) * kMaskBytes;
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
       const __mmask8 k = group_bits[0];
+      if (k == 0) continue;
       tr = V{_mm512_mask_expandloadu_pd(tr.raw, k, next_tr[g])};
       w_exit = V{_mm512_mask_expandloadu_pd(w_exit.raw, k, next_w_exit[g])};
       w_far = V{_mm512_mask_expandloadu_pd(w_far.raw, k, next_w_far[g])};
