@@ -9,6 +9,8 @@
 #   grad_netpbm_le.pfm netpbm's pamtopfm -endian=little (little-endian PFM)
 #   grad_oiio.exr      OpenImageIO's oiiotool (32-bit float EXR)
 #   grad_oiio_half.exr OpenImageIO's oiiotool (16-bit half EXR)
+#   grad_rgba_oiio.exr OpenImageIO's oiiotool, float RGBA: the gradient plus an "A" channel filled
+#                      left to right from 0.25 to 1 (0.25, 0.5, 0.75, 1 by column)
 # Pixel (x, y) with y = 0 the top row, channel c, holds v/255 with v = 20x + 60y + 3c + 1 (ints
 # < 256, so every file holds the same values up to float rounding); tests/test_float_images.cpp
 # checks them at every pixel. Optional tools (only for regenerating these committed files):
@@ -36,6 +38,7 @@ pamtopfm -endian=big grad.ppm > grad_netpbm_be.pfm
 pamtopfm -endian=little grad.ppm > grad_netpbm_le.pfm
 oiiotool grad.ppm -d float -o grad_oiio.exr
 oiiotool grad.ppm -d half -o grad_oiio_half.exr
+oiiotool grad.ppm -d float --pattern "fill:left=0.25:right=1" 4x3 1 --chnames A --chappend -o grad_rgba_oiio.exr
 /usr/bin/python3 - <<'PY'
 import numpy as np
 y, x, c = np.meshgrid(np.arange(3), np.arange(4), np.arange(3), indexing="ij")

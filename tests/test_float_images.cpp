@@ -91,6 +91,21 @@ TEST_CASE("float images: files written by numpy, netpbm and OpenImageIO read wit
   // The 8-bit source, through the PNG-independent PPM: not read by rayint, so only the float files.
 }
 
+TEST_CASE("float images: an RGBA EXR written by OpenImageIO keeps its alpha channel", "[image][alpha]") {
+  // oiiotool's "fill:left=0.25:right=1" alpha: 0.25, 0.5, 0.75, 1 by column, every row
+  // (scripts/make-image-fixtures.sh); oiiotool --printstats reports mean 0.625, sd 0.2795.
+  const ImageWithAlpha img = read_image_with_alpha((kFixtures / "grad_rgba_oiio.exr").string());
+  check_fixture(img.rgb, false, 1e-7);
+  REQUIRE(img.alpha.size() == 12);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) {
+      INFO("pixel (" << x << ", " << y << ")");
+      CHECK(img.alpha[static_cast<std::size_t>(y * 4 + x)] == 0.25 * (x + 1));
+    }
+  // read_image drops the alpha and gives the same RGB
+  check_fixture(read_image((kFixtures / "grad_rgba_oiio.exr").string()), false, 1e-7);
+}
+
 TEST_CASE("float images: write and read back (npy bit for bit, pfm and exr to float32)", "[image]") {
   const Image im = test_image(7, 5);
   const Image npy = decode_npy(encode_npy(im), "x.npy");
