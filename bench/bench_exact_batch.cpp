@@ -58,6 +58,25 @@ void run_batch(benchmark::State& state, const Columns& c) {
   state.SetLabel(rayint::exact_batch_target());
 }
 
+// The same pieces in calls of state.range(0) piece-channels (a ray's worth is ~150 in the
+// 100k-tet ball render): what a small batch costs per piece-channel.
+void BM_exact_batch_mixed_calls(benchmark::State& state) {
+  static const Columns c = columns(-1);
+  const auto call = static_cast<std::size_t>(state.range(0));
+  std::vector<double> tr(c.size()), em(c.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < c.size(); i += call) {
+      const std::size_t n = std::min(call, c.size() - i);
+      rayint::exact_batch({c.length.data() + i, c.rho_far.data() + i, c.rho_exit.data() + i, c.kappa_far.data() + i,
+                           c.kappa_exit.data() + i, n},
+                          {tr.data() + i, em.data() + i});
+    }
+    benchmark::DoNotOptimize(em.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(c.size()));
+}
+
 void BM_exact_batch_mixed(benchmark::State& state) {
   static const Columns c = columns(-1);
   run_batch(state, c);
@@ -166,6 +185,7 @@ void BM_dawson_cerf(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_exact_batch_mixed)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_exact_batch_mixed_calls)->Arg(48)->Arg(150)->Arg(600)->Arg(4096);
 BENCHMARK(BM_exact_scalar_loop_mixed)->Threads(1)->Threads(2)->UseRealTime();
 BENCHMARK(BM_exact_batch_regime)->DenseRange(0, static_cast<int>(rayint::all_regimes().size()) - 1);
 BENCHMARK(BM_erfcx_simd);
