@@ -96,7 +96,9 @@ void set_bench_command(CLI::App& app) {
     const std::vector<SweepAxis> axes = select_sweep_axes(split_names(opt->methods));
     const std::vector<std::string> files = case_files(opt->files);
     std::vector<Case> cases;
+    const json_source::InputFileLog read;  // the case files and the meshes they name: shard inputs
     for (const auto& f : files) cases.push_back(read_case_file(f, opt->mesh));  // validate all first
+    const std::vector<std::string> inputs = run_inputs(files, read);
     if (opt->output != "-") {
       const auto parent = std::filesystem::path(opt->output).parent_path();
       if (!parent.empty()) std::filesystem::create_directories(parent);
@@ -111,12 +113,12 @@ void set_bench_command(CLI::App& app) {
     if (in_shard) {
       if (output_option->count() == 0)
         throw std::invalid_argument("--shard: needs -o FILE for the shard file");
-      write_shard(opt->output, "bench", shard, files, to_json(run_sweep_part(cases, axes, so, shard)));
+      write_shard(opt->output, "bench", shard, inputs, to_json(run_sweep_part(cases, axes, so, shard)));
       return;
     }
     SweepResult result;
     if (merging()) {
-      check_merge_inputs("bench", files);
+      check_merge_inputs("bench", inputs);
       const ShardContext& c = shard_context();
       std::vector<SweepPart> parts;
       for (std::size_t i = 0; i < c.data.size(); ++i)

@@ -33,6 +33,7 @@ std::string heat_map_path(const std::string& output) {
 }  // namespace
 
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) {
+  const json_source::InputFileLog read;  // the mesh files the case names: shard inputs
   const MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   // Validate the methods before the (long) render.
@@ -57,8 +58,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   // the image and its figures assembled from the shards' bands, written as a single run would.
   const bool in_shard = !options.shard.empty();
   settings.shard = begin_shard(options.shard, options.output);
-  std::vector<std::string> inputs{options.input};
-  if (!mc.mesh_source.empty() && mc.mesh_source != options.input) inputs.push_back(mc.mesh_source);
+  const std::vector<std::string> inputs = run_inputs({options.input}, read);
   if (in_shard) {
     const MeshRender part = render_mesh(mc, mesh, *exact, compare.get(), settings);
     write_shard(options.output, "render", settings.shard, inputs, to_json(mesh_render_part(part, settings.shard)));

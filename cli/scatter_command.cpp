@@ -63,7 +63,9 @@ void set_scatter_command(CLI::App& app) {
       if (b < 1 || b > 8) throw std::invalid_argument("--bins: each must be in [1, 8]");
     for (int g : s->comparison.zonal_grids)
       if (g < 2 || g > 20) throw std::invalid_argument("--zonal-grids: each must be in [2, 20]");
+    const json_source::InputFileLog read;  // the scene and the grid/data files it names: shard inputs
     const Scene scene = read_scene_file(s->scene);
+    const std::vector<std::string> inputs = run_inputs({s->scene}, read);
     ComparisonOptions o = s->comparison;
     o.reference.threads = o.threads = s->threads;
     const bool quiet = s->quiet;
@@ -78,11 +80,11 @@ void set_scatter_command(CLI::App& app) {
     if (in_shard || merging()) {
       SceneVolumeSetup setup = scene_volume_setup(scene, s->width, s->height, s->points);
       if (in_shard) {
-        write_shard(s->output, "scatter", shard, {s->scene},
+        write_shard(s->output, "scatter", shard, inputs,
                     to_json(compare_volume_methods_part(setup.volume, setup.camera, o, shard, progress)));
         return;
       }
-      check_merge_inputs("scatter", {s->scene});
+      check_merge_inputs("scatter", inputs);
       const ShardContext& c = shard_context();
       std::vector<VolumeComparisonPart> parts;
       for (std::size_t i = 0; i < c.data.size(); ++i)

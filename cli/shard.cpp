@@ -110,6 +110,12 @@ ShardSpec begin_shard(const std::string& text, const std::string& output) {
 
 bool merging() { return shard_context().mode == ShardContext::Mode::merge; }
 
+std::vector<std::string> run_inputs(std::vector<std::string> named, const json_source::InputFileLog& log) {
+  for (const auto& f : log.files())
+    if (std::find(named.begin(), named.end(), f) == named.end()) named.push_back(f);
+  return named;
+}
+
 std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files) {
   std::vector<std::string> parts{"rayint-run", command};
   for (const auto& a : canonical_args(shard_context().args, false)) parts.push_back(a);

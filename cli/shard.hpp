@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rayint/core/shard.hpp"
+#include "rayint/input/json_source.hpp"
 
 namespace rayint::cli {
 
@@ -36,6 +37,10 @@ CLI::Option* add_shard_option(CLI::App* cmd, std::string& text);
 // needs `output` (-o FILE) for its shard file: refused here, before the work.
 ShardSpec begin_shard(const std::string& text, const std::string& output);
 bool merging();
+
+// A run's input files: `named` (those on the command line) and then every file the readers opened
+// under `log` (the meshes, grids and data files the named ones refer to), each once.
+std::vector<std::string> run_inputs(std::vector<std::string> named, const json_source::InputFileLog& log);
 
 // The run's fingerprint: the command, its canonical arguments and the bytes of `input_files`.
 std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files);

@@ -197,8 +197,22 @@ nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& s
   return parse_with_paths<nlohmann::ordered_json>(text, source);
 }
 
+namespace {
+thread_local InputFileLog* active_log = nullptr;
+}  // namespace
+
+InputFileLog::InputFileLog() : outer_(active_log) { active_log = this; }
+InputFileLog::~InputFileLog() { active_log = outer_; }
+
+void InputFileLog::note(const std::string& path) {
+  if (active_log == nullptr) return;
+  auto& files = active_log->files_;
+  if (std::find(files.begin(), files.end(), path) == files.end()) files.push_back(path);
+}
+
 std::string read_file_bytes(const std::string& file,
                             const std::function<void(const std::string& reason)>& fail) {
+  InputFileLog::note(file);
   errno = 0;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   auto cannot_read = [&fail]() {

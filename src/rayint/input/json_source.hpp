@@ -40,6 +40,24 @@ nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& s
 
 // The whole file as text; InputError "<path>: cannot read file (<reason>)".
 std::string read_text_file(const std::string& path);
+
+// While alive, records the path of every file read_file_bytes (and so read_text_file and every
+// reader built on them) opens on this thread, in order, each once: the files a run's result
+// depends on, a case and the meshes or grids it names, which shard fingerprints hash
+// (cli/shard.hpp). Logs nest; the innermost records.
+class InputFileLog {
+ public:
+  InputFileLog();
+  ~InputFileLog();
+  InputFileLog(const InputFileLog&) = delete;
+  InputFileLog& operator=(const InputFileLog&) = delete;
+  const std::vector<std::string>& files() const { return files_; }
+  static void note(const std::string& path);  // by the readers: adds path to the active log, if any
+
+ private:
+  std::vector<std::string> files_;
+  InputFileLog* outer_;
+};
 // The whole file's bytes; when it cannot be opened or read, fail(reason), reason strerror(errno)
 // or "read error"; fail must throw.
 std::string read_file_bytes(const std::string& file,

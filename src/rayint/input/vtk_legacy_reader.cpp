@@ -13,11 +13,11 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "rayint/core/error.hpp"
+#include "rayint/input/json_source.hpp"
 
 namespace rayint {
 namespace {
@@ -354,12 +354,7 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
 }
 
 TetMesh read_vtk_legacy(const std::string& path, const std::string& scalar_name) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read file (" + std::strerror(errno) + ")");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read file");
-  return parse_vtk_legacy(ss.str(), path, scalar_name);
+  return parse_vtk_legacy(json_source::read_text_file(path), path, scalar_name);
 }
 
 }  // namespace rayint

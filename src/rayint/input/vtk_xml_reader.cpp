@@ -2,14 +2,12 @@
 // DataArray bytes go through the one decoder of vtk_xml_data_array.hpp.
 #include "rayint/input/vtk_xml_reader.hpp"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "rayint/core/error.hpp"
+#include "rayint/input/json_source.hpp"
 #include "rayint/input/voxel_grid_reader.hpp"
 #include "rayint/input/vtk_xml_data_array.hpp"
 
@@ -20,14 +18,6 @@ using vtk_xml::Document;
 
 constexpr long long kMaxIndex = 2147483647;  // TetMesh indices are int32
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read file (" + std::strerror(errno) + ")");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read file");
-  return ss.str();
-}
 
 // The DataArray child of `parent` named `name` (Cells: connectivity, offsets, types).
 pugi::xml_node named_array(const Document& d, pugi::xml_node parent, const char* name, const std::string& field) {
@@ -126,7 +116,7 @@ TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::
 }
 
 TetMesh read_vtu(const std::string& path, const std::string& scalar_name) {
-  return parse_vtu(read_file(path), path, scalar_name);
+  return parse_vtu(json_source::read_text_file(path), path, scalar_name);
 }
 
 VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name) {
@@ -170,7 +160,7 @@ VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std
 }
 
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name) {
-  return parse_vti(read_file(path), path, scalar_name);
+  return parse_vti(json_source::read_text_file(path), path, scalar_name);
 }
 
 }  // namespace rayint
