@@ -95,3 +95,25 @@ TEST_CASE("PieceSplitter gives append_pieces' pieces bit for bit", "[splitter]")
   CHECK(on_breakpoints > 10000);     // and started or ended on them
   CHECK(negative_zeros > 1000);      // and -0.0 came out of append_pieces
 }
+
+TEST_CASE("PieceSplitter matches append_pieces on scalar spans that overflow", "[splitter]") {
+  // Ends near +-DBL_MAX: s_exit - s_far overflows to inf when they lie on both sides of the
+  // breakpoints, and append_pieces' fractions are then 0 or NaN; same-side ends give a finite
+  // span (where the splitter skips span / span = 1). Pieces must match either way.
+  std::mt19937_64 rng(7);
+  const TransferFunctions tf = random_tf(rng, 5);
+  const std::vector<double> bps = tf.breakpoints();
+  const PieceSplitter splitter(tf);
+  long checked = 0;
+  for (const double a : {-1.7e308, -1e308, 0.3, 1.7e308})
+    for (const double b : {-1.7e308, 0.6, 1e308, 1.7e308}) {
+      const Segment seg{1.5, a, b};
+      std::vector<Piece> expected;
+      append_pieces(tf, seg, bps, expected);
+      const std::vector<Piece>& got = splitter.pieces(seg);
+      REQUIRE(got.size() == expected.size());
+      for (std::size_t k = 0; k < got.size(); ++k) REQUIRE(same(got[k], expected[k]));
+      ++checked;
+    }
+  CHECK(checked == 16);
+}

@@ -199,7 +199,9 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
     s_prev = s;
     v_prev = v;
   }
-  const double len = seg.length * ((s1 - s_prev) / span);
+  // Without interior ends the fraction is span / span: exactly 1 when span is finite (it is not
+  // 0, s0 != s1), so that division is skipped; an overflowed span keeps inf / inf = NaN.
+  const double len = inner == 0 && std::isfinite(span) ? seg.length : seg.length * ((s1 - s_prev) / span);
   if (len > 0.0) put(len, s_prev, s1, v_prev, v_exit);
 }
 
