@@ -4,13 +4,18 @@
 //   BM_mesh_first_hit_scan    the same first hit by scanning every boundary face (double
 //                             Moller-Trumbore): the baseline an acceleration structure must beat;
 //   BM_mesh_trace             the whole traversal (first hits, cell walk, star searches, Eq. 13);
-//   BM_mesh_exact             `exact` on the traced segments (the integration share).
+//   BM_mesh_exact             `exact` on the traced segments (the integration share);
+//   BM_mesh_piece_splitter    PieceSplitter::append on the traced segments (the splitting part
+//                             of `exact`), counter segments/s; shared_ends is the fraction of
+//                             neighbouring segments whose shared end has the same scalar bits
+//                             from both cells (where one evaluation could serve both).
 // Run: build/bench/rayint_bench --benchmark_filter=BM_mesh --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true      (quote the median)
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -20,6 +25,7 @@
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/mesh/first_hit.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
+#include "rayint/model/pieces.hpp"
 
 namespace {
 
@@ -114,5 +120,30 @@ void BM_mesh_exact(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(b.exact->integrate(b.traced[i++ % b.traced.size()], nullptr));
 }
 BENCHMARK(BM_mesh_exact);
+
+void BM_mesh_piece_splitter(benchmark::State& state) {
+  MeshBench& b = MeshBench::get();
+  const PieceSplitter splitter(b.mc.transfer);
+  std::vector<Piece> pieces;
+  std::size_t i = 0;
+  long segments = 0;
+  for (auto _ : state) {
+    const Ray& ray = b.traced[i++ % b.traced.size()];
+    pieces.clear();
+    for (const Segment& s : ray.segments) splitter.append(s, pieces);
+    segments += static_cast<long>(ray.segments.size());
+    benchmark::DoNotOptimize(pieces.data());
+  }
+  state.counters["segments"] = benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsRate);
+  long pairs = 0, shared = 0;
+  for (const Ray& ray : b.traced)
+    for (std::size_t k = 0; k + 1 < ray.segments.size(); ++k) {
+      ++pairs;
+      const double a = ray.segments[k].scalar_exit, c = ray.segments[k + 1].scalar_far;
+      shared += std::memcmp(&a, &c, sizeof a) == 0;
+    }
+  state.counters["shared_ends"] = pairs > 0 ? static_cast<double>(shared) / static_cast<double>(pairs) : 0.0;
+}
+BENCHMARK(BM_mesh_piece_splitter);
 
 }  // namespace

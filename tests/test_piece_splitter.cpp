@@ -5,6 +5,8 @@
 // zero length.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -22,7 +24,12 @@ PiecewiseLinear random_function(std::mt19937_64& rng, int points, const std::vec
   s.erase(std::unique(s.begin(), s.end()), s.end());
   PiecewiseLinear f;
   f.scalar = s;
-  for (std::size_t i = 0; i < s.size(); ++i) f.value.push_back(u(rng) < 0.15 ? 0.0 : 3.0 * u(rng));
+  // Zeros of both signs: -0.0 is a valid value (>= 0), and a constant or an interpolated value
+  // that comes back +0.0 instead of a stored -0.0 differs in its bits.
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double r = u(rng);
+    f.value.push_back(r < 0.1 ? 0.0 : r < 0.2 ? -0.0 : 3.0 * u(rng));
+  }
   return f;
 }
 
@@ -37,10 +44,15 @@ TransferFunctions random_tf(std::mt19937_64& rng, int max_points) {
   return tf;
 }
 
+// Bit for bit: == would take -0.0 for +0.0.
 bool same(const Piece& a, const Piece& b) {
-  return a.length == b.length && a.scalar_far == b.scalar_far && a.scalar_exit == b.scalar_exit &&
-         a.rho_far == b.rho_far && a.rho_exit == b.rho_exit && a.kappa_far == b.kappa_far &&
-         a.kappa_exit == b.kappa_exit;
+  const auto bits = [](const Piece& p) {
+    std::vector<double> d = {p.length, p.scalar_far, p.scalar_exit};
+    for (const Rgb* x : {&p.rho_far, &p.rho_exit, &p.kappa_far, &p.kappa_exit}) d.insert(d.end(), x->begin(), x->end());
+    return d;
+  };
+  const std::vector<double> x = bits(a), y = bits(b);
+  return std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
 }
 
 }  // namespace
@@ -48,7 +60,7 @@ bool same(const Piece& a, const Piece& b) {
 TEST_CASE("PieceSplitter gives append_pieces' pieces bit for bit", "[splitter]") {
   std::mt19937_64 rng(2026);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  long segments = 0, pieces = 0, on_breakpoints = 0;
+  long segments = 0, pieces = 0, on_breakpoints = 0, negative_zeros = 0;
   for (int t = 0; t < 60; ++t) {
     const TransferFunctions tf = random_tf(rng, t % 2 == 0 ? 3 : 9);  // union of <= 8 and > 8 points
     const std::vector<double> bps = tf.breakpoints();
@@ -68,6 +80,9 @@ TEST_CASE("PieceSplitter gives append_pieces' pieces bit for bit", "[splitter]")
       const std::vector<Piece>& got = splitter.pieces(seg);
       REQUIRE(got.size() == expected.size());
       for (std::size_t k = 0; k < got.size(); ++k) REQUIRE(same(got[k], expected[k]));
+      for (const Piece& p : expected)
+        for (const Rgb* x : {&p.rho_far, &p.rho_exit, &p.kappa_far, &p.kappa_exit})
+          for (double v : *x) negative_zeros += v == 0.0 && std::signbit(v);
       std::vector<Piece> appended(1);  // append() keeps what is there
       splitter.append(seg, appended);
       REQUIRE(appended.size() == expected.size() + 1);
@@ -78,4 +93,27 @@ TEST_CASE("PieceSplitter gives append_pieces' pieces bit for bit", "[splitter]")
   }
   CHECK(pieces > segments);          // segments did cross breakpoints
   CHECK(on_breakpoints > 10000);     // and started or ended on them
+  CHECK(negative_zeros > 1000);      // and -0.0 came out of append_pieces
+}
+
+TEST_CASE("PieceSplitter matches append_pieces on scalar spans that overflow", "[splitter]") {
+  // Ends near +-DBL_MAX: s_exit - s_far overflows to inf when they lie on both sides of the
+  // breakpoints, and append_pieces' fractions are then 0 or NaN; same-side ends give a finite
+  // span (where the splitter skips span / span = 1). Pieces must match either way.
+  std::mt19937_64 rng(7);
+  const TransferFunctions tf = random_tf(rng, 5);
+  const std::vector<double> bps = tf.breakpoints();
+  const PieceSplitter splitter(tf);
+  long checked = 0;
+  for (const double a : {-1.7e308, -1e308, 0.3, 1.7e308})
+    for (const double b : {-1.7e308, 0.6, 1e308, 1.7e308}) {
+      const Segment seg{1.5, a, b};
+      std::vector<Piece> expected;
+      append_pieces(tf, seg, bps, expected);
+      const std::vector<Piece>& got = splitter.pieces(seg);
+      REQUIRE(got.size() == expected.size());
+      for (std::size_t k = 0; k < got.size(); ++k) REQUIRE(same(got[k], expected[k]));
+      ++checked;
+    }
+  CHECK(checked == 16);
 }

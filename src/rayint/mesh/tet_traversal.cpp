@@ -279,8 +279,11 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
       int k_min = -1;
       for (int k = 0; k < 4; ++k) {
         const std::int32_t f = cell_faces_[c][static_cast<std::size_t>(k)];
-        if (cell_signs_[c][static_cast<std::size_t>(k)] * faces_[static_cast<std::size_t>(f)].normal.dot(d) <= 0.0) continue;
-        const double tf = crossing(w, f);
+        const Face& face = faces_[static_cast<std::size_t>(f)];
+        const double nd = face.normal.dot(d);
+        if (cell_signs_[c][static_cast<std::size_t>(k)] * nd <= 0.0) continue;
+        // crossing(w, f) with its denominator (the same expression, w.d == d) computed once.
+        const double tf = face.normal.dot(mesh_.points[face.points[0]] - w.o) / nd;
         if (tf < t_min) {
           t_min = tf;
           k_min = k;

@@ -1,6 +1,9 @@
 #include "rayint/model/pieces.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace rayint {
 namespace {
@@ -62,112 +65,144 @@ std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray) {
 
 PieceSplitter::PieceSplitter(const TransferFunctions& tf) : tf_(&tf), breakpoints_(tf.breakpoints()) {
   const std::size_t m = breakpoints_.size();
-  knot_values_.resize(m);
-  interval_.resize(m);
-  for (std::size_t j = 0; j < m; ++j) {
+  padded_.fill(std::numeric_limits<double>::quiet_NaN());
+  if (m <= padded_.size()) std::copy(breakpoints_.begin(), breakpoints_.end(), padded_.begin());
+  rows_.resize(2 * m + 1);
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    Row& row = rows_[r];
     for (int f = 0; f < kFunctions; ++f) {
       const PiecewiseLinear& fn = function(f);
-      knot_values_[j][static_cast<std::size_t>(f)] = fn(breakpoints_[j]);
-      // For s in [bp[j-1], bp[j]) no breakpoint of fn lies in (bp[j-1], s], so upper_bound(s)
-      // is upper_bound(bp[j-1]).
-      if (j > 0)
-        interval_[j][static_cast<std::size_t>(f)] = static_cast<std::size_t>(
-            std::upper_bound(fn.scalar.begin(), fn.scalar.end(), breakpoints_[j - 1]) - fn.scalar.begin());
+      // A constant by default; its (unused) line operands are a harmless unit interval.
+      row.s0[f] = 0.0;
+      row.s1[f] = row.span[f] = 1.0;
+      row.v0[f] = row.v1[f] = row.dv01[f] = row.dv10[f] = 0.0;
+      row.keep[f] = -1;
+      if (r % 2 == 1) {  // at breakpoint (r - 1) / 2: the stored value, as operator() returns it
+        row.constant[f] = fn(breakpoints_[(r - 1) / 2]);
+      } else if (r == 0) {  // below every function's first point
+        row.constant[f] = fn.value.front();
+      } else if (r == 2 * m) {  // above every function's last point
+        row.constant[f] = fn.value.back();
+      } else {  // strictly between bp[j-1] and bp[j]: fn's first and last points are breakpoints,
+                // so fn is clamped over the whole open interval or over none of it
+        const std::size_t j = r / 2;
+        if (fn.scalar.front() >= breakpoints_[j]) {
+          row.constant[f] = fn.value.front();
+        } else if (fn.scalar.back() <= breakpoints_[j - 1]) {
+          row.constant[f] = fn.value.back();
+        } else {
+          // No breakpoint of fn lies in (bp[j-1], s], so upper_bound(s) is upper_bound(bp[j-1]),
+          // and scalar[k-1] <= bp[j-1] < s: interpolate's s == s0 case cannot occur.
+          const auto k = static_cast<std::size_t>(
+              std::upper_bound(fn.scalar.begin(), fn.scalar.end(), breakpoints_[j - 1]) - fn.scalar.begin());
+          row.keep[f] = 0;
+          row.constant[f] = 0.0;
+          row.s0[f] = fn.scalar[k - 1];
+          row.s1[f] = fn.scalar[k];
+          row.span[f] = fn.scalar[k] - fn.scalar[k - 1];
+          row.v0[f] = fn.value[k - 1];
+          row.v1[f] = fn.value[k];
+          row.dv01[f] = fn.value[k] - fn.value[k - 1];
+          row.dv10[f] = fn.value[k - 1] - fn.value[k];
+        }
+      }
     }
   }
 }
 
-PieceSplitter::Values PieceSplitter::at(double s) const {
-  Values v;
-  const std::size_t m = breakpoints_.size();
-  if (!(s > breakpoints_.front() && s < breakpoints_.back())) {  // outside, at an end, NaN
-    for (int f = 0; f < kFunctions; ++f) v[static_cast<std::size_t>(f)] = function(f)(s);
-    return v;
-  }
-  std::size_t j = 1;  // bp[j-1] <= s < bp[j], 1 <= j < m
-  if (m <= 8) {
-    while (breakpoints_[j] <= s) ++j;
-  } else {
-    j = static_cast<std::size_t>(std::upper_bound(breakpoints_.begin(), breakpoints_.end(), s) - breakpoints_.begin());
-  }
-  if (s == breakpoints_[j - 1]) return knot_values_[j - 1];
-  // operator()'s clamps, then PiecewiseLinear::interpolate's arithmetic on the interval it would
-  // find (s0 < s there, so its s == s0 case cannot occur), for the six functions at once and
-  // without a jump per function: which end is nearer is unpredictable. A clamped function gets
-  // its constant (the line computed for it, on this interval of breakpoints, is discarded).
-  double s0[kFunctions], s1[kFunctions], v0[kFunctions], v1[kFunctions], clamp[kFunctions];
-  bool clamped[kFunctions];
-  for (int f = 0; f < kFunctions; ++f) {
-    const PiecewiseLinear& fn = function(f);
-    clamped[f] = true;
-    s0[f] = breakpoints_[j - 1];
-    s1[f] = breakpoints_[j];
-    v0[f] = v1[f] = 0.0;
-    if (s <= fn.scalar.front()) {
-      clamp[f] = fn.value.front();
-    } else if (s >= fn.scalar.back()) {
-      clamp[f] = fn.value.back();
-    } else {
-      const std::size_t k = interval_[j][static_cast<std::size_t>(f)];
-      clamped[f] = false;
-      clamp[f] = 0.0;
-      s0[f] = fn.scalar[k - 1];
-      s1[f] = fn.scalar[k];
-      v0[f] = fn.value[k - 1];
-      v1[f] = fn.value[k];
-    }
-  }
-  for (int f = 0; f < kFunctions; ++f) {
-    const double d0 = s - s0[f], d1 = s1[f] - s, span = s1[f] - s0[f];
-    const bool near0 = d0 <= d1;
-    const double d = near0 ? d0 : d1, base = near0 ? v0[f] : v1[f], other = near0 ? v1[f] : v0[f];
-    const double line = base + (d / span) * (other - base);
-    v[static_cast<std::size_t>(f)] = clamped[f] ? clamp[f] : line;
-  }
+// Two lanes of doubles (SSE2, the x86-64 baseline), in GCC's vector extension: + - * / are
+// the IEEE operations of each lane, as in the scalar code, and `mask ? a : b` selects bits.
+namespace {
+using V2 = double __attribute__((vector_size(16)));
+using M2 = std::int64_t __attribute__((vector_size(16)));
+inline V2 load(const double* p) {
+  V2 v;
+  std::memcpy(&v, p, sizeof v);
   return v;
+}
+inline M2 load(const std::int64_t* p) {
+  M2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+}  // namespace
+
+[[gnu::always_inline]] inline std::size_t PieceSplitter::region(double s, std::size_t& lt, std::size_t& le) const {
+  if (breakpoints_.size() <= padded_.size()) {  // count without a jump (NaN padding never counts)
+    const V2 sv = {s, s};
+    M2 a = {0, 0}, b = {0, 0};
+    for (std::size_t i = 0; i < padded_.size(); i += 2) {
+      const V2 p = load(padded_.data() + i);
+      a += p < sv;  // -1 where true
+      b += p <= sv;
+    }
+    lt = static_cast<std::size_t>(-(a[0] + a[1]));
+    le = static_cast<std::size_t>(-(b[0] + b[1]));
+  } else {
+    le = static_cast<std::size_t>(std::upper_bound(breakpoints_.begin(), breakpoints_.end(), s) - breakpoints_.begin());
+    lt = le > 0 && breakpoints_[le - 1] == s ? le - 1 : le;
+  }
+  return lt + le;
+}
+
+[[gnu::always_inline]] inline void PieceSplitter::eval(const Row& row, double s, double* v) const {
+  // PiecewiseLinear::interpolate's arithmetic, for the six functions at once and without a
+  // jump (which end is nearer is unpredictable); a constant is selected over the line.
+  static_assert(kFunctions % 2 == 0);
+  const V2 sv = {s, s};
+  for (int f = 0; f < kFunctions; f += 2) {
+    const V2 d0 = sv - load(row.s0 + f), d1 = load(row.s1 + f) - sv;
+    const M2 near0 = d0 <= d1;
+    const V2 d = near0 ? d0 : d1, base = near0 ? load(row.v0 + f) : load(row.v1 + f);
+    const V2 delta = near0 ? load(row.dv01 + f) : load(row.dv10 + f);
+    const V2 line = base + (d / load(row.span + f)) * delta;
+    const V2 value = load(row.keep + f) ? load(row.constant + f) : line;
+    std::memcpy(v + f, &value, sizeof value);
+  }
 }
 
 void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
-  // The steps of append_pieces (above), with the ends evaluated through at()/at_breakpoint().
+  // The steps of append_pieces (above), with the ends evaluated through the rows.
   if (!(seg.length > 0.0)) return;
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
-  const auto put = [&out](double length, double s_far, double s_exit, const Values& far, const Values& exit) {
-    Piece& p = out.emplace_back();
-    p.length = length;
-    p.scalar_far = s_far;
-    p.scalar_exit = s_exit;
-    for (std::size_t c = 0; c < kChannels; ++c) {
-      p.rho_far[c] = far[c];
-      p.rho_exit[c] = exit[c];
-      p.kappa_far[c] = far[c + kChannels];
-      p.kappa_exit[c] = exit[c + kChannels];
-    }
-  };
-  if (s0 == s1) {
-    const Values v = at(s0);
-    put(seg.length, s0, s1, v, v);
+  if (std::isnan(s0) || std::isnan(s1)) {  // no region: the plain splitting itself
+    append_pieces(*tf_, seg, breakpoints_, out);
     return;
   }
-  const double lo = std::min(s0, s1), hi = std::max(s0, s1);
-  const auto first = static_cast<std::size_t>(
-      std::upper_bound(breakpoints_.begin(), breakpoints_.end(), lo) - breakpoints_.begin());
-  const auto last = static_cast<std::size_t>(
-      std::lower_bound(breakpoints_.begin(), breakpoints_.end(), hi) - breakpoints_.begin());
+  static_assert(kFunctions == 6 && kChannels == 3);  // Piece's constructor takes rho r, g, b, kappa r, g, b
+  const auto put = [&out](double length, double s_far, double s_exit, const double* far, const double* exit) {
+    out.emplace_back(length, s_far, s_exit, far, exit);
+  };
+  std::size_t lt0 = 0, le0 = 0, lt1 = 0, le1 = 0;
+  const Row& row0 = rows_[region(s0, lt0, le0)];
+  alignas(16) double v_far[kFunctions];
+  eval(row0, s0, v_far);
+  if (s0 == s1) {
+    put(seg.length, s0, s1, v_far, v_far);
+    return;
+  }
+  const Row& row1 = rows_[region(s1, lt1, le1)];
+  alignas(16) double v_exit[kFunctions];
+  eval(row1, s1, v_exit);
+  // Breakpoints strictly inside (min, max): upper_bound(lo) .. lower_bound(hi).
+  const std::size_t first = s0 < s1 ? le0 : le1, last = s0 < s1 ? lt1 : lt0;
   const double span = s1 - s0;
   double s_prev = s0;
-  Values v_prev = at(s0);
+  const double* v_prev = v_far;
   const std::size_t inner = last > first ? last - first : 0;
   for (std::size_t k = 0; k < inner; ++k) {  // interior ends, in the direction of travel
     const std::size_t j = s0 < s1 ? first + k : last - 1 - k;
     const double s = breakpoints_[j];
-    const Values v = at_breakpoint(j);
+    const double* v = rows_[2 * j + 1].constant;
     const double len = seg.length * ((s - s_prev) / span);
     if (len > 0.0) put(len, s_prev, s, v_prev, v);
     s_prev = s;
     v_prev = v;
   }
-  const double len = seg.length * ((s1 - s_prev) / span);
-  if (len > 0.0) put(len, s_prev, s1, v_prev, at(s1));
+  // Without interior ends the fraction is span / span: exactly 1 when span is finite (it is not
+  // 0, s0 != s1), so that division is skipped; an overflowed span keeps inf / inf = NaN.
+  const double len = inner == 0 && std::isfinite(span) ? seg.length : seg.length * ((s1 - s_prev) / span);
+  if (len > 0.0) put(len, s_prev, s1, v_prev, v_exit);
 }
 
 const std::vector<Piece>& PieceSplitter::pieces(const Segment& segment) const {

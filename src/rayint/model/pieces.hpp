@@ -3,6 +3,7 @@
 // Fig. 2): on each resulting piece rho and kappa are linear in t, so kappa*rho is quadratic.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "rayint/model/ray.hpp"
@@ -24,6 +25,14 @@ struct Piece {
   double scalar_exit = 0.0;
   Rgb rho_far{}, rho_exit{}, kappa_far{}, kappa_exit{};
 
+  Piece() = default;
+  // From the six functions' values at each end, in the order rho r, g, b, kappa r, g, b (what
+  // PieceSplitter builds in place: a Piece{} copied in would be zeroed first).
+  Piece(double length_, double s_far, double s_exit, const double* far, const double* exit)
+      : length(length_), scalar_far(s_far), scalar_exit(s_exit),
+        rho_far{far[0], far[1], far[2]}, rho_exit{exit[0], exit[1], exit[2]},
+        kappa_far{far[3], far[4], far[5]}, kappa_exit{exit[3], exit[4], exit[5]} {}
+
   ChannelPiece channel(int c) const {
     return {length, rho_far[c], rho_exit[c], kappa_far[c], kappa_exit[c]};
   }
@@ -43,10 +52,13 @@ std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray);
 // and the pieces of one segment at a time. pieces() returns a per-thread buffer that stays valid
 // until the next pieces() call on the same thread (no allocation per segment in timing loops).
 // The pieces are those of append_pieces, bit for bit (tests/test_piece_splitter.cpp, [splitter]), found
-// faster: the six functions' values at every breakpoint and, per interval between breakpoints,
-// each function's own interval are tabulated once, so an end costs one search among the
-// breakpoints instead of six, an interior end (a breakpoint) none, and the end shared by two
-// pieces is evaluated once; no allocation per segment.
+// faster: the scalar line is cut by the m breakpoints into 2m + 1 regions (below the first, at
+// each breakpoint, between two, above the last), and each region has a row holding, for each of
+// the six functions, either its constant there (at a breakpoint, or where operator() clamps) or
+// the ends of its own interval (PiecewiseLinear::interpolate's operands, differences included).
+// An end then costs two counts among the breakpoints (which region it is in, and how many
+// breakpoints lie strictly inside the segment) and one branch-free pass over the six functions
+// with interpolate's arithmetic, which the compiler vectorises; no allocation per segment.
 class PieceSplitter {
  public:
   explicit PieceSplitter(const TransferFunctions& tf);
@@ -57,18 +69,29 @@ class PieceSplitter {
 
  private:
   static constexpr int kFunctions = 2 * kChannels;  // rho r, g, b; kappa r, g, b
-  using Values = std::array<double, kFunctions>;
   const PiecewiseLinear& function(int f) const {
     return f < kChannels ? tf_->density[static_cast<std::size_t>(f)]
                          : tf_->color[static_cast<std::size_t>(f - kChannels)];
   }
-  Values at(double s) const;           // the six functions at s, as operator() gives them
-  Values at_breakpoint(std::size_t j) const { return knot_values_[j]; }
+  // One region's operands, function-major in f = 0..5: the value is
+  //   keep[f] (all bits set) ? constant[f] : PiecewiseLinear::interpolate's line on [s0[f], s1[f]].
+  // The constant is selected, never computed (v + 0 * x would turn a stored -0.0 into +0.0).
+  struct Row {
+    alignas(16) double s0[kFunctions], s1[kFunctions], span[kFunctions];
+    alignas(16) double v0[kFunctions], v1[kFunctions], dv01[kFunctions], dv10[kFunctions];
+    alignas(16) double constant[kFunctions];
+    alignas(16) std::int64_t keep[kFunctions];
+  };
+  // The region of s, 0..2m: (number of breakpoints < s) + (number <= s); `lt` and `le` get the
+  // two counts (the append_pieces bounds lower_bound and upper_bound). s is not NaN.
+  std::size_t region(double s, std::size_t& lt, std::size_t& le) const;
+  // The six functions at s, in the row of its region, as operator() gives them.
+  void eval(const Row& row, double s, double* v) const;
 
   const TransferFunctions* tf_;
   std::vector<double> breakpoints_;
-  std::vector<Values> knot_values_;                                // at breakpoints_[j]
-  std::vector<std::array<std::size_t, kFunctions>> interval_;      // for s in [bp[j-1], bp[j])
+  std::array<double, 8> padded_{};  // breakpoints_ then NaN (never counted), when m <= 8
+  std::vector<Row> rows_;           // 2m + 1
 };
 
 }  // namespace rayint

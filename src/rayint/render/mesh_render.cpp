@@ -2,11 +2,13 @@
 #include "rayint/render/mesh_render.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "rayint/core/parallel.hpp"
 #include "rayint/core/statistics.hpp"
@@ -20,14 +22,32 @@ using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-// Pieces of a segment: one more than the breakpoints strictly inside its scalar range.
-long count_pieces(const std::vector<double>& bps, const Segment& s) {
-  if (!(s.length > 0.0)) return 0;
-  const double lo = std::min(s.scalar_far, s.scalar_exit), hi = std::max(s.scalar_far, s.scalar_exit);
-  const auto a = std::upper_bound(bps.begin(), bps.end(), lo);
-  const auto b = std::lower_bound(bps.begin(), bps.end(), hi);
-  return 1 + (b > a ? static_cast<long>(b - a) : 0L);
-}
+// Pieces of a segment: one more than the breakpoints strictly inside its scalar range. With at
+// most 8 breakpoints they are counted without a jump (the NaN padding never counts), else found
+// by two binary searches; the same count either way (a NaN end counts one piece in both).
+class PieceCounter {
+ public:
+  explicit PieceCounter(std::vector<double> bps) : bps_(std::move(bps)) {
+    padded_.fill(std::numeric_limits<double>::quiet_NaN());
+    if (bps_.size() <= padded_.size()) std::copy(bps_.begin(), bps_.end(), padded_.begin());
+  }
+  long operator()(const Segment& s) const {
+    if (!(s.length > 0.0)) return 0;
+    const double lo = std::min(s.scalar_far, s.scalar_exit), hi = std::max(s.scalar_far, s.scalar_exit);
+    if (bps_.size() <= padded_.size()) {
+      long inside = 0;
+      for (double b : padded_) inside += (b > lo) & (b < hi);
+      return 1 + inside;
+    }
+    const auto a = std::upper_bound(bps_.begin(), bps_.end(), lo);
+    const auto b = std::lower_bound(bps_.begin(), bps_.end(), hi);
+    return 1 + (b > a ? static_cast<long>(b - a) : 0L);
+  }
+
+ private:
+  std::vector<double> bps_;
+  std::array<double, 8> padded_{};
+};
 
 // The error summary of `rel`, the errors of the pixels `pixel` (all pixels when empty).
 void summarize_errors(MeshRender& out, const std::vector<double>& rel, std::vector<std::size_t> pixel = {}) {
@@ -71,7 +91,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   }
   std::unique_ptr<GradientField> gradients;
   if (mc.shading.enabled) gradients = std::make_unique<GradientField>(mesh, mc.shading.gradient);
-  const std::vector<double> bps = mc.transfer.breakpoints();
+  const PieceCounter count_pieces(mc.transfer.breakpoints());
 
   const IndexRange rows = shard_range(static_cast<std::size_t>(height), settings.shard);
   const int band = static_cast<int>(rows.size());
@@ -98,7 +118,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       cost.integration_seconds += seconds(t2 - t1);
       ++cost.rays;
       cost.segments += static_cast<long>(ray.segments.size());
-      for (const Segment& s : ray.segments) cost.pieces += count_pieces(bps, s);
+      for (const Segment& s : ray.segments) cost.pieces += count_pieces(s);
       out.image.at(x, y) = r.intensity;
       if (compare) {
         const RayResult c = mc.shading.enabled
