@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -94,6 +95,24 @@ TEST_CASE("PieceSplitter gives append_pieces' pieces bit for bit", "[splitter]")
   CHECK(pieces > segments);          // segments did cross breakpoints
   CHECK(on_breakpoints > 10000);     // and started or ended on them
   CHECK(negative_zeros > 1000);      // and -0.0 came out of append_pieces
+}
+
+TEST_CASE("a NaN scalar gives NaN values, and PieceSplitter the pieces append_pieces gives", "[splitter]") {
+  // PiecewiseLinear::operator()(NaN) used to index one past its arrays (found 2026-12-03).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::mt19937_64 rng(11);
+  const TransferFunctions tf = random_tf(rng, 5);
+  for (const auto& f : tf.density) CHECK(std::isnan(f(nan)));
+  for (const auto& f : tf.color) CHECK(std::isnan(f(nan)));
+  const std::vector<double> bps = tf.breakpoints();
+  const PieceSplitter splitter(tf);
+  for (const Segment seg : {Segment{1.0, nan, 0.5}, Segment{1.0, 0.5, nan}, Segment{1.0, nan, nan}}) {
+    std::vector<Piece> expected;
+    append_pieces(tf, seg, bps, expected);
+    const std::vector<Piece>& got = splitter.pieces(seg);
+    REQUIRE(got.size() == expected.size());
+    for (std::size_t k = 0; k < got.size(); ++k) CHECK(same(got[k], expected[k]));
+  }
 }
 
 TEST_CASE("PieceSplitter matches append_pieces on scalar spans that overflow", "[splitter]") {

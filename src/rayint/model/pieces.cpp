@@ -28,7 +28,9 @@ void append_pieces(const TransferFunctions& tf, const Segment& seg,
                    const std::vector<double>& breakpoints, std::vector<Piece>& out) {
   if (!(seg.length > 0.0)) return;
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
-  if (s0 == s1) {  // w = 0: the scalar, and so every transfer function, is constant
+  if (s0 == s1 || std::isnan(s0) || std::isnan(s1)) {
+    // w = 0: the scalar, and so every transfer function, is constant. A NaN end: one piece whose
+    // values at that end are NaN (the integral comes out non-finite, and is reported so).
     out.push_back(make_piece(tf, seg.length, s0, s1));
     return;
   }

@@ -1,10 +1,14 @@
 #include "rayint/model/transfer_function.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rayint {
 
 double PiecewiseLinear::operator()(double s) const {
+  // A NaN scalar gives NaN (it fails both end tests, and upper_bound would return the end, an
+  // index one past the arrays).
+  if (std::isnan(s)) return s;
   if (s <= scalar.front()) return value.front();
   if (s >= scalar.back()) return value.back();
   const auto it = std::upper_bound(scalar.begin(), scalar.end(), s);
