@@ -6,6 +6,8 @@
 //      piece-channels per second, summed over threads)
 #include <benchmark/benchmark.h>
 
+#include <hwy/targets.h>
+
 #include <algorithm>
 #include <random>
 #include <vector>
@@ -80,6 +82,19 @@ void BM_exact_batch_mixed_calls(benchmark::State& state) {
 void BM_exact_batch_mixed(benchmark::State& state) {
   static const Columns c = columns(-1);
   run_batch(state, c);
+}
+
+// The mixed batch on the AVX2 target, as on a CPU without AVX-512 (most desktops): one thread;
+// the dispatch is restored afterwards.
+void BM_exact_batch_mixed_avx2(benchmark::State& state) {
+  static const Columns c = columns(-1);
+  if ((hwy::SupportedTargets() & HWY_AVX2) == 0) {
+    state.SkipWithError("the CPU has no AVX2");
+    return;
+  }
+  hwy::SetSupportedTargetsForTest(HWY_AVX2);
+  run_batch(state, c);
+  hwy::SetSupportedTargetsForTest(0);
 }
 
 void BM_exact_batch_regime(benchmark::State& state) {
@@ -185,6 +200,7 @@ void BM_dawson_cerf(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_exact_batch_mixed)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_exact_batch_mixed_avx2)->UseRealTime();
 BENCHMARK(BM_exact_batch_mixed_calls)->Arg(48)->Arg(150)->Arg(600)->Arg(4096);
 BENCHMARK(BM_exact_scalar_loop_mixed)->Threads(1)->Threads(2)->UseRealTime();
 BENCHMARK(BM_exact_batch_regime)->DenseRange(0, static_cast<int>(rayint::all_regimes().size()) - 1);

@@ -64,6 +64,25 @@ struct Reciprocals {                // 1/(n+1), as exact.cpp
   }
 };
 inline constexpr Reciprocals kRecip;
+// For targets without AVX-512's compress/expand instructions (vectors of at most 4 doubles):
+// for every mask of L lanes, the indices of its set lanes in order (compress), and each set
+// lane's rank among them (expand); used with a lane permutation. (Highway 1.0.3's own emulated
+// CompressStore copied a 2 KB table per call and made the AVX2 batch 5x slower than AVX-512's.)
+template <std::size_t L>
+struct LanePermutations {
+  std::int64_t compress[1u << L][L];
+  std::int64_t expand[1u << L][L];
+  constexpr LanePermutations() : compress(), expand() {
+    for (unsigned m = 0; m < (1u << L); ++m) {
+      std::int64_t k = 0;
+      for (std::size_t j = 0; j < L; ++j)
+        if ((m >> j) & 1u) {
+          compress[m][k] = static_cast<std::int64_t>(j);
+          expand[m][j] = k++;
+        }
+    }
+  }
+};
 // Where classification appends each branch's pieces: per group the columns a and b and how many
 // each holds so far; and, per vector of pieces, each group's lanes as mask
 // bits (kGroups + 1 slots of kMaskBytes: the last slot marks transparent pieces, which need no
@@ -137,8 +156,18 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
       hn::StoreMaskBits(d, mask[g], bits + static_cast<std::size_t>(g) * kMaskBytes);
       if (hn::AllFalse(d, mask[g])) continue;
       const std::size_t c = count[g];
-      hn::CompressStore(a, mask[g], d, A[g] + c);
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+      hn::CompressStore(a, mask[g], d, A[g] + c);  // native vcompresspd
       count[g] = c + hn::CompressStore(b, mask[g], d, Bc[g] + c);
+#else
+      // a lane permutation, then a whole-vector store (the columns have room past the count)
+      static constexpr LanePermutations<HWY_LANES(double)> kPermutations;
+      const unsigned pattern = bits[static_cast<std::size_t>(g) * kMaskBytes];
+      const auto order = hn::SetTableIndices(d, kPermutations.compress[pattern]);
+      hn::StoreU(hn::TableLookupLanes(a, order), d, A[g] + c);
+      hn::StoreU(hn::TableLookupLanes(b, order), d, Bc[g] + c);
+      count[g] = c + static_cast<std::size_t>(__builtin_popcount(pattern));
+#endif
     }
     hn::StoreMaskBits(d, hn::AndNot(positive, valid), bits + kGroups * kMaskBytes);
   }
@@ -332,20 +361,20 @@ void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size
       next_w_exit[g] += taken;
       next_w_far[g] += taken;
 #else
-      HWY_ALIGN double lanes[3][HWY_MAX_BYTES / sizeof(double)];
-      hn::Store(tr, d, lanes[0]);
-      hn::Store(w_exit, d, lanes[1]);
-      hn::Store(w_far, d, lanes[2]);
-      for (std::size_t j = 0; j < L; ++j) {
-        if ((group_bits[j / 8] >> (j % 8)) & 1) {
-          lanes[0][j] = *next_tr[g]++;
-          lanes[1][j] = *next_w_exit[g]++;
-          lanes[2][j] = *next_w_far[g]++;
-        }
-      }
-      tr = hn::Load(d, lanes[0]);
-      w_exit = hn::Load(d, lanes[1]);
-      w_far = hn::Load(d, lanes[2]);
+      // the group's next L results (the columns have room past the count), each set lane taking
+      // the one of its rank
+      static constexpr LanePermutations<HWY_LANES(double)> kPermutations;
+      const unsigned pattern = group_bits[0];
+      if (pattern == 0) continue;
+      const auto rank = hn::SetTableIndices(d, kPermutations.expand[pattern]);
+      const auto in_group = hn::LoadMaskBits(d, group_bits);
+      tr = hn::IfThenElse(in_group, hn::TableLookupLanes(hn::LoadU(d, next_tr[g]), rank), tr);
+      w_exit = hn::IfThenElse(in_group, hn::TableLookupLanes(hn::LoadU(d, next_w_exit[g]), rank), w_exit);
+      w_far = hn::IfThenElse(in_group, hn::TableLookupLanes(hn::LoadU(d, next_w_far[g]), rank), w_far);
+      const int taken = __builtin_popcount(pattern);
+      next_tr[g] += taken;
+      next_w_exit[g] += taken;
+      next_w_far[g] += taken;
 #endif
     }
     const auto transparent = hn::LoadMaskBits(d, bits + kGroups * kMaskBytes);
