@@ -171,7 +171,7 @@ RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   // Every piece of the ray (far -> near), then one batch over all its piece-channels, results
   // piece-major (index 3 k + c).
   struct Columns {
-    std::vector<Piece> pieces;
+    PieceChannelColumns pieces;  // written by the splitter in the batch's layout
     std::vector<double> transmittance, emission;
     std::vector<ExactBranch> branch;
     std::vector<std::int32_t> terms;
@@ -180,7 +180,7 @@ RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   thread_local Columns col;
   col.pieces.clear();
   for (const auto& seg : ray.segments) splitter_.append(seg, col.pieces);
-  const std::size_t n = kChannels * col.pieces.size();
+  const std::size_t n = col.pieces.size();
   if (col.transmittance.size() < n) {
     col.transmittance.resize(n);
     col.emission.resize(n);
@@ -194,7 +194,10 @@ RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
     out.terms = col.terms.data();
     out.converged = col.converged.data();
   }
-  exact_batch(col.pieces.data(), col.pieces.size(), out);
+  const PieceChannelColumns& p = col.pieces;
+  exact_batch(PieceColumns{p.length.data(), p.rho_far.data(), p.rho_exit.data(), p.kappa_far.data(),
+                           p.kappa_exit.data(), n},
+              out);
   RayResult r = RayResult::of_background(ray.background);
   for (std::size_t k = 0; k < n; k += kChannels) {
     for (int c = 0; c < kChannels; ++c) {

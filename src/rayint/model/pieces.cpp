@@ -163,18 +163,10 @@ inline M2 load(const std::int64_t* p) {
   }
 }
 
-void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
+template <class Put>
+void PieceSplitter::split(const Segment& seg, Put&& put) const {
   // The steps of append_pieces (above), with the ends evaluated through the rows.
-  if (!(seg.length > 0.0)) return;
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
-  if (std::isnan(s0) || std::isnan(s1)) {  // no region: the plain splitting itself
-    append_pieces(*tf_, seg, breakpoints_, out);
-    return;
-  }
-  static_assert(kFunctions == 6 && kChannels == 3);  // Piece's constructor takes rho r, g, b, kappa r, g, b
-  const auto put = [&out](double length, double s_far, double s_exit, const double* far, const double* exit) {
-    out.emplace_back(length, s_far, s_exit, far, exit);
-  };
   std::size_t lt0 = 0, le0 = 0, lt1 = 0, le1 = 0;
   const Row& row0 = rows_[region(s0, lt0, le0)];
   alignas(16) double v_far[kFunctions];
@@ -205,6 +197,51 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
   // 0, s0 != s1), so that division is skipped; an overflowed span keeps inf / inf = NaN.
   const double len = inner == 0 && std::isfinite(span) ? seg.length : seg.length * ((s1 - s_prev) / span);
   if (len > 0.0) put(len, s_prev, s1, v_prev, v_exit);
+}
+
+void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
+  if (!(seg.length > 0.0)) return;
+  if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit)) {  // no region: the plain splitting itself
+    append_pieces(*tf_, seg, breakpoints_, out);
+    return;
+  }
+  static_assert(kFunctions == 6 && kChannels == 3);  // Piece's constructor takes rho r, g, b, kappa r, g, b
+  split(seg, [&out](double length, double s_far, double s_exit, const double* far, const double* exit) {
+    out.emplace_back(length, s_far, s_exit, far, exit);
+  });
+}
+
+void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const {
+  if (!(seg.length > 0.0)) return;
+  if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit)) {
+    std::vector<Piece> pieces;
+    append_pieces(*tf_, seg, breakpoints_, pieces);
+    for (const Piece& p : pieces) {
+      const double far[kFunctions] = {p.rho_far[0],   p.rho_far[1],   p.rho_far[2],
+                                      p.kappa_far[0], p.kappa_far[1], p.kappa_far[2]};
+      const double exit[kFunctions] = {p.rho_exit[0],   p.rho_exit[1],   p.rho_exit[2],
+                                       p.kappa_exit[0], p.kappa_exit[1], p.kappa_exit[2]};
+      out.push(p.length, far, exit);
+    }
+    return;
+  }
+  split(seg, [&out](double length, double, double, const double* far, const double* exit) {
+    out.push(length, far, exit);
+  });
+}
+
+void PieceChannelColumns::clear() {
+  for (auto* col : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->clear();
+}
+
+void PieceChannelColumns::push(double len, const double* far, const double* exit) {
+  for (int c = 0; c < kChannels; ++c) {
+    length.push_back(len);
+    rho_far.push_back(far[c]);
+    rho_exit.push_back(exit[c]);
+    kappa_far.push_back(far[c + kChannels]);
+    kappa_exit.push_back(exit[c + kChannels]);
+  }
 }
 
 const std::vector<Piece>& PieceSplitter::pieces(const Segment& segment) const {

@@ -48,6 +48,16 @@ void append_pieces(const TransferFunctions& tf, const Segment& segment,
 
 std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray);
 
+// Pieces as channel columns, piece-major: entry kChannels * k + c holds channel c of piece k
+// (its length, and rho and kappa at its far and exit ends): the layout a batch of single-channel
+// integrals reads (integrators/exact_batch.hpp's PieceColumns), written without Piece structs.
+struct PieceChannelColumns {
+  std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
+  void clear();
+  std::size_t size() const { return length.size(); }
+  void push(double len, const double* far, const double* exit);  // far/exit: rho r, g, b, kappa r, g, b
+};
+
 // What every piece-wise integrator needs: the transfer functions' breakpoints, collected once,
 // and the pieces of one segment at a time. pieces() returns a per-thread buffer that stays valid
 // until the next pieces() call on the same thread (no allocation per segment in timing loops).
@@ -65,6 +75,8 @@ class PieceSplitter {
   const std::vector<Piece>& pieces(const Segment& segment) const;
   // Appends the pieces of `segment` to `out` (the same pieces as pieces()).
   void append(const Segment& segment, std::vector<Piece>& out) const;
+  // The same pieces as channel columns.
+  void append(const Segment& segment, PieceChannelColumns& out) const;
   const TransferFunctions& transfer() const { return *tf_; }
 
  private:
@@ -87,6 +99,10 @@ class PieceSplitter {
   std::size_t region(double s, std::size_t& lt, std::size_t& le) const;
   // The six functions at s, in the row of its region, as operator() gives them.
   void eval(const Row& row, double s, double* v) const;
+  // The pieces of a segment with finite scalar ends, each handed to
+  // put(length, s_far, s_exit, far values, exit values); both append()s are this.
+  template <class Put>
+  void split(const Segment& segment, Put&& put) const;
 
   const TransferFunctions* tf_;
   std::vector<double> breakpoints_;
