@@ -129,53 +129,27 @@ std::vector<double> special_args() {
   return x;
 }
 
-void BM_erfcx_simd(benchmark::State& state) {
-  const std::vector<double> x = special_args();
-  std::vector<double> y(x.size());
-  for (auto _ : state) {
-    rayint::special::erfcx_array(x.data(), y.data(), x.size());
-    benchmark::DoNotOptimize(y.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
-  state.SetLabel(rayint::special::simd_target_name());
-}
-
-void BM_dawson_simd(benchmark::State& state) {
-  const std::vector<double> x = special_args();
-  std::vector<double> y(x.size());
-  for (auto _ : state) {
-    rayint::special::dawson_array(x.data(), y.data(), x.size());
-    benchmark::DoNotOptimize(y.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
-  state.SetLabel(rayint::special::simd_target_name());
-}
-
-// Highway's Exp and Expm1 (contrib/math) on the same kind of arguments, negated: every batch
-// piece takes one Exp (its transmittance) and one or two Expm1.
-void BM_exp_simd(benchmark::State& state) {
+// One vector function of special/erfcx_simd.hpp over the arguments (negated for Exp and Expm1,
+// whose arguments in the batch are -T and -tau).
+void run_array(benchmark::State& state, void (*f)(const double*, double*, std::size_t), bool negate) {
   std::vector<double> x = special_args();
-  for (auto& v : x) v = -v;
+  if (negate)
+    for (auto& v : x) v = -v;
   std::vector<double> y(x.size());
   for (auto _ : state) {
-    rayint::special::exp_array(x.data(), y.data(), x.size());
+    f(x.data(), y.data(), x.size());
     benchmark::DoNotOptimize(y.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
   state.SetLabel(rayint::special::simd_target_name());
 }
 
-void BM_expm1_simd(benchmark::State& state) {
-  std::vector<double> x = special_args();
-  for (auto& v : x) v = -v;
-  std::vector<double> y(x.size());
-  for (auto _ : state) {
-    rayint::special::expm1_array(x.data(), y.data(), x.size());
-    benchmark::DoNotOptimize(y.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
-  state.SetLabel(rayint::special::simd_target_name());
-}
+void BM_erfcx_simd(benchmark::State& state) { run_array(state, rayint::special::erfcx_array, false); }
+void BM_dawson_simd(benchmark::State& state) { run_array(state, rayint::special::dawson_array, false); }
+// Highway's Exp and Expm1 (contrib/math): every batch piece takes one Exp (its transmittance)
+// and one or two Expm1.
+void BM_exp_simd(benchmark::State& state) { run_array(state, rayint::special::exp_array, true); }
+void BM_expm1_simd(benchmark::State& state) { run_array(state, rayint::special::expm1_array, true); }
 
 void BM_erfcx_cerf(benchmark::State& state) {
   const std::vector<double> x = special_args();
