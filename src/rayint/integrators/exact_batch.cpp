@@ -4,7 +4,7 @@
 // The formulas, regions and thresholds are exactly those of exact.cpp (kThinDepth, kQ2Relative,
 // the same series and closed forms); what differs is how they are evaluated, in chunks of 4096
 // piece-channels so that every column stays in cache:
-//   0. whole pieces are transposed into channel columns (the columns form is read in place);
+//   0. the columns are read in place (the last partial vector through a padded copy);
 //   1. classification, lane-parallel (ClassifyColumns): a = rho_exit L, b = rho_far L, T, B and
 //      the branch tests of exact_piece as masks; each lane is appended to its branch's columns
 //      with a compressing store, and the masks are kept as bits per vector. (A scalar pass
@@ -413,8 +413,8 @@ HWY_EXPORT(DoubleLanes);
 namespace {
 using namespace exact_batch_detail;
 
-// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (5 input columns,
-// 5 groups x 6 columns) stays ~1.2 MB, in cache, however large the batch.
+// Pieces are handled in chunks of at most kChunk piece-channels, so the scratch (5 groups x 6
+// columns) stays ~1.2 MB, in cache, however large the batch.
 constexpr std::size_t kChunk = 4096;
 
 // The lane count of the target dispatched now (not cached: tests switch targets), and a bound on
@@ -422,7 +422,7 @@ constexpr std::size_t kChunk = 4096;
 std::size_t lanes() { return HWY_DYNAMIC_DISPATCH(DoubleLanes)(); }
 constexpr std::size_t kMaxLanes = 32;
 
-// One thread's scratch: the chunk's input columns (whole pieces are transposed into them), each
+// One thread's scratch: the padded copy of a chunk's last partial vector of inputs, each
 // group's columns and results, and the mask bits of every vector of the chunk.
 struct Scratch {
   std::vector<double> len, rho_far, rho_exit, kappa_far, kappa_exit;
@@ -433,7 +433,7 @@ struct Scratch {
   Scratch() {
     // room for a whole chunk in one group, plus a vector tail and the padding to two vectors
     const std::size_t room = kChunk + 3 * kMaxLanes;
-    for (auto* col : {&len, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(room);
+    for (auto* col : {&len, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(kMaxLanes);
     for (int g = 0; g < kGroups; ++g) {
       for (auto* col : {&a[g], &b[g], &tr[g], &w_exit[g], &w_far[g], &terms[g]}) col->resize(room);
       sink.a[g] = a[g].data();
@@ -553,33 +553,6 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
   }
 }
 
-void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out) {
-  thread_local Scratch s;
-  const std::size_t L = lanes();
-  constexpr std::size_t kChunkPieces = kChunk / kChannels;
-  for (std::size_t begin = 0; begin < n; begin += kChunkPieces) {
-    const std::size_t end = std::min(n, begin + kChunkPieces);
-    // whole pieces -> channel columns, piece-major (index kChannels * piece + channel)
-    std::size_t k = 0;
-    for (std::size_t p = begin; p < end; ++p) {
-      const Piece& piece = pieces[p];
-      for (std::size_t c = 0; c < kChannels; ++c, ++k) {
-        s.len[k] = piece.length;
-        s.rho_far[k] = piece.rho_far[c];
-        s.rho_exit[k] = piece.rho_exit[c];
-        s.kappa_far[k] = piece.kappa_far[c];
-        s.kappa_exit[k] = piece.kappa_exit[c];
-      }
-    }
-    const std::size_t padded = (k + L - 1) / L * L;
-    for (std::size_t j = k; j < padded; ++j)
-      s.len[j] = s.rho_far[j] = s.rho_exit[j] = s.kappa_far[j] = s.kappa_exit[j] = 0.0;
-    classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), padded, k, 0);
-    const std::size_t tail = k / L * L;  // the partial last vector, padded with zeros above
-    evaluate_groups(s, padded, k, s.kappa_exit.data(), s.kappa_far.data(), s.kappa_exit.data() + tail,
-                    s.kappa_far.data() + tail, kChannels * begin, out);
-  }
-}
 
 }  // namespace rayint
 #endif  // HWY_ONCE

@@ -34,10 +34,6 @@ struct OpticsColumns {
 // Thread safe (per-thread scratch); no allocation once a thread's scratch has grown.
 void exact_batch(const PieceColumns& in, const OpticsColumns& out);
 
-// The same on n whole pieces (all channels): out has kChannels * n entries, piece-major, index
-// kChannels * k + c for channel c of pieces[k]. Results are those of the columns form, bit for bit.
-void exact_batch(const Piece* pieces, std::size_t n, const OpticsColumns& out);
-
 // The Highway target exact_batch runs on this CPU ("AVX3", "AVX2", "SSE4", ...).
 const char* exact_batch_target();
 
