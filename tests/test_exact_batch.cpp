@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -187,4 +188,94 @@ TEST_CASE("ExactIntegrator: the batch path and path=scalar agree on rays", "[exa
       }
     }
   }
+}
+
+namespace {
+
+// A grey batch (one density per piece, three kappa columns) against the channel batch with the
+// density repeated in every channel: the same transmittances and emissions, bit for bit. Sizes
+// leave vector tails and cross the 4,096-entry chunks of both layouts.
+void check_grey_matches_channels() {
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> u(0.0, 4.0);
+  const std::vector<Regime> regimes = all_regimes();
+  const auto bits_equal = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  for (const std::size_t n : {0u, 1u, 5u, 8u, 9u, 17u, 150u, 4096u * 3u + 7u}) {
+    GreyPieceColumns grey;
+    Batch channels;
+    for (std::size_t i = 0; i < n; ++i) {
+      const ChannelPiece p = sample_piece(regimes[i % regimes.size()], rng).piece;
+      const double far[2 * kChannels] = {p.rho_far, p.rho_far, p.rho_far, p.kappa_far, u(rng), u(rng)};
+      const double exit[2 * kChannels] = {p.rho_exit, p.rho_exit, p.rho_exit, p.kappa_exit, u(rng), u(rng)};
+      grey.push(p.length, far, exit);
+      for (int c = 0; c < kChannels; ++c)
+        channels.add(ChannelPiece{p.length, p.rho_far, p.rho_exit, far[kChannels + c], exit[kChannels + c]});
+    }
+    channels.run();
+    std::vector<double> tr(n, -1.0);
+    std::array<std::vector<double>, kChannels> em;
+    GreyPieceView in{grey.length.data(), grey.rho_far.data(), grey.rho_exit.data(), {}, {}, n};
+    GreyOpticsColumns out{tr.data(), {}};
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      em[c].assign(n, -1.0);
+      in.kappa_far[c] = grey.kappa_far[c].data();
+      in.kappa_exit[c] = grey.kappa_exit[c].data();
+      out.emission[c] = em[c].data();
+    }
+    exact_batch(in, out);
+    long mismatches = 0, transparent = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      transparent += channels.branch[kChannels * k] == ExactBranch::transparent;
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        mismatches += !bits_equal(tr[k], channels.transmittance[kChannels * k + c]);
+        mismatches += !bits_equal(em[c][k], channels.emission[kChannels * k + c]);
+      }
+    }
+    INFO("n " << n);
+    CHECK(mismatches == 0);
+    if (n > 1000) CHECK(transparent < static_cast<long>(n));  // the kernels ran, not only the transparent lanes
+  }
+}
+
+}  // namespace
+
+TEST_CASE("exact_batch: grey columns give the channel columns' results bit for bit", "[exact_batch]") {
+  check_grey_matches_channels();
+}
+
+TEST_CASE("exact_batch: grey columns on every SIMD target this CPU runs", "[exact_batch][simd_targets]") {
+  for_each_simd_target([] {
+    INFO("dispatched target " << exact_batch_target());
+    check_grey_matches_channels();
+  });
+}
+
+TEST_CASE("ExactIntegrator: a grey medium's batch path gives the channel path's rays bit for bit", "[exact_batch]") {
+  // Without diagnostics a grey transfer function takes the grey batch; with them, the channel
+  // batch (which reports a branch per piece-channel). Both must give the same bits, and the
+  // reference's accuracy.
+  std::mt19937_64 rng(23);
+  const auto spec = parse_method_spec("exact");
+  long rays = 0;
+  for (const Regime regime : ray_regimes()) {
+    for (int i = 0; i < 4; ++i) {
+      RaySample s = sample_ray(regime, rng);
+      s.transfer.density[1] = s.transfer.density[2] = s.transfer.density[0];
+      REQUIRE(s.transfer.grey());
+      const auto integrator = make_integrator(spec, s.transfer);
+      Diagnostics diag;
+      const RayResult grey = integrator->integrate(s.ray, nullptr);
+      const RayResult channels = integrator->integrate(s.ray, &diag);
+      const ReferenceRay ref = reference_ray(s.transfer, s.ray);
+      for (int c = 0; c < kChannels; ++c) {
+        INFO("regime " << regime_name(regime) << " sample " << i << " channel " << c);
+        CHECK(std::memcmp(&grey.intensity[c], &channels.intensity[c], sizeof(double)) == 0);
+        CHECK(std::memcmp(&grey.transmittance[c], &channels.transmittance[c], sizeof(double)) == 0);
+        CHECK(within(grey.intensity[c], ref.intensity[c], Tolerances::exact_rel));
+        CHECK(within(grey.transmittance[c], ref.transmittance[c], Tolerances::exact_rel));
+      }
+      ++rays;
+    }
+  }
+  CHECK(rays > 10);
 }

@@ -136,3 +136,70 @@ TEST_CASE("PieceSplitter matches append_pieces on scalar spans that overflow", "
     }
   CHECK(checked == 16);
 }
+
+TEST_CASE("TransferFunctions::grey is true only for three densities with the same bits", "[splitter]") {
+  std::mt19937_64 rng(5);
+  TransferFunctions tf = random_tf(rng, 5);
+  CHECK_FALSE(tf.grey());  // three independent random densities
+  tf.density[1] = tf.density[2] = tf.density[0];
+  CHECK(tf.grey());
+  TransferFunctions one_value = tf;
+  one_value.density[2].value.back() = std::nextafter(one_value.density[2].value.back(), 10.0);
+  CHECK_FALSE(one_value.grey());
+  TransferFunctions one_point = tf;
+  one_point.density[1].scalar.back() = std::nextafter(one_point.density[1].scalar.back(), 10.0);
+  CHECK_FALSE(one_point.grey());
+  TransferFunctions signed_zero = tf;  // 0.0 == -0.0, but the results' zeros would differ in sign
+  signed_zero.density[0].value[0] = 0.0;
+  signed_zero.density[1].value[0] = -0.0;
+  signed_zero.density[2].value[0] = 0.0;
+  CHECK_FALSE(signed_zero.grey());
+  TransferFunctions colours_differ = tf;  // only the densities decide
+  colours_differ.color[0].value[0] += 1.0;
+  CHECK(colours_differ.grey());
+}
+
+TEST_CASE("PieceSplitter's channel and grey columns hold append_pieces' pieces bit for bit", "[splitter]") {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto bits_equal = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  long pieces = 0;
+  for (int t = 0; t < 20; ++t) {
+    TransferFunctions tf = random_tf(rng, t % 2 == 0 ? 3 : 9);
+    tf.density[1] = tf.density[2] = tf.density[0];  // grey, so the grey columns may be asked for
+    const std::vector<double> bps = tf.breakpoints();
+    const PieceSplitter splitter(tf);
+    PieceChannelColumns channels;
+    GreyPieceColumns grey;
+    std::vector<Piece> expected;
+    for (int i = 0; i < 500; ++i) {
+      Segment seg{2.0 * u(rng), 1.4 * u(rng) - 0.2, 1.4 * u(rng) - 0.2};
+      if (i % 97 == 0) seg.scalar_far = nan;  // the append_pieces fallback
+      append_pieces(tf, seg, bps, expected);
+      splitter.append(seg, channels);
+      splitter.append(seg, grey);
+    }
+    REQUIRE(grey.size() == expected.size());
+    REQUIRE(channels.size() == kChannels * expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+      const Piece& p = expected[k];
+      INFO("tf " << t << " piece " << k);
+      CHECK(bits_equal(grey.length[k], p.length));
+      CHECK(bits_equal(grey.rho_far[k], p.rho_far[0]));
+      CHECK(bits_equal(grey.rho_exit[k], p.rho_exit[0]));
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        const std::size_t i = kChannels * k + c;
+        CHECK(bits_equal(grey.kappa_far[c][k], p.kappa_far[c]));
+        CHECK(bits_equal(grey.kappa_exit[c][k], p.kappa_exit[c]));
+        CHECK(bits_equal(channels.length[i], p.length));
+        CHECK(bits_equal(channels.rho_far[i], p.rho_far[c]));
+        CHECK(bits_equal(channels.rho_exit[i], p.rho_exit[c]));
+        CHECK(bits_equal(channels.kappa_far[i], p.kappa_far[c]));
+        CHECK(bits_equal(channels.kappa_exit[i], p.kappa_exit[c]));
+      }
+    }
+    pieces += static_cast<long>(expected.size());
+  }
+  CHECK(pieces > 10000);
+}

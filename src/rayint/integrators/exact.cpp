@@ -168,6 +168,7 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   if (path_ == Path::scalar) return integrate_scalar(ray, diag);
+  if (grey_ && !diag) return integrate_grey(ray);
   // Every piece of the ray (far -> near), then one batch over all its piece-channels, results
   // piece-major (index 3 k + c).
   struct Columns {
@@ -214,6 +215,40 @@ RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
       if (col.terms[i] > max_terms) max_terms = col.terms[i];
     }
     diag->max_stat("max_series_terms", max_terms);
+  }
+  return r;
+}
+
+RayResult ExactIntegrator::integrate_grey(const Ray& ray) const {
+  struct Columns {
+    GreyPieceColumns pieces;
+    std::vector<double> transmittance;
+    std::array<std::vector<double>, kChannels> emission;
+  };
+  thread_local Columns col;
+  col.pieces.clear();
+  for (const auto& seg : ray.segments) splitter_.append(seg, col.pieces);
+  const GreyPieceColumns& p = col.pieces;
+  const std::size_t n = p.size();
+  if (col.transmittance.size() < n) {
+    col.transmittance.resize(n);
+    for (auto& e : col.emission) e.resize(n);
+  }
+  GreyPieceView in{p.length.data(), p.rho_far.data(), p.rho_exit.data(), {}, {}, n};
+  GreyOpticsColumns out{col.transmittance.data(), {}};
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    in.kappa_far[c] = p.kappa_far[c].data();
+    in.kappa_exit[c] = p.kappa_exit[c].data();
+    out.emission[c] = col.emission[c].data();
+  }
+  exact_batch(in, out);
+  RayResult r = RayResult::of_background(ray.background);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = col.transmittance[k];
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      r.intensity[c] = r.intensity[c] * t + col.emission[c][k];
+      r.transmittance[c] *= t;
+    }
   }
   return r;
 }

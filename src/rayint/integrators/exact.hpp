@@ -39,12 +39,16 @@ class ExactIntegrator final : public PieceIntegrator {
  public:
   enum class Path { batch, scalar };
   explicit ExactIntegrator(const TransferFunctions& tf, Path path = Path::batch)
-      : PieceIntegrator(tf), path_(path) {}
+      : PieceIntegrator(tf), path_(path), grey_(tf.grey()) {}
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
   RayResult integrate_scalar(const Ray& ray, Diagnostics* diag) const;
+  // The batch path for a grey medium without diagnostics: one kernel evaluation per piece for
+  // all channels (the channel path's results, bit for bit).
+  RayResult integrate_grey(const Ray& ray) const;
   Path path_;
+  bool grey_;
 };
 
 }  // namespace rayint

@@ -328,15 +328,16 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
 
 // 3. The results back in piece order, vector by vector: each group's lanes take the group's next
 // transmittance and weights (AVX-512: an expanding load per group and column; other targets lane
-// by lane), and the emission kappa_exit w_exit + kappa_far w_far is formed with the pieces' own
-// kappas (the arithmetic of exact_piece); transparent lanes get transmittance 1 and emission 0.
+// by lane), and the emission kappa_exit w_exit + kappa_far w_far is formed for each of the
+// `channels` kappa columns (1, or kChannels for a grey batch) with the pieces' own kappas (the
+// arithmetic of exact_piece); transparent lanes get transmittance 1 and emission 0.
 // n: whole vectors; only the first n_valid results are stored. The kappas are read in place up
-// to the last whole vector of n_valid, and from tail_kappa_exit/far (one padded vector) after it.
+// to the last whole vector of n_valid, and from tail_kappa_exit/far (one padded vector per
+// channel) after it.
 void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
-                const GroupResults* HWY_RESTRICT res, const double* HWY_RESTRICT kappa_exit,
-                const double* HWY_RESTRICT kappa_far, const double* HWY_RESTRICT tail_kappa_exit,
-                const double* HWY_RESTRICT tail_kappa_far, double* HWY_RESTRICT tr_out,
-                double* HWY_RESTRICT em_out) {
+                const GroupResults* HWY_RESTRICT res, int channels, const double* const* kappa_exit,
+                const double* const* kappa_far, const double* const* tail_kappa_exit,
+                const double* const* tail_kappa_far, double* HWY_RESTRICT tr_out, double* const* em_out) {
   using D = hn::ScalableTag<double>;
   using V = hn::Vec<D>;
   const D d;
@@ -381,16 +382,20 @@ void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size
     }
     const auto transparent = hn::LoadMaskBits(d, bits + kGroups * kMaskBytes);
     const bool whole = i + L <= n_valid;
-    const V ke = hn::LoadU(d, whole ? kappa_exit + i : tail_kappa_exit);
-    const V kf = hn::LoadU(d, whole ? kappa_far + i : tail_kappa_far);
-    const V em = hn::IfThenZeroElse(transparent, hn::MulAdd(ke, w_exit, hn::Mul(kf, w_far)));
-    if (whole) {
-      hn::StoreU(tr, d, tr_out + i);
-      hn::StoreU(em, d, em_out + i);
-    } else if (i < n_valid) {
-      const auto head = hn::FirstN(d, n_valid - i);
-      hn::BlendedStore(tr, head, d, tr_out + i);
-      hn::BlendedStore(em, head, d, em_out + i);
+    if (!whole && i >= n_valid) continue;
+    const auto head = hn::FirstN(d, n_valid - i);
+    const auto store = [&](V v, double* to) {
+      if (whole) {
+        hn::StoreU(v, d, to);
+      } else {
+        hn::BlendedStore(v, head, d, to);
+      }
+    };
+    store(tr, tr_out + i);
+    for (int c = 0; c < channels; ++c) {
+      const V ke = hn::LoadU(d, whole ? kappa_exit[c] + i : tail_kappa_exit[c]);
+      const V kf = hn::LoadU(d, whole ? kappa_far[c] + i : tail_kappa_far[c]);
+      store(hn::IfThenZeroElse(transparent, hn::MulAdd(ke, w_exit, hn::Mul(kf, w_far))), em_out[c] + i);
     }
   }
 }
@@ -425,7 +430,8 @@ constexpr std::size_t kMaxLanes = 32;
 // One thread's scratch: the padded copy of a chunk's last partial vector of inputs, each
 // group's columns and results, and the mask bits of every vector of the chunk.
 struct Scratch {
-  std::vector<double> len, rho_far, rho_exit, kappa_far, kappa_exit;
+  std::vector<double> len, rho_far, rho_exit;
+  std::vector<double> kappa_far[kChannels], kappa_exit[kChannels];
   std::vector<double> a[kGroups], b[kGroups], tr[kGroups], w_exit[kGroups], w_far[kGroups], terms[kGroups];
   std::vector<unsigned char> bits;
   GroupSink sink{};
@@ -433,7 +439,11 @@ struct Scratch {
   Scratch() {
     // room for a whole chunk in one group, plus a vector tail and the padding to two vectors
     const std::size_t room = kChunk + 3 * kMaxLanes;
-    for (auto* col : {&len, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(kMaxLanes);
+    for (auto* col : {&len, &rho_far, &rho_exit}) col->resize(kMaxLanes);
+    for (int c = 0; c < kChannels; ++c) {
+      kappa_far[c].resize(kMaxLanes);
+      kappa_exit[c].resize(kMaxLanes);
+    }
     for (int g = 0; g < kGroups; ++g) {
       for (auto* col : {&a[g], &b[g], &tr[g], &w_exit[g], &w_far[g], &terms[g]}) col->resize(room);
       sink.a[g] = a[g].data();
@@ -479,12 +489,11 @@ void write_introspection(const Scratch& s, std::size_t n_valid, std::size_t firs
 
 // 2. evaluate each group on its contiguous columns, padded to whole pairs of vectors with copies
 // of the group's first piece; 3. put the results back in piece order: the chunk's n_valid
-// piece-channels (n: whole vectors) go to out from index `first` on.
-// kappa_exit/far: the chunk's kappas in piece order, readable up to the last whole vector;
-// tail_kappa_exit/far: the partial last vector's, padded to a whole vector.
-void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, const double* kappa_exit,
-                     const double* kappa_far, const double* tail_kappa_exit, const double* tail_kappa_far,
-                     std::size_t first, const OpticsColumns& out) {
+// pieces (n: whole vectors) go to tr_out and em_out[c], c < channels.
+// kappa_exit/far[c]: the chunk's kappas in piece order, readable up to the last whole vector;
+// s.kappa_exit/far[c]: the partial last vector's, padded to a whole vector.
+void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, int channels, const double* const* kappa_exit,
+                     const double* const* kappa_far, double* tr_out, double* const* em_out) {
   const std::size_t L = lanes();
   for (int g = 0; g < kGroups; ++g) {
     s.results.tr[g] = s.tr[g].data();
@@ -519,9 +528,55 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, const doubl
     HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), padded, s.tr[g].data(), s.w_exit[g].data(),
                                       s.w_far[g].data(), s.terms[g].data());
   }
-  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, kappa_exit, kappa_far, tail_kappa_exit,
-                                   tail_kappa_far, out.transmittance + first, out.emission + first);
-  if (out.branch || out.terms || out.converged) write_introspection(s, n_valid, first, out);
+  const double* tail_exit[kChannels];
+  const double* tail_far[kChannels];
+  for (int c = 0; c < kChannels; ++c) {
+    tail_exit[c] = s.kappa_exit[c].data();
+    tail_far[c] = s.kappa_far[c].data();
+  }
+  HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, channels, kappa_exit, kappa_far, tail_exit,
+                                   tail_far, tr_out, em_out);
+}
+
+// The chunk loop of both overloads: n pieces whose length and density columns are `len`,
+// `rho_far`, `rho_exit`, with `channels` kappa columns and emission columns; after each chunk,
+// after_chunk(s, first, size) (the channel overload's introspection columns).
+template <class AfterChunk>
+void run_chunks(std::size_t total, const double* len, const double* rho_far, const double* rho_exit, int channels,
+                const double* const* kappa_far, const double* const* kappa_exit, double* tr_out,
+                double* const* em_out, AfterChunk&& after_chunk) {
+  thread_local Scratch s;
+  const std::size_t L = lanes();
+  for (std::size_t begin = 0; begin < total; begin += kChunk) {
+    const std::size_t end = std::min(total, begin + kChunk), size = end - begin;
+    const std::size_t whole = size / L * L;  // whole vectors classified in place
+    classify(s, len + begin, rho_far + begin, rho_exit + begin, whole, whole, 0);
+    const std::size_t n = (size + L - 1) / L * L;
+    if (whole < size) {  // the tail, copied into one padded vector
+      for (std::size_t k = 0; k < L; ++k) {
+        const bool in_tail = whole + k < size;
+        const std::size_t at = begin + whole + k;
+        s.len[k] = in_tail ? len[at] : 0.0;
+        s.rho_far[k] = in_tail ? rho_far[at] : 0.0;
+        s.rho_exit[k] = in_tail ? rho_exit[at] : 0.0;
+        for (int c = 0; c < channels; ++c) {
+          s.kappa_far[c][k] = in_tail ? kappa_far[c][at] : 0.0;
+          s.kappa_exit[c][k] = in_tail ? kappa_exit[c][at] : 0.0;
+        }
+      }
+      classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), L, size - whole, whole / L);
+    }
+    const double* ke[kChannels];
+    const double* kf[kChannels];
+    double* em[kChannels];
+    for (int c = 0; c < channels; ++c) {
+      ke[c] = kappa_exit[c] + begin;
+      kf[c] = kappa_far[c] + begin;
+      em[c] = em_out[c] + begin;
+    }
+    evaluate_groups(s, n, size, channels, ke, kf, tr_out + begin, em);
+    after_chunk(s, begin, size);
+  }
 }
 
 }  // namespace
@@ -529,30 +584,19 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, const doubl
 const char* exact_batch_target() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 
 void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
-  thread_local Scratch s;
-  const std::size_t L = lanes();
-  for (std::size_t begin = 0; begin < in.size; begin += kChunk) {
-    const std::size_t end = std::min(in.size, begin + kChunk), size = end - begin;
-    const std::size_t whole = size / L * L;  // whole vectors classified in place
-    classify(s, in.length + begin, in.rho_far + begin, in.rho_exit + begin, whole, whole, 0);
-    const std::size_t n = (size + L - 1) / L * L;
-    if (whole < size) {  // the tail, copied into one padded vector
-      for (std::size_t k = 0; k < L; ++k) {
-        const bool in_tail = whole + k < size;
-        const std::size_t at = begin + whole + k;
-        s.len[k] = in_tail ? in.length[at] : 0.0;
-        s.rho_far[k] = in_tail ? in.rho_far[at] : 0.0;
-        s.rho_exit[k] = in_tail ? in.rho_exit[at] : 0.0;
-        s.kappa_far[k] = in_tail ? in.kappa_far[at] : 0.0;
-        s.kappa_exit[k] = in_tail ? in.kappa_exit[at] : 0.0;
-      }
-      classify(s, s.len.data(), s.rho_far.data(), s.rho_exit.data(), L, size - whole, whole / L);
-    }
-    evaluate_groups(s, n, size, in.kappa_exit + begin, in.kappa_far + begin, s.kappa_exit.data(),
-                    s.kappa_far.data(), begin, out);
-  }
+  const double* kappa_far[1] = {in.kappa_far};
+  const double* kappa_exit[1] = {in.kappa_exit};
+  double* emission[1] = {out.emission};
+  run_chunks(in.size, in.length, in.rho_far, in.rho_exit, 1, kappa_far, kappa_exit, out.transmittance, emission,
+             [&out](const Scratch& s, std::size_t first, std::size_t size) {
+               if (out.branch || out.terms || out.converged) write_introspection(s, size, first, out);
+             });
 }
 
+void exact_batch(const GreyPieceView& in, const GreyOpticsColumns& out) {
+  run_chunks(in.size, in.length, in.rho_far, in.rho_exit, kChannels, in.kappa_far.data(), in.kappa_exit.data(),
+             out.transmittance, out.emission.data(), [](const Scratch&, std::size_t, std::size_t) {});
+}
 
 }  // namespace rayint
 #endif  // HWY_ONCE

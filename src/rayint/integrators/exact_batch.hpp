@@ -3,6 +3,7 @@
 // grouped by branch, each group evaluated with vector erfcx/Dawson/exp (Google Highway, target
 // picked at run time). exact_piece (exact.cpp) stays the readable scalar reference; this path
 // computes the same formulas in the same regions. See exact_batch.cpp for the error bounds.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -33,6 +34,26 @@ struct OpticsColumns {
 // out[i] = exact_piece(in[i]) for i < in.size, to the accuracy stated in exact_batch.cpp.
 // Thread safe (per-thread scratch); no allocation once a thread's scratch has grown.
 void exact_batch(const PieceColumns& in, const OpticsColumns& out);
+
+// n pieces of a grey medium (TransferFunctions::grey(): one density for every channel), as
+// columns: the density once per piece, the kappas per channel. Each piece's transmittance and
+// emission weights are computed once and its emission formed for every channel.
+struct GreyPieceView {
+  const double* length = nullptr;
+  const double* rho_far = nullptr;
+  const double* rho_exit = nullptr;
+  std::array<const double*, kChannels> kappa_far{};
+  std::array<const double*, kChannels> kappa_exit{};
+  std::size_t size = 0;
+};
+struct GreyOpticsColumns {
+  double* transmittance = nullptr;              // per piece, every channel's
+  std::array<double*, kChannels> emission{};    // per channel, per piece
+};
+
+// The results of the channel overload with the density repeated in every channel, bit for bit
+// (tests/test_exact_batch.cpp): transmittance[i] is each channel's, emission[c][i] channel c's.
+void exact_batch(const GreyPieceView& in, const GreyOpticsColumns& out);
 
 // The Highway target exact_batch runs on this CPU ("AVX3", "AVX2", "SSE4", ...).
 const char* exact_batch_target();

@@ -211,7 +211,8 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
   });
 }
 
-void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const {
+template <class Columns>
+void PieceSplitter::append_columns(const Segment& seg, Columns& out) const {
   if (!(seg.length > 0.0)) return;
   if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit)) {
     std::vector<Piece> pieces;
@@ -230,6 +231,10 @@ void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const {
   });
 }
 
+void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const { append_columns(seg, out); }
+
+void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const { append_columns(seg, out); }
+
 void PieceChannelColumns::clear() {
   for (auto* col : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->clear();
 }
@@ -241,6 +246,24 @@ void PieceChannelColumns::push(double len, const double* far, const double* exit
     rho_exit.push_back(exit[c]);
     kappa_far.push_back(far[c + kChannels]);
     kappa_exit.push_back(exit[c + kChannels]);
+  }
+}
+
+void GreyPieceColumns::clear() {
+  for (auto* col : {&length, &rho_far, &rho_exit}) col->clear();
+  for (int c = 0; c < kChannels; ++c) {
+    kappa_far[static_cast<std::size_t>(c)].clear();
+    kappa_exit[static_cast<std::size_t>(c)].clear();
+  }
+}
+
+void GreyPieceColumns::push(double len, const double* far, const double* exit) {
+  length.push_back(len);
+  rho_far.push_back(far[0]);
+  rho_exit.push_back(exit[0]);
+  for (int c = 0; c < kChannels; ++c) {
+    kappa_far[static_cast<std::size_t>(c)].push_back(far[c + kChannels]);
+    kappa_exit[static_cast<std::size_t>(c)].push_back(exit[c + kChannels]);
   }
 }
 

@@ -58,6 +58,17 @@ struct PieceChannelColumns {
   void push(double len, const double* far, const double* exit);  // far/exit: rho r, g, b, kappa r, g, b
 };
 
+// Pieces of a grey medium (TransferFunctions::grey()) as columns, one entry per piece: its
+// length, its one density at the far and exit ends, and each channel's kappa (the layout of
+// integrators/exact_batch.hpp's GreyPieceView). The density is channel 0's.
+struct GreyPieceColumns {
+  std::vector<double> length, rho_far, rho_exit;
+  std::array<std::vector<double>, kChannels> kappa_far, kappa_exit;
+  void clear();
+  std::size_t size() const { return length.size(); }
+  void push(double len, const double* far, const double* exit);  // far/exit: rho r, g, b, kappa r, g, b
+};
+
 // What every piece-wise integrator needs: the transfer functions' breakpoints, collected once,
 // and the pieces of one segment at a time. pieces() returns a per-thread buffer that stays valid
 // until the next pieces() call on the same thread (no allocation per segment in timing loops).
@@ -77,6 +88,9 @@ class PieceSplitter {
   void append(const Segment& segment, std::vector<Piece>& out) const;
   // The same pieces as channel columns.
   void append(const Segment& segment, PieceChannelColumns& out) const;
+  // The same pieces as grey columns (for a grey transfer(): the densities of channels 1 and 2
+  // are dropped, so they must be channel 0's).
+  void append(const Segment& segment, GreyPieceColumns& out) const;
   const TransferFunctions& transfer() const { return *tf_; }
 
  private:
@@ -103,6 +117,9 @@ class PieceSplitter {
   // put(length, s_far, s_exit, far values, exit values); both append()s are this.
   template <class Put>
   void split(const Segment& segment, Put&& put) const;
+  // The column append()s: split(), or append_pieces for a NaN scalar end.
+  template <class Columns>
+  void append_columns(const Segment& segment, Columns& out) const;
 
   const TransferFunctions* tf_;
   std::vector<double> breakpoints_;

@@ -1,6 +1,7 @@
 #include "rayint/model/transfer_function.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 
 namespace rayint {
@@ -35,6 +36,17 @@ std::vector<double> TransferFunctions::breakpoints() const {
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   return all;
+}
+
+bool TransferFunctions::grey() const {
+  // Bits, not ==: a -0.0 beside a 0.0 would make the channels' results differ in a zero's sign.
+  const auto same_bits = [](const std::vector<double>& x, const std::vector<double>& y) {
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
+  };
+  for (int c = 1; c < kChannels; ++c)
+    if (!same_bits(density[0].scalar, density[c].scalar) || !same_bits(density[0].value, density[c].value))
+      return false;
+  return true;
 }
 
 }  // namespace rayint

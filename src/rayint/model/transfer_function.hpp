@@ -29,6 +29,10 @@ struct TransferFunctions {
 
   // Sorted, de-duplicated union of the breakpoints of all six functions.
   std::vector<double> breakpoints() const;
+  // True when the three densities are the same function, point for point and bit for bit (a grey
+  // medium, as from one opacity transfer function): every channel of a piece then has the same
+  // optical depth, so its transmittance and emission weights need computing only once.
+  bool grey() const;
 };
 
 }  // namespace rayint
