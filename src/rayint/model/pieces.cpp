@@ -65,15 +65,16 @@ std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray) {
 }
 
 
-PieceSplitter::PieceSplitter(const TransferFunctions& tf) : tf_(&tf), breakpoints_(tf.breakpoints()) {
+PieceSplitter::PieceSplitter(const TransferFunctions& tf)
+    : tf_(&tf), breakpoints_(tf.breakpoints()), grey_(tf.grey()) {
   const std::size_t m = breakpoints_.size();
   padded_.fill(std::numeric_limits<double>::quiet_NaN());
   if (m <= padded_.size()) std::copy(breakpoints_.begin(), breakpoints_.end(), padded_.begin());
   rows_.resize(2 * m + 1);
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     Row& row = rows_[r];
-    for (int f = 0; f < kFunctions; ++f) {
-      const PiecewiseLinear& fn = function(f);
+    for (int f = 0; f < kFunctions; ++f) {  // f: the slot
+      const PiecewiseLinear& fn = function(kSlotFunction[f]);
       // A constant by default; its (unused) line operands are a harmless unit interval.
       row.s0[f] = 0.0;
       row.s1[f] = row.span[f] = 1.0;
@@ -110,6 +111,9 @@ PieceSplitter::PieceSplitter(const TransferFunctions& tf) : tf_(&tf), breakpoint
       }
     }
   }
+  at_breakpoint_.resize(m);
+  for (std::size_t j = 0; j < m; ++j)
+    for (int f = 0; f < kFunctions; ++f) at_breakpoint_[j][static_cast<std::size_t>(f)] = function(f)(breakpoints_[j]);
 }
 
 // Two lanes of doubles (SSE2, the x86-64 baseline), in GCC's vector extension: + - * / are
@@ -148,18 +152,29 @@ inline M2 load(const std::int64_t* p) {
 }
 
 [[gnu::always_inline]] inline void PieceSplitter::eval(const Row& row, double s, double* v) const {
-  // PiecewiseLinear::interpolate's arithmetic, for the six functions at once and without a
-  // jump (which end is nearer is unpredictable); a constant is selected over the line.
-  static_assert(kFunctions % 2 == 0);
+  // PiecewiseLinear::interpolate's arithmetic, for two slots at once and without a jump (which
+  // end is nearer is unpredictable); a constant is selected over the line.
   const V2 sv = {s, s};
-  for (int f = 0; f < kFunctions; f += 2) {
+  const auto pair = [&](int f) {
     const V2 d0 = sv - load(row.s0 + f), d1 = load(row.s1 + f) - sv;
     const M2 near0 = d0 <= d1;
     const V2 d = near0 ? d0 : d1, base = near0 ? load(row.v0 + f) : load(row.v1 + f);
     const V2 delta = near0 ? load(row.dv01 + f) : load(row.dv10 + f);
     const V2 line = base + (d / load(row.span + f)) * delta;
-    const V2 value = load(row.keep + f) ? load(row.constant + f) : line;
-    std::memcpy(v + f, &value, sizeof value);
+    return load(row.keep + f) ? load(row.constant + f) : line;
+  };
+  static_assert(kFunctions == 6 && kSlotFunction[0] == 0 && kSlotFunction[1] == 3 && kSlotFunction[4] == 1);
+  const V2 rho_kr = pair(0), kg_kb = pair(2);  // slots 0-3: rho r, kappa r, g, b
+  v[0] = rho_kr[0];
+  v[3] = rho_kr[1];
+  v[4] = kg_kb[0];
+  v[5] = kg_kb[1];
+  if (grey_) {
+    v[1] = v[2] = v[0];
+  } else {
+    const V2 rho_gb = pair(4);
+    v[1] = rho_gb[0];
+    v[2] = rho_gb[1];
   }
 }
 
@@ -187,7 +202,7 @@ void PieceSplitter::split(const Segment& seg, Put&& put) const {
   for (std::size_t k = 0; k < inner; ++k) {  // interior ends, in the direction of travel
     const std::size_t j = s0 < s1 ? first + k : last - 1 - k;
     const double s = breakpoints_[j];
-    const double* v = rows_[2 * j + 1].constant;
+    const double* v = at_breakpoint_[j].data();
     const double len = seg.length * ((s - s_prev) / span);
     if (len > 0.0) put(len, s_prev, s, v_prev, v);
     s_prev = s;

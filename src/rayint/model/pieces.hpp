@@ -79,7 +79,9 @@ struct GreyPieceColumns {
 // the ends of its own interval (PiecewiseLinear::interpolate's operands, differences included).
 // An end then costs two counts among the breakpoints (which region it is in, and how many
 // breakpoints lie strictly inside the segment) and one branch-free pass over the six functions
-// with interpolate's arithmetic, which the compiler vectorises; no allocation per segment.
+// with interpolate's arithmetic, which the compiler vectorises; no allocation per segment. For a
+// grey transfer function (TransferFunctions::grey) the pass covers the four distinct functions
+// only: its divisions are most of an end's cost.
 class PieceSplitter {
  public:
   explicit PieceSplitter(const TransferFunctions& tf);
@@ -99,8 +101,12 @@ class PieceSplitter {
     return f < kChannels ? tf_->density[static_cast<std::size_t>(f)]
                          : tf_->color[static_cast<std::size_t>(f - kChannels)];
   }
-  // One region's operands, function-major in f = 0..5: the value is
-  //   keep[f] (all bits set) ? constant[f] : PiecewiseLinear::interpolate's line on [s0[f], s1[f]].
+  // The rows hold the functions in slot order: slot k is function kSlotFunction[k]. The four
+  // distinct functions of a grey medium (rho, kappa r, g, b) come first, so that two pairs of
+  // lanes evaluate them; slots 4 and 5 (rho g, b) are evaluated only when not grey.
+  static constexpr int kSlotFunction[kFunctions] = {0, 3, 4, 5, 1, 2};
+  // One region's operands, slot-major in k = 0..5: the value is
+  //   keep[k] (all bits set) ? constant[k] : PiecewiseLinear::interpolate's line on [s0[k], s1[k]].
   // The constant is selected, never computed (v + 0 * x would turn a stored -0.0 into +0.0).
   struct Row {
     alignas(16) double s0[kFunctions], s1[kFunctions], span[kFunctions];
@@ -111,7 +117,8 @@ class PieceSplitter {
   // The region of s, 0..2m: (number of breakpoints < s) + (number <= s); `lt` and `le` get the
   // two counts (the append_pieces bounds lower_bound and upper_bound). s is not NaN.
   std::size_t region(double s, std::size_t& lt, std::size_t& le) const;
-  // The six functions at s, in the row of its region, as operator() gives them.
+  // The six functions at s, in the row of its region, as operator() gives them, in function order
+  // (rho r, g, b, kappa r, g, b).
   void eval(const Row& row, double s, double* v) const;
   // The pieces of a segment with finite scalar ends, each handed to
   // put(length, s_far, s_exit, far values, exit values); both append()s are this.
@@ -125,6 +132,9 @@ class PieceSplitter {
   std::vector<double> breakpoints_;
   std::array<double, 8> padded_{};  // breakpoints_ then NaN (never counted), when m <= 8
   std::vector<Row> rows_;           // 2m + 1
+  // The six functions at each breakpoint, in function order (the constants of its row).
+  std::vector<std::array<double, kFunctions>> at_breakpoint_;
+  bool grey_ = false;               // tf_->grey(): slots 4 and 5 repeat slot 0
 };
 
 }  // namespace rayint
