@@ -84,6 +84,33 @@ void BM_exact_batch_mixed(benchmark::State& state) {
   run_batch(state, c);
 }
 
+// The same mixed pieces as a grey medium (GreyPieceView): each piece's density once, three
+// channels' kappas (the mixed kappa and two more). items_per_second counts piece-channels (3 per
+// piece), as the channel benchmarks do, so the two are comparable per channel of output.
+void BM_exact_batch_grey_mixed(benchmark::State& state) {
+  static const Columns c = columns(-1);
+  static const std::vector<double> kappa_g = [] {
+    std::vector<double> k(c.size());
+    for (std::size_t i = 0; i < k.size(); ++i) k[i] = 0.5 * c.kappa_far[(i + 1) % k.size()];
+    return k;
+  }();
+  std::vector<double> tr(c.size()), em_r(c.size()), em_g(c.size()), em_b(c.size());
+  const rayint::GreyPieceView in{c.length.data(),
+                                 c.rho_far.data(),
+                                 c.rho_exit.data(),
+                                 {c.kappa_far.data(), kappa_g.data(), c.kappa_exit.data()},
+                                 {c.kappa_exit.data(), c.kappa_far.data(), kappa_g.data()},
+                                 c.size()};
+  const rayint::GreyOpticsColumns out{tr.data(), {em_r.data(), em_g.data(), em_b.data()}};
+  for (auto _ : state) {
+    rayint::exact_batch(in, out);
+    benchmark::DoNotOptimize(em_b.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * 3 * static_cast<long>(c.size()));
+  state.SetLabel(rayint::exact_batch_target());
+}
+
 // The mixed batch on the AVX2 target, as on a CPU without AVX-512 (most desktops): one thread;
 // the dispatch is restored afterwards.
 void BM_exact_batch_mixed_avx2(benchmark::State& state) {
@@ -175,6 +202,7 @@ void BM_dawson_cerf(benchmark::State& state) {
 
 BENCHMARK(BM_exact_batch_mixed)->Threads(1)->Threads(2)->UseRealTime();
 BENCHMARK(BM_exact_batch_mixed_avx2)->UseRealTime();
+BENCHMARK(BM_exact_batch_grey_mixed)->Threads(1)->Threads(2)->UseRealTime();
 BENCHMARK(BM_exact_batch_mixed_calls)->Arg(48)->Arg(150)->Arg(600)->Arg(4096);
 BENCHMARK(BM_exact_scalar_loop_mixed)->Threads(1)->Threads(2)->UseRealTime();
 BENCHMARK(BM_exact_batch_regime)->DenseRange(0, static_cast<int>(rayint::all_regimes().size()) - 1);

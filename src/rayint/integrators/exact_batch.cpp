@@ -25,6 +25,9 @@
 //      group's next transmittance and weights (an expanding load on AVX-512), and the emission
 //      kappa_exit w_exit + kappa_far w_far is formed there with the pieces' kappas read in order
 //      (compressing the kappas into the groups cost more); transparent lanes get 1 and 0.
+// A grey batch (GreyPieceView: one density per piece, TransferFunctions::grey) runs steps 0-2 once
+// per piece and forms the emission of each channel in step 3 from the same weights: a piece's
+// a and b are every channel's, so each lane's results are the channel batch's, bit for bit.
 // The run-time dispatch (HWY_DYNAMIC_DISPATCH over hwy/foreach_target.h) picks SSE4, AVX2 or
 // AVX-512 on x86-64, so one binary runs on any of them; exact_batch_target() names the choice,
 // and tests/test_exact_batch.cpp runs every target this CPU supports.
