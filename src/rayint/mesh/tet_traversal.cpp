@@ -270,13 +270,13 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
     if (!(t_out > a)) return;
     const LinearTetField& f = fields_[static_cast<std::size_t>(cell)];
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
-    CellCrossing c;
+    // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
+    CellCrossing& c = out.crossings.emplace_back();
     c.cell = cell;
     c.t_in = a;
     c.t_out = t_out;
     c.s_in = e.v;
     c.s_out = e.v + e.w * (t_out - a);
-    out.crossings.push_back(c);
     ++local.crossings;
   };
   while (steps < budget) {
