@@ -302,6 +302,8 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
         const Vec3& normal = r.normal[static_cast<std::size_t>(k)];
         const double nd = normal.dot(d);  // sign * n.d, exactly
         if (nd <= 0.0) continue;
+        // The ray leaves through one of these faces: start loading the cells behind them now.
+        __builtin_prefetch(&cells_[static_cast<std::size_t>(std::max(r.next[static_cast<std::size_t>(k)], 0))]);
         // crossing(w, c, k) with its denominator (the same expression, w.d == d) computed once.
         const double tf = normal.dot(r.face_point(k) - w.o) / nd;
         if (tf < t_min) {
