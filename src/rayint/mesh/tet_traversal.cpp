@@ -121,7 +121,6 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
     }
   }
   // Eq. 9 per cell.
-  fields_.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
     std::array<Vec3, 4> x;
     std::array<double, 4> s{};
@@ -129,7 +128,7 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
       x[k] = mesh_.points[mesh_.tets[t][k]];
       s[k] = mesh_.scalars[mesh_.tets[t][k]];
     }
-    fields_[t] = fit_linear_tet(x, s);
+    cells_[t].field = fit_linear_tet(x, s);
   }
   box_min_ = box_max_ = mesh_.points.front();
   for (const Vec3& p : mesh_.points) {
@@ -268,7 +267,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
-    const LinearTetField& f = fields_[static_cast<std::size_t>(cell)];
+    const LinearTetField& f = cells_[static_cast<std::size_t>(cell)].field;
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
     // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
     CellCrossing& c = out.crossings.emplace_back();
