@@ -2,9 +2,13 @@
 // the linear-field target, gradients, shading, rays that miss, and rendering (tag [mesh]).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
+#include <vector>
 
 #include "rayint/studies/mesh_agreement.hpp"
 #include "rayint/integrators/integrator.hpp"
@@ -226,6 +230,44 @@ TEST_CASE("Gradients (Sec. 3.2): cell, vertex average and inverse distance on a 
       }
     CHECK(jump_cell > 0.1);
     CHECK(jump_avg < 1e-12);
+  }
+}
+
+TEST_CASE("Face adjacency: neighbours and boundary faces match a map of the tets' faces", "[mesh]") {
+  // Independent reference: every face as a sorted point triple, mapped to the tets that hold it.
+  const TetTraversal ball(generate_mesh("ball", 3, 1).mesh, "ball");
+  const TetMesh& m = ball.mesh();
+  std::map<std::array<std::int32_t, 3>, std::vector<std::int32_t>> holders;
+  auto face_of = [&](std::size_t c, int k) {
+    std::array<std::int32_t, 3> f{};
+    std::size_t i = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != k) f[i++] = m.tets[c][static_cast<std::size_t>(j)];
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  for (std::size_t c = 0; c < m.tets.size(); ++c)
+    for (int k = 0; k < 4; ++k) holders[face_of(c, k)].push_back(static_cast<std::int32_t>(c));
+  std::size_t boundary = 0;
+  for (const auto& [f, cells] : holders) boundary += cells.size() == 1;
+  CHECK(ball.face_count() == holders.size());
+  CHECK(ball.boundary_face_count() == boundary);
+  CHECK(boundary > 0);
+  long mismatches = 0;
+  for (std::size_t c = 0; c < m.tets.size(); ++c)
+    for (int k = 0; k < 4; ++k) {
+      const std::vector<std::int32_t>& cells = holders[face_of(c, k)];
+      const std::int32_t expected = cells.size() == 1 ? -1 : (cells[0] == static_cast<std::int32_t>(c) ? cells[1] : cells[0]);
+      mismatches += ball.neighbor(c, k) != expected;
+    }
+  CHECK(mismatches == 0);
+  for (std::size_t i = 0; i < ball.boundary_face_count(); ++i) {
+    const TetTraversal::Face& f = ball.boundary_face(i);
+    const auto it = holders.find(f.points);
+    REQUIRE(it != holders.end());
+    CHECK(it->second.size() == 1);
+    CHECK(f.cells[0] == it->second[0]);
+    CHECK(f.cells[1] == -1);
   }
 }
 

@@ -63,8 +63,10 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
   std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
     return std::tie(a.key, a.tet) < std::tie(b.key, b.tet);
   });
-  cell_faces_.assign(n, {-1, -1, -1, -1});
-  cell_signs_.assign(n, {0, 0, 0, 0});
+  // Face ids opposite point k and signs (+1: the face normal points out), used to build cells_.
+  std::vector<Face> faces;
+  std::vector<std::array<std::int32_t, 4>> cell_faces(n, {-1, -1, -1, -1});
+  std::vector<std::array<std::int8_t, 4>> cell_signs(n, {0, 0, 0, 0});
   for (std::size_t i = 0; i < recs.size();) {
     std::size_t j = i + 1;
     while (j < recs.size() && recs[j].key == recs[i].key) ++j;
@@ -77,28 +79,48 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
     f.points = recs[i].key;
     const Vec3& a = mesh_.points[f.points[0]];
     f.normal = (mesh_.points[f.points[1]] - a).cross(mesh_.points[f.points[2]] - a);
-    const auto id = static_cast<std::int32_t>(faces_.size());
+    const auto id = static_cast<std::int32_t>(faces.size());
     for (std::size_t r = i; r < j; ++r) {
       const auto t = static_cast<std::size_t>(recs[r].tet);
       const auto k = static_cast<std::size_t>(recs[r].k);
       const Vec3& opposite = mesh_.points[mesh_.tets[t][k]];
-      cell_faces_[t][k] = id;
-      cell_signs_[t][k] = f.normal.dot(opposite - a) < 0.0 ? std::int8_t{1} : std::int8_t{-1};
+      cell_faces[t][k] = id;
+      cell_signs[t][k] = f.normal.dot(opposite - a) < 0.0 ? std::int8_t{1} : std::int8_t{-1};
       f.cells[r - i] = recs[r].tet;
     }
     if (j - i == 2) {
       const auto t0 = static_cast<std::size_t>(f.cells[0]), t1 = static_cast<std::size_t>(f.cells[1]);
-      if (cell_signs_[t0][static_cast<std::size_t>(recs[i].k)] == cell_signs_[t1][static_cast<std::size_t>(recs[i + 1].k)])
+      if (cell_signs[t0][static_cast<std::size_t>(recs[i].k)] == cell_signs[t1][static_cast<std::size_t>(recs[i + 1].k)])
         throw InputError(source + ": tets[" + std::to_string(t1) + "]: overlaps tets[" + std::to_string(t0) +
                          "] (both lie on the same side of their shared face)");
     } else {
-      boundary_.push_back(id);
+      boundary_.push_back(f);
+      boundary_k_.push_back(recs[i].k);
     }
-    faces_.push_back(f);
+    faces.push_back(f);
     i = j;
   }
+  face_count_ = faces.size();
+  // The walk's per-cell records (see CellRecord).
+  cells_.resize(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    CellRecord& r = cells_[t];
+    std::int32_t lowest = mesh_.tets[t][0];
+    for (std::size_t k = 1; k < 4; ++k) lowest = std::min(lowest, mesh_.tets[t][k]);
+    r.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
+    r.second_point = r.first_point;
+    r.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Face& f = faces[static_cast<std::size_t>(cell_faces[t][k])];
+      r.normal[k] = cell_signs[t][k] > 0 ? f.normal : Vec3(-f.normal);
+      r.next[k] = f.cells[0] == static_cast<std::int32_t>(t) ? f.cells[1] : f.cells[0];
+      if (f.points[0] != lowest) {
+        r.k_second = static_cast<std::int32_t>(k);
+        r.second_point = mesh_.points[static_cast<std::size_t>(f.points[0])];
+      }
+    }
+  }
   // Eq. 9 per cell.
-  fields_.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
     std::array<Vec3, 4> x;
     std::array<double, 4> s{};
@@ -106,7 +128,7 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
       x[k] = mesh_.points[mesh_.tets[t][k]];
       s[k] = mesh_.scalars[mesh_.tets[t][k]];
     }
-    fields_[t] = fit_linear_tet(x, s);
+    cells_[t].field = fit_linear_tet(x, s);
   }
   box_min_ = box_max_ = mesh_.points.front();
   for (const Vec3& p : mesh_.points) {
@@ -116,9 +138,9 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
   diagonal_ = (box_max_ - box_min_).norm();
   std::vector<std::array<std::int32_t, 3>> tris;
   tris.reserve(boundary_.size());
-  for (std::int32_t f : boundary_) {
+  for (const Face& f : boundary_) {
     // Embree needs no particular winding (the filter decides entering vs leaving).
-    tris.push_back(faces_[static_cast<std::size_t>(f)].points);
+    tris.push_back(f.points);
   }
   first_hit_ = std::make_unique<BoundaryFirstHit>(mesh_.points, tris);
 }
@@ -126,9 +148,7 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
 TetTraversal::~TetTraversal() = default;
 
 std::int32_t TetTraversal::neighbor(std::size_t cell, int k) const {
-  const Face& f = faces_[static_cast<std::size_t>(cell_faces_[cell][static_cast<std::size_t>(k)])];
-  const auto c = static_cast<std::int32_t>(cell);
-  return f.cells[0] == c ? f.cells[1] : f.cells[0];
+  return cells_[cell].next[static_cast<std::size_t>(k)];
 }
 
 struct TetTraversal::Walk {
@@ -139,10 +159,12 @@ struct TetTraversal::Walk {
   const TetTraversal* self = nullptr;
 };
 
-// Rule 1: the crossing parameter of face f, the same double whichever cell asks.
-double TetTraversal::crossing(const Walk& w, std::int32_t f) const {
-  const Face& face = faces_[static_cast<std::size_t>(f)];
-  return face.normal.dot(mesh_.points[face.points[0]] - w.o) / face.normal.dot(w.d);
+// Rule 1: the crossing parameter of a face, the same double whichever cell asks (the sign of
+// CellRecord::normal cancels exactly).
+double TetTraversal::crossing(const Walk& w, std::size_t cell, int k) const {
+  const CellRecord& r = cells_[cell];
+  const Vec3& n = r.normal[static_cast<std::size_t>(k)];
+  return n.dot(r.face_point(k) - w.o) / n.dot(w.d);
 }
 
 struct FirstHitFilterAccess {
@@ -150,14 +172,11 @@ struct FirstHitFilterAccess {
   static bool accept(const void* user, std::uint32_t prim) {
     const auto* w = static_cast<const TetTraversal::Walk*>(user);
     const TetTraversal& m = *w->self;
-    const std::int32_t f = m.boundary_[prim];
-    const TetTraversal::Face& face = m.faces_[static_cast<std::size_t>(f)];
-    const auto cell = static_cast<std::size_t>(face.cells[0]);
-    int k = 0;
-    while (m.cell_faces_[cell][static_cast<std::size_t>(k)] != f) ++k;
-    const double dn = m.cell_signs_[cell][static_cast<std::size_t>(k)] * face.normal.dot(w->d);
+    const auto cell = static_cast<std::size_t>(m.boundary_[prim].cells[0]);
+    const int k = m.boundary_k_[prim];
+    const double dn = m.cells_[cell].normal[static_cast<std::size_t>(k)].dot(w->d);  // sign * n.d
     if (!(dn < 0.0)) return false;  // leaving or parallel
-    const double t = m.crossing(*w, f);
+    const double t = m.crossing(*w, cell, k);
     return w->strict ? t > w->t_lo : t >= w->t_lo - w->tol;
   }
 };
@@ -175,16 +194,17 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
   double best = t;
   for (std::size_t q = 0; q < queue.size() && q < kMaxStar; ++q) {
     const auto c = static_cast<std::size_t>(queue[q]);
+    const CellRecord& r = cells_[c];
     bool holds = true;
     double ta = -std::numeric_limits<double>::infinity(), tb = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < 4; ++k) {
-      const Face& face = faces_[static_cast<std::size_t>(cell_faces_[c][k])];
-      const double s = cell_signs_[c][k];
-      const double dist = s * face.normal.dot(p - mesh_.points[face.points[0]]) / face.normal.norm();
+    for (int k = 0; k < 4; ++k) {
+      // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d.
+      const Vec3& normal = r.normal[static_cast<std::size_t>(k)];
+      const double dist = normal.dot(p - r.face_point(k)) / normal.norm();
       if (dist > tol) holds = false;
-      const double dn = s * face.normal.dot(w.d);
-      if (dn > 0.0) tb = std::min(tb, crossing(w, cell_faces_[c][k]));
-      else if (dn < 0.0) ta = std::max(ta, crossing(w, cell_faces_[c][k]));
+      const double dn = normal.dot(w.d);
+      if (dn > 0.0) tb = std::min(tb, crossing(w, c, k));
+      else if (dn < 0.0) ta = std::max(ta, crossing(w, c, k));
     }
     if (!holds && q > 0) continue;
     if (ta <= t + tol_t && tb > best) {
@@ -247,15 +267,15 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
-    const LinearTetField& f = fields_[static_cast<std::size_t>(cell)];
+    const LinearTetField& f = cells_[static_cast<std::size_t>(cell)].field;
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
-    CellCrossing c;
+    // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
+    CellCrossing& c = out.crossings.emplace_back();
     c.cell = cell;
     c.t_in = a;
     c.t_out = t_out;
     c.s_in = e.v;
     c.s_out = e.v + e.w * (t_out - a);
-    out.crossings.push_back(c);
     ++local.crossings;
   };
   while (steps < budget) {
@@ -266,24 +286,25 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
     const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
     const std::int64_t prim = first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);
     if (prim < 0) break;
-    const std::int32_t entry_face = boundary_[static_cast<std::size_t>(prim)];
-    std::int32_t cell = faces_[static_cast<std::size_t>(entry_face)].cells[0];
-    double t_in = std::max(t, crossing(w, entry_face));
+    std::int32_t cell = boundary_[static_cast<std::size_t>(prim)].cells[0];
+    double t_in = std::max(t, crossing(w, static_cast<std::size_t>(cell), boundary_k_[static_cast<std::size_t>(prim)]));
     const double t_entered = t_in;
     int zero_steps = 0;
     bool progressed = false;
     while (++steps < budget) {
       // Leave the cell through the face with the smallest crossing parameter (rules 1, 2).
       const auto c = static_cast<std::size_t>(cell);
+      const CellRecord& r = cells_[c];
       double t_min = std::numeric_limits<double>::infinity();
       int k_min = -1;
       for (int k = 0; k < 4; ++k) {
-        const std::int32_t f = cell_faces_[c][static_cast<std::size_t>(k)];
-        const Face& face = faces_[static_cast<std::size_t>(f)];
-        const double nd = face.normal.dot(d);
-        if (cell_signs_[c][static_cast<std::size_t>(k)] * nd <= 0.0) continue;
-        // crossing(w, f) with its denominator (the same expression, w.d == d) computed once.
-        const double tf = face.normal.dot(mesh_.points[face.points[0]] - w.o) / nd;
+        const Vec3& normal = r.normal[static_cast<std::size_t>(k)];
+        const double nd = normal.dot(d);  // sign * n.d, exactly
+        if (nd <= 0.0) continue;
+        // The ray leaves through one of these faces: start loading the cells behind them now.
+        __builtin_prefetch(&cells_[static_cast<std::size_t>(std::max(r.next[static_cast<std::size_t>(k)], 0))]);
+        // crossing(w, c, k) with its denominator (the same expression, w.d == d) computed once.
+        const double tf = normal.dot(r.face_point(k) - w.o) / nd;
         if (tf < t_min) {
           t_min = tf;
           k_min = k;
@@ -300,7 +321,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
         ++local.zero_length_steps;
       }
       t = t_out;
-      std::int32_t next = neighbor(c, k_min);
+      std::int32_t next = r.next[static_cast<std::size_t>(k_min)];
       if (next < 0 || zero_steps > kZeroStepBudget) {  // rule 3
         ++local.star_searches;
         std::int32_t star_cell = -1;

@@ -97,9 +97,9 @@ class TetTraversal {
   TetTraversal& operator=(const TetTraversal&) = delete;
 
   const TetMesh& mesh() const { return mesh_; }
-  const LinearTetField& field(std::size_t cell) const { return fields_[cell]; }
+  const LinearTetField& field(std::size_t cell) const { return cells_[cell].field; }
   std::size_t cell_count() const { return mesh_.tets.size(); }
-  std::size_t face_count() const { return faces_.size(); }
+  std::size_t face_count() const { return face_count_; }
   std::size_t boundary_face_count() const { return boundary_.size(); }
   // The cell across local face k (opposite point k) of `cell`, or -1 on the boundary.
   std::int32_t neighbor(std::size_t cell, int k) const;
@@ -114,20 +114,39 @@ class TetTraversal {
     Vec3 normal = Vec3::Zero();            // (p1 - p0) x (p2 - p0) of the sorted points
     std::array<std::int32_t, 2> cells{-1, -1};
   };
-  const Face& face(std::size_t f) const { return faces_[f]; }
+  // Boundary face i (0 <= i < boundary_face_count(), in Embree's primitive order); cells[1] == -1.
+  const Face& boundary_face(std::size_t i) const { return boundary_[i]; }
 
  private:
   struct Walk;
-  double crossing(const Walk& w, std::int32_t f) const;
+  // What one walk step needs about a cell, in one 256-byte record (4 cache lines) so that a step
+  // does not gather from a face array, the points, the signs and the fields (measured: the walk
+  // takes ~30% less time than with those separate arrays; README "Rendering throughput"). The
+  // values are those of the face planes of rule 1, unchanged: normal[k] is face k's normal times
+  // the cell's sign (+-1, an exact negation), so normal[k].d = sign * (n.d) and
+  // normal[k].(a - o) / normal[k].d = n.(a - o) / n.d bit for bit. A face's first point (its
+  // lowest point index) is the cell's lowest-index point, except for the face opposite that point,
+  // whose first point is the cell's second-lowest. Renders are cmp-identical to the separate arrays.
+  struct alignas(64) CellRecord {
+    std::array<Vec3, 4> normal;            // face opposite point k, times the cell's sign (outward)
+    Vec3 first_point;                      // first point of every face but k_second
+    Vec3 second_point;                     // first point of face k_second
+    std::array<std::int32_t, 4> next{};   // the cell across face k, -1 on the boundary
+    std::int32_t k_second = 0;
+    LinearTetField field;                  // Eq. 9
+    const Vec3& face_point(int k) const { return k == k_second ? second_point : first_point; }
+  };
+  static_assert(sizeof(CellRecord) == 256, "four cache lines per cell");
+  // Rule 1: the crossing parameter of local face k of `cell`, the same double whichever cell asks.
+  double crossing(const Walk& w, std::size_t cell, int k) const;
   bool star_search(const Walk& w, std::int32_t from, double t, std::int32_t& cell, double& t_out) const;
   friend struct FirstHitFilterAccess;
 
   TetMesh mesh_;
-  std::vector<Face> faces_;
-  std::vector<std::array<std::int32_t, 4>> cell_faces_;  // face id opposite point k
-  std::vector<std::array<std::int8_t, 4>> cell_signs_;   // +1: the face normal points out
-  std::vector<LinearTetField> fields_;
-  std::vector<std::int32_t> boundary_;  // boundary face ids, in Embree's primitive order
+  std::vector<CellRecord> cells_;
+  std::vector<Face> boundary_;            // boundary faces, in Embree's primitive order
+  std::vector<std::int8_t> boundary_k_;   // local index of boundary_[i] in boundary_[i].cells[0]
+  std::size_t face_count_ = 0;
   Vec3 box_min_, box_max_;
   double diagonal_ = 0.0;
   std::unique_ptr<BoundaryFirstHit> first_hit_;
