@@ -82,10 +82,14 @@ TEST_CASE("parallel_for: an exception thrown by a body is rethrown to the caller
   for (unsigned threads : {1u, 2u, 4u, 0u}) {
     INFO("threads " << threads);
     std::atomic<long long> ran{0};
+    // Items after 17 take 200 us each: without them, a worker descheduled between taking item 17
+    // and throwing could see the others run all 10,000 cheap items first (seen once in a clean-
+    // clone CI run on a loaded machine), so the check below would race instead of testing.
     CHECK_THROWS_WITH(parallel_for(10000, threads,
                                    [&](long long i) {
                                      ++ran;
                                      if (i == 17) throw std::runtime_error("item 17 failed");
+                                     if (i > 17) std::this_thread::sleep_for(std::chrono::microseconds(200));
                                    }),
                       "item 17 failed");
     CHECK(ran.load() < 10000);  // the handing out of items stopped
