@@ -336,11 +336,23 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
 // arithmetic of exact_piece); transparent lanes get transmittance 1 and emission 0.
 // n: whole vectors; only the first n_valid results are stored. The kappas are read in place up
 // to the last whole vector of n_valid, and from tail_kappa_exit/far (one padded vector per
-// channel) after it.
-void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
-                const GroupResults* HWY_RESTRICT res, int channels, const double* const* kappa_exit,
-                const double* const* kappa_far, const double* const* tail_kappa_exit,
-                const double* const* tail_kappa_far, double* HWY_RESTRICT tr_out, double* const* em_out) {
+// channel) after it. The channel count is a template argument (ExpandBack picks it) and the
+// column pointers are copied into locals, so the per-vector loop reloads nothing.
+template <int kC>
+HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
+                                   const GroupResults* HWY_RESTRICT res, const double* const* kappa_exit_cols,
+                                   const double* const* kappa_far_cols, const double* const* tail_kappa_exit_cols,
+                                   const double* const* tail_kappa_far_cols, double* HWY_RESTRICT tr_out,
+                                   double* const* em_out_cols) {
+  const double *kappa_exit[kC], *kappa_far[kC], *tail_kappa_exit[kC], *tail_kappa_far[kC];
+  double* em_out[kC];
+  for (int c = 0; c < kC; ++c) {
+    kappa_exit[c] = kappa_exit_cols[c];
+    kappa_far[c] = kappa_far_cols[c];
+    tail_kappa_exit[c] = tail_kappa_exit_cols[c];
+    tail_kappa_far[c] = tail_kappa_far_cols[c];
+    em_out[c] = em_out_cols[c];
+  }
   using D = hn::ScalableTag<double>;
   using V = hn::Vec<D>;
   const D d;
@@ -395,11 +407,25 @@ void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size
       }
     };
     store(tr, tr_out + i);
-    for (int c = 0; c < channels; ++c) {
+    for (int c = 0; c < kC; ++c) {
       const V ke = hn::LoadU(d, whole ? kappa_exit[c] + i : tail_kappa_exit[c]);
       const V kf = hn::LoadU(d, whole ? kappa_far[c] + i : tail_kappa_far[c]);
       store(hn::IfThenZeroElse(transparent, hn::MulAdd(ke, w_exit, hn::Mul(kf, w_far))), em_out[c] + i);
     }
+  }
+}
+
+// channels: 1 (the channel batch) or kChannels (a grey batch).
+void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
+                const GroupResults* HWY_RESTRICT res, int channels, const double* const* kappa_exit,
+                const double* const* kappa_far, const double* const* tail_kappa_exit,
+                const double* const* tail_kappa_far, double* HWY_RESTRICT tr_out, double* const* em_out) {
+  if (channels == 1) {
+    ExpandBackChannels<1>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit, tail_kappa_far, tr_out,
+                          em_out);
+  } else {
+    ExpandBackChannels<kChannels>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit, tail_kappa_far,
+                                  tr_out, em_out);
   }
 }
 
