@@ -168,7 +168,7 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 
 RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   if (path_ == Path::scalar) return integrate_scalar(ray, diag);
-  if (grey_ && !diag) return integrate_grey(ray);
+  if (splitter_.grey() && !diag) return integrate_grey(ray);
   // Every piece of the ray (far -> near), then one batch over all its piece-channels, results
   // piece-major (index 3 k + c).
   struct Columns {

@@ -39,7 +39,7 @@ class ExactIntegrator final : public PieceIntegrator {
  public:
   enum class Path { batch, scalar };
   explicit ExactIntegrator(const TransferFunctions& tf, Path path = Path::batch)
-      : PieceIntegrator(tf), path_(path), grey_(tf.grey()) {}
+      : PieceIntegrator(tf), path_(path) {}
   RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
 
  private:
@@ -48,7 +48,6 @@ class ExactIntegrator final : public PieceIntegrator {
   // all channels (the channel path's results, bit for bit).
   RayResult integrate_grey(const Ray& ray) const;
   Path path_;
-  bool grey_;
 };
 
 }  // namespace rayint

@@ -94,6 +94,8 @@ class PieceSplitter {
   // are dropped, so they must be channel 0's).
   void append(const Segment& segment, GreyPieceColumns& out) const;
   const TransferFunctions& transfer() const { return *tf_; }
+  // transfer().grey(), computed once: the grey columns may be asked for.
+  bool grey() const { return grey_; }
 
  private:
   static constexpr int kFunctions = 2 * kChannels;  // rho r, g, b; kappa r, g, b
