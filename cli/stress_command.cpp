@@ -66,11 +66,7 @@ void set_stress_command(CLI::App& app) {
     StressOptions so;
     so.count = opt->count;
     so.seed = opt->seed;
-    try {
-      so.methods = parse_method_list(opt->methods);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("--methods: ") + e.what());
-    }
+    so.methods = parse_methods_option(opt->methods);
     so.threads = opt->threads;
     for (const auto& name : opt->regimes) {
       if (name == "all") {
@@ -102,6 +98,12 @@ void set_stress_command(CLI::App& app) {
     }
     if (!opt->no_worst) write_worst_cases(report, opt->worst_dir);
     emit(opt->json ? to_json(report).dump(2) : stress_table(report), opt->output);
+    // A method that failed (threw or returned a non-finite result) or a reference that failed on
+    // some sample: written and counted, exit 1.
+    long failed = 0;
+    for (const auto& m : report.overall) failed += m.non_finite;
+    for (const auto& reg : report.regimes) failed += reg.reference_failures;
+    if (failed > 0) throw ChecksFailed{};
   });
 }
 
