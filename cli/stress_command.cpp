@@ -37,6 +37,10 @@ void set_stress_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "stress", "Adversarial pieces and rays, regime by regime, against the 50-digit reference");
+  cmd->footer(
+      "Exit status: 0 no method and no reference failed; 1 a method threw or returned a "
+      "non-finite result, or the reference failed, on some sample (report written, counted in "
+      "the nonfin and failed columns); 2 bad input. docs/exit-codes.md");
   cmd->add_option("--count", opt->count,
                   "Pieces in total, split evenly over the regimes (ray-level regimes draw whole "
                   "rays until their pieces reach their share)")

@@ -150,7 +150,9 @@ TEST_CASE("method table: every bound is where the validator puts it", "[methods]
 TEST_CASE("method table: every method builds from its defaults and with every choice",
           "[methods][specs]") {
   using rayint::test::line;
-  const rayint::TransferFunctions tf = rayint::test::uniform_tf(line(0, 0.5, 1, 2), line(0, 1, 1, 0.2));
+  // One density for all channels and a constant colour: every method applies (particle too).
+  const rayint::TransferFunctions tf =
+      rayint::test::uniform_tf(line(0, 0.5, 1, 2), rayint::test::constant(0.7));
   rayint::Ray ray;
   ray.segments.push_back({1.0, 0.2, 0.8});
   const auto runs = [&](const std::string& text) {

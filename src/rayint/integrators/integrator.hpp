@@ -88,7 +88,7 @@ struct MethodParam {
   bool max_exclusive = false;        // the value must be < max (not <=)
   std::vector<std::string> choices;  // choice: the allowed values
   std::string about;                 // one line for `rayint methods`
-  std::string limit;                 // where max comes from (e.g. the memory it takes); may be ""
+  std::string limit;                 // where `max` comes from (e.g. the memory it takes); may be ""
 };
 const char* type_name(MethodParam::Type t);  // "integer", "number", "choice"
 // The allowed values in words, e.g. "an integer in [1, 1e9]", "a number > 0", "btf or ftb".

@@ -39,7 +39,7 @@ std::vector<MethodSchema>& registry() {
        },
        nullptr},
       {"paper",
-       "Williams & Max 1992 Eq. 14-17 as printed (the paper's own closed form)",
+       "the closed form of Williams & Max 1992 Sec. 3.3 as printed (complex Erfi)",
        {},
        [](const MethodSpec&, const TransferFunctions& tf) -> std::unique_ptr<RayIntegrator> {
          return std::make_unique<PaperIntegrator>(tf);
@@ -47,10 +47,12 @@ std::vector<MethodSchema>& registry() {
        nullptr},
       {"ode",
        "adaptive Dormand-Prince 5(4) on Eq. 3 (Boost.Odeint), per piece",
-       {number_param("rtol", "1e-8", 1e-15, false, 1.0, true, "relative tolerance per step",
-                     "below 1e-15 the error estimate is rounding noise and the step collapses"),
-        number_param("atol", "2.2250738585072014e-308", 0.0, false, kInf, false,
-                     "absolute tolerance per step (default DBL_MIN: control is relative)")},
+       {number_param("rtol", "1e-8", 1e-15, false, 1.0, true,
+                     "relative tolerance per step (below 1e-15 the error estimate is rounding "
+                     "noise and the step collapses)"),
+        number_param("atol", "2.2250738585072014e-308", 0.0, true, kInf, false,
+                     "absolute tolerance per step (default DBL_MIN: control is relative; 0 would "
+                     "make the error ratio 0/0 where I = 0 and rho = 0)")},
        make_ode, nullptr},
       {"rk4",
        "classical Runge-Kutta on Eq. 3, n equal steps per piece",
@@ -67,12 +69,16 @@ std::vector<MethodSchema>& registry() {
         number_param("ref_dt", "", 0.0, true, kInf, false,
                      "step the opacity table was made for (correction exp: corrected; none: required)")},
        make_riemann, [](const MethodSpec& spec) { riemann_options(spec); }},
-      {"eq5", "Williams & Max Eq. 5: constant kappa and rho per piece", {}, make_eq5, nullptr},
-      {"eq6", "Williams & Max Eq. 6", {}, make_eq6, nullptr},
-      {"eq7", "Williams & Max Eq. 7", {}, make_eq7, nullptr},
-      {"eq8", "Williams & Max Eq. 8", {}, make_eq8, nullptr},
+      {"eq5", "Williams & Max Eq. 5: kappa frozen at its average per piece, int rho exact", {},
+       make_eq5, nullptr},
+      {"eq6", "Williams & Max Eq. 6: kappa and rho averaged from each cell's end values", {},
+       make_eq6, nullptr},
+      {"eq7", "Williams & Max Eq. 7: Eq. 6 stored as one opacity per cell", {}, make_eq7, nullptr},
+      {"eq8", "Williams & Max Eq. 8: opacity rho L (clamped to 1), for thin cells", {}, make_eq8,
+       nullptr},
       {"particle",
-       "Max 1995 particle model (needs a single transfer function for all channels)",
+       "Sabella's particle model (Williams & Max Sec. 2, Eq. 2); needs one density for all "
+       "channels and constant colours",
        {}, make_particle, nullptr},
       {"preintegrated",
        "pre-integrated transfer functions (Engel et al. 2001; dims=3 after Roettger et al. 2000)",
@@ -118,6 +124,22 @@ const MethodParam* find_param(const MethodSchema& info, const std::string& key) 
   for (const auto& p : info.params)
     if (p.name == key) return &p;
   return nullptr;
+}
+
+// `text` for a one-line message: control bytes and bytes >= 0x7f as \xNN.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto b = static_cast<unsigned char>(ch);
+    if (b >= 0x20 && b < 0x7f) {
+      out += ch;
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", b);
+      out += buf;
+    }
+  }
+  return out;
 }
 
 // A bound in a message: integers plainly, large or small ones as 1e9, 1e-15.
@@ -266,7 +288,7 @@ const MethodSchema& method_schema(const std::string& name) {
   if (const MethodSchema* info = find_info(name)) return *info;
   std::string known;
   for (const auto& e : registry()) known += (known.empty() ? "" : ", ") + e.name;
-  throw MethodSpecError(name + ": unknown method (known: " + known + ")");
+  throw MethodSpecError(printable(name) + ": unknown method (known: " + known + ")");
 }
 
 std::string MethodSpec::label() const { return spelling.empty() ? canonical() : spelling; }
@@ -311,10 +333,12 @@ std::string MethodSpec::text(const std::string& key, const std::string& fallback
   return it == params.end() ? fallback : it->second;
 }
 
-MethodSpec parse_method_spec(const std::string& text) {
+MethodSpec parse_method_spec(const std::string& typed) {
+  // Messages start with the spec as typed (control bytes escaped, so they stay one line).
+  const std::string text = printable(typed);
   MethodSpec spec;
-  spec.spelling = text;
-  std::stringstream in(text);
+  spec.spelling = typed;
+  std::stringstream in(typed);
   std::string part;
   std::getline(in, spec.name, ':');
   if (spec.name.empty()) throw MethodSpecError(text + ": empty method name");
@@ -322,18 +346,18 @@ MethodSpec parse_method_spec(const std::string& text) {
   if (!info) {
     std::string known;
     for (const auto& e : registry()) known += (known.empty() ? "" : ", ") + e.name;
-    throw MethodSpecError(text + ": unknown method '" + spec.name + "' (known: " + known + ")");
+    throw MethodSpecError(text + ": unknown method '" + printable(spec.name) + "' (known: " + known + ")");
   }
   while (std::getline(in, part, ':')) {
     const auto eq = part.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == part.size())
-      throw MethodSpecError(text + ": expected key=value, got '" + part + "'");
+      throw MethodSpecError(text + ": expected key=value, got '" + printable(part) + "'");
     const std::string key = part.substr(0, eq);
     const MethodParam* p = find_param(*info, key);
     if (!p) {
       std::string accepted;
       for (const auto& q : info->params) accepted += (accepted.empty() ? "" : ", ") + q.name;
-      throw MethodSpecError(text + ": unknown parameter '" + key + "' (" + spec.name + " takes " +
+      throw MethodSpecError(text + ": unknown parameter '" + printable(key) + "' (" + spec.name + " takes " +
                             (accepted.empty() ? std::string("no parameters") : accepted) + ")");
     }
     if (spec.params.count(key)) throw MethodSpecError(text + ": " + key + " given twice");
@@ -342,7 +366,7 @@ MethodSpec parse_method_spec(const std::string& text) {
     if (!problem.empty()) throw MethodSpecError(text + ": " + problem);
     spec.params[key] = value;
   }
-  if (text.back() == ':') throw MethodSpecError(text + ": expected key=value after ':'");
+  if (typed.back() == ':') throw MethodSpecError(text + ": expected key=value after ':'");
   if (info->check) {
     try {
       info->check(spec);

@@ -13,7 +13,7 @@ std::string methods_text(const std::vector<MethodSchema>& methods) {
       std::string line = "    " + p.name + " (" + type_name(p.type) + ", default " +
                          (p.fallback.empty() ? std::string("none") : p.fallback) + "): " +
                          allowed_values(p) + ". " + p.about;
-      if (!p.limit.empty()) line += " [max: " + p.limit + "]";
+      if (!p.limit.empty()) line += " (max: " + p.limit + ")";
       out += line + "\n";
     }
   }
