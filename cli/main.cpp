@@ -21,6 +21,14 @@ void emit(const std::string& text, const std::string& path) {
   }
 }
 
+std::vector<MethodSpec> parse_methods_option(const std::string& csv, const std::string& option) {
+  try {
+    return parse_method_list(csv);
+  } catch (const MethodSpecError& e) {
+    throw MethodSpecError(option + " " + e.what());
+  }
+}
+
 // Every subcommand on `app` (main's app, and the app `rayint merge` replays a run on).
 void build_app(CLI::App& app) {
   set_eval_command(app);
@@ -36,6 +44,7 @@ void build_app(CLI::App& app) {
   set_slab_command(app);
   set_scatter_command(app);
   set_tf_command(app);
+  set_methods_command(app);
   set_merge_command(app, build_app);
 }
 
@@ -48,7 +57,10 @@ int main(int argc, char** argv) {
   rayint::register_vtk_mesh_readers();  // mesh_file .vtu, .pvtu
 #endif
   CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);  // none: the usage (below), exit 2
+  app.set_version_flag("--version", std::string("rayint ") + RAYINT_VERSION);
+  app.footer("Exit codes: 0 ok; 1 a check, gate or method failed (output written, failures "
+             "marked); 2 bad input or usage (docs/exit-codes.md).");
   rayint::cli::build_app(app);
   for (int i = 2; i < argc; ++i) rayint::cli::shard_context().args.push_back(argv[i]);
   try {
@@ -57,10 +69,16 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const rayint::cli::ChecksFailed&) {
     return rayint::cli::kExitFailed;
   } catch (const std::exception& e) {  // CLI::ParseError, InputError, std::invalid_argument, ...
     std::cerr << "rayint: error: " << e.what() << "\n";
+    return rayint::cli::kExitBadInput;
+  }
+  if (app.get_subcommands().empty()) {  // `rayint` alone: what it can do, on stderr
+    std::cerr << app.help();
     return rayint::cli::kExitBadInput;
   }
   return 0;
