@@ -314,6 +314,14 @@ TEST_CASE("rayint slab --method pn: results under pn, P1 named the diffusion app
   CHECK(m["pn"]["boundary"] == "mark");
   CHECK(m["pn"]["label"] == "P7");
   CHECK_FALSE(m.contains("doubling"));
+  // A slab scene solved by P_N: the scene's detectors, under "pn".
+  const auto scene = rayint::test::run_cli(
+      dir.path, "slab --scene '" + std::string(RAYINT_SOURCE_DIR) + "/cases/scenes/slab-disort-1b.json' --method pn:order=15");
+  INFO(scene.err);
+  REQUIRE(scene.status == 0);
+  const auto sj = nlohmann::json::parse(scene.out);
+  CHECK(sj["pn"]["intensity_up_top"].size() == 3);
+  CHECK(sj["pn"]["diagnostics"]["conservative"] == true);
 }
 
 TEST_CASE("rayint slab --method pn: a bad order or parameter is one line and exit 2", "[pn][cli]") {
