@@ -42,8 +42,9 @@
 //   any loss is below that.
 // - Beam resonance: where 1/mu0 equals some kappa_j, (B - A/mu0) is singular. When
 //   |kappa_j mu0 - 1| < kPnResonanceGap (1e-6: the particular solution loses about eps/gap,
-//   <= 2e-10 beyond it) the solve is the average of mu0 (1 +- 1e-4), an error O(1e-8) (second
-//   order in the shift; the field is smooth in mu0, only the representation is singular).
+//   <= 2e-10 beyond it) the solve is the average of mu0 (1 +- 1e-4), an error second order in
+//   the shift (the field is smooth in mu0; only the representation is singular): the second
+//   difference at a shift of 1e-3 measured 2.9e-7 relative (P1, omega 0.5), so ~3e-9 at 1e-4.
 // - Angular intensities by source-function integration: the formal solution integrated on
 //   J(t, mu) = omega sum_l chi_l a_l(t) P_l(mu) + omega F0 p0(mu, mu0) e^{-t/mu0}, whose single-
 //   scattering part uses the exact (untruncated) azimuthally averaged phase function (Nakajima &
@@ -110,7 +111,8 @@ PnSolution solve_slab_pn(const SlabProblem& problem, const PnOptions& options = 
 
 // chi_0..chi_lmax of a phase function: isotropic and Henyey-Greenstein exactly; others by
 // 2048-point Gauss-Legendre in cos Theta (the Lambert sphere's square-root edge at +-1 makes
-// that algebraic: measured <= 3e-10 absolute against 8192 points for l <= 127).
+// that algebraic: the same formula with numpy's 2048- and 4096-point rules differs by
+// <= 2.6e-13 absolute for l <= 127; chi_1 within 1.5e-13 of -4/9).
 std::vector<double> phase_legendre_coefficients(const PhaseFunction& phase, int lmax);
 
 }  // namespace rayint
