@@ -1,12 +1,14 @@
 #pragma once
 // The spherical-harmonics (P_N) method for the plane-parallel slab (slab.hpp), the third of the
 // four multiple-scattering methods Max (1995, Sec. 7) names, for the azimuthally averaged field.
-// P_1 is the diffusion approximation that volume renderers use (with Marshak's boundary
-// condition it is the "diffusion with the Marshak boundary" of the subsurface-scattering
-// literature); docs/multiple-scattering.md, "P_N".
+// P_1 is the diffusion approximation that volume renderers use (diffusion with Marshak's
+// boundary condition); docs/multiple-scattering.md, "P_N".
 //
-// Equations (Chandrasekhar 1950, Sec. 17; Davison 1957, Ch. 10; Case & Zweifel 1967, Ch. 8;
-// the eigenvector form as in Benassi, Garcia & Siewert 1984). Optical depth t downward from the
+// Equations: the spherical-harmonics moment equations of neutron-transport texts (Davison 1957,
+// "Neutron Transport Theory"; Case & Zweifel 1967, "Linear Transport Theory"); boundary
+// conditions of Marshak (1947, Phys. Rev. 71, 443) and Mark (1944); the even/odd reduction to a
+// half-size eigenproblem is the one DISORT uses for discrete ordinates (Stamnes et al. 1988,
+// Appl. Opt. 27, 2502). Optical depth t downward from the
 // top, direction cosine mu > 0 downward, diffuse intensity expanded as
 //   I(t, mu) = sum_{l=0}^{N} a_l(t) P_l(mu),        (N odd)
 // phase function p(cos Theta) = 1/(4 pi) sum_l (2l + 1) chi_l P_l(cos Theta), chi_0 = 1 (its
@@ -47,8 +49,8 @@
 //   difference at a shift of 1e-3 measured 2.9e-7 relative (P1, omega 0.5), so ~3e-9 at 1e-4.
 // - Angular intensities by source-function integration: the formal solution integrated on
 //   J(t, mu) = omega sum_l chi_l a_l(t) P_l(mu) + omega F0 p0(mu, mu0) e^{-t/mu0}, whose single-
-//   scattering part uses the exact (untruncated) azimuthally averaged phase function (Nakajima &
-//   Tanaka 1988's correction), every term a sum of exponentials or the ramp, integrated in closed
+//   scattering part uses the exact (untruncated) azimuthally averaged phase function (the
+//   single-scattering correction of Nakajima & Tanaka 1988, JQSRT 40, 51), every term a sum of exponentials or the ramp, integrated in closed
 //   form with exponentials <= 1 (attenuated_length, and the series of (1 - e^{-x}(1+x))/x^2 below
 //   x = 0.5). The truncated series sum_l a_l P_l(mu) at the faces is reported beside them.
 // - Fluxes from the moments: 2 pi int_0^1 mu I(+-mu) dmu = 2 pi sum_l a_l (+-1)^l int_0^1 mu P_l.
