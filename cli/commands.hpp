@@ -4,7 +4,8 @@
 
 namespace rayint::cli {
 
-// Exit codes: 0 success, 1 a check or gate failed, 2 bad input or usage.
+// Exit codes: 0 success, 1 a check or gate failed, 2 bad input or usage, or an output (a file
+// or standard output) that could not be written completely.
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 
