@@ -9,7 +9,8 @@
 namespace rayint::cli {
 
 // Exit codes (docs/exit-codes.md): 0 success, 1 a check or gate failed or a method failed on
-// some ray (output written, the failures marked), 2 bad input or usage (nothing written).
+// some ray (output written, the failures marked), 2 bad input or usage (nothing written), or an
+// output (a file or standard output) that could not be written completely.
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 

@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "shard.hpp"
+#include "rayint/core/error.hpp"
 #include "rayint/input/shard_reader.hpp"
 #include "rayint/report/shard_json.hpp"
 #include "rayint/input/slab_benchmark_reader.hpp"
@@ -140,9 +141,16 @@ MonteCarloShardIO shard_io_for(const ShardSpec& shard) {
     if (c.data[i].is_null()) continue;
     const nlohmann::json& parts = c.data[i].at("monte_carlo");
     per_shard.emplace_back();
-    for (std::size_t k = 0; k < parts.size(); ++k)
-      per_shard.back().push_back(monte_carlo_part_from_json(
-          parts[k], c.files[i], "data.monte_carlo[" + std::to_string(k) + "]"));
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const std::string field = "data.monte_carlo[" + std::to_string(k) + "]";
+      per_shard.back().push_back(monte_carlo_part_from_json(parts[k], c.files[i], field));
+      // Every shard holds exactly its blocks: no block left out or counted twice.
+      const CoveredBlocks covered = covered_blocks(per_shard.back().back());
+      if (!covered.contiguous)
+        throw InputError(c.files[i] + ": " + field + ".nodes: the blocks are not one contiguous range");
+      check_shard_band(i, per_shard.back().back().blocks, static_cast<long>(covered.range.begin),
+                       static_cast<long>(covered.range.end), field + ".nodes");
+    }
   }
   for (std::size_t k = 0; k < per_shard.front().size(); ++k) {
     std::vector<const MonteCarloPart*> parts;
