@@ -19,7 +19,12 @@
 
 #include "cli_harness.hpp"
 #include "rayint/core/error.hpp"
+#include "rayint/input/case_reader.hpp"
 #include "rayint/input/paraview_preset.hpp"
+#include "rayint/integrators/integrator.hpp"
+#include "rayint/metrics/error_metrics.hpp"
+#include "rayint/reference/reference.hpp"
+#include "tolerances.hpp"
 
 namespace {
 
@@ -238,4 +243,76 @@ TEST_CASE("ParaView presets: a name two presets share is refused listing both, a
   const auto beyond = run_cli(dir.path, "tf import maps.json --index 195");
   rayint::test::check_usage_error(beyond);
   CHECK(beyond.err.find("rayint tf import: --index: no preset [195]: ") != std::string::npos);
+}
+
+TEST_CASE("transfer functions with jumps: exact matches the 50-digit reference, the sampling methods converge", "[tf][paraview][methods]") {
+  // Two cases in tests/data/tf/: ParaView's "Spectrum Step" as shipped (kappa jumps at 7 scalars,
+  // default opacity ramp) and jumps.json (kappa jumps at a repeated RGBPoints scalar, rho at a
+  // sharpness-1 opacity step). The import makes each jump a ramp one double wide at VTK's switch
+  // (docs/transfer-function-conventions.md), which every method sees as a breakpoint pair. Rays
+  // cross the jumps both ways, end on them, and hold a constant scalar exactly on one.
+  using rayint::test::MethodTolerances;
+  using rayint::test::Tolerances;
+  struct JumpCase {
+    const char* file;
+    std::vector<std::size_t> constant_on_jump;  // rays with a segment of constant scalar at a jump
+  };
+  for (const JumpCase& jc : {JumpCase{"case-spectrum-step.json", {2}}, JumpCase{"case-jumps.json", {1, 2}}}) {
+    const rayint::Case c = rayint::read_case_file((kData / jc.file).string());
+    INFO(jc.file);
+    std::vector<rayint::ReferenceRay> ref;
+    for (const rayint::Ray& ray : c.rays) ref.push_back(rayint::reference_ray(c.transfer, ray));
+    // Per ray, the largest relative error over channels (intensity and transmittance).
+    auto errors = [&](const std::string& spec) {
+      const auto m = rayint::make_integrator(rayint::parse_method_spec(spec), c.transfer);
+      std::vector<double> out;
+      for (std::size_t i = 0; i < c.rays.size(); ++i) {
+        const rayint::RayResult r = m->integrate(c.rays[i], nullptr);
+        double e = 0.0;
+        for (int k = 0; k < rayint::kChannels; ++k)
+          e = std::max({e, rayint::relative_error(r.intensity[k], ref[i].intensity[k]),
+                        rayint::relative_error(r.transmittance[k], ref[i].transmittance[k])});
+        out.push_back(e);
+      }
+      return out;
+    };
+    auto is_on_jump = [&](std::size_t i) {
+      return std::find(jc.constant_on_jump.begin(), jc.constant_on_jump.end(), i) != jc.constant_on_jump.end();
+    };
+    auto max_error = [&](const std::string& spec, bool skip_constant_on_jump) {
+      const std::vector<double> e = errors(spec);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < e.size(); ++i)
+        if (!skip_constant_on_jump || !is_on_jump(i)) worst = std::max(worst, e[i]);
+      return worst;
+    };
+    for (const std::string spec : {"exact", "exact:path=batch"}) {
+      const double e = max_error(spec, false);
+      CHECK(e <= Tolerances::exact_rel);
+      WARN(jc.file << ": " << spec << " vs the 50-digit reference, max rel " << e);
+    }
+    const double ode = max_error("ode:rtol=1e-9", false);
+    CHECK(ode <= MethodTolerances::ode_error_per_rtol * 1e-9);
+    // A jump inside a step costs O(jump * h): first order, so 16 times the samples must cut the
+    // error by at least 4 (measured 16 to 56 from n = 128 to 2048).
+    for (const std::string method : {"riemann:n=", "rk4:n=", "nerf:n=", "pl_nerf:n="}) {
+      const double coarse = max_error(method + "128", false), fine = max_error(method + "2048", false);
+      CHECK(fine <= coarse / 4);
+      WARN(jc.file << ": " << method << "128 " << coarse << ", 2048 " << fine << "; ode:rtol=1e-9 " << ode);
+    }
+    // The pre-integrated table converges on rays that cross jumps; on a segment whose scalar sits
+    // exactly on a jump it interpolates its table across the jump at every size (measured on
+    // case-jumps.json: 0.59 at size 256 and at 4096; 0.25 at 2048): a limitation of sampled
+    // tables, reported here and in docs/transfer-function-conventions.md, not asserted away.
+    const double pre_coarse = max_error("preintegrated:size=128", true);
+    const std::vector<double> pre = errors("preintegrated:size=2048");
+    double pre_fine = 0.0, on_jump = 0.0;
+    for (std::size_t i = 0; i < pre.size(); ++i) {
+      double& worst = is_on_jump(i) ? on_jump : pre_fine;
+      worst = std::max(worst, pre[i]);
+    }
+    CHECK(pre_fine <= pre_coarse / 4);
+    WARN(jc.file << ": preintegrated crossing jumps: size 128 " << pre_coarse << ", 2048 " << pre_fine
+                 << "; holding a scalar on a jump, size 2048: " << on_jump);
+  }
 }
