@@ -279,6 +279,19 @@ TEST_CASE("ParaView presets: a name two presets share is refused listing both, a
   const auto wrong = run_cli(dir.path, "tf import maps.json --name Viridis --index " + std::to_string(blues[1]));
   rayint::test::check_usage_error(wrong);
   CHECK(wrong.err.find("].Name: the preset is \"Blues\", not \"Viridis\"") != std::string::npos);
+  // The same in a case file: "index" picks one.
+  const std::string rays = R"j("rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]}])j";
+  dir.write("shared.json", R"j({"name": "c", "transfer_function": {"paraview_preset": "maps.json", "name": "Blues"}, )j" + rays + "}");
+  CHECK_THROWS_WITH(rayint::read_case_file((dir.path / "shared.json").string()),
+                    Catch::Contains("maps.json: (root): " + listed.substr(0, listed.find("(--index)")) +
+                                    "(transfer_function.index)"));
+  dir.write("picked.json", R"j({"name": "c", "transfer_function": {"paraview_preset": "maps.json", "name": "Blues", "index": )j" +
+                               std::to_string(blues[0]) + "}, " + rays + "}");
+  const rayint::Case picked = rayint::read_case_file((dir.path / "picked.json").string());
+  const rayint::PresetImport direct =
+      rayint::import_paraview_preset(request("paraview-5.11-presets.json", "Blues", blues[0], 1e-6));
+  CHECK(picked.transfer.color[1].value == direct.result.transfer.color[1].value);
+  CHECK(picked.transfer.density[0].value == direct.result.transfer.density[0].value);
   const auto beyond = run_cli(dir.path, "tf import maps.json --index 195");
   rayint::test::check_usage_error(beyond);
   CHECK(beyond.err.find("rayint tf import: --index: no preset [195]: ") != std::string::npos);
