@@ -31,7 +31,8 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kData = fs::path(RAYINT_SOURCE_DIR) / "tests" / "data" / "tf";
 
-// A float64 .npy of shape (rows, columns), C order: the oracle's layout (scripts/paraview-presets.py).
+// A float64 .npy of shape (rows, columns), C order: the oracle's layout
+// (scripts/paraview-presets.py).
 struct Table {
   std::size_t rows = 0, columns = 0;
   std::vector<double> v;
@@ -44,7 +45,9 @@ Table read_npy(const fs::path& path) {
   REQUIRE(bytes.size() > 10);
   REQUIRE(bytes.compare(0, 6, "\x93NUMPY") == 0);
   REQUIRE(bytes[6] == 1);  // version 1.0: 2-byte header length
-  const std::size_t header_len = static_cast<unsigned char>(bytes[8]) | (static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8);
+  const std::size_t header_len =
+      static_cast<unsigned char>(bytes[8]) |
+      (static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8);
   const std::string header = bytes.substr(10, header_len);
   REQUIRE(header.find("'descr': '<f8'") != std::string::npos);
   REQUIRE(header.find("'fortran_order': False") != std::string::npos);
@@ -67,8 +70,8 @@ nlohmann::json read_json(const fs::path& path) {
   return nlohmann::json::parse(in);
 }
 
-rayint::PresetImportRequest request(const std::string& file, const std::string& name, std::size_t index,
-                                    double tolerance) {
+rayint::PresetImportRequest request(const std::string& file, const std::string& name,
+                                    std::size_t index, double tolerance) {
   rayint::PresetImportRequest r;
   r.file = (kData / file).string();
   r.name = name;
@@ -85,7 +88,8 @@ struct Deviation {
 
 // The imported functions and rayint's VTK curves against the oracle rows of one preset. Rows
 // whose oracle colour is NaN (VTK's log scale below 0) are skipped.
-Deviation compare(const rayint::PresetImport& imp, const Table& oracle, std::size_t first, std::size_t count) {
+Deviation compare(const rayint::PresetImport& imp, const Table& oracle, std::size_t first,
+                  std::size_t count) {
   Deviation d;
   const rayint::TransferFunctions& tf = imp.result.transfer;
   for (std::size_t i = first; i < first + count; ++i) {
@@ -98,20 +102,25 @@ Deviation compare(const rayint::PresetImport& imp, const Table& oracle, std::siz
       d.color = std::max(d.color, std::fabs(tf.color[static_cast<std::size_t>(j)](x) - vtk));
       d.curve = std::max(d.curve, std::fabs(curve[static_cast<std::size_t>(j)] - vtk));
     }
-    if (oracle.columns > 4) d.opacity = std::max(d.opacity, std::fabs(tf.density[0](x) - oracle.at(i, 4)));
+    if (oracle.columns > 4)
+      d.opacity = std::max(d.opacity, std::fabs(tf.density[0](x) - oracle.at(i, 4)));
   }
   return d;
 }
 
 }  // namespace
 
-TEST_CASE("ParaView 5.11 built-in presets: every continuous one imports as shipped, within the tolerance of VTK's colours", "[tf][paraview]") {
+TEST_CASE(
+    "ParaView 5.11 built-in presets: every continuous one imports as shipped, within the tolerance "
+    "of VTK's colours",
+    "[tf][paraview]") {
   const nlohmann::json presets = read_json(kData / "paraview-5.11-presets.json");
   const nlohmann::json meta = read_json(kData / "paraview-5.11-oracle.json");
   const Table oracle = read_npy(kData / meta["built_in"]["file"].get<std::string>());
   REQUIRE(presets.size() == 195);
   std::map<std::string, const nlohmann::json*> oracle_of;  // by index
-  for (const auto& e : meta["built_in"]["presets"]) oracle_of[std::to_string(e["preset_index"].get<int>())] = &e;
+  for (const auto& e : meta["built_in"]["presets"])
+    oracle_of[std::to_string(e["preset_index"].get<int>())] = &e;
 
   for (const double tolerance : {1e-6, 1e-4}) {
     std::map<std::string, int> continuous, imported;
@@ -131,9 +140,11 @@ TEST_CASE("ParaView 5.11 built-in presets: every continuous one imports as shipp
           FAIL("a categorical preset imported");
         } catch (const rayint::InputError& e) {
           const std::string what = e.what();
-          const bool right = what.find("[" + std::to_string(i) + "].IndexedColors: a categorical colour map") !=
-                                 std::string::npos &&
-                             what.find("categorical maps have no continuous transfer function") != std::string::npos;
+          const bool right =
+              what.find("[" + std::to_string(i) + "].IndexedColors: a categorical colour map") !=
+                  std::string::npos &&
+              what.find("categorical maps have no continuous transfer function") !=
+                  std::string::npos;
           CHECK(right);
           refused_right += right;
         }
@@ -149,8 +160,9 @@ TEST_CASE("ParaView 5.11 built-in presets: every continuous one imports as shipp
       // The colour space the lookup table ended with is the one rayint evaluates.
       const std::string applied = e["applied"]["ColorSpace"].get<std::string>();
       CHECK(applied == (space == "CIELAB" ? "RGB" : space));
-      const Deviation d = compare(imp, oracle, e["rows"][0].get<std::size_t>(), e["rows"][1].get<std::size_t>());
-      CHECK(d.curve <= 1e-12);     // rayint's VTK curves vs VTK 9.2: rounding
+      const Deviation d =
+          compare(imp, oracle, e["rows"][0].get<std::size_t>(), e["rows"][1].get<std::size_t>());
+      CHECK(d.curve <= 1e-12);      // rayint's VTK curves vs VTK 9.2: rounding
       CHECK(d.color <= tolerance);  // the linearised colour vs VTK: the stated tolerance holds
       // The default opacity: ParaView's ramp 0 -> 1 over the colour range.
       const double x0 = imp.preset.color.nodes.front().x, x1 = imp.preset.color.nodes.back().x;
@@ -177,15 +189,19 @@ TEST_CASE("ParaView 5.11 built-in presets: every continuous one imports as shipp
     CHECK(total_imported == 128);
     CHECK(categorical == 67);
     CHECK(refused_right == 67);
-    WARN("ParaView 5.11 built-ins, tolerance " << tolerance << ": imported within tolerance " << total_imported << "/"
-         << total_continuous << " continuous (" << by_space << "); categorical refused with the message "
-         << refused_right << "/" << categorical << "; worst |colour - VTK| " << worst_color << " (" << worst_name
-         << ") over " << samples << " samples; worst reported max deviation " << worst_reported
-         << "; rayint's VTK curves vs VTK 9.2 " << worst_curve);
+    WARN("ParaView 5.11 built-ins, tolerance "
+         << tolerance << ": imported within tolerance " << total_imported << "/" << total_continuous
+         << " continuous (" << by_space << "); categorical refused with the message "
+         << refused_right << "/" << categorical << "; worst |colour - VTK| " << worst_color << " ("
+         << worst_name << ") over " << samples << " samples; worst reported max deviation "
+         << worst_reported << "; rayint's VTK curves vs VTK 9.2 " << worst_curve);
   }
 }
 
-TEST_CASE("ParaView 5.11 built-in presets: the linearised colour is within the tolerance between its nodes too", "[tf][paraview]") {
+TEST_CASE(
+    "ParaView 5.11 built-in presets: the linearised colour is within the tolerance between its "
+    "nodes too",
+    "[tf][paraview]") {
   // The oracle's scalars are not where a chord deviates most. Between every two nodes of the
   // imported colour, 24 points offset from the importer's probes ((k + 1/2)/24 of the piece, the
   // probes sit at k/17) compare the chord with rayint's VTK curves, which equal VTK 9.2 bit for bit
@@ -210,7 +226,8 @@ TEST_CASE("ParaView 5.11 built-in presets: the linearised colour is within the t
         const double x = a + (b - a) * (q + 0.5) / 24;
         if (!(x > a && x < b)) continue;
         const rayint::Rgb vtk = imp.preset.color(x);
-        for (std::size_t j = 0; j < 3; ++j) preset_worst = std::max(preset_worst, std::fabs(color[j](x) - vtk[j]));
+        for (std::size_t j = 0; j < 3; ++j)
+          preset_worst = std::max(preset_worst, std::fabs(color[j](x) - vtk[j]));
       }
     }
     CHECK(preset_worst <= tolerance);
@@ -220,14 +237,18 @@ TEST_CASE("ParaView 5.11 built-in presets: the linearised colour is within the t
       worst_name = name;
     }
   }
-  WARN("between the imported nodes (24 points a piece), worst |colour - VTK curve| " << worst << " (" << worst_name
-       << "); presets over 1e-6: " << over);
+  WARN("between the imported nodes (24 points a piece), worst |colour - VTK curve| "
+       << worst << " (" << worst_name << "); presets over 1e-6: " << over);
 }
 
-TEST_CASE("presets exported by ParaView with opacity Points and UseLogScale import as ParaView draws them", "[tf][paraview]") {
+TEST_CASE(
+    "presets exported by ParaView with opacity Points and UseLogScale import as ParaView draws "
+    "them",
+    "[tf][paraview]") {
   // paraview-5.11-exported.json: ParaView's ExportTransferFunction of Viridis on its own range with
   // the default opacity, and of Viridis and Cool to Warm rescaled to [0.1, 1000] on a log scale.
-  // ParaView's colour is log-scaled there; its opacity function is not (measured: the fifth column).
+  // ParaView's colour is log-scaled there; its opacity function is not (measured: the fifth
+  // column).
   const nlohmann::json meta = read_json(kData / "paraview-5.11-oracle.json");
   const Table oracle = read_npy(kData / meta["exported"]["file"].get<std::string>());
   REQUIRE(meta["exported"]["presets"].size() == 3);
@@ -239,18 +260,22 @@ TEST_CASE("presets exported by ParaView with opacity Points and UseLogScale impo
     CHECK_FALSE(imp.default_opacity);
     CHECK(imp.preset.color.log_scale == (e["applied"]["UseLogScale"].get<int>() == 1));
     CHECK(e["applied"]["OpacityUseLogScale"].get<int>() == 0);
-    const Deviation d = compare(imp, oracle, e["rows"][0].get<std::size_t>(), e["rows"][1].get<std::size_t>());
-    CHECK(d.samples + (imp.preset.color.log_scale ? 2u : 0u) >= e["rows"][1].get<std::size_t>());  // NaN: x < 0 only
+    const Deviation d =
+        compare(imp, oracle, e["rows"][0].get<std::size_t>(), e["rows"][1].get<std::size_t>());
+    CHECK(d.samples + (imp.preset.color.log_scale ? 2u : 0u) >=
+          e["rows"][1].get<std::size_t>());  // NaN: x < 0 only
     CHECK(d.curve <= 1e-12);
     CHECK(d.color <= 1e-6);
     CHECK(d.opacity <= 1e-15);  // the ramp's two nodes are exact
     CHECK(imp.result.color.max_deviation <= 1e-6);
-    WARN(name << ": |colour - VTK| " << d.color << ", |opacity - VTK| " << d.opacity << " over " << d.samples
-              << " samples; colour " << imp.result.color.nodes << " nodes");
+    WARN(name << ": |colour - VTK| " << d.color << ", |opacity - VTK| " << d.opacity << " over "
+              << d.samples << " samples; colour " << imp.result.color.nodes << " nodes");
   }
 }
 
-TEST_CASE("ParaView presets: a name two presets share is refused listing both, and --index picks one", "[tf][paraview][cli]") {
+TEST_CASE(
+    "ParaView presets: a name two presets share is refused listing both, and --index picks one",
+    "[tf][paraview][cli]") {
   using rayint::test::run_cli;
   rayint::test::TempDir dir;
   fs::copy_file(kData / "paraview-5.11-presets.json", dir.path / "maps.json");
@@ -265,31 +290,43 @@ TEST_CASE("ParaView presets: a name two presets share is refused listing both, a
   // ParaView 5.11 ships a continuous (Lab) and a categorical "Blues".
   REQUIRE(presets[blues[0]]["ColorSpace"] == "Lab");
   REQUIRE(presets[blues[1]].contains("IndexedColors"));
-  const std::string listed = "2 presets are named \"Blues\": [" + std::to_string(blues[0]) + "] (Lab), [" +
-                             std::to_string(blues[1]) + "] (categorical); choose one by its index (--index)";
+  const std::string listed = "2 presets are named \"Blues\": [" + std::to_string(blues[0]) +
+                             "] (Lab), [" + std::to_string(blues[1]) +
+                             "] (categorical); choose one by its index (--index)";
   CHECK(r.err.find("maps.json: (root): " + listed) != std::string::npos);
   CHECK(dir.entries() == inputs);
 
-  const auto ok = run_cli(dir.path, "tf import maps.json --name Blues --index " + std::to_string(blues[0]) + " -o out.json");
+  const auto ok = run_cli(dir.path, "tf import maps.json --name Blues --index " +
+                                        std::to_string(blues[0]) + " -o out.json");
   REQUIRE(ok.status == 0);
-  const auto cat = run_cli(dir.path, "tf import maps.json --name Blues --index " + std::to_string(blues[1]));
+  const auto cat =
+      run_cli(dir.path, "tf import maps.json --name Blues --index " + std::to_string(blues[1]));
   rayint::test::check_usage_error(cat);
-  CHECK(cat.err.find("maps.json: [" + std::to_string(blues[1]) + "].IndexedColors: a categorical colour map") != std::string::npos);
-  CHECK(ok.err.find("note: the preset has no opacity Points: the opacity is ParaView's default") != std::string::npos);
-  const auto wrong = run_cli(dir.path, "tf import maps.json --name Viridis --index " + std::to_string(blues[1]));
+  CHECK(cat.err.find("maps.json: [" + std::to_string(blues[1]) +
+                     "].IndexedColors: a categorical colour map") != std::string::npos);
+  CHECK(ok.err.find("note: the preset has no opacity Points: the opacity is ParaView's default") !=
+        std::string::npos);
+  const auto wrong =
+      run_cli(dir.path, "tf import maps.json --name Viridis --index " + std::to_string(blues[1]));
   rayint::test::check_usage_error(wrong);
   CHECK(wrong.err.find("].Name: the preset is \"Blues\", not \"Viridis\"") != std::string::npos);
   // The same in a case file: "index" picks one.
   const std::string rays = R"j("rays": [{"segments": [{"length": 1, "scalar": [0, 1]}]}])j";
-  dir.write("shared.json", R"j({"name": "c", "transfer_function": {"paraview_preset": "maps.json", "name": "Blues"}, )j" + rays + "}");
-  CHECK_THROWS_WITH(rayint::read_case_file((dir.path / "shared.json").string()),
-                    Catch::Contains("maps.json: (root): " + listed.substr(0, listed.find("(--index)")) +
-                                    "(transfer_function.index)"));
-  dir.write("picked.json", R"j({"name": "c", "transfer_function": {"paraview_preset": "maps.json", "name": "Blues", "index": )j" +
-                               std::to_string(blues[0]) + "}, " + rays + "}");
+  dir.write(
+      "shared.json",
+      R"j({"name": "c", "transfer_function": {"paraview_preset": "maps.json", "name": "Blues"}, )j" +
+          rays + "}");
+  CHECK_THROWS_WITH(
+      rayint::read_case_file((dir.path / "shared.json").string()),
+      Catch::Contains("maps.json: (root): " + listed.substr(0, listed.find("(--index)")) +
+                      "(transfer_function.index)"));
+  dir.write(
+      "picked.json",
+      R"j({"name": "c", "transfer_function": {"paraview_preset": "maps.json", "name": "Blues", "index": )j" +
+          std::to_string(blues[0]) + "}, " + rays + "}");
   const rayint::Case picked = rayint::read_case_file((dir.path / "picked.json").string());
-  const rayint::PresetImport direct =
-      rayint::import_paraview_preset(request("paraview-5.11-presets.json", "Blues", blues[0], 1e-6));
+  const rayint::PresetImport direct = rayint::import_paraview_preset(
+      request("paraview-5.11-presets.json", "Blues", blues[0], 1e-6));
   CHECK(picked.transfer.color[1].value == direct.result.transfer.color[1].value);
   CHECK(picked.transfer.density[0].value == direct.result.transfer.density[0].value);
   const auto beyond = run_cli(dir.path, "tf import maps.json --index 195");
@@ -297,7 +334,10 @@ TEST_CASE("ParaView presets: a name two presets share is refused listing both, a
   CHECK(beyond.err.find("rayint tf import: --index: no preset [195]: ") != std::string::npos);
 }
 
-TEST_CASE("transfer functions with jumps: exact matches the 50-digit reference, the sampling methods converge", "[tf][paraview][methods]") {
+TEST_CASE(
+    "transfer functions with jumps: exact matches the 50-digit reference, the sampling methods "
+    "converge",
+    "[tf][paraview][methods]") {
   // Two cases in tests/data/tf/: ParaView's "Spectrum Step" as shipped (kappa jumps at 7 scalars,
   // default opacity ramp) and jumps.json (kappa jumps at a repeated RGBPoints scalar, rho at a
   // sharpness-1 opacity step). The import makes each jump a ramp one double wide at VTK's switch
@@ -309,7 +349,8 @@ TEST_CASE("transfer functions with jumps: exact matches the 50-digit reference, 
     const char* file;
     std::vector<std::size_t> constant_on_jump;  // rays with a segment of constant scalar at a jump
   };
-  for (const JumpCase& jc : {JumpCase{"case-spectrum-step.json", {2}}, JumpCase{"case-jumps.json", {1, 2}}}) {
+  for (const JumpCase& jc :
+       {JumpCase{"case-spectrum-step.json", {2}}, JumpCase{"case-jumps.json", {1, 2}}}) {
     const rayint::Case c = rayint::read_case_file((kData / jc.file).string());
     INFO(jc.file);
     std::vector<rayint::ReferenceRay> ref;
@@ -329,7 +370,8 @@ TEST_CASE("transfer functions with jumps: exact matches the 50-digit reference, 
       return out;
     };
     auto is_on_jump = [&](std::size_t i) {
-      return std::find(jc.constant_on_jump.begin(), jc.constant_on_jump.end(), i) != jc.constant_on_jump.end();
+      return std::find(jc.constant_on_jump.begin(), jc.constant_on_jump.end(), i) !=
+             jc.constant_on_jump.end();
     };
     auto max_error = [&](const std::string& spec, bool skip_constant_on_jump) {
       const std::vector<double> e = errors(spec);
@@ -348,9 +390,11 @@ TEST_CASE("transfer functions with jumps: exact matches the 50-digit reference, 
     // A jump inside a step costs O(jump * h): first order, so 16 times the samples must cut the
     // error by at least 4 (measured 16 to 56 from n = 128 to 2048).
     for (const std::string method : {"riemann:n=", "rk4:n=", "nerf:n=", "pl_nerf:n="}) {
-      const double coarse = max_error(method + "128", false), fine = max_error(method + "2048", false);
+      const double coarse = max_error(method + "128", false),
+                   fine = max_error(method + "2048", false);
       CHECK(fine <= coarse / 4);
-      WARN(jc.file << ": " << method << "128 " << coarse << ", 2048 " << fine << "; ode:rtol=1e-9 " << ode);
+      WARN(jc.file << ": " << method << "128 " << coarse << ", 2048 " << fine << "; ode:rtol=1e-9 "
+                   << ode);
     }
     // The pre-integrated table converges on rays that cross jumps; on a segment whose scalar sits
     // exactly on a jump it interpolates its table across the jump at every size (measured on
@@ -364,7 +408,7 @@ TEST_CASE("transfer functions with jumps: exact matches the 50-digit reference, 
       worst = std::max(worst, pre[i]);
     }
     CHECK(pre_fine <= pre_coarse / 4);
-    WARN(jc.file << ": preintegrated crossing jumps: size 128 " << pre_coarse << ", 2048 " << pre_fine
-                 << "; holding a scalar on a jump, size 2048: " << on_jump);
+    WARN(jc.file << ": preintegrated crossing jumps: size 128 " << pre_coarse << ", 2048 "
+                 << pre_fine << "; holding a scalar on a jump, size 2048: " << on_jump);
   }
 }
