@@ -22,6 +22,7 @@ void set_tf_command(CLI::App& app) {
     std::string name;
     std::string convention;
     std::optional<double> unit_distance, sample_distance, opacity;
+    std::optional<std::size_t> index;
     std::vector<double> range;
     double tolerance = 1e-6;
     std::string output, report;
@@ -34,6 +35,8 @@ void set_tf_command(CLI::App& app) {
       "import", "A ParaView preset as a rayint transfer_function (docs/transfer-function-conventions.md)");
   cmd->add_option("preset", opt->preset, "ParaView preset file (JSON: one preset or a list)")->required();
   cmd->add_option("--name", opt->name, "The preset's Name (required when the file holds several)");
+  cmd->add_option("--index", opt->index,
+                  "The preset's index in the file's list (from 0; for names that several presets share)");
   auto* unit = cmd->add_option("--unit-distance", opt->unit_distance,
                                "Opacity per unit distance D: rho = opacity / D (VTK unstructured-grid "
                                "integrators, ParaView ScalarOpacityUnitDistance)");
@@ -47,7 +50,9 @@ void set_tf_command(CLI::App& app) {
   cmd->add_option("--tolerance", opt->tolerance,
                   "Linearisation tolerance: colour absolute (RGB in [0, 1]), density relative to its max")
       ->capture_default_str();
-  cmd->add_option("--opacity", opt->opacity, "Constant opacity, for a preset without opacity Points");
+  cmd->add_option("--opacity", opt->opacity,
+                  "Constant opacity instead of the preset's Points (without Points and without this option: "
+                  "ParaView's default, a ramp 0 -> 1 over the colour range)");
   cmd->add_option("--range", opt->range, "LO HI: rescale the preset's scalars to [LO, HI] (as ParaView does)")
       ->expected(2);
   cmd->add_option("-o,--output", opt->output, "Write the transfer_function object here instead of stdout");
@@ -57,6 +62,8 @@ void set_tf_command(CLI::App& app) {
     PresetImportRequest r;
     r.file = opt->preset;
     r.name = opt->name;
+    r.index = opt->index;
+    r.index_field = "--index";
     r.request_source = "rayint tf import";
     r.opacity_field = "--opacity";
     r.distance_field = "--unit-distance";
@@ -96,6 +103,9 @@ void set_tf_command(CLI::App& app) {
     d.options = r.options;
     d.ignored_fields = imp.preset.ignored_fields;
     d.constant_opacity = r.constant_opacity.has_value();
+    d.default_opacity = imp.default_opacity;
+    d.log_scale = imp.preset.color.log_scale;
+    d.notes = imp.preset.notes;
     // Both outputs are formed before either is written, so bad input leaves neither behind.
     const std::string tf_text = transfer_function_text(imp.result.transfer);
     const std::string report_text = tf_import_report_json(imp.result, d).dump(2);

@@ -6,6 +6,8 @@
 //   - an InputError whose message is not one line starting with "<source>: ";
 //   - an accepted import that breaks the guarantees of model/tf_import.hpp: every function has a
 //     point, scalars strictly increasing, values finite and >= 0, max deviation finite.
+// Paths of issue 27 reached through the bytes: UseLogScale, Step and "CIELAB" colour spaces,
+// repeated RGBPoints scalars, IndexedColors refusal, the default opacity ramp, --index selection.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -49,7 +51,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   r.options.convention = conventions[size > 0 ? data[0] % 4 : 0];
   r.options.distance = 0.5;
   r.options.tolerance = 1e-3;
-  r.constant_opacity = 0.25;
+  // The second byte: a constant opacity or the preset's Points / ParaView's default ramp, and a
+  // selection by index (the name path is taken when the file holds one preset).
+  const std::uint8_t second = size > 1 ? data[1] : 0;
+  if (second & 1) r.constant_opacity = 0.25;
+  if (second & 2) r.index = static_cast<std::size_t>(second >> 2);
   try {
     const rayint::PresetImport imp = rayint::import_paraview_preset_text(text, r);
     for (int c = 0; c < 3; ++c) {

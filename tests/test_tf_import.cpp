@@ -333,19 +333,25 @@ TEST_CASE("tf import: output, report, and bad input (exit 2, one line naming fil
   };
   dir.write("alpha1.json", preset_text("a", {0, 1, 1, 1, 1, 1, 1, 1}, {0, 0.2, 0.5, 0, 1, 1.0, 0.5, 0}));
   dir.write("count.json", R"([{"Name": "c", "ColorSpace": "RGB", "RGBPoints": [0, 1, 1], "Points": [0, 1, 0.5, 0]}])");
-  dir.write("space.json", R"({"Name": "c", "ColorSpace": "CIELAB", "RGBPoints": [0, 1, 1, 1]})");
-  dir.write("order.json", R"({"Name": "c", "ColorSpace": "RGB", "RGBPoints": [0, 1, 1, 1, 0, 0, 0, 0], "Points": [0, 1, 0.5, 0]})");
+  dir.write("space.json", R"({"Name": "c", "ColorSpace": "CIELab", "RGBPoints": [0, 1, 1, 1]})");
+  dir.write("log.json", R"({"Name": "c", "ColorSpace": "RGB", "UseLogScale": 1, "RGBPoints": [0, 1, 1, 1, 1, 0, 0, 0]})");
+  dir.write("cat.json", R"({"Name": "c", "IndexedColors": [1, 0, 0, 0, 1, 0], "Annotations": ["0", "a", "1", "b"]})");
+  dir.write("rgb.json", R"({"Name": "c", "ColorSpace": "RGB", "RGBPoints": [0, 1, 1.5, 1]})");
+  dir.write("order.json", R"({"Name": "c", "ColorSpace": "RGB", "RGBPoints": [1, 1, 1, 1, 0, 0, 0, 0], "Points": [0, 1, 0.5, 0]})");
   dir.write("mid.json", R"({"Name": "c", "ColorSpace": "RGB", "RGBPoints": [0, 1, 1, 1], "Points": [0, 1, 1.5, 0]})");
   dir.write("syntax.json", R"([{"Name": "c",)");
   const std::set<std::string> inputs = dir.entries();
   for (const Bad& b : {Bad{"alpha1.json", "--sample-distance 0.5", "alpha1.json: [0].Points[5]: opacity 1 per sample is fully opaque"},
                        Bad{"count.json", "", "count.json: [0].RGBPoints: must be a flat list of [x, r, g, b] tuples"},
-                       Bad{"space.json", "--opacity 0.5", "space.json: ColorSpace: unknown colour space \"CIELAB\""},
-                       Bad{"order.json", "", "order.json: RGBPoints[4]: scalars must be strictly increasing"},
+                       Bad{"space.json", "--opacity 0.5", "space.json: ColorSpace: unknown colour space \"CIELab\""},
+                       Bad{"log.json", "", "log.json: UseLogScale: a log scale needs scalars > 0, and the first RGBPoints scalar is 0"},
+                       Bad{"cat.json", "", "cat.json: IndexedColors: a categorical colour map (IndexedColors): categorical maps have no continuous transfer function"},
+                       Bad{"rgb.json", "", "rgb.json: RGBPoints[2]: colour components must be in [0, 1]"},
+                       Bad{"maps.json", "--name Viridis --sample-distance 1", "maps.json: [1].Points: missing, and the default opacity (ParaView's ramp 0 -> 1) reaches 1"},
+                       Bad{"order.json", "", "order.json: RGBPoints[4]: scalars must be non-decreasing (0 after 1)"},
                        Bad{"mid.json", "", "mid.json: Points[2]: must be in [0, 1]"},
                        Bad{"syntax.json", "", "syntax.json: "},
                        Bad{"maps.json", "", "maps.json: (root): holds 6 presets: name one (--name)"},
-                       Bad{"maps.json", "--name Viridis", "maps.json: [1].Points: missing: the preset has no opacity Points"},
                        Bad{"maps.json", "--name Nope --opacity 0.5", "no preset named \"Nope\""},
                        Bad{"maps.json", "--name Viridis --opacity 1 --sample-distance 1", "rayint tf import: --opacity: opacity 1 per sample"}}) {
     INFO(b.file << " " << b.args);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 #include "rayint/input/json_source.hpp"
@@ -240,13 +241,13 @@ TransferFunctions BasicJsonSchema<Json>::transfer_functions(const json& j, const
   return tf;
 }
 
-// {"paraview_preset": FILE (relative to this file), "name"?, "convention"?, "unit_distance"? |
+// {"paraview_preset": FILE (relative to this file), "name"?, "index"?, "convention"?, "unit_distance"? |
 // "sample_distance"?, "tolerance"?, "opacity"?, "range"?}: the preset imported as `rayint tf
 // import` does (input/paraview_preset.hpp, docs/transfer-function-conventions.md).
 template <class Json>
 TransferFunctions BasicJsonSchema<Json>::preset_transfer_functions(const json& j,
                                                                    const std::string& path) const {
-  check_fields(j, path, {"paraview_preset", "name", "convention", "unit_distance", "sample_distance",
+  check_fields(j, path, {"paraview_preset", "name", "index", "convention", "unit_distance", "sample_distance",
                          "tolerance", "opacity", "range"});
   PresetImportRequest r;
   const std::string file = non_empty_string(required(j, path, "paraview_preset"),
@@ -255,6 +256,9 @@ TransferFunctions BasicJsonSchema<Json>::preset_transfer_functions(const json& j
   r.file = fp.is_absolute() ? file : (std::filesystem::path(source_).parent_path() / fp).string();
   if (const json* n = optional(j, "name")) r.name = non_empty_string(*n, member_path(path, "name"));
   r.request_source = source_;
+  r.index_field = member_path(path, "index");
+  if (const json* i = optional(j, "index"))
+    r.index = static_cast<std::size_t>(integer(*i, r.index_field, 0, std::numeric_limits<int>::max()));
   r.opacity_field = member_path(path, "opacity");
   r.distance_field = member_path(path, "unit_distance");
   r.range_field = member_path(path, "range");

@@ -13,9 +13,12 @@
 //  - everything else -- sharpness in [0.01, 0.99], colour spaces other than RGB, and every
 //    interval under the per-sample convention (rho = -ln(1 - alpha)/d is not linear in alpha) --
 //    is linearised adaptively: an interval is bisected until the chord is within `tolerance` of
-//    the curve at 16 interior probes, and the largest deviation seen at those probes is reported.
-//    tests/test_tf_import.cpp checks the reported deviation against a dense (2,001-point)
-//    evaluation by VTK 9.1 itself.
+//    the curve, measured as the maximum of the error curve (16 probes, each sampled local maximum
+//    refined by Brent's method: tf_import.cpp), and the largest deviation found is reported.
+//    tests/test_tf_import.cpp checks the reported deviation against VTK 9.1's own values, and
+//    tests/test_paraview_presets.cpp against ParaView 5.11's on all its continuous presets.
+//  - colour steps: a Step colour space, sharpness > 0.99 and repeated scalars (a jump) become a
+//    ramp one double wide where VTK switches: exact at every double.
 #include <cstddef>
 #include <string>
 

@@ -95,16 +95,20 @@ std::pair<Rgb, Rgb> hsv_ends(const Rgb& rgb1, const Rgb& rgb2, bool wrap) {
   return {a, b};
 }
 
+// The colour of the interval from n1 to n2 at parameter s_linear = interval_parameter.
 Rgb color_between(const VtkColorTransferFunction& f, const VtkColorNode& n1, const VtkColorNode& n2,
-                  double x) {
+                  double s_linear) {
   const double m = clamp_midpoint(n1.midpoint), h = n1.sharpness;
-  double s = midpoint_adjusted((x - n1.x) / (n2.x - n1.x), m);
+  double s = midpoint_adjusted(s_linear, m);
   const Rgb& c1 = n1.rgb;
   const Rgb& c2 = n2.rgb;
   if (h > 0.99) return s < 0.5 ? c1 : c2;
+  if (f.space == VtkColorSpace::step) return c2;  // VTK_CTF_STEP: no interpolation below h = 0.99
   Rgb out{};
   if (h < 0.01) {  // linear in s' in the colour space; no clipping to [0, 1] in this branch
     switch (f.space) {
+      case VtkColorSpace::step:
+        return c2;
       case VtkColorSpace::rgb:
         for (int j = 0; j < 3; ++j) out[j] = (1 - s) * c1[j] + s * c2[j];
         return out;
@@ -133,6 +137,8 @@ Rgb color_between(const VtkColorTransferFunction& f, const VtkColorNode& n1, con
     return v;
   };
   switch (f.space) {
+    case VtkColorSpace::step:
+      return c2;
     case VtkColorSpace::rgb:
       out = curve(c1, c2);
       break;
@@ -178,14 +184,46 @@ double VtkPiecewiseFunction::interval_value(std::size_t k, double x) const {
 }
 
 Rgb VtkColorTransferFunction::operator()(double x) const {
-  const long k = interval_of(nodes, x);
-  if (k < 0) return nodes.front().rgb;
+  // Under the log scale VTK locates x' = 10^(log10 x) among the nodes (GetTable(x, x, 1)) but
+  // takes s from log10 x itself.
+  const double located = log_scale ? std::pow(10.0, std::log10(x)) : x;
+  const long k = interval_of(nodes, located);
+  if (k < 0 || !(located >= nodes.front().x)) return nodes.front().rgb;
   if (k + 1 >= static_cast<long>(nodes.size())) return nodes.back().rgb;
   return interval_value(static_cast<std::size_t>(k), x);
 }
 
 Rgb VtkColorTransferFunction::interval_value(std::size_t k, double x) const {
-  return color_between(*this, nodes[k], nodes[k + 1], x);
+  return color_between(*this, nodes[k], nodes[k + 1], interval_parameter(k, x));
+}
+
+double VtkColorTransferFunction::interval_parameter(std::size_t k, double x) const {
+  const double x1 = nodes[k].x, x2 = nodes[k + 1].x;
+  if (!log_scale) return (x - x1) / (x2 - x1);
+  const double l1 = std::log10(x1), l2 = std::log10(x2);
+  return (std::log10(x) - l1) / (l2 - l1);
+}
+
+IntervalShape VtkColorTransferFunction::interval_shape(std::size_t k) const {
+  const IntervalShape shape = color_interval_shape(space, nodes[k]);
+  // Straight in s is curved in x under the log scale; constants and steps stay what they are.
+  if (log_scale && (shape == IntervalShape::linear || shape == IntervalShape::two_linear_pieces) &&
+      space != VtkColorSpace::step)
+    return IntervalShape::curved;
+  return shape;
+}
+
+StepLocation VtkColorTransferFunction::step_location(std::size_t k) const {
+  const double x1 = nodes[k].x, x2 = nodes[k + 1].x;
+  if (!log_scale) return rayint::step_location(x1, x2, nodes[k].midpoint);
+  const double m = clamp_midpoint(nodes[k].midpoint);
+  auto right_side = [&](double x) { return !(midpoint_adjusted(interval_parameter(k, x), m) < 0.5); };
+  double lo = x1, hi = x2;
+  while (std::nextafter(lo, hi) < hi) {
+    const double mid = lo + (hi - lo) / 2;
+    (right_side(mid) ? hi : lo) = mid;
+  }
+  return {lo, hi};
 }
 
 Rgb rgb_to_hsv(const Rgb& c) {
@@ -271,6 +309,7 @@ IntervalShape piecewise_interval_shape(const VtkPiecewiseNode& left) {
 
 IntervalShape color_interval_shape(VtkColorSpace space, const VtkColorNode& left) {
   if (left.sharpness > 0.99) return IntervalShape::step;
+  if (space == VtkColorSpace::step) return IntervalShape::linear;  // the right node's colour throughout
   if (left.sharpness < 0.01 && space == VtkColorSpace::rgb)
     return left.midpoint == 0.5 ? IntervalShape::linear : IntervalShape::two_linear_pieces;
   return IntervalShape::curved;

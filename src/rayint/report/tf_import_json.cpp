@@ -72,10 +72,13 @@ nlohmann::ordered_json tf_import_report_json(const TfImport& import, const TfImp
          {"convention", convention_name(d.options.convention)},
          {"distance", d.options.distance},
          {"tolerance", d.options.tolerance},
+         {"log_scale", d.log_scale},
          {"constant_opacity", d.constant_opacity},
+         {"opacity", d.constant_opacity ? "constant" : d.default_opacity ? "default ramp 0 to 1" : "preset Points"},
          {"density", linearisation_json(import.density)},
          {"color", linearisation_json(import.color)},
-         {"ignored_fields", d.ignored_fields}};
+         {"ignored_fields", d.ignored_fields},
+         {"notes", d.notes}};
   return j;
 }
 
@@ -85,7 +88,13 @@ std::string tf_import_summary(const TfImport& import, const TfImportDescription&
   if (d.options.convention == OpacityConvention::unit_distance ||
       d.options.convention == OpacityConvention::sample_distance)
     s += " (distance " + format_number(d.options.distance) + ")";
-  s += "\n" + linearisation_line("density", import.density) + linearisation_line("color", import.color);
+  if (d.log_scale) s += "; colour on a log10 scale (UseLogScale)";
+  s += "\n";
+  if (d.default_opacity)
+    s += "note: the preset has no opacity Points: the opacity is ParaView's default for a new colour map, a ramp "
+         "0 -> 1 over the colour range; add Points to the preset or give --opacity A for a constant\n";
+  for (const std::string& n : d.notes) s += "note: " + n + "\n";
+  s += linearisation_line("density", import.density) + linearisation_line("color", import.color);
   return s;
 }
 

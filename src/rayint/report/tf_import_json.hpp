@@ -17,7 +17,10 @@ struct TfImportDescription {
   bool hsv_wrap = false;
   TfImportOptions options;
   std::vector<std::string> ignored_fields;
+  std::vector<std::string> notes;  // how fields were read when not as written (ParaViewPreset::notes)
   bool constant_opacity = false;
+  bool default_opacity = false;    // no Points: ParaView's default ramp 0 -> 1 over the colour range
+  bool log_scale = false;
 };
 
 // {"density": [[s, rho], ...], "color": [[s, kappa], ...] or {"r": ..., "g": ..., "b": ...}}:
