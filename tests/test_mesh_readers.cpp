@@ -25,6 +25,7 @@
 #include "rayint/input/vtk_legacy_reader.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/mesh/mesh_check.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "tolerances.hpp"
 
@@ -354,4 +355,57 @@ TEST_CASE("10-node tetrahedra from gmsh, VTK and TetGen are refused by one rule,
     CHECK(msg.find(why) != std::string::npos);
     CHECK(msg.find('\n') == std::string::npos);
   }
+}
+
+TEST_CASE("overlapping tetrahedra: VTK's Append of two shifted boxes is found, conforming meshes pass", "[mesh][readers][check]") {
+  const TetMesh overlap = read_any("overlap.vtu");
+  const auto pair = find_overlapping_tets(overlap);
+  REQUIRE(pair.has_value());
+  // The two boxes: cells 0-161 and 162-323 of the file; an overlapping pair takes one from each.
+  CHECK(pair->first < 162);
+  CHECK(pair->second >= 162);
+  CHECK(tets_overlap(overlap, pair->first, pair->second));
+  CHECK(find_overlapping_tets(overlap, OverlapScope::disjoint_pairs).has_value());
+  const std::string msg = error_of([&] { refuse_overlapping_tets(overlap, "overlap.vtu", "Cells"); });
+  CHECK(msg.rfind("overlap.vtu: Cells: tetrahedra 0 (cell 0 of the file) and ", 0) == 0);
+  CHECK(msg.find(" overlap (their interiors intersect") != std::string::npos);
+  // Conforming meshes written by gmsh, TetGen, VTK (with pieces and ghosts): nothing found, with
+  // every candidate pair tested.
+  for (const std::string file : {"box-22.msh", "boundary.vtu", "torus-binary.vtk", "cell-data.vtu", "ghost.pvtu"}) {
+    INFO(file);
+    CHECK_FALSE(find_overlapping_tets(read_any(file)).has_value());
+  }
+  // A mesh case refuses it (exit 2, one line), whatever --strict-mesh says.
+  rayint::test::TempDir dir;
+  dir.write("o.json", R"({"name": "o", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+    "mesh_file": ")" + kDir + R"(overlap.vtu", "rays": [{"origin": [0, 0, 5], "direction": [0, 0, -1]}]})");
+  const auto r = rayint::test::run_cli(dir.path, "eval o.json --methods exact --no-timing -o out.json");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("rayint: error: " + kDir + "overlap.vtu: Cells: tetrahedra ", 0) == 0);
+  CHECK_FALSE(fs::exists(dir.path / "out.json"));
+}
+
+TEST_CASE("CLI: mesh info lists cells by type, arrays and the scalar, --check exits 1 on an overlap", "[mesh][readers][cli]") {
+  rayint::test::TempDir dir;
+  const auto ok = rayint::test::run_cli(dir.path, "mesh info " + kDir + "boundary.vtu --check --format json");
+  REQUIRE(ok.status == 0);
+  const auto j = nlohmann::json::parse(ok.out);
+  CHECK(j["tets"] == 197);
+  CHECK(j["cells_by_type"]["triangle"] == nlohmann::json({{"read", 156}, {"skipped", 156}}));
+  CHECK(j["cells_by_type"]["tetra"] == nlohmann::json({{"read", 197}, {"skipped", 0}}));
+  CHECK(j["skipped_cells"] == 200);
+  CHECK(j["scalar"]["name"] == "s");
+  CHECK(j["arrays"].size() == 3);
+  CHECK(j["arrays"][1]["name"] == "gmsh:physical");
+  CHECK(j["arrays"][1]["marker"] == true);
+  CHECK(j["orientation"]["positive"] == 197);
+  CHECK(j["check"]["overlap"] == false);
+  const auto bad = rayint::test::run_cli(dir.path, "mesh info " + kDir + "overlap.vtu --check");
+  CHECK(bad.status == 1);
+  CHECK(bad.out.find("check: cells ") != std::string::npos);
+  CHECK(bad.err.find("tetrahedra overlap (cells ") != std::string::npos);
+  const auto missing = rayint::test::run_cli(dir.path, "mesh info " + kDir + "tet10.vtu");
+  CHECK(missing.status == 2);
+  CHECK(missing.out.empty());
+  CHECK(missing.err.find("cell type quadratic tetra (VTK id 24) is not supported yet") != std::string::npos);
 }

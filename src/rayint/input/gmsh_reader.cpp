@@ -433,6 +433,7 @@ class MshReader {
       for (std::size_t k = 0; k < 4; ++k)
         t[k] = node(tet_nodes_[i][k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
       mesh_.tets.push_back(t);
+      mesh_.info.cell_ids.push_back(tet_tags_[i]);
     }
     const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
                                                   : "no one-component $NodeData, $ElementNodeData or $ElementData named " +

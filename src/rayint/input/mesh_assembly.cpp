@@ -115,6 +115,7 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
     }
     mesh.tets.push_back(t);
     kept.push_back(i);
+    info.cell_ids.push_back(static_cast<long long>(i));
   }
   if (mesh.tets.empty())
     field::fail(source, fields.cells,

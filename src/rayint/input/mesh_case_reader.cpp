@@ -8,6 +8,7 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/json_schema.hpp"
+#include "rayint/mesh/mesh_check.hpp"
 #include "rayint/input/gmsh_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/tetgen_reader.hpp"
@@ -126,6 +127,23 @@ MeshFieldNames file_field_names(const std::string& extension) {
 
 }  // namespace
 
+TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  // One reader per format, chosen by extension (other mesh formats plug in here).
+  const std::string ext = std::filesystem::path(path).extension().string();
+  const auto extra = extra_mesh_readers().find(ext);
+  const auto builtin = builtin_mesh_readers().find(ext);
+  if (extra != extra_mesh_readers().end()) {
+    TetMesh mesh = extra->second(path, scalar_name);
+    if (cell_to_point && !mesh.cell_scalars.empty()) {
+      mesh.scalars = cell_to_point_average(mesh);
+      mesh.cell_scalars.clear();
+    }
+    return mesh;
+  }
+  if (builtin != builtin_mesh_readers().end()) return builtin->second(path, scalar_name, cell_to_point);
+  throw InputError(path + ": (file): unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
+}
+
 bool is_mesh_case(const json& root) {
   return root.is_object() && (root.contains("mesh") || root.contains("mesh_file"));
 }
@@ -165,27 +183,17 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
       if (how == "point_average") cell_to_point = true;
       else if (how != "constant") s.fail("cell_data", "expected \"constant\" (default) or \"point_average\", got " + field::quoted(how));
     }
-    // One reader per format, chosen by extension (other mesh formats plug in here).
     const std::string ext = p.extension().string();
-    const auto extra = extra_mesh_readers().find(ext);
-    const auto builtin = builtin_mesh_readers().find(ext);
-    if (extra != extra_mesh_readers().end()) {
-      mc.mesh = extra->second(mc.mesh_source, name);
-      if (cell_to_point && !mc.mesh.cell_scalars.empty()) {
-        mc.mesh.scalars = cell_to_point_average(mc.mesh);
-        mc.mesh.cell_scalars.clear();
-      }
-    } else if (builtin != builtin_mesh_readers().end()) {
-      mc.mesh = builtin->second(mc.mesh_source, name, cell_to_point);
-    } else {
+    if (extra_mesh_readers().count(ext) == 0 && builtin_mesh_readers().count(ext) == 0)
       s.fail("mesh_file", "unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
-    }
+    mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
     names = file_field_names(p.extension().string());
   }
   if (options.strict)
     validate_tet_mesh(mc.mesh, mc.mesh_source, names);
   else
     mc.repairs = repair_tet_mesh(mc.mesh, mc.mesh_source, names);
+  refuse_overlapping_tets(mc.mesh, mc.mesh_source, names.tets);
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");

@@ -115,6 +115,7 @@ TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshF
   r.skipped_by_type = mesh.info.skipped_by_type;
   r.ghost_cells = mesh.info.ghost_cells;
   const bool per_cell = !mesh.cell_scalars.empty();
+  const bool ids = mesh.info.cell_ids.size() == mesh.tets.size();
   std::size_t kept = 0;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     switch (classify_tet(mesh, i)) {
@@ -127,10 +128,12 @@ TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshF
       case TetShape::Positive: break;
     }
     if (per_cell) mesh.cell_scalars[kept] = mesh.cell_scalars[i];
+    if (ids) mesh.info.cell_ids[kept] = mesh.info.cell_ids[i];
     mesh.tets[kept++] = mesh.tets[i];
   }
   mesh.tets.resize(kept);
   if (per_cell) mesh.cell_scalars.resize(kept);
+  if (ids) mesh.info.cell_ids.resize(kept);
   if (mesh.tets.empty())
     fail(source, names.tets,
          "every tetrahedron is degenerate (" + std::to_string(r.zero_volume) + " zero-volume, " +
