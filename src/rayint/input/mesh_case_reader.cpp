@@ -167,6 +167,7 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
   MeshFieldNames names{"mesh.points", "mesh.scalars", "mesh.tets"};
   if (inline_m) {
     if (scalar_field) s.fail("scalar_field", "only with \"mesh_file\"");
+    if (s.optional(root, "cell_data")) s.fail("cell_data", "only with \"mesh_file\"");
     mc.mesh = inline_mesh(s, *inline_m, "mesh");
     mc.mesh_source = source;
   } else {
