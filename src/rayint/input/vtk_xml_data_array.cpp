@@ -394,8 +394,9 @@ std::vector<double> Document::values(pugi::xml_node array, const std::string& fi
       errno = 0;
       double v = 0.0;
       if (t.kind == TypeInfo::kFloat) {
-        v = std::strtod(p, &stop);
-        if (t.width == 4) v = static_cast<double>(static_cast<float>(v));  // as VTK stores it
+        // Float32 as VTK's XML parser reads it (istream >> float: strtof, the nearest float;
+        // strtod then a cast to float could round twice).
+        v = t.width == 4 ? static_cast<double>(std::strtof(p, &stop)) : std::strtod(p, &stop);
       } else if (t.kind == TypeInfo::kSigned) {
         const long long x = std::strtoll(p, &stop, 10);
         const long long lim = t.width == 8 ? std::numeric_limits<long long>::max() : (1LL << (8 * t.width - 1)) - 1;
