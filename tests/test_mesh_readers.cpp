@@ -176,6 +176,8 @@ TEST_CASE("boundary cells beside the tets are skipped and counted alike by every
     if (o["points"].is_array()) check_points(m, o["points"]);
     // The tags gmsh and meshio write are listed, never taken.
     CHECK(m.info.scalar == "s");
+    for (const MeshArrayInfo& a : m.info.arrays)
+      if (a.association == "cell") CHECK(a.marker);  // gmsh:physical, gmsh:geometrical, CellEntityIds
     const double rel = max_rel_vs(m, file, analytic_linear);
     WARN(file << ": " << m.tets.size() << " tets, " << m.info.skipped_cells
               << " boundary cells skipped; max rel |I - I_analytic| over 500 rays = " << rel);

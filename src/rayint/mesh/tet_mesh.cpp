@@ -141,8 +141,10 @@ TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshF
   return r;
 }
 
+// Besides the names in tet_mesh.hpp: "CellEntityIds", the elementary entity of each cell that
+// gmsh's own legacy VTK writer (-format vtk) adds as cell data.
 bool is_marker_array(const std::string& name) {
-  static const char* const exact[] = {"gmsh:physical", "gmsh:geometrical", "gmsh:dim_tags", "medit:ref",
+  static const char* const exact[] = {"gmsh:physical", "gmsh:geometrical", "gmsh:dim_tags", "CellEntityIds", "medit:ref",
                                       "tetgen:ref", "flac3d:zone", "avsucd:material", "cell_tags",
                                       "point_tags", "vtkGhostType", "vtkOriginalPointIds",
                                       "vtkOriginalCellIds", "vtkProcessId", "region", "marker",
