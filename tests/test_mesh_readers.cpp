@@ -411,3 +411,14 @@ TEST_CASE("CLI: mesh info lists cells by type, arrays and the scalar, --check ex
   CHECK(missing.out.empty());
   CHECK(missing.err.find("cell type quadratic tetra (VTK id 24) is not supported yet") != std::string::npos);
 }
+
+// vtk_legacy_fuzzer, 2026-12-04: a cell point count or a cell type beyond long long's range was
+// converted from double (undefined behaviour, caught by UBSan); both are now one-line refusals.
+TEST_CASE("fuzz regression: huge cell counts and cell types in a legacy file are one-line refusals", "[mesh][readers][fuzz]") {
+  const std::string head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n"
+                           "0 0 0 1 0 0 0 1 0 0 0 1\n";
+  const std::string count = error_of([&] { parse_vtk_legacy(head + "CELLS 1 5\n2e62 0 1 2 3\nCELL_TYPES 1\n10\n", "f.vtk"); });
+  CHECK(count.rfind("f.vtk: CELLS[0]: point count 2", 0) == 0);
+  const std::string type = error_of([&] { parse_vtk_legacy(head + "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n1.7e60\n", "f.vtk"); });
+  CHECK(type.rfind("f.vtk: CELL_TYPES[0]: not a cell type: ", 0) == 0);
+}

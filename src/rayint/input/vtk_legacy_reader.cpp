@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_assembly.hpp"
 
@@ -269,7 +270,7 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
           if (k >= rawc.size()) c.fail(sec, "cell list ends early (size " + std::to_string(size) + ")");
           const double m = rawc[k++];
           if (!(m >= 0 && m <= static_cast<double>(rawc.size() - k)))
-            c.fail(sec, "point count " + std::to_string(static_cast<long long>(m)) + " overruns the cell list");
+            c.fail(sec, "point count " + format_number(m) + " overruns the cell list");  // m may be huge or NaN
           std::vector<long long> cell;
           for (auto j = static_cast<std::size_t>(m); j > 0; --j) cell.push_back(as_index(c, sec, rawc[k++]));
           cells.push_back(std::move(cell));
@@ -281,7 +282,12 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
     } else if (key == "CELL_TYPES" && d.kind == "UNSTRUCTURED_GRID") {
       need_words(c, w, 2, "CELL_TYPES n");
       const std::vector<double> t = c.values("CELL_TYPES", "int", count_of(c, "CELL_TYPES", w[1]), binary);
-      raw.types.assign(t.begin(), t.end());
+      raw.types.clear();
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        if (!(t[i] >= 0 && t[i] <= 1e6 && t[i] == std::floor(t[i])))
+          c.fail("CELL_TYPES[" + std::to_string(i) + "]", "not a cell type: " + format_number(t[i]));
+        raw.types.push_back(static_cast<long long>(t[i]));
+      }
       d.have_types = true;
     } else if (key == "POINT_DATA" || key == "CELL_DATA") {
       need_words(c, w, 2, key + " n");

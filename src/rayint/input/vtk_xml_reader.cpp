@@ -128,6 +128,8 @@ void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string
     raw.connectivity.push_back(static_cast<long long>(conn[i]) + static_cast<long long>(base));
   }
   for (std::size_t i = 0; i < n_cells; ++i) {
+    if (!(types[i] >= 0 && types[i] <= 1e6 && types[i] == std::floor(types[i])))
+      d.fail(types_field, "value " + std::to_string(i) + " is not a cell type");
     raw.types.push_back(static_cast<long long>(types[i]));
     raw.offsets.push_back(start + static_cast<std::size_t>(offsets[i]));
   }
