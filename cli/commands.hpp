@@ -32,6 +32,7 @@ void set_slab_command(CLI::App& app);    // slab_command.cpp
 void set_scatter_command(CLI::App& app);  // scatter_command.cpp
 void set_tf_command(CLI::App& app);       // tf_command.cpp
 void set_methods_command(CLI::App& app);  // methods_command.cpp
+void set_mesh_command(CLI::App& app);     // mesh_command.cpp
 
 // A --methods value: parse_method_list with the option named in the message, e.g.
 // "--methods riemann:n=0: n must be an integer >= 1" (MethodSpecError).

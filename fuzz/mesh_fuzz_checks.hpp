@@ -25,9 +25,13 @@ inline void check_message(const std::string& what, const std::string& source) {
 
 // The accepted mesh: structure as promised, then the mesh-case path.
 inline void check_mesh(TetMesh mesh, const std::string& source) {
-  require(!mesh.points.empty() && !mesh.tets.empty() && mesh.scalars.size() == mesh.points.size());
+  // Point data (one scalar per point) or cell data (one per tet, TetMesh::cell_scalars).
+  require(!mesh.points.empty() && !mesh.tets.empty() &&
+          (mesh.cell_scalars.empty() ? mesh.scalars.size() == mesh.points.size()
+                                     : mesh.cell_scalars.size() == mesh.tets.size()));
   for (const Vec3& p : mesh.points) require(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()));
   for (const double s : mesh.scalars) require(std::isfinite(s));
+  for (const double s : mesh.cell_scalars) require(std::isfinite(s));
   for (const auto& t : mesh.tets)
     for (const auto i : t) require(i >= 0 && static_cast<std::size_t>(i) < mesh.points.size());
   try {

@@ -1,8 +1,11 @@
-// libFuzzer target for the VTK legacy reader (rayint::parse_vtk_legacy, input/vtk_legacy_reader.hpp)
-// on arbitrary bytes; an accepted mesh is repaired and traversed (mesh_fuzz_checks.hpp). Run it
+// libFuzzer target for the VTK legacy reader (rayint::parse_vtk_legacy and parse_vtk_legacy_image,
+// input/vtk_legacy_reader.hpp: unstructured grids and STRUCTURED_POINTS images) on arbitrary
+// bytes; an accepted mesh is repaired and traversed (mesh_fuzz_checks.hpp), an accepted image
+// must hold one finite value per point. Run it
 // with `RAYINT_FUZZ_TARGET=vtk_legacy scripts/fuzz.sh`. Findings: a crash, sanitizer report, hang
 // or leak; an exception other than InputError; an InputError that is not one line starting
 // "<source>: "; an accepted mesh that breaks the reader's guarantees.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -15,6 +18,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string source = "fuzz.vtk";
   try {
     rayint::fuzz::check_mesh(rayint::parse_vtk_legacy(bytes, source), source);
+  } catch (const rayint::InputError& e) {
+    rayint::fuzz::check_message(e.what(), source);
+  }
+  try {
+    const rayint::VoxelGrid g = rayint::parse_vtk_legacy_image(bytes, source);
+    const auto& d = g.dims();
+    if (g.values().size() != static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]))
+      __builtin_trap();
+    for (const double v : g.values())
+      if (!std::isfinite(v)) __builtin_trap();
   } catch (const rayint::InputError& e) {
     rayint::fuzz::check_message(e.what(), source);
   }

@@ -13,7 +13,10 @@
 # inputs it finds interesting in RAYINT_FUZZ_CORPUS (default fuzz-corpus/<target>/, reused by the
 # next run). Seeds: case_parser cases/*.json; candidate_parser fuzz/seeds/candidate/; scene_parser
 # cases/scenes/*.json; vtk_legacy fuzz/seeds/vtk_legacy/ + cases/meshes/linear-box.vtk + the
-# meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
+# meshio .vtk fixtures + tests/fixtures/readers/*.vtk (boundary cells, cell data, float ASCII,
+# STRUCTURED_POINTS); gmsh tests/fixtures/meshes/*.msh + tests/fixtures/readers/*.msh (boundary
+# cells, 10-node tets); vtu_reader / vti_reader also tests/fixtures/readers/ (LZ4, LZMA, ghost
+# pieces, cell data); tetgen fuzz/seeds/tetgen/.
 # RAYINT_FUZZ_TARGET selects the target (default case_parser); preset_parser (ParaView presets)
 # seeds from fuzz/seeds/preset/; method_spec (parse_method_spec) from fuzz/seeds/method_spec/.
 # The image readers pfm_reader, exr_reader, npy_reader seed from fuzz/seeds/<format>/;
@@ -33,12 +36,13 @@ target="${RAYINT_FUZZ_TARGET:-case_parser}"
 case "$target" in
   case_parser) seed_files=("$root"/cases/*.json); what="rayint::parse_case_text" ;;
   candidate_parser) seed_files=("$root"/fuzz/seeds/candidate/*.json); what="rayint::parse_candidate_text" ;;
-  vtu_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vtu); what="rayint::parse_vtu" ;;
-  vti_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vti); what="rayint::parse_vti" ;;
+  vtu_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vtu "$root"/tests/fixtures/readers/*.vtu); what="rayint::parse_vtu" ;;
+  vti_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vti "$root"/tests/fixtures/readers/*.vti); what="rayint::parse_vti" ;;
   scene_parser) seed_files=("$root"/cases/scenes/*.json); what="rayint::parse_scene_text" ;;
   vtk_legacy) seed_files=("$root"/fuzz/seeds/vtk_legacy/* "$root"/cases/meshes/linear-box.vtk
-                          "$root"/tests/fixtures/meshes/*.vtk); what="rayint::parse_vtk_legacy" ;;
-  gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
+                          "$root"/tests/fixtures/meshes/*.vtk "$root"/tests/fixtures/readers/*.vtk)
+              what="rayint::parse_vtk_legacy and parse_vtk_legacy_image" ;;
+  gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh "$root"/tests/fixtures/readers/*.msh); what="rayint::parse_gmsh" ;;
   tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
   preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
   method_spec) seed_files=("$root"/fuzz/seeds/method_spec/*); what="rayint::parse_method_spec" ;;

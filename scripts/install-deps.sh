@@ -16,6 +16,8 @@ packages=(build-essential cmake pkg-config
           libbenchmark-dev      # Google Benchmark micro-benchmarks
           libpugixml-dev        # XML parser of the VTK XML readers (.vtu / .vti, input/vtk_xml_reader)
           zlib1g-dev            # inflating vtkZLibDataCompressor blocks in .vtu / .vti files
+          liblz4-dev            # vtkLZ4DataCompressor blocks in .vtu / .vti files (LZ4_decompress_safe)
+          liblzma-dev           # vtkLZMADataCompressor blocks in .vtu / .vti files (xz streams)
           python3-matplotlib    # plots in reports/
           pybind11-dev          # the Python module (src/python/): pybind11 headers + CMake config
           python3-dev           # Python.h and the interpreter's config, to compile that module

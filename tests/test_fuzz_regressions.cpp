@@ -43,12 +43,12 @@ std::string one_tet(const std::string& a) {
 TEST_CASE("fuzz regression: mesh points beyond +-1e18 are refused before Embree sees them", "[mesh][fuzz]") {
   struct Input {
     std::string file;
-    TetMesh (*parse)(std::string_view, const std::string&, const std::string&);
+    TetMesh (*parse)(std::string_view, const std::string&, const std::string&, bool);
   };
   for (const Input& in : {Input{"gmsh-huge-coordinate.msh", &parse_gmsh},
                           Input{"vtk-legacy-huge-coordinate.vtk", &parse_vtk_legacy}}) {
     INFO(in.file);
-    TetMesh mesh = in.parse(read_fuzz_input(in.file), in.file, "");
+    TetMesh mesh = in.parse(read_fuzz_input(in.file), in.file, "", false);
     REQUIRE_NOTHROW(repair_tet_mesh(mesh, in.file));
     CHECK_THROWS_WITH(TetTraversal(mesh, in.file),
                       Contains(in.file + ": points[") && Contains("beyond +-1e18"));

@@ -153,7 +153,7 @@ TEST_CASE("gmsh output (MSH 2.2 with $ElementNodeData, MSH 4.1) reads and integr
   CHECK(repair_tet_mesh(copy, "g").reoriented == 0);  // gmsh wrote every tet positive
   // gmsh saved the 4.1 file without data: it has none to offer...
   CHECK_THROWS_WITH(read_gmsh(kDir + "box-4.1.msh"),
-                    Catch::StartsWith(kDir + "box-4.1.msh: $NodeData: no one-component $NodeData or $ElementNodeData"));
+                    Catch::StartsWith(kDir + "box-4.1.msh: $NodeData: no one-component $NodeData, $ElementNodeData or $ElementData"));
   // ...so a $NodeData is appended to gmsh's own $Entities/$Nodes/$Elements, and the field set here.
   TetMesh m41 = parse_gmsh(with_node_data(slurp_file(kDir + "box-4.1.msh")), "box-4.1.msh");
   assign_field(m41, linear_field);
@@ -289,13 +289,13 @@ TEST_CASE("gmsh reader: every problem is one line naming the file and the sectio
       {replace(kMsh22, "2.2 0 8", "3.0 0 8"), "g.msh: $MeshFormat, line 2: version \"3.0\" is not read"},
       {replace(kMsh22, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", ""), "g.msh: $Nodes, line 1: the file must start with $MeshFormat"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 5 2 0 1 1 2 3 4"), "g.msh: $Elements, line 14: element 2: 9 numbers, a 8-node hexahedron with 2 tags needs 13"},
-      {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 11 2 0 1 1 2 3 4 1 2 3 4 1 2"), "g.msh: $Elements, line 14: element type 11 (10-node tetrahedron) is not read"},
+      {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 11 2 0 1 1 2 3 4 1 2 3 4 1 2"), "g.msh: $Elements, line 14: cell type quadratic tetra (VTK id 24) is not supported yet; only tetrahedra (VTK id 10) are integrated (gmsh element type 11)"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 4 2 0 1 1 2 3 9"), "g.msh: $Elements (element 2): node tag 9 is not in $Nodes"},
       {replace(kMsh22, "2 1 0 0", "2 1 0 x"), "g.msh: $Nodes, line 7: expected a finite number, got \"x\""},
       {replace(kMsh22, "$EndNodes", "$EndNode"), "g.msh: $Nodes, line 10: expected $EndNodes, got \"$EndNode\""},
       {replace(kMsh22, "3 2\n4 3\n", "3 2\n"), "g.msh: $NodeData, line 28: expected tag value... (2 numbers), got 1"},
       {replace(kMsh22, "\"s\"\n1\n0.0\n3\n0\n1\n", "\"s\"\n1\n0.0\n3\n0\n3\n"), "g.msh: $NodeData, line 25: entity 1: 1 values, expected 3"},
-      {kMsh22.substr(0, kMsh22.find("$NodeData")), "g.msh: $NodeData: no one-component $NodeData or $ElementNodeData"},
+      {kMsh22.substr(0, kMsh22.find("$NodeData")), "g.msh: $NodeData: no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"},
       {kMsh22.substr(0, kMsh22.find("$Elements")), "g.msh: $Elements: missing"},
   };
   for (const Bad& b : bad) {
@@ -340,7 +340,7 @@ TEST_CASE("CLI: bad TetGen and gmsh files exit 2 with one line and no output", "
     std::string args, prefix;
   } runs[] = {
       {"eval t.json -o out.json", "t.node: node[1], line 4: expected index x y z [attributes] [marker] (5 numbers), got 4"},
-      {"eval g.json -o out.json", "g.msh: $Elements, line 14: element type 5 (8-node hexahedron) is not read"},
+      {"eval g.json -o out.json", "g.msh: $Elements, line 14: cell type hexahedron (VTK id 12) is not supported yet"},
   };
   for (const auto& run : runs) {
     const auto before = dir.entries();
@@ -364,7 +364,8 @@ TEST_CASE("CLI: eval and render --stats report the reoriented and dropped tets",
   REQUIRE(e.status == 0);
   const auto j = nlohmann::json::parse(e.out);
   CHECK(j["cases"][0]["mesh_repairs"] ==
-        nlohmann::json({{"tets_read", 100}, {"reoriented", 50}, {"dropped_zero_volume", 0}, {"dropped_slivers", 0}}));
+        nlohmann::json({{"tets_read", 100}, {"reoriented", 50}, {"dropped_zero_volume", 0}, {"dropped_slivers", 0},
+                        {"skipped_cells", 0}, {"skipped_by_type", nlohmann::json::object()}, {"ghost_cells_dropped", 0}}));
   const auto r = test::run_cli(dir.path, "render mixed.json -o img.png --stats s.json --quiet");
   REQUIRE(r.status == 0);
   const auto s = nlohmann::json::parse(test::slurp(dir.path / "s.json"));

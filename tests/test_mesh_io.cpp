@@ -100,12 +100,12 @@ TEST_CASE("VTK legacy reader: every problem is one line naming the file and sect
   };
   const Bad bad[] = {
       {replace(base, "# vtk DataFile", "# vtx DataFile"), "m.vtk: header: not a VTK legacy file"},
-      {replace(base, "UNSTRUCTURED_GRID", "STRUCTURED_POINTS"), "m.vtk: DATASET: dataset STRUCTURED_POINTS is not read"},
-      {replace(base, "CELL_TYPES 1\n10", "CELL_TYPES 1\n12"), "m.vtk: CELL_TYPES[0]: cell type 12 (hexahedron) is not read; only linear tetrahedra (type 10)"},
+      {replace(base, "UNSTRUCTURED_GRID", "STRUCTURED_POINTS"), "m.vtk: DATASET: STRUCTURED_POINTS is image data, not a mesh"},
+      {replace(base, "CELL_TYPES 1\n10", "CELL_TYPES 1\n12"), "m.vtk: CELL_TYPES[0]: cell type hexahedron (VTK id 12) is not supported yet; only tetrahedra (VTK id 10) are integrated"},
       {replace(base, "0 0 0  1 0 0", "0 0 nan  1 0 0"), "m.vtk: POINTS[0][2]: coordinate must be finite, got nan"},
       {replace(base, "4 0 1 2 3", "4 0 1 2 9"), "m.vtk: CELLS[0][3]: point index 9 out of range [0, 4)"},
       {replace(base, "POINT_DATA 4", "POINT_DATA 3"), "m.vtk: POINT_DATA: 3 scalars for 4 points"},
-      {replace(base, "SCALARS s double 1\nLOOKUP_TABLE default\n0.5 1.5 2.5 3.5\n", ""), "m.vtk: POINT_DATA: no SCALARS array"},
+      {replace(base, "SCALARS s double 1\nLOOKUP_TABLE default\n0.5 1.5 2.5 3.5\n", ""), "m.vtk: POINT_DATA: no field to integrate: no one-component point or cell array that is not a region marker (arrays: none)"},
       {replace(base, "0.5 1.5 2.5 3.5\n", "0.5 1.5\n"), "m.vtk: POINT_DATA: expected 4 values, file ends after 2"},
       {replace(base, "0.5 1.5", "0.5 x1.5"), "m.vtk: POINT_DATA[1]: not a number: 'x1.5'"},
       {replace(base, "CELLS 1 5\n", "CELLS 1 6\n"), "m.vtk: CELLS[5]: not a number: 'CELL_TYPES'"},

@@ -9,9 +9,11 @@
 #include <utility>
 #include <vector>
 
+#include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/mesh_assembly.hpp"
 #include "rayint/input/mesh_text.hpp"
 
 namespace rayint {
@@ -61,8 +63,8 @@ struct DataBlock {
 
 class MshReader {
  public:
-  MshReader(std::string_view bytes, const std::string& source, const std::string& scalar_name)
-      : c_(bytes, source, '\0'), scalar_name_(scalar_name) {}
+  MshReader(std::string_view bytes, const std::string& source, const std::string& scalar_name, bool cell_to_point)
+      : c_(bytes, source, '\0'), scalar_name_(scalar_name), cell_to_point_(cell_to_point) {}
 
   TetMesh read() {
     bool have_format = false, have_nodes = false, have_elements = false;
@@ -85,7 +87,7 @@ class MshReader {
         if (have_elements) c_.fail(section, "given twice");
         version4_ ? elements4() : elements2();
         have_elements = true;
-      } else if (section == "$NodeData" || section == "$ElementNodeData") {
+      } else if (section == "$NodeData" || section == "$ElementNodeData" || section == "$ElementData") {
         data(section);
       } else {
         skip(section);
@@ -96,7 +98,9 @@ class MshReader {
     if (!have_format) fail_whole("$MeshFormat", "missing (not a gmsh .msh file)");
     if (!have_nodes) fail_whole("$Nodes", "missing");
     if (!have_elements) fail_whole("$Elements", "missing");
-    if (tet_nodes_.empty()) fail_whole("$Elements", "no 4-node tetrahedra (type 4)");
+    if (tet_nodes_.empty())
+      fail_whole("$Elements", "no 4-node tetrahedra (type 4); " + std::to_string(mesh_.info.skipped_cells) +
+                                  " elements of dimension 0-2 skipped");
     return finish();
   }
 
@@ -241,16 +245,27 @@ class MshReader {
     if (seen != n) c_.fail(f, "the blocks hold " + std::to_string(seen) + " nodes, the header says " + std::to_string(n));
   }
 
-  // One element: tets are kept (nodes by tag, resolved in finish()), lower dimensions skipped.
+  // One element, through the cell-type table (cells/cell_types.hpp): tets are kept (nodes by
+  // tag, resolved in finish()), dimensions 0-2 skipped and counted, other volume elements refused.
   void element(long long t, long long type, const std::vector<long long>& nodes, const std::string& f) {
     const ElementType* et = element_type(type);
     if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
-    if (et->dim < 3) return;
-    if (type != 4)
-      c_.fail(f, "element type " + std::to_string(type) + " (" + et->name +
-                     ") is not read; only 4-node tetrahedra (type 4)");
+    const CellTypeInfo* row = cell_type_from_gmsh(type);
+    const std::string label = row != nullptr ? std::string(row->name) : std::string("gmsh ") + et->name;
+    ++mesh_.info.cells_by_type[label];
+    if (et->dim < 3) {
+      ++mesh_.info.skipped_cells;
+      ++mesh_.info.skipped_by_type[label];
+      return;
+    }
+    if (row == nullptr)
+      c_.fail(f, "element type " + std::to_string(type) + " (" + et->name + ") is not supported yet; only 4-node tetrahedra (type 4) are integrated");
+    if (row->support != CellSupport::Traversed)
+      c_.fail(f, unsupported_cell_message(row->vtk_id) + " (gmsh element type " + std::to_string(type) + ")");
     tet_tags_.push_back(t);
-    tet_nodes_.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+    std::array<long long, 4> v{};
+    for (std::size_t k = 0; k < 4; ++k) v[k] = nodes[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
+    tet_nodes_.push_back(v);
   }
 
   void elements2() {
@@ -347,6 +362,7 @@ class MshReader {
 
   void data(const std::string& f) {
     const bool per_element = f == "$ElementNodeData";
+    const bool per_cell = f == "$ElementData";
     const long long nstrings = c_.integer(c_.need_words(f, 1, "numStringTags")[0], f, 0, 1000);
     std::string name;
     for (long long i = 0; i < nstrings; ++i) {
@@ -367,8 +383,10 @@ class MshReader {
     const long long comps = ints[1], n = ints[2];
     if (comps < 1 || comps > 9) c_.fail(f, "number of components must be 1-9, got " + std::to_string(comps));
     if (n < 0) c_.fail(f, "negative number of entities");
-    const bool wanted_name = scalar_name_.empty() || name == scalar_name_;
-    DataBlock& slot = per_element ? element_data_ : node_data_;
+    mesh_.info.arrays.push_back({name, per_cell ? "cell" : per_element ? "point (per element)" : "point", comps,
+                                 is_marker_array(name)});
+    const bool wanted_name = scalar_name_.empty() ? !is_marker_array(name) : name == scalar_name_;
+    DataBlock& slot = per_element ? element_data_ : per_cell ? cell_data_ : node_data_;
     const bool take = wanted_name && comps == 1 && !slot.present;
     if (take) {
       slot.present = true;
@@ -397,7 +415,7 @@ class MshReader {
       }
       if (!take) continue;
       if (per_element) slot.element_values.emplace_back(t, std::move(values));
-      else slot.node_values.emplace_back(t, values[0]);
+      else slot.node_values.emplace_back(t, values[0]);  // per node, or per element for $ElementData
     }
   }
 
@@ -415,9 +433,10 @@ class MshReader {
       for (std::size_t k = 0; k < 4; ++k)
         t[k] = node(tet_nodes_[i][k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
       mesh_.tets.push_back(t);
+      mesh_.info.cell_ids.push_back(tet_tags_[i]);
     }
-    const std::string what = scalar_name_.empty() ? "no one-component $NodeData or $ElementNodeData"
-                                                  : "no one-component $NodeData or $ElementNodeData named " +
+    const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
+                                                  : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
                                                         field::quoted(scalar_name_);
     std::vector<double> value(mesh_.points.size(), 0.0);
     std::vector<char> have(mesh_.points.size(), 0);
@@ -446,9 +465,29 @@ class MshReader {
           have[i] = 1;
         }
       }
+    } else if (cell_data_.present) {
+      // $ElementData: one value per element, constant over the tetrahedron (cell data).
+      std::unordered_map<long long, double> by_tag;
+      for (const auto& [t, v] : cell_data_.node_values) by_tag[t] = v;
+      for (std::size_t i = 0; i < tet_tags_.size(); ++i) {
+        const auto it = by_tag.find(tet_tags_[i]);
+        if (it == by_tag.end())
+          fail_whole("$ElementData", "no value for element " + std::to_string(tet_tags_[i]) + " (a tetrahedron)");
+        mesh_.cell_scalars.push_back(it->second);
+      }
+      mesh_.info.scalar = cell_data_.name;
+      mesh_.info.scalar_association = "cell";
+      if (cell_to_point_) {
+        mesh_.scalars = cell_to_point_average(mesh_);
+        mesh_.cell_scalars.clear();
+        mesh_.info.scalar_association = "cell averaged to points";
+      }
+      validate_tet_mesh_structure(mesh_, c_.source(), MeshFieldNames{"$Nodes", "$ElementData", "$Elements"});
+      return std::move(mesh_);
     } else {
-      fail_whole("$NodeData", what + " (one scalar per node is required)");
+      fail_whole("$NodeData", what + " (one scalar per node is required; arrays: " + list_arrays(mesh_.info.arrays) + ")");
     }
+    mesh_.info.scalar = node_data_.present ? node_data_.name : element_data_.name;
     for (const auto& t : mesh_.tets)
       for (const std::int32_t i : t)
         if (!have[static_cast<std::size_t>(i)])
@@ -461,22 +500,24 @@ class MshReader {
 
   LineCursor c_;
   std::string scalar_name_;
+  bool cell_to_point_ = false;
   bool version4_ = false, binary_ = false;
   TetMesh mesh_;
   std::unordered_map<long long, std::int32_t> node_index_;
   std::vector<long long> tet_tags_;
   std::vector<std::array<long long, 4>> tet_nodes_;
-  DataBlock node_data_, element_data_;
+  DataBlock node_data_, element_data_, cell_data_;
 };
 
 }  // namespace
 
-TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name) {
-  return MshReader(bytes, source, scalar_name).read();
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                   bool cell_to_point) {
+  return MshReader(bytes, source, scalar_name, cell_to_point).read();
 }
 
-TetMesh read_gmsh(const std::string& path, const std::string& scalar_name) {
-  return parse_gmsh(json_source::read_text_file(path), path, scalar_name);
+TetMesh read_gmsh(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_gmsh(json_source::read_text_file(path), path, scalar_name, cell_to_point);
 }
 
 }  // namespace rayint

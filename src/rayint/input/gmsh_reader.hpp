@@ -3,13 +3,17 @@
 // MSH 4.1, ASCII and binary) into a TetMesh.
 //
 // Read: $MeshFormat, $Nodes, $Elements, $NodeData and $ElementNodeData; every other section
-// ($PhysicalNames, $Entities, $Periodic, $ElementData, ...) is skipped. Elements of dimension 0-2
-// (points, lines, triangles, quadrangles: the boundary gmsh writes beside the volume) are skipped;
-// 4-node tetrahedra (type 4) are the cells; any other 3-D element (hexahedra, prisms, pyramids,
-// 10-node tetrahedra, ...) is refused with its type named.
+// ($PhysicalNames, $Entities, $Periodic, ...) is skipped. Element types go through the cell-type
+// table (cells/cell_types.hpp): elements of dimension 0-2 (points, lines, triangles,
+// quadrangles: the boundary gmsh writes beside the volume) are skipped and counted by type
+// (TetMesh::info); 4-node tetrahedra (type 4) are the cells; any other 3-D element (hexahedra,
+// prisms, pyramids, 10-node tetrahedra, ...) is refused with "cell type X (VTK id N) is not
+// supported yet". Physical and elementary tags are labels, never the scalar.
 // Scalars: the first one-component $NodeData (meshio writes point data so), else the first
-// one-component $ElementNodeData (what gmsh's own "Save View" writes for a MathEval view), or the
-// one whose name (first string tag) is scalar_field. Element node data must agree at every node
+// one-component $ElementNodeData (what gmsh's own "Save View" writes for a MathEval view), else
+// the first one-component $ElementData (cell data: constant per tetrahedron), or the one whose
+// name (first string tag) is scalar_field. Blocks named like markers (is_marker_array, e.g.
+// meshio's "gmsh:physical") are never taken unless named. Element node data must agree at every node
 // (a continuous field): a node given two different values is refused. Every node of a tet needs a
 // value. Node tags may be sparse; tets refer to nodes by tag.
 // Orientation: gmsh 4.8 writes every tet positively oriented in VTK's sense (measured on the
@@ -24,7 +28,9 @@ namespace rayint {
 
 // `source` names the file in messages. Throws InputError. The mesh's structure is validated
 // (validate_tet_mesh_structure).
-TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
-TetMesh read_gmsh(const std::string& path, const std::string& scalar_name = "");
+// `cell_to_point`: a cell field ($ElementData) becomes point data averaged as ParaView does.
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                   bool cell_to_point = false);
+TetMesh read_gmsh(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 }  // namespace rayint

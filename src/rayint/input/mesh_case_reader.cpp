@@ -6,7 +6,9 @@
 #include <map>
 #include <stdexcept>
 
+#include "rayint/core/error.hpp"
 #include "rayint/input/json_schema.hpp"
+#include "rayint/mesh/mesh_check.hpp"
 #include "rayint/input/gmsh_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/tetgen_reader.hpp"
@@ -16,24 +18,34 @@
 namespace rayint {
 namespace {
 
-TetMesh read_vtu_mesh(const std::string& path, const std::string& scalar_name) {
-  return read_vtu(path, scalar_name);
+// The built-in readers, chosen by extension; each takes the array name and whether a cell field
+// becomes averaged point data ("cell_data": "point_average").
+using BuiltinReader = TetMesh (*)(const std::string& path, const std::string& scalar_name, bool cell_to_point);
+TetMesh read_tetgen_mesh(const std::string& path, const std::string& scalar_name, bool) {
+  return read_tetgen(path, scalar_name);  // TetGen point attributes are point data only
 }
-
-// The readers chosen by extension besides .vtk: TetGen and gmsh here, .vtu etc. registered by
-// optional areas (register_mesh_reader).
-std::map<std::string, MeshFileReader>& extra_mesh_readers() {
-  static std::map<std::string, MeshFileReader> readers = {
-      {".ele", &read_tetgen},  // TetGen .ele + .node (tetgen_reader.hpp)
-      {".msh", &read_gmsh},    // gmsh MSH 2.2 / 4.1 (gmsh_reader.hpp)
-      {".vtu", &read_vtu_mesh},  // VTK XML, without VTK (vtk_xml_reader.hpp); the VTK build replaces it
+const std::map<std::string, BuiltinReader>& builtin_mesh_readers() {
+  static const std::map<std::string, BuiltinReader> readers = {
+      {".vtk", &read_vtk_legacy},   // VTK legacy (vtk_legacy_reader.hpp)
+      {".ele", &read_tetgen_mesh},  // TetGen .ele + .node (tetgen_reader.hpp)
+      {".msh", &read_gmsh},         // gmsh MSH 2.2 / 4.1 (gmsh_reader.hpp)
+      {".vtu", &read_vtu},          // VTK XML, without VTK (vtk_xml_reader.hpp)
+      {".pvtu", &read_pvtu},        // its parallel pieces (vtk_xml_reader.hpp)
   };
   return readers;
 }
 
-std::string extra_mesh_extensions() {
+// Readers registered by optional areas (register_mesh_reader); they replace a built-in one.
+std::map<std::string, MeshFileReader>& extra_mesh_readers() {
+  static std::map<std::string, MeshFileReader> readers;
+  return readers;
+}
+
+std::string known_mesh_extensions() {
   std::string out;
-  for (const auto& [ext, read] : extra_mesh_readers()) out += ", " + ext;
+  for (const auto& [ext, read] : builtin_mesh_readers()) out += (out.empty() ? "" : ", ") + ext;
+  for (const auto& [ext, read] : extra_mesh_readers())
+    if (builtin_mesh_readers().count(ext) == 0) out += ", " + ext;
   return out;
 }
 
@@ -109,10 +121,28 @@ MeshFieldNames file_field_names(const std::string& extension) {
   if (extension == ".vtk") return {"POINTS", "POINT_DATA", "CELLS"};
   if (extension == ".ele") return {"node", "node attribute", "ele"};  // tetgen_reader.hpp
   if (extension == ".msh") return {"$Nodes", "$NodeData", "$Elements"};
+  if (extension == ".pvtu") return {"pieces/Points", "pieces/PointData", "pieces/Cells"};
   return {"Points", "PointData", "Cells"};
 }
 
 }  // namespace
+
+TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  // One reader per format, chosen by extension (other mesh formats plug in here).
+  const std::string ext = std::filesystem::path(path).extension().string();
+  const auto extra = extra_mesh_readers().find(ext);
+  const auto builtin = builtin_mesh_readers().find(ext);
+  if (extra != extra_mesh_readers().end()) {
+    TetMesh mesh = extra->second(path, scalar_name);
+    if (cell_to_point && !mesh.cell_scalars.empty()) {
+      mesh.scalars = cell_to_point_average(mesh);
+      mesh.cell_scalars.clear();
+    }
+    return mesh;
+  }
+  if (builtin != builtin_mesh_readers().end()) return builtin->second(path, scalar_name, cell_to_point);
+  throw InputError(path + ": (file): unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
+}
 
 bool is_mesh_case(const json& root) {
   return root.is_object() && (root.contains("mesh") || root.contains("mesh_file"));
@@ -123,7 +153,7 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
   const std::string path;
   s.require_object(root, path);
   s.check_fields(root, path, {"name", "description", "transfer_function", "mesh", "mesh_file",
-                              "scalar_field", "rays", "camera", "background", "shading"});
+                              "scalar_field", "cell_data", "rays", "camera", "background", "shading"});
   MeshCase mc;
   mc.source = source;
   mc.name = s.non_empty_string(s.required(root, path, "name"), "name");
@@ -137,6 +167,7 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
   MeshFieldNames names{"mesh.points", "mesh.scalars", "mesh.tets"};
   if (inline_m) {
     if (scalar_field) s.fail("scalar_field", "only with \"mesh_file\"");
+    if (s.optional(root, "cell_data")) s.fail("cell_data", "only with \"mesh_file\"");
     mc.mesh = inline_mesh(s, *inline_m, "mesh");
     mc.mesh_source = source;
   } else {
@@ -147,22 +178,23 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) s.fail("mesh_file", "no such file: " + mc.mesh_source);
     const std::string name = scalar_field ? s.non_empty_string(*scalar_field, "scalar_field") : "";
-    // One reader per format, chosen by extension (other mesh formats plug in here).
-    const auto extra = extra_mesh_readers().find(p.extension().string());
-    if (p.extension() == ".vtk")
-      mc.mesh = read_vtk_legacy(mc.mesh_source, name);
-    else if (extra != extra_mesh_readers().end())
-      mc.mesh = extra->second(mc.mesh_source, name);
-    else
-      s.fail("mesh_file", "unsupported mesh format \"" + p.extension().string() +
-                              "\" (read: .vtk, VTK legacy unstructured grid" +
-                              extra_mesh_extensions() + ")");
+    bool cell_to_point = false;
+    if (const json* cd = s.optional(root, "cell_data")) {
+      const std::string how = s.non_empty_string(*cd, "cell_data");
+      if (how == "point_average") cell_to_point = true;
+      else if (how != "constant") s.fail("cell_data", "expected \"constant\" (default) or \"point_average\", got " + field::quoted(how));
+    }
+    const std::string ext = p.extension().string();
+    if (extra_mesh_readers().count(ext) == 0 && builtin_mesh_readers().count(ext) == 0)
+      s.fail("mesh_file", "unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
+    mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
     names = file_field_names(p.extension().string());
   }
   if (options.strict)
     validate_tet_mesh(mc.mesh, mc.mesh_source, names);
   else
     mc.repairs = repair_tet_mesh(mc.mesh, mc.mesh_source, names);
+  refuse_overlapping_tets(mc.mesh, mc.mesh_source, names.tets);
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");

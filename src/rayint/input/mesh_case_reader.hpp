@@ -17,9 +17,15 @@ bool is_mesh_case(const nlohmann::json& root);
 // How a mesh's tets are taken (mesh/tet_mesh.hpp). Default: inverted tets are reoriented and
 // degenerate ones (zero volume, slivers) dropped, counted in MeshCase::repairs. strict
 // (`--strict-mesh`): refused with one line naming the tet, as validate_tet_mesh does.
+// Either way a mesh with overlapping tetrahedra is refused naming two of them
+// (mesh/mesh_check.hpp; measured cost in docs/meshes.md).
 struct MeshReadOptions {
   bool strict = false;
 };
+
+// A mesh file alone, by extension (.vtk, .vtu, .pvtu, .msh, .ele, or a registered one), as a
+// mesh case's "mesh_file" reads it, before repair and checks (for `rayint mesh info`).
+TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source,
                          const MeshReadOptions& options = {});

@@ -106,12 +106,13 @@ std::shared_ptr<const DensityField> parse_cloud(const json& j, const JsonSchema&
   return std::make_shared<CloudField>(c);
 }
 
-// {"type": "grid", "grid": {grid object} | "grid_file": "x.json"}, or
+// {"type": "grid", "grid": {grid object} | "grid_file": "x.json" | "x.vti" | "x.pvti" | "x.vtk"
+//  [, "array": "name of the image's point array"]}, or
 // {"type": "grid", "sample": {a medium object}, "dims": [nx, ny, nz]}: that medium sampled at the
 // grid points (Max's cloud as a voxel volume).
 std::shared_ptr<const DensityField> parse_grid(const json& j, const JsonSchema& s, const std::string& path,
                                                const std::string& base_dir) {
-  s.check_fields(j, path, {"type", "grid", "grid_file", "sample", "dims"});
+  s.check_fields(j, path, {"type", "grid", "grid_file", "array", "sample", "dims"});
   const json* g = s.optional(j, "grid");
   const json* f = s.optional(j, "grid_file");
   const json* sm = s.optional(j, "sample");
@@ -120,8 +121,11 @@ std::shared_ptr<const DensityField> parse_grid(const json& j, const JsonSchema& 
   if (g != nullptr) return std::make_shared<GridField>(parse_voxel_grid(*g, s, member_path(path, "grid"), base_dir));
   if (f != nullptr) {
     const std::string file = resolve(base_dir, s.non_empty_string(*f, member_path(path, "grid_file")));
-    return std::make_shared<GridField>(read_voxel_grid_file(file));
+    const json* a = s.optional(j, "array");
+    return std::make_shared<GridField>(
+        read_voxel_grid_file(file, a != nullptr ? s.non_empty_string(*a, member_path(path, "array")) : ""));
   }
+  if (s.optional(j, "array") != nullptr) s.fail(member_path(path, "array"), "only with \"grid_file\"");
   const json& dims = s.required(j, path, "dims");
   const std::string dpath = member_path(path, "dims");
   s.array_of_size(dims, dpath, 3, "[nx, ny, nz]");

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_text.hpp"
@@ -37,7 +38,8 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
       n.fail("header", "scalar_field \"" + scalar_name + "\": the file has " + std::to_string(attributes) +
                            " point attributes");
   } else if (attributes == 0) {
-    n.fail("header", "no point attributes (rayint takes the scalar at each point from the first attribute)");
+    n.fail("header", "no point attributes (rayint takes the scalar at each point from the first attribute; the"
+                     " boundary markers and region attributes are labels, not a field)");
   }
   mesh.points.reserve(mesh_text::reserve_bound(points, n.remaining_bytes(), 8));
   mesh.scalars.reserve(mesh.points.capacity());
@@ -62,6 +64,10 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
   const auto tets = static_cast<std::size_t>(e.integer(h[0], "header", 0, kMaxCount));
   const auto per_tet = h.size() >= 2 ? e.integer(h[1], "header", 4, 10) : 4;
   if (per_tet != 4 && per_tet != 10) e.fail("header", "nodes per tetrahedron must be 4 or 10");
+  // One rule for every reader (cells/cell_types.hpp): a 10-node tetrahedron (tetgen -o2) is a
+  // quadratic tetra, which is refused until it is integrated with its quadratic interpolation
+  // (reading its corners only would integrate another field).
+  if (per_tet == 10) e.fail("header", unsupported_cell_message(kVtkQuadraticTetra) + " (tetgen -o2 writes 10 nodes per tetrahedron)");
   const auto region = h.size() >= 3 ? static_cast<std::size_t>(e.integer(h[2], "header", 0, 1000)) : 0;
   if (tets == 0) e.fail("header", "no tetrahedra");
   mesh.tets.reserve(mesh_text::reserve_bound(tets, e.remaining_bytes(), 10));
@@ -83,6 +89,12 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
           e.integer(w[1 + k], f, base, base + static_cast<long long>(points) - 1) - base);
     mesh.tets.push_back(t);
   }
+  mesh.info.cells_by_type["tetra"] = static_cast<long>(mesh.tets.size());
+  for (std::size_t a = 0; a < attributes; ++a)
+    mesh.info.arrays.push_back({"attribute " + std::to_string(a), "point", 1, false});
+  if (markers > 0) mesh.info.arrays.push_back({"boundary marker", "point", 1, true});
+  if (region > 0) mesh.info.arrays.push_back({"region attribute", "cell", static_cast<long>(region), true});
+  mesh.info.scalar = "attribute " + std::to_string(which);
   validate_tet_mesh_structure(mesh, ele_source, MeshFieldNames{"node", "node attribute", "ele"});
   return mesh;
 }

@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <vector>
 
+#include "rayint/core/error.hpp"
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/vtk_legacy_reader.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
 
 namespace rayint {
@@ -152,9 +154,13 @@ VoxelGrid parse_voxel_grid_text(std::string_view text, const std::string& source
   return parse_voxel_grid(root, JsonSchema(source), "", base_dir);
 }
 
-VoxelGrid read_voxel_grid_file(const std::string& path) {
+VoxelGrid read_voxel_grid_file(const std::string& path, const std::string& array) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".vti") return read_vti(path);  // VTK XML image data (input/vtk_xml_reader.hpp)
+  if (ext == ".vti") return read_vti(path, array);    // VTK XML image data (input/vtk_xml_reader.hpp)
+  if (ext == ".pvti") return read_pvti(path, array);  // its parallel pieces
+  if (ext == ".vtk") return read_vtk_legacy_image(path, array);  // STRUCTURED_POINTS (vtk_legacy_reader.hpp)
+  if (!array.empty())
+    throw InputError(path + ": (root): \"array\" names an array of a VTK image (.vti, .pvti, .vtk); a JSON grid has one");
   const std::string text = json_source::read_text_file(path);
   return parse_voxel_grid_text(text, path, std::filesystem::path(path).parent_path().string());
 }

@@ -26,8 +26,10 @@ VoxelGrid parse_voxel_grid(const nlohmann::json& j, const JsonSchema& schema,
 // A whole JSON text / file that is one grid object.
 VoxelGrid parse_voxel_grid_text(std::string_view text, const std::string& source,
                                 const std::string& base_dir);
-// A file ending in .vti is read as VTK XML image data (read_vti, input/vtk_xml_reader.hpp: the
-// active point scalars, else the first one-component point array).
-VoxelGrid read_voxel_grid_file(const std::string& path);
+// A file ending in .vti / .pvti is read as VTK XML image data (read_vti / read_pvti,
+// input/vtk_xml_reader.hpp), .vtk as a VTK legacy STRUCTURED_POINTS file
+// (read_vtk_legacy_image): the point array named `array`, else the active point scalars, else the
+// first one-component point array. Anything else is a JSON grid object (`array` must be empty).
+VoxelGrid read_voxel_grid_file(const std::string& path, const std::string& array = "");
 
 }  // namespace rayint

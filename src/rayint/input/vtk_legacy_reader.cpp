@@ -7,6 +7,7 @@
 #include "rayint/input/vtk_legacy_reader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -17,7 +18,9 @@
 #include <vector>
 
 #include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/mesh_assembly.hpp"
 
 namespace rayint {
 namespace {
@@ -25,25 +28,6 @@ namespace {
 std::string upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return s;
-}
-
-const char* cell_type_name(long long type) {
-  switch (type) {
-    case 1: return "vertex";
-    case 3: return "line";
-    case 5: return "triangle";
-    case 7: return "polygon";
-    case 8: return "pixel";
-    case 9: return "quad";
-    case 10: return "tetra";
-    case 11: return "voxel";
-    case 12: return "hexahedron";
-    case 13: return "wedge";
-    case 14: return "pyramid";
-    case 24: return "quadratic tetra";
-    case 25: return "quadratic hexahedron";
-    default: return "other";
-  }
 }
 
 class VtkCursor {
@@ -105,7 +89,11 @@ class VtkCursor {
       pos_ = end;
       char* stop = nullptr;
       errno = 0;
-      const double v = std::strtod(tok.c_str(), &stop);
+      // VTK reads an ASCII value of type float with `istream >> float` (vtkDataReader::Read(float*)),
+      // which libstdc++ converts with strtof: the nearest float to the decimal text. Reading it as
+      // a double instead keeps digits VTK does not see (the 2.8e-7 torus of issue 27).
+      const double v = type == "float" ? static_cast<double>(std::strtof(tok.c_str(), &stop))
+                                       : std::strtod(tok.c_str(), &stop);
       if (stop == tok.c_str() || *stop != '\0')
         fail(section + "[" + std::to_string(i) + "]", "not a number: '" + tok.substr(0, 40) + "'");
       out.push_back(v);
@@ -171,17 +159,29 @@ void need_words(const VtkCursor& c, const std::vector<std::string>& w, std::size
   if (w.size() < n) c.fail(w.empty() ? "(file)" : w[0], "expected '" + form + "'");
 }
 
-std::int32_t as_index(const VtkCursor& c, const std::string& section, double v) {
+long long as_index(const VtkCursor& c, const std::string& section, double v) {
   if (!(v == std::floor(v)) || v < -2147483648.0 || v > 2147483647.0)
     c.fail(section, "not an integer point index: " + std::to_string(v));
-  return static_cast<std::int32_t>(v);
+  return static_cast<long long>(v);
 }
 
 }  // namespace
 
-TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
-                         const std::string& scalar_name) {
-  VtkCursor c(bytes, source);
+namespace {
+
+// Everything a legacy file holds that rayint uses, for an unstructured grid or an image.
+struct LegacyDataset {
+  std::string kind;  // "UNSTRUCTURED_GRID" or "STRUCTURED_POINTS"
+  RawMesh raw;
+  bool have_points = false, have_cells = false, have_types = false;
+  std::array<long long, 3> dims{};
+  std::array<double, 3> origin{0, 0, 0}, spacing{1, 1, 1};
+  bool have_dims = false;
+};
+
+// `want`: the dataset the caller reads ("UNSTRUCTURED_GRID" or "STRUCTURED_POINTS"); the other
+// one is refused at its DATASET line, saying what it is.
+LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
   const std::string magic = c.line("header");
   if (magic.rfind("# vtk DataFile Version", 0) != 0)
     c.fail("header", "not a VTK legacy file (first line must start with '# vtk DataFile Version')");
@@ -193,29 +193,54 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
   const bool binary = upper(enc[0]) == "BINARY";
   const std::vector<std::string> ds = c.keyword_line("DATASET");
   if (ds.size() != 2 || upper(ds[0]) != "DATASET")
-    c.fail("DATASET", "expected 'DATASET UNSTRUCTURED_GRID'");
-  if (upper(ds[1]) != "UNSTRUCTURED_GRID")
-    c.fail("DATASET", "dataset " + ds[1].substr(0, 40) + " is not read; only UNSTRUCTURED_GRID");
-
-  TetMesh mesh;
-  bool have_points = false, have_cells = false, have_types = false, have_scalars = false;
-  std::vector<double> field_scalars;  // the first one-component POINT_DATA FIELD array (meshio)
-  std::vector<double> cell_types;
-  std::vector<std::vector<std::int32_t>> cells;
+    c.fail("DATASET", "expected 'DATASET UNSTRUCTURED_GRID' or 'DATASET STRUCTURED_POINTS'");
+  LegacyDataset d;
+  d.kind = upper(ds[1]);
+  if (d.kind != "UNSTRUCTURED_GRID" && d.kind != "STRUCTURED_POINTS")
+    c.fail("DATASET", "dataset " + ds[1].substr(0, 40) +
+                          " is not read; only UNSTRUCTURED_GRID (a mesh) and STRUCTURED_POINTS (an image)");
+  if (d.kind != want)
+    c.fail("DATASET", d.kind == "STRUCTURED_POINTS"
+                          ? "STRUCTURED_POINTS is image data, not a mesh: give it to a scene as \"grid_file\""
+                          : "UNSTRUCTURED_GRID is a mesh, not an image: use it as a mesh case's \"mesh_file\"");
+  RawMesh& raw = d.raw;
+  std::vector<std::vector<long long>> cells;
   std::size_t attribute_count = 0;  // tuples of the current POINT_DATA / CELL_DATA block
-  bool in_point_data = false;
+  bool in_point_data = false, in_data = false;
+  const auto add_array = [&](const std::string& name, std::size_t comps, bool active, std::vector<double> values) {
+    RawArray a;
+    a.name = name;
+    a.cell = !in_point_data;
+    a.components = comps;
+    a.active = active;
+    a.values = std::move(values);
+    raw.arrays.push_back(std::move(a));
+  };
   while (!c.at_end()) {
     const std::vector<std::string> w = c.keyword_line("keyword");
     if (w.empty()) continue;
     const std::string key = upper(w[0]);
-    if (key == "POINTS") {
+    if (key == "POINTS" && d.kind == "UNSTRUCTURED_GRID") {
       need_words(c, w, 3, "POINTS n type");
       const std::size_t n = count_of(c, "POINTS", w[1]);
       const std::vector<double> xyz = c.values("POINTS", w[2], 3 * n, binary);
-      mesh.points.resize(n);
-      for (std::size_t i = 0; i < n; ++i) mesh.points[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-      have_points = true;
-    } else if (key == "CELLS") {
+      raw.points.resize(n);
+      for (std::size_t i = 0; i < n; ++i) raw.points[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+      d.have_points = true;
+    } else if (key == "DIMENSIONS" && d.kind == "STRUCTURED_POINTS") {
+      need_words(c, w, 4, "DIMENSIONS nx ny nz");
+      for (std::size_t a = 0; a < 3; ++a) d.dims[a] = static_cast<long long>(count_of(c, "DIMENSIONS", w[a + 1]));
+      d.have_dims = true;
+    } else if ((key == "ORIGIN" || key == "SPACING" || key == "ASPECT_RATIO") && d.kind == "STRUCTURED_POINTS") {
+      need_words(c, w, 4, key + " x y z");
+      std::array<double, 3>& into = key == "ORIGIN" ? d.origin : d.spacing;
+      for (std::size_t a = 0; a < 3; ++a) {
+        char* stop = nullptr;
+        into[a] = std::strtod(w[a + 1].c_str(), &stop);
+        if (stop == w[a + 1].c_str() || *stop != '\0' || !std::isfinite(into[a]))
+          c.fail(key, "expected 3 finite numbers");
+      }
+    } else if (key == "CELLS" && d.kind == "UNSTRUCTURED_GRID") {
       need_words(c, w, 3, "CELLS n size");
       const std::size_t n = count_of(c, "CELLS", w[1]);
       const std::size_t size = count_of(c, "CELLS", w[2]);
@@ -232,39 +257,48 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
           const double a = offsets[i], b = offsets[i + 1];
           if (!(a >= 0 && b >= a && b <= static_cast<double>(size)))
             c.fail("OFFSETS[" + std::to_string(i + 1) + "]", "offsets must increase within CONNECTIVITY");
-          std::vector<std::int32_t> cell;
+          std::vector<long long> cell;
           for (auto k = static_cast<std::size_t>(a); k < static_cast<std::size_t>(b); ++k)
             cell.push_back(as_index(c, "CONNECTIVITY[" + std::to_string(k) + "]", conn[k]));
           cells.push_back(std::move(cell));
         }
       } else {
-        const std::vector<double> raw = c.values("CELLS", "int", size, binary);
+        const std::vector<double> rawc = c.values("CELLS", "int", size, binary);
         std::size_t k = 0;
         for (std::size_t i = 0; i < n; ++i) {
           const std::string sec = "CELLS[" + std::to_string(i) + "]";
-          if (k >= raw.size()) c.fail(sec, "cell list ends early (size " + std::to_string(size) + ")");
-          const double m = raw[k++];
-          if (!(m >= 0 && m <= static_cast<double>(raw.size() - k)))
-            c.fail(sec, "point count " + std::to_string(static_cast<long long>(m)) + " overruns the cell list");
-          std::vector<std::int32_t> cell;
-          for (auto j = static_cast<std::size_t>(m); j > 0; --j) cell.push_back(as_index(c, sec, raw[k++]));
+          if (k >= rawc.size()) c.fail(sec, "cell list ends early (size " + std::to_string(size) + ")");
+          const double m = rawc[k++];
+          if (!(m >= 0 && m <= static_cast<double>(rawc.size() - k)))
+            c.fail(sec, "point count " + format_number(m) + " overruns the cell list");  // m may be huge or NaN
+          std::vector<long long> cell;
+          for (auto j = static_cast<std::size_t>(m); j > 0; --j) cell.push_back(as_index(c, sec, rawc[k++]));
           cells.push_back(std::move(cell));
         }
-        if (k != raw.size())
+        if (k != rawc.size())
           c.fail("CELLS", "size " + std::to_string(size) + " does not match the cell list (" + std::to_string(k) + " used)");
       }
-      have_cells = true;
-    } else if (key == "CELL_TYPES") {
+      d.have_cells = true;
+    } else if (key == "CELL_TYPES" && d.kind == "UNSTRUCTURED_GRID") {
       need_words(c, w, 2, "CELL_TYPES n");
-      cell_types = c.values("CELL_TYPES", "int", count_of(c, "CELL_TYPES", w[1]), binary);
-      have_types = true;
+      const std::vector<double> t = c.values("CELL_TYPES", "int", count_of(c, "CELL_TYPES", w[1]), binary);
+      raw.types.clear();
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        if (!(t[i] >= 0 && t[i] <= 1e6 && t[i] == std::floor(t[i])))
+          c.fail("CELL_TYPES[" + std::to_string(i) + "]", "not a cell type: " + format_number(t[i]));
+        raw.types.push_back(static_cast<long long>(t[i]));
+      }
+      d.have_types = true;
     } else if (key == "POINT_DATA" || key == "CELL_DATA") {
       need_words(c, w, 2, key + " n");
       attribute_count = count_of(c, key, w[1]);
       in_point_data = key == "POINT_DATA";
-      if (in_point_data && have_points && attribute_count != mesh.points.size())
-        c.fail("POINT_DATA", std::to_string(attribute_count) + " scalars for " +
-                                 std::to_string(mesh.points.size()) + " points (need one per point)");
+      in_data = true;
+      if (in_point_data && d.have_points && attribute_count != raw.points.size())
+        c.fail("POINT_DATA", std::to_string(attribute_count) + " scalars for " + std::to_string(raw.points.size()) +
+                                 " points (need one per point)");
+    } else if (!in_data && key != "FIELD" && key != "METADATA") {
+      c.fail(w[0].substr(0, 40), "unknown keyword for DATASET " + d.kind);
     } else if (key == "SCALARS") {
       need_words(c, w, 3, "SCALARS name type [components]");
       const std::size_t comps = w.size() >= 4 ? count_of(c, "SCALARS", w[3]) : 1;
@@ -272,30 +306,34 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
       const std::vector<std::string> lt = c.keyword_line("LOOKUP_TABLE");
       if (lt.empty() || upper(lt[0]) != "LOOKUP_TABLE")
         c.fail("SCALARS " + w[1], "expected 'LOOKUP_TABLE name' after SCALARS");
-      const std::vector<double> data = c.values(in_point_data ? "POINT_DATA" : "CELL_DATA", w[2],
-                                                attribute_count * comps, binary);
-      const bool wanted = in_point_data && !have_scalars && (scalar_name.empty() || w[1] == scalar_name);
-      if (wanted) {
-        if (comps != 1)
-          c.fail("POINT_DATA", "SCALARS " + w[1] + " has " + std::to_string(comps) + " components; need 1");
-        mesh.scalars = data;
-        have_scalars = true;
-      }
+      add_array(w[1], comps, true,
+                c.values(in_point_data ? "POINT_DATA" : "CELL_DATA", w[2], attribute_count * comps, binary));
     } else if (key == "LOOKUP_TABLE") {
       need_words(c, w, 3, "LOOKUP_TABLE name size");
       c.values("LOOKUP_TABLE", binary ? "unsigned_char" : "float", 4 * count_of(c, "LOOKUP_TABLE", w[2]), binary);
     } else if (key == "COLOR_SCALARS") {
       need_words(c, w, 3, "COLOR_SCALARS name n");
-      c.values(key, binary ? "unsigned_char" : "float", attribute_count * count_of(c, key, w[2]), binary);
+      const std::size_t comps = count_of(c, key, w[2]);
+      c.values(key, binary ? "unsigned_char" : "float", attribute_count * comps, binary);
+      add_array(w[1], comps, false, {});
     } else if (key == "VECTORS" || key == "NORMALS") {
       need_words(c, w, 3, key + " name type");
       c.values(key, w[2], 3 * attribute_count, binary);
+      add_array(w[1], 3, false, {});
     } else if (key == "TENSORS") {
       need_words(c, w, 3, "TENSORS name type");
       c.values(key, w[2], 9 * attribute_count, binary);
+      add_array(w[1], 9, false, {});
     } else if (key == "TEXTURE_COORDINATES") {
       need_words(c, w, 4, "TEXTURE_COORDINATES name dim type");
-      c.values(key, w[3], count_of(c, key, w[2]) * attribute_count, binary);
+      const std::size_t comps = count_of(c, key, w[2]);
+      c.values(key, w[3], comps * attribute_count, binary);
+      add_array(w[1], comps, false, {});
+    } else if (key == "GLOBAL_IDS" || key == "PEDIGREE_IDS") {
+      need_words(c, w, 3, key + " name type");
+      c.values(key, w[2], attribute_count, binary);
+      add_array(w[1], 1, false, {});
+      raw.arrays.back().name = w[1];
     } else if (key == "FIELD") {
       need_words(c, w, 3, "FIELD name n_arrays");
       const std::size_t arrays = count_of(c, "FIELD", w[2]);
@@ -306,18 +344,11 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
           fa = c.keyword_line("FIELD");
         }
         need_words(c, fa, 4, "arrayName components tuples type");
-        const std::size_t n = count_of(c, "FIELD", fa[1]) * count_of(c, "FIELD", fa[2]);
-        const std::vector<double> data = c.values("FIELD " + fa[0], fa[3], n, binary);
-        if (in_point_data && !have_scalars && !scalar_name.empty() && fa[0] == scalar_name &&
-            count_of(c, "FIELD", fa[1]) == 1) {
-          mesh.scalars = data;
-          have_scalars = true;
-        }
-        // meshio writes point data as FIELD arrays only: without a name, the first one-component
-        // FIELD array of POINT_DATA stands in when the file has no SCALARS array at all.
-        if (in_point_data && scalar_name.empty() && field_scalars.empty() &&
-            count_of(c, "FIELD", fa[1]) == 1 && data.size() == attribute_count)
-          field_scalars = data;
+        const std::size_t comps = count_of(c, "FIELD", fa[1]), tuples = count_of(c, "FIELD", fa[2]);
+        std::vector<double> data = c.values("FIELD " + fa[0], fa[3], comps * tuples, binary);
+        // A FIELD block before any POINT_DATA / CELL_DATA is the dataset's field data (no
+        // tuples per point or cell): not an attribute.
+        if (in_data && tuples == attribute_count) add_array(fa[0], comps, false, std::move(data));
       }
     } else if (key == "METADATA") {
       while (c.more() && !c.line("METADATA").empty()) {}
@@ -325,36 +356,78 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
       c.fail(w[0].substr(0, 40), "unknown keyword");
     }
   }
-  if (!have_points) c.fail("POINTS", "missing");
-  if (!have_cells) c.fail("CELLS", "missing");
-  if (!have_types) c.fail("CELL_TYPES", "missing");
-  if (!have_scalars && !field_scalars.empty()) {
-    mesh.scalars = field_scalars;
-    have_scalars = true;
+  if (d.kind == "UNSTRUCTURED_GRID") {
+    if (!d.have_points) c.fail("POINTS", "missing");
+    if (!d.have_cells) c.fail("CELLS", "missing");
+    if (!d.have_types) c.fail("CELL_TYPES", "missing");
+    if (raw.types.size() != cells.size())
+      c.fail("CELL_TYPES", std::to_string(raw.types.size()) + " types for " + std::to_string(cells.size()) + " cells");
+    raw.offsets.assign(1, 0);
+    for (const auto& cell : cells) {
+      raw.connectivity.insert(raw.connectivity.end(), cell.begin(), cell.end());
+      raw.offsets.push_back(raw.connectivity.size());
+    }
+  } else if (!d.have_dims) {
+    c.fail("DIMENSIONS", "missing");
   }
-  if (!have_scalars)
-    c.fail("POINT_DATA", scalar_name.empty() ? "no SCALARS array (one scalar per point is required)"
-                                             : "no SCALARS array named '" + scalar_name + "'");
-  if (cell_types.size() != cells.size())
-    c.fail("CELL_TYPES", std::to_string(cell_types.size()) + " types for " + std::to_string(cells.size()) + " cells");
-  mesh.tets.resize(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const auto type = static_cast<long long>(cell_types[i]);
-    if (type != 10)
-      c.fail("CELL_TYPES[" + std::to_string(i) + "]",
-             "cell type " + std::to_string(type) + " (" + cell_type_name(type) +
-                 ") is not read; only linear tetrahedra (type 10)");
-    if (cells[i].size() != 4)
-      c.fail("CELLS[" + std::to_string(i) + "]",
-             "a tetrahedron needs 4 points, got " + std::to_string(cells[i].size()));
-    std::copy(cells[i].begin(), cells[i].end(), mesh.tets[i].begin());
-  }
-  validate_tet_mesh_structure(mesh, source, MeshFieldNames{"POINTS", "POINT_DATA", "CELLS"});
-  return mesh;
+  return d;
 }
 
-TetMesh read_vtk_legacy(const std::string& path, const std::string& scalar_name) {
-  return parse_vtk_legacy(json_source::read_text_file(path), path, scalar_name);
+}  // namespace
+
+TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
+                         const std::string& scalar_name, bool cell_to_point) {
+  VtkCursor c(bytes, source);
+  LegacyDataset d = parse_legacy(c, "UNSTRUCTURED_GRID");
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  return assemble_tet_mesh(std::move(d.raw), source, o);
+}
+
+VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& source,
+                                 const std::string& scalar_name) {
+  VtkCursor c(bytes, source);
+  LegacyDataset d = parse_legacy(c, "STRUCTURED_POINTS");
+  long long total = 1;
+  std::array<int, 3> dims{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (d.dims[a] < 2) c.fail("DIMENSIONS", "each axis needs at least 2 points (rayint's grids are 3-D)");
+    total *= d.dims[a];
+    if (d.dims[a] > (1LL << 28) || total > (1LL << 28)) c.fail("DIMENSIONS", "more than 2^28 points");
+    dims[a] = static_cast<int>(d.dims[a]);
+    if (!(d.spacing[a] > 0)) c.fail("SPACING", "must be > 0 on every axis");
+  }
+  const RawArray* chosen = nullptr;
+  std::vector<MeshArrayInfo> infos;
+  for (const RawArray& a : d.raw.arrays) infos.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), false});
+  for (const RawArray& a : d.raw.arrays)
+    if (!a.cell && (scalar_name.empty() ? a.components == 1 : a.name == scalar_name)) {
+      chosen = &a;
+      break;
+    }
+  if (chosen == nullptr)
+    c.fail("POINT_DATA", (scalar_name.empty() ? std::string("no one-component point array")
+                                              : "no point array named " + field::quoted(scalar_name)) +
+                             " (arrays: " + list_arrays(infos) + ")");
+  if (chosen->components != 1)
+    c.fail("POINT_DATA", "array " + field::quoted(chosen->name) + " has " + std::to_string(chosen->components) +
+                             " components; the scalar needs 1");
+  if (chosen->values.size() != static_cast<std::size_t>(total))
+    c.fail("POINT_DATA", std::to_string(chosen->values.size()) + " values for " + std::to_string(total) + " points");
+  for (std::size_t i = 0; i < chosen->values.size(); ++i)
+    if (!std::isfinite(chosen->values[i]))
+      c.fail("POINT_DATA[" + std::to_string(i) + "]", "not finite");
+  return VoxelGrid(dims, Vec3(d.origin[0], d.origin[1], d.origin[2]), Vec3(d.spacing[0], d.spacing[1], d.spacing[2]),
+                   chosen->values);
+}
+
+VoxelGrid read_vtk_legacy_image(const std::string& path, const std::string& scalar_name) {
+  return parse_vtk_legacy_image(json_source::read_text_file(path), path, scalar_name);
+}
+
+TetMesh read_vtk_legacy(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vtk_legacy(json_source::read_text_file(path), path, scalar_name, cell_to_point);
 }
 
 }  // namespace rayint

@@ -11,9 +11,12 @@
 // The header is made of words of the VTKFile's header_type (UInt32, the default, or UInt64) in
 // the file's byte_order:
 //   uncompressed:  [data size in bytes]
-//   compressor="vtkZLibDataCompressor":  [nblocks, block size, size of the last block (0: a full
-//                  block), compressed size of block 0, ..., of block nblocks-1], then the blocks,
-//                  each one zlib stream inflating to block size bytes (the last to its own size).
+//   compressor="vtkZLibDataCompressor", "vtkLZ4DataCompressor" or "vtkLZMADataCompressor":
+//                  [nblocks, block size, size of the last block (0: a full block), compressed size
+//                  of block 0, ..., of block nblocks-1], then the blocks, each decompressing to
+//                  block size bytes (the last to its own size): a zlib stream, a raw LZ4 block
+//                  (LZ4_compress_default) or an .xz stream (lzma_easy_buffer_encode), as
+//                  vtkZLibDataCompressor, vtkLZ4DataCompressor and vtkLZMADataCompressor write them.
 // VTK base64-encodes the header and the data as two separate streams (each with its own '='
 // padding); the decoder reads the text as a concatenation of padded base64 chunks, which reads
 // that and a single stream alike.
@@ -33,6 +36,8 @@
 
 namespace rayint::vtk_xml {
 
+enum class Compressor { none, zlib, lz4, lzma };
+
 class Document {
  public:
   // Parses `bytes` as a VTKFile of type `type` ("UnstructuredGrid", "ImageData"). Throws InputError.
@@ -42,6 +47,7 @@ class Document {
 
   [[noreturn]] void fail(const std::string& field, const std::string& what) const;
   const std::string& source() const { return source_; }
+  std::size_t source_size() const { return xml_.size() + appended_.size(); }
   pugi::xml_node dataset() const { return dataset_; }  // <UnstructuredGrid> / <ImageData>
 
   // The only child named `name` of `parent` at `field` (missing or repeated: an error).
@@ -65,7 +71,7 @@ class Document {
   bool appended_base64_ = false;
   bool has_appended_ = false;
   bool big_endian_ = false;
-  bool zlib_ = false;
+  Compressor compressor_ = Compressor::none;
   std::size_t header_bytes_ = 4;
   pugi::xml_document doc_;
   pugi::xml_node dataset_;

@@ -3,12 +3,14 @@
 #include "rayint/input/vtk_xml_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <cstdint>
 #include <cstring>
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/voxel_grid_reader.hpp"
+#include "rayint/input/mesh_assembly.hpp"
 #include "rayint/input/vtk_xml_data_array.hpp"
 
 namespace rayint {
@@ -66,97 +68,285 @@ std::vector<double> finite_values(const Document& d, pugi::xml_node array, const
 
 }  // namespace
 
-TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name) {
-  const Document d(bytes, source, "UnstructuredGrid");
-  const std::string piece_field = "UnstructuredGrid/Piece";
-  const pugi::xml_node piece = d.only_child(d.dataset(), "Piece", "UnstructuredGrid");
+namespace {
+
+// Every DataArray of a PointData / CellData element as RawArrays (values decoded for
+// one-component arrays only: the others can never be the scalar, and are only listed).
+void data_arrays(const Document& d, pugi::xml_node parent, bool cell, std::size_t tuples, const std::string& field,
+                 std::vector<RawArray>& out) {
+  const std::string active = parent.attribute("Scalars").as_string();
+  for (pugi::xml_node a = parent.child("DataArray"); a; a = a.next_sibling("DataArray")) {
+    RawArray r;
+    r.name = a.attribute("Name").as_string();
+    r.cell = cell;
+    const std::string f = field + "/DataArray[" + r.name + "]";
+    r.components = d.components(a, f);
+    r.active = !active.empty() && r.name == active;
+    if (r.components == 1) r.values = d.values(a, f, tuples);
+    out.push_back(std::move(r));
+  }
+}
+
+// One <Piece> of an UnstructuredGrid appended to `raw` (point indices offset by the points
+// already there; arrays matched by name and association across pieces).
+void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string& piece_field, RawMesh& raw) {
   const auto n_points = static_cast<std::size_t>(d.count_attribute(piece, "NumberOfPoints", piece_field, kMaxIndex));
   const auto n_cells = static_cast<std::size_t>(d.count_attribute(piece, "NumberOfCells", piece_field, kMaxIndex / 4));
-
-  TetMesh mesh;
   const std::string points_field = piece_field + "/Points/DataArray";
   const pugi::xml_node points = d.only_child(d.only_child(piece, "Points", piece_field), "DataArray", piece_field + "/Points");
   if (d.components(points, points_field) != 3)
     d.fail(points_field, "NumberOfComponents must be 3, got " + std::to_string(d.components(points, points_field)));
   const std::vector<double> xyz = finite_values(d, points, points_field, 3 * n_points);
-  mesh.points.resize(n_points);
-  for (std::size_t i = 0; i < n_points; ++i) mesh.points[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  const std::size_t base = raw.points.size();
+  for (std::size_t i = 0; i < n_points; ++i) raw.points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
 
   const std::string cells_field = piece_field + "/Cells";
   const pugi::xml_node cells = d.only_child(piece, "Cells", piece_field);
   const std::string types_field = cells_field + "/DataArray[types]";
   const std::vector<double> types = d.values(named_array(d, cells, "types", cells_field), types_field, n_cells);
-  for (std::size_t i = 0; i < n_cells; ++i)
-    if (types[i] != 10) {
-      const auto t = static_cast<long long>(types[i]);
-      d.fail(types_field, "cell " + std::to_string(i) + " has cell type " + std::to_string(t) + " (" +
-                              vtk_xml::cell_type_name(t) + "); only linear tetrahedra (type 10) are read");
-    }
   const std::string offsets_field = cells_field + "/DataArray[offsets]";
   const std::vector<double> offsets = d.values(named_array(d, cells, "offsets", cells_field), offsets_field, n_cells);
-  for (std::size_t i = 0; i < n_cells; ++i)
-    if (offsets[i] != 4.0 * static_cast<double>(i + 1))
-      d.fail(offsets_field, "offset " + std::to_string(i) + " is " + std::to_string(offsets[i]) + ", expected " +
-                                std::to_string(4 * (i + 1)) + " (4 points per tetrahedron)");
+  // The connectivity's length is the last offset (VTK XML stores each cell's end offset).
+  double prev = 0.0;
+  for (std::size_t i = 0; i < n_cells; ++i) {
+    if (!(offsets[i] >= prev) || offsets[i] != std::floor(offsets[i]) || offsets[i] > 64.0 * static_cast<double>(kMaxIndex))
+      d.fail(offsets_field, "offset " + std::to_string(i) + " (" + std::to_string(offsets[i]) +
+                                ") does not follow the previous one (" + std::to_string(prev) + ")");
+    prev = offsets[i];
+  }
+  const auto n_conn = static_cast<std::size_t>(prev);
   const std::string conn_field = cells_field + "/DataArray[connectivity]";
-  const std::vector<double> conn = d.values(named_array(d, cells, "connectivity", cells_field), conn_field, 4 * n_cells);
-  mesh.tets.resize(n_cells);
-  for (std::size_t i = 0; i < 4 * n_cells; ++i) {
+  const pugi::xml_node conn_array = named_array(d, cells, "connectivity", cells_field);
+  if (n_conn > 8 * d.source_size() + 64)
+    d.fail(offsets_field, "the last offset (" + std::to_string(n_conn) + ") is more than the file could hold");
+  const std::vector<double> conn = d.values(conn_array, conn_field, n_conn);
+  std::size_t start = raw.connectivity.size();
+  for (std::size_t i = 0; i < n_conn; ++i) {
     if (!(conn[i] >= 0 && conn[i] < static_cast<double>(n_points)) || conn[i] != std::floor(conn[i]))
       d.fail(conn_field, "value " + std::to_string(i) + " (" + std::to_string(conn[i]) + ") is not a point index in [0, " +
                              std::to_string(n_points) + ")");
-    mesh.tets[i / 4][i % 4] = static_cast<std::int32_t>(conn[i]);
+    raw.connectivity.push_back(static_cast<long long>(conn[i]) + static_cast<long long>(base));
+  }
+  for (std::size_t i = 0; i < n_cells; ++i) {
+    if (!(types[i] >= 0 && types[i] <= 1e6 && types[i] == std::floor(types[i])))
+      d.fail(types_field, "value " + std::to_string(i) + " is not a cell type");
+    raw.types.push_back(static_cast<long long>(types[i]));
+    raw.offsets.push_back(start + static_cast<std::size_t>(offsets[i]));
   }
 
-  std::string scalar_field;
-  const pugi::xml_node scalars = scalar_array(d, piece, piece_field, scalar_name, scalar_field);
-  mesh.scalars = finite_values(d, scalars, scalar_field, n_points);
-  validate_tet_mesh_structure(mesh, source, MeshFieldNames{piece_field + "/Points", scalar_field, cells_field});
-  return mesh;
+  std::vector<RawArray> arrays;
+  if (const pugi::xml_node pd = piece.child("PointData")) data_arrays(d, pd, false, n_points, piece_field + "/PointData", arrays);
+  if (const pugi::xml_node cd = piece.child("CellData")) data_arrays(d, cd, true, n_cells, piece_field + "/CellData", arrays);
+  const bool first = base == 0 && start == 0;
+  if (first) {
+    raw.arrays = std::move(arrays);
+    return;
+  }
+  // Later pieces: the same arrays, values appended.
+  for (RawArray& r : raw.arrays) {
+    RawArray* match = nullptr;
+    for (RawArray& a : arrays)
+      if (a.name == r.name && a.cell == r.cell) match = &a;
+    if (match == nullptr || match->components != r.components)
+      d.fail(piece_field, std::string(r.cell ? "CellData" : "PointData") + " array \"" + r.name +
+                              "\" is missing or has another component count in this piece");
+    r.values.insert(r.values.end(), match->values.begin(), match->values.end());
+  }
 }
 
-TetMesh read_vtu(const std::string& path, const std::string& scalar_name) {
-  return parse_vtu(json_source::read_text_file(path), path, scalar_name);
+RawMeshFields vtu_fields(const std::string& piece_field) {
+  RawMeshFields f;
+  f.points = piece_field + "/Points";
+  f.point_data = piece_field + "/PointData";
+  f.cell_data = piece_field + "/CellData";
+  f.cells = piece_field + "/Cells";
+  f.types = piece_field + "/Cells/DataArray[types]";
+  return f;
 }
 
-VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name) {
-  const Document d(bytes, source, "ImageData");
-  const pugi::xml_node image = d.dataset();
-  const std::string field = "ImageData";
-  const std::vector<double> extent = d.numbers_attribute(image, "WholeExtent", field, 6);
-  const std::vector<double> origin = d.numbers_attribute(image, "Origin", field, 3, {0.0, 0.0, 0.0});
-  const std::vector<double> spacing = d.numbers_attribute(image, "Spacing", field, 3, {1.0, 1.0, 1.0});
+}  // namespace
+
+TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                  bool cell_to_point) {
+  const Document d(bytes, source, "UnstructuredGrid");
+  const std::string piece_field = "UnstructuredGrid/Piece";
+  RawMesh raw;
+  std::size_t pieces = 0;
+  for (pugi::xml_node piece = d.dataset().child("Piece"); piece; piece = piece.next_sibling("Piece")) {
+    append_vtu_piece(d, piece, pieces == 0 ? piece_field : piece_field + "[" + std::to_string(pieces) + "]", raw);
+    ++pieces;
+  }
+  if (pieces == 0) d.fail(piece_field, "missing");
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  o.merge_points = pieces > 1;
+  return assemble_tet_mesh(std::move(raw), source, o, vtu_fields(piece_field));
+}
+
+TetMesh read_vtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vtu(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+}
+
+namespace {
+
+// The Source files a parallel file (.pvtu, .pvti) names, resolved against its folder.
+std::vector<std::string> piece_sources(const Document& d, pugi::xml_node dataset, const std::string& field,
+                                       const std::string& path) {
+  std::vector<std::string> out;
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  for (pugi::xml_node p = dataset.child("Piece"); p; p = p.next_sibling("Piece")) {
+    const std::string src = p.attribute("Source").as_string();
+    if (src.empty()) d.fail(field + "/Piece", "missing attribute Source");
+    const std::filesystem::path sp(src);
+    out.push_back((sp.is_absolute() ? sp : dir / sp).string());
+  }
+  if (out.empty()) d.fail(field + "/Piece", "missing (a parallel file names its pieces)");
+  return out;
+}
+
+}  // namespace
+
+TetMesh read_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  const std::string text = json_source::read_text_file(path);
+  const Document d(text, path, "PUnstructuredGrid");
+  RawMesh raw;
+  std::size_t pieces = 0;
+  std::string last_field = "UnstructuredGrid/Piece";
+  for (const std::string& file : piece_sources(d, d.dataset(), "PUnstructuredGrid", path)) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+      d.fail("PUnstructuredGrid/Piece", "the piece " + file + " does not exist");
+    const std::string piece_text = json_source::read_text_file(file);
+    const Document pd(piece_text, file, "UnstructuredGrid");
+    for (pugi::xml_node piece = pd.dataset().child("Piece"); piece; piece = piece.next_sibling("Piece")) {
+      append_vtu_piece(pd, piece, "UnstructuredGrid/Piece", raw);
+      ++pieces;
+    }
+  }
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  o.merge_points = true;
+  RawMeshFields f = vtu_fields(last_field);
+  return assemble_tet_mesh(std::move(raw), path + " (" + std::to_string(pieces) + " pieces)", o, f);
+}
+
+namespace {
+
+// The geometry of an image: WholeExtent, Origin, Spacing (Direction must be the identity).
+struct ImageFrame {
+  std::vector<double> extent, origin, spacing;
+  std::array<int, 3> dims{};
+  long long total = 1;
+};
+
+ImageFrame image_frame(const Document& d, pugi::xml_node image, const std::string& field) {
+  ImageFrame f;
+  f.extent = d.numbers_attribute(image, "WholeExtent", field, 6);
+  f.origin = d.numbers_attribute(image, "Origin", field, 3, {0.0, 0.0, 0.0});
+  f.spacing = d.numbers_attribute(image, "Spacing", field, 3, {1.0, 1.0, 1.0});
   const std::vector<double> direction =
       d.numbers_attribute(image, "Direction", field, 9, {1, 0, 0, 0, 1, 0, 0, 0, 1});
   for (std::size_t i = 0; i < 9; ++i)
     if (direction[i] != (i % 4 == 0 ? 1.0 : 0.0))
       d.fail(field, "Direction is not the identity; rayint's voxel grids are axis-aligned (resample the image)");
-  std::array<int, 3> dims{};
-  long long total = 1;
-  for (int a = 0; a < 3; ++a) {
-    const double lo = extent[2 * a], hi = extent[2 * a + 1];
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double lo = f.extent[2 * a], hi = f.extent[2 * a + 1];
     if (lo != std::floor(lo) || hi != std::floor(hi) || std::fabs(lo) > 1e9 || std::fabs(hi) > 1e9 || hi - lo < 1)
       d.fail(field, "WholeExtent: each axis needs integer bounds lo < hi (at least 2 points)");
-    dims[a] = static_cast<int>(hi - lo + 1);
-    total *= dims[a];
-    if (dims[a] > kMaxGridPoints || total > kMaxGridPoints)
+    f.dims[a] = static_cast<int>(hi - lo + 1);
+    f.total *= f.dims[a];
+    if (f.dims[a] > kMaxGridPoints || f.total > kMaxGridPoints)
       d.fail(field, "WholeExtent: more than " + std::to_string(kMaxGridPoints) + " points");
-    if (!(spacing[a] > 0)) d.fail(field, "Spacing must be > 0 on every axis");
+    if (!(f.spacing[a] > 0)) d.fail(field, "Spacing must be > 0 on every axis");
   }
-  const Vec3 lower(origin[0] + extent[0] * spacing[0], origin[1] + extent[2] * spacing[1],
-                   origin[2] + extent[4] * spacing[2]);
-  const Vec3 step(spacing[0], spacing[1], spacing[2]);
+  return f;
+}
+
+VoxelGrid make_grid(const Document& d, const ImageFrame& f, std::vector<double> values, const std::string& field) {
+  const Vec3 lower(f.origin[0] + f.extent[0] * f.spacing[0], f.origin[1] + f.extent[2] * f.spacing[1],
+                   f.origin[2] + f.extent[4] * f.spacing[2]);
+  const Vec3 step(f.spacing[0], f.spacing[1], f.spacing[2]);
   for (int a = 0; a < 3; ++a)
-    if (!std::isfinite(lower[a]) || !std::isfinite(lower[a] + (dims[a] - 1) * step[a]))
+    if (!std::isfinite(lower[a]) || !std::isfinite(lower[a] + (f.dims[static_cast<std::size_t>(a)] - 1) * step[a]))
       d.fail(field, "the image's extent overflows");
-  const std::string piece_field = "ImageData/Piece";
-  const pugi::xml_node piece = d.only_child(image, "Piece", field);
-  if (d.numbers_attribute(piece, "Extent", piece_field, 6) != extent)
-    d.fail(piece_field, "Extent differs from the WholeExtent (only single-piece images are read)");
+  return VoxelGrid(f.dims, lower, step, std::move(values));
+}
+
+// The point scalar of an image piece (PointData; an image with cell data only is refused naming
+// its arrays: a voxel grid holds values at points).
+std::vector<double> image_piece_values(const Document& d, pugi::xml_node piece, const std::string& piece_field,
+                                       const std::string& scalar_name, std::size_t n) {
+  const pugi::xml_node pd = piece.child("PointData");
+  bool any_point = false;
+  for (pugi::xml_node a = pd.child("DataArray"); a; a = a.next_sibling("DataArray")) any_point = true;
+  if (!any_point) {
+    std::string cells;
+    for (pugi::xml_node a = piece.child("CellData").child("DataArray"); a; a = a.next_sibling("DataArray"))
+      cells += std::string(cells.empty() ? "" : ", ") + "\"" + a.attribute("Name").as_string() + "\"";
+    if (!cells.empty())
+      d.fail(piece_field + "/CellData", "an image with cell data only (" + cells +
+                                            ") is not read: rayint's voxel grids hold values at points");
+  }
   std::string scalar_field;
   const pugi::xml_node scalars = scalar_array(d, piece, piece_field, scalar_name, scalar_field);
-  std::vector<double> values = finite_values(d, scalars, scalar_field, static_cast<std::size_t>(total));
-  return VoxelGrid(dims, lower, step, std::move(values));
+  return finite_values(d, scalars, scalar_field, n);
+}
+
+}  // namespace
+
+VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name) {
+  const Document d(bytes, source, "ImageData");
+  const std::string field = "ImageData";
+  const ImageFrame f = image_frame(d, d.dataset(), field);
+  const std::string piece_field = "ImageData/Piece";
+  const pugi::xml_node piece = d.only_child(d.dataset(), "Piece", field);
+  if (d.numbers_attribute(piece, "Extent", piece_field, 6) != f.extent)
+    d.fail(piece_field, "Extent differs from the WholeExtent (only single-piece images are read; a .pvti joins pieces)");
+  return make_grid(d, f, image_piece_values(d, piece, piece_field, scalar_name, static_cast<std::size_t>(f.total)), field);
+}
+
+VoxelGrid read_pvti(const std::string& path, const std::string& scalar_name) {
+  const std::string text = json_source::read_text_file(path);
+  const Document d(text, path, "PImageData");
+  const std::string field = "PImageData";
+  const ImageFrame f = image_frame(d, d.dataset(), field);
+  std::vector<double> values(static_cast<std::size_t>(f.total), 0.0);
+  std::vector<char> set(values.size(), 0);
+  for (const std::string& file : piece_sources(d, d.dataset(), field, path)) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) d.fail(field + "/Piece", "the piece " + file + " does not exist");
+    const std::string piece_text = json_source::read_text_file(file);
+    const Document pd(piece_text, file, "ImageData");
+    const std::string piece_field = "ImageData/Piece";
+    const pugi::xml_node piece = pd.only_child(pd.dataset(), "Piece", "ImageData");
+    const std::vector<double> e = pd.numbers_attribute(piece, "Extent", piece_field, 6);
+    std::array<long long, 3> lo{}, n{};
+    long long count = 1;
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (e[2 * a] != std::floor(e[2 * a]) || e[2 * a + 1] != std::floor(e[2 * a + 1]) || e[2 * a] < f.extent[2 * a] ||
+          e[2 * a + 1] > f.extent[2 * a + 1] || e[2 * a + 1] < e[2 * a])
+        pd.fail(piece_field, "Extent lies outside the WholeExtent of " + path);
+      lo[a] = static_cast<long long>(e[2 * a] - f.extent[2 * a]);
+      n[a] = static_cast<long long>(e[2 * a + 1] - e[2 * a]) + 1;
+      count *= n[a];
+    }
+    const std::vector<double> v = image_piece_values(pd, piece, piece_field, scalar_name, static_cast<std::size_t>(count));
+    std::size_t q = 0;
+    for (long long k = 0; k < n[2]; ++k)
+      for (long long j = 0; j < n[1]; ++j)
+        for (long long i = 0; i < n[0]; ++i, ++q) {
+          const auto at = static_cast<std::size_t>((lo[0] + i) + f.dims[0] * ((lo[1] + j) + f.dims[1] * (lo[2] + k)));
+          if (set[at] && !(values[at] == v[q]))
+            pd.fail(piece_field, "a point shared with another piece has another value");
+          values[at] = v[q];
+          set[at] = 1;
+        }
+  }
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (!set[i]) d.fail(field, "the pieces do not cover the WholeExtent (point " + std::to_string(i) + " missing)");
+  return make_grid(d, f, std::move(values), field);
 }
 
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name) {

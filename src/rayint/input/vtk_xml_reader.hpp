@@ -5,11 +5,12 @@
 // or base64), compressor none or vtkZLibDataCompressor, header_type UInt32 or UInt64, byte_order
 // LittleEndian or BigEndian, types Int8..UInt64, Float32, Float64.
 //
-// .vtu (VTKFile type="UnstructuredGrid", one Piece): Points (3 components), Cells
-// (connectivity, offsets, types), PointData. Every cell must be VTK_TETRA (10); any other type is
-// refused with one line naming it (e.g. "cell type 12 (hexahedron)"): rayint does not split
-// hexahedra or voxels itself, because a split that conforms across neighbouring cells depends on
-// how the mesh was built. The mesh is validated (validate_tet_mesh).
+// .vtu (VTKFile type="UnstructuredGrid", one or more Pieces, joined): Points (3 components),
+// Cells (connectivity, offsets, types), PointData and CellData, through the one assembly of VTK
+// datasets (input/mesh_assembly.hpp): tetrahedra kept, cells of dimension 0-2 skipped and
+// counted, other volume cells refused naming their type (rayint does not split hexahedra or
+// voxels itself: a split that conforms across neighbouring cells depends on how the mesh was
+// built), ghost cells dropped, the scalar chosen by one rule (a point or a cell array).
 // .vti (VTKFile type="ImageData", one Piece whose Extent is the WholeExtent): WholeExtent,
 // Origin, Spacing (> 0), Direction (absent or the identity: rayint's grids are axis-aligned; a
 // rotated image is refused), PointData. Point (i, j, k) of the extent lies at
@@ -30,10 +31,19 @@
 namespace rayint {
 
 // `source` names the file in messages. Throw InputError.
-TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
-TetMesh read_vtu(const std::string& path, const std::string& scalar_name = "");
+// `cell_to_point`: a cell field becomes point data averaged as ParaView's Cell Data to Point Data.
+TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                  bool cell_to_point = false);
+TetMesh read_vtu(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+// A .pvtu (VTKFile type="PUnstructuredGrid"): the .vtu pieces its <Piece Source="..."> name,
+// relative to its folder, joined: points with bitwise-equal coordinates merged (the pieces of
+// one dataset repeat the points on their shared faces), ghost cells dropped (mesh_assembly.hpp).
+TetMesh read_pvtu(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name = "");
+// A .pvti (VTKFile type="PImageData"): the .vti pieces it names, each placed at its Extent in the
+// WholeExtent; points shared by two pieces must agree; every point must be covered.
+VoxelGrid read_pvti(const std::string& path, const std::string& scalar_name = "");
 
 }  // namespace rayint

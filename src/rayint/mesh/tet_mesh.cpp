@@ -55,7 +55,15 @@ void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,
                                  const MeshFieldNames& names) {
   if (mesh.points.empty()) fail(source, names.points, "no points");
   if (mesh.tets.empty()) fail(source, names.tets, "no tetrahedra");
-  if (mesh.scalars.size() != mesh.points.size())
+  if (!mesh.cell_scalars.empty()) {
+    if (mesh.cell_scalars.size() != mesh.tets.size())
+      fail(source, names.scalars,
+           std::to_string(mesh.cell_scalars.size()) + " cell scalars for " + std::to_string(mesh.tets.size()) +
+               " tetrahedra (need one per cell)");
+    for (std::size_t i = 0; i < mesh.cell_scalars.size(); ++i)
+      if (!std::isfinite(mesh.cell_scalars[i]))
+        fail(source, at(names.scalars, i), "must be finite, got " + format_number(mesh.cell_scalars[i]));
+  } else if (mesh.scalars.size() != mesh.points.size())
     fail(source, names.scalars,
          std::to_string(mesh.scalars.size()) + " scalars for " + std::to_string(mesh.points.size()) +
              " points (need one per point)");
@@ -103,6 +111,11 @@ void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const Mes
 TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshFieldNames& names) {
   TetRepairs r;
   r.tets_read = static_cast<long>(mesh.tets.size());
+  r.skipped_cells = mesh.info.skipped_cells;
+  r.skipped_by_type = mesh.info.skipped_by_type;
+  r.ghost_cells = mesh.info.ghost_cells;
+  const bool per_cell = !mesh.cell_scalars.empty();
+  const bool ids = mesh.info.cell_ids.size() == mesh.tets.size();
   std::size_t kept = 0;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     switch (classify_tet(mesh, i)) {
@@ -114,14 +127,44 @@ TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshF
         break;
       case TetShape::Positive: break;
     }
+    if (per_cell) mesh.cell_scalars[kept] = mesh.cell_scalars[i];
+    if (ids) mesh.info.cell_ids[kept] = mesh.info.cell_ids[i];
     mesh.tets[kept++] = mesh.tets[i];
   }
   mesh.tets.resize(kept);
+  if (per_cell) mesh.cell_scalars.resize(kept);
+  if (ids) mesh.info.cell_ids.resize(kept);
   if (mesh.tets.empty())
     fail(source, names.tets,
          "every tetrahedron is degenerate (" + std::to_string(r.zero_volume) + " zero-volume, " +
              std::to_string(r.slivers) + " slivers): nothing to traverse");
   return r;
+}
+
+// Besides the names in tet_mesh.hpp: "CellEntityIds", the elementary entity of each cell that
+// gmsh's own legacy VTK writer (-format vtk) adds as cell data.
+bool is_marker_array(const std::string& name) {
+  static const char* const exact[] = {"gmsh:physical", "gmsh:geometrical", "gmsh:dim_tags", "CellEntityIds", "medit:ref",
+                                      "tetgen:ref", "flac3d:zone", "avsucd:material", "cell_tags",
+                                      "point_tags", "vtkGhostType", "vtkOriginalPointIds",
+                                      "vtkOriginalCellIds", "vtkProcessId", "region", "marker",
+                                      "material_id", "subdomain"};
+  for (const char* e : exact)
+    if (name == e) return true;
+  return false;
+}
+
+std::vector<double> cell_to_point_average(const TetMesh& mesh) {
+  std::vector<double> sum(mesh.points.size(), 0.0);
+  std::vector<long> count(mesh.points.size(), 0);
+  for (std::size_t c = 0; c < mesh.tets.size(); ++c)
+    for (const std::int32_t p : mesh.tets[c]) {
+      sum[static_cast<std::size_t>(p)] += mesh.cell_scalars[c];
+      ++count[static_cast<std::size_t>(p)];
+    }
+  for (std::size_t i = 0; i < sum.size(); ++i)
+    if (count[i] > 0) sum[i] /= static_cast<double>(count[i]);
+  return sum;
 }
 
 }  // namespace rayint

@@ -26,6 +26,7 @@
 // face loses at most h / sin(theta) of length.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,11 +34,52 @@
 
 namespace rayint {
 
+// One data array of a mesh file, as `rayint mesh info` lists it.
+struct MeshArrayInfo {
+  std::string name;
+  std::string association;  // "point" or "cell"
+  long components = 1;
+  bool marker = false;      // a region marker / physical tag (is_marker_array): never the scalar
+};
+
+// What a reader found in the file beside the tets it kept (eval JSON "mesh_repairs", `render
+// --stats`, `rayint mesh info`). Every reader fills it the same way (cells/cell_types.hpp).
+struct MeshFileInfo {
+  std::map<std::string, long> cells_by_type;    // every cell as read, by cell-type name
+  std::map<std::string, long> skipped_by_type;  // dimension 0-2 cells dropped (vertex, line, ...)
+  long skipped_cells = 0;                       // their total
+  long ghost_cells = 0;                         // vtkGhostType duplicate cells dropped
+  long merged_points = 0;                       // points of several pieces merged (equal coordinates)
+  std::vector<long long> cell_ids;              // per tet: its cell index (gmsh: element tag) in the file
+  std::vector<MeshArrayInfo> arrays;            // every data array of the file
+  std::string scalar;                           // the array taken as the scalar ("" inline)
+  std::string scalar_association = "point";     // "point" or "cell"
+};
+
 struct TetMesh {
   std::vector<Vec3> points;
-  std::vector<double> scalars;                   // one per point
+  std::vector<double> scalars;                   // one per point (empty when cell_scalars is used)
   std::vector<std::array<std::int32_t, 4>> tets;  // point indices, VTK order
+  // Cell data: one scalar per tet, constant over the tet (empty for point data). The scalar is
+  // then piecewise constant along a ray, with a jump at faces between cells; traversal gives each
+  // crossing s_in == s_out == the cell's value, so every integrator sees a constant segment and
+  // the exact method is exact on it.
+  std::vector<double> cell_scalars;
+  MeshFileInfo info;
 };
+
+// True for arrays that label regions rather than carry a field: gmsh's physical and geometrical
+// tags as meshio writes them ("gmsh:physical", "gmsh:geometrical", "gmsh:dim_tags"), meshio's
+// other format tags ("medit:ref", "tetgen:ref", "flac3d:zone", "avsucd:material", "cell_tags",
+// "point_tags"), VTK's bookkeeping (vtkGhostType, vtkOriginalPointIds, vtkOriginalCellIds,
+// vtkProcessId) and the common names "region", "marker", "material_id", "subdomain". Matched
+// case-sensitively, as written by those tools.
+bool is_marker_array(const std::string& name);
+
+// Point data as ParaView's Cell Data to Point Data filter derives it (vtkCellDataToPointData,
+// default settings): the value at a point is the plain average of the values of the cells that
+// use it. Points used by no tet get 0. Returns one value per point.
+std::vector<double> cell_to_point_average(const TetMesh& mesh);
 
 // How the fields are called in the input, so errors name them as the user wrote them:
 // inline JSON "mesh.points", "mesh.scalars", "mesh.tets"; VTK "POINTS", "POINT_DATA", "CELLS".
@@ -59,6 +101,9 @@ enum class TetShape { Positive, Inverted, ZeroVolume, Sliver };
 // What repair_tet_mesh did: counts of the tets as read.
 struct TetRepairs {
   long tets_read = 0;
+  long skipped_cells = 0;                       // dimension 0-2 cells the reader dropped
+  std::map<std::string, long> skipped_by_type;  // by cell-type name
+  long ghost_cells = 0;                         // vtkGhostType duplicate cells dropped
   long reoriented = 0;   // inverted, reordered (points 2 and 3 swapped)
   long zero_volume = 0;  // dropped: repeated point index or 6V == 0 exactly
   long slivers = 0;      // dropped: 0 < |6V| <= kDegenerateTetRatio l^3

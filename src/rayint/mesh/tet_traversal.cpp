@@ -126,7 +126,7 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
     std::array<double, 4> s{};
     for (std::size_t k = 0; k < 4; ++k) {
       x[k] = mesh_.points[mesh_.tets[t][k]];
-      s[k] = mesh_.scalars[mesh_.tets[t][k]];
+      s[k] = mesh_.cell_scalars.empty() ? mesh_.scalars[mesh_.tets[t][k]] : mesh_.cell_scalars[t];
     }
     cells_[t].field = fit_linear_tet(x, s);
   }

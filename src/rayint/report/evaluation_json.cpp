@@ -62,10 +62,15 @@ nlohmann::json to_json(const MethodOutcome& o, bool with_reference) {
 }
 
 nlohmann::json to_json(const TetRepairs& r) {
+  nlohmann::json skipped = nlohmann::json::object();
+  for (const auto& [type, n] : r.skipped_by_type) skipped[type] = n;
   return {{"tets_read", r.tets_read},
           {"reoriented", r.reoriented},
           {"dropped_zero_volume", r.zero_volume},
-          {"dropped_slivers", r.slivers}};
+          {"dropped_slivers", r.slivers},
+          {"skipped_cells", r.skipped_cells},  // dimension 0-2 cells of the file (not volume)
+          {"skipped_by_type", skipped},
+          {"ghost_cells_dropped", r.ghost_cells}};
 }
 
 nlohmann::json to_json(const CaseEvaluation& c) {

@@ -1,0 +1,57 @@
+// rayint mesh info FILE [--check] -- what a mesh file holds as rayint reads it (report/mesh_info.hpp):
+// bounds, cells by type (kept / skipped), arrays and which is the scalar, orientation counts;
+// --check also looks for overlapping tetrahedra (mesh/mesh_check.hpp) and exits 1 naming two of
+// them when it finds some. Bad input: one line, exit 2.
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
+#include "rayint/mesh/mesh_check.hpp"
+#include "rayint/report/mesh_info.hpp"
+
+namespace rayint::cli {
+
+void set_mesh_command(CLI::App& app) {
+  struct Options {
+    std::string file, array, format = "text", output;
+    bool check = false, quick = false, point_average = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* mesh = app.add_subcommand("mesh", "Mesh files as rayint reads them");
+  mesh->require_subcommand(1);
+  CLI::App* cmd = mesh->add_subcommand("info", "Bounds, cells by type, arrays, the scalar, orientation (--check: overlaps)");
+  cmd->add_option("file", opt->file, "A mesh file: .vtk, .vtu, .pvtu, .msh, .ele")->required();
+  cmd->add_option("--array", opt->array, "The array to take as the scalar (default: the rule of docs/meshes.md)");
+  cmd->add_flag("--point-average", opt->point_average, "A cell field becomes point data as ParaView's Cell Data to Point Data");
+  cmd->add_flag("--check", opt->check, "Look for overlapping tetrahedra, every candidate pair (exit 1 naming two when found)");
+  cmd->add_flag("--quick-check", opt->quick, "The check a mesh case runs on load: only pairs that share no point");
+  cmd->add_option("--format", opt->format, "text or json")->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
+  cmd->callback([opt] {
+    const TetMesh m = read_mesh_file(opt->file, opt->array, opt->point_average);
+    MeshInfo info;
+    info.file = opt->file;
+    info.mesh = &m;
+    info.orientation = orientation_counts(m);
+    if (opt->check || opt->quick) {
+      const auto t0 = std::chrono::steady_clock::now();
+      info.overlap = find_overlapping_tets(m, opt->check ? OverlapScope::all_pairs : OverlapScope::disjoint_pairs);
+      info.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      info.checked = true;
+    }
+    emit(opt->format == "json" ? to_json(info).dump(2) + "\n" : to_text(info), opt->output);
+    if (info.overlap) {
+      std::cerr << "rayint: mesh info: " << opt->file << ": tetrahedra overlap (cells "
+                << (m.info.cell_ids.size() == m.tets.size() ? m.info.cell_ids[info.overlap->first] : static_cast<long long>(info.overlap->first))
+                << " and "
+                << (m.info.cell_ids.size() == m.tets.size() ? m.info.cell_ids[info.overlap->second] : static_cast<long long>(info.overlap->second))
+                << " of the file)\n";
+      throw ChecksFailed{};
+    }
+  });
+}
+
+}  // namespace rayint::cli

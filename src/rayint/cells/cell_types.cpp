@@ -1,0 +1,98 @@
+// The cell-type table (see cell_types.hpp).
+#include "rayint/cells/cell_types.hpp"
+
+#include <vector>
+
+namespace rayint {
+namespace {
+
+using S = CellSupport;
+
+CellTypeInfo row(int vtk, const char* name, int nodes, int dim, int gmsh, std::vector<int> perm, S support,
+                 std::optional<CellType> shape = std::nullopt) {
+  CellTypeInfo r;
+  r.vtk_id = vtk;
+  r.name = name;
+  r.nodes = nodes;
+  r.dimension = dim;
+  r.gmsh_id = gmsh;
+  for (std::size_t i = 0; i < perm.size() && i < r.gmsh_to_vtk.size(); ++i) r.gmsh_to_vtk[i] = perm[i];
+  r.support = support;
+  r.shape = shape;
+  return r;
+}
+
+std::vector<int> identity(int n) {
+  std::vector<int> p(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) p[static_cast<std::size_t>(i)] = i;
+  return p;
+}
+
+const std::vector<CellTypeInfo>& table() {
+  static const std::vector<CellTypeInfo> rows = {
+      // Dimension 0-2: skipped by every reader, counted.
+      row(kVtkVertex, "vertex", 1, 0, 15, {0}, S::Skipped),
+      row(2, "poly vertex", -1, 0, 0, {}, S::Skipped),
+      row(kVtkLine, "line", 2, 1, 1, identity(2), S::Skipped),
+      row(4, "poly line", -1, 1, 0, {}, S::Skipped),
+      row(kVtkTriangle, "triangle", 3, 2, 2, identity(3), S::Skipped),
+      row(6, "triangle strip", -1, 2, 0, {}, S::Skipped),
+      row(7, "polygon", -1, 2, 0, {}, S::Skipped),
+      row(8, "pixel", 4, 2, 0, {}, S::Skipped),
+      row(kVtkQuad, "quad", 4, 2, 3, identity(4), S::Skipped),
+      row(21, "quadratic edge", 3, 1, 8, identity(3), S::Skipped),
+      row(22, "quadratic triangle", 6, 2, 9, identity(6), S::Skipped),
+      row(23, "quadratic quad", 8, 2, 16, identity(8), S::Skipped),
+      row(28, "biquadratic quad", 9, 2, 10, identity(9), S::Skipped),
+      // Volume cells.
+      row(kVtkTetra, "tetra", 4, 3, 4, identity(4), S::Traversed),
+      row(kVtkQuadraticTetra, "quadratic tetra", 10, 3, 11, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, S::NotYet,
+          CellType::tet10),
+      row(11, "voxel", 8, 3, 0, {}, S::NotYet),
+      row(12, "hexahedron", 8, 3, 5, identity(8), S::NotYet, CellType::hex8),
+      row(13, "wedge", 6, 3, 6, identity(6), S::NotYet),
+      row(14, "pyramid", 5, 3, 7, identity(5), S::NotYet),
+      row(15, "pentagonal prism", 10, 3, 0, {}, S::NotYet),
+      row(16, "hexagonal prism", 12, 3, 0, {}, S::NotYet),
+      // gmsh 20-node hexahedron: edge nodes (0,1) (0,3) (0,4) (1,2) (1,5) (2,3) (2,6) (3,7) (4,5)
+      // (4,7) (5,6) (6,7); VTK's: (0,1) (1,2) (2,3) (3,0) (4,5) (5,6) (6,7) (7,4) (0,4) (1,5) (2,6) (3,7).
+      row(25, "quadratic hexahedron", 20, 3, 17,
+          {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15}, S::NotYet, CellType::hex20),
+      // gmsh 15-node prism: edge nodes (0,1) (0,2) (0,3) (1,2) (1,4) (2,5) (3,4) (3,5) (4,5); VTK's:
+      // (0,1) (1,2) (2,0) (3,4) (4,5) (5,3) (0,3) (1,4) (2,5).
+      row(26, "quadratic wedge", 15, 3, 18, {0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11}, S::NotYet),
+      row(27, "quadratic pyramid", 13, 3, 19, {}, S::NotYet),
+      row(29, "triquadratic hexahedron", 27, 3, 12, {}, S::NotYet),
+      row(42, "polyhedron", -1, 3, 0, {}, S::NotYet),
+  };
+  return rows;
+}
+
+}  // namespace
+
+const CellTypeInfo* cell_type_from_vtk(long long vtk_id) {
+  for (const CellTypeInfo& r : table())
+    if (r.vtk_id == vtk_id) return &r;
+  return nullptr;
+}
+
+const CellTypeInfo* cell_type_from_gmsh(long long gmsh_id) {
+  if (gmsh_id <= 0) return nullptr;
+  for (const CellTypeInfo& r : table())
+    if (r.gmsh_id == gmsh_id) return &r;
+  return nullptr;
+}
+
+std::string cell_type_label(long long vtk_id) {
+  const CellTypeInfo* r = cell_type_from_vtk(vtk_id);
+  return r != nullptr ? r->name : "VTK id " + std::to_string(vtk_id);
+}
+
+std::string unsupported_cell_message(long long vtk_id) {
+  const CellTypeInfo* r = cell_type_from_vtk(vtk_id);
+  if (r == nullptr) return "cell type " + std::to_string(vtk_id) + " is not a VTK cell type rayint knows";
+  return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
+         ") is not supported yet; only tetrahedra (VTK id 10) are integrated";
+}
+
+}  // namespace rayint

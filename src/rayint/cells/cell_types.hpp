@@ -1,0 +1,59 @@
+#pragma once
+// The one table of cell types every mesh reader maps its format onto (VTK legacy .vtk, VTK XML
+// .vtu/.pvtu, gmsh .msh, TetGen .ele) and `rayint mesh info` reports: VTK's type id
+// (vtkCellType.h), the node count, the dimension, gmsh's element type id (gmsh reference manual,
+// "MSH file format", elm-type) with the permutation from gmsh's node order to VTK's, and what
+// rayint does with the type:
+//   Traversed   a volume cell the tetrahedral traversal integrates (linear tetrahedron; the
+//               quadratic tetrahedron is read and checked, see below);
+//   Skipped     a cell of dimension 0-2 (vertex, line, triangle, quad, ...): boundary and
+//               annotation cells gmsh writes beside the volume; they hold no volume, so a ray
+//               integral never sees them. Readers drop them and count them by type;
+//   NotYet      a volume cell the next issue integrates (hexahedron, wedge, pyramid, voxel,
+//               quadratic hexahedron and wedge): refused with unsupported_message().
+// Node order is always VTK's once read: a reader permutes gmsh's order with gmsh_to_vtk
+// (vtk node i = gmsh node gmsh_to_vtk[i]). The permutations are gmsh's documented node numbering
+// ("Node ordering") against VTK's cell documentation (vtkQuadraticTetra.h: edge nodes on
+// (0,1), (1,2), (2,0), (0,3), (1,3), (2,3); gmsh's 10-node tetrahedron has node 8 on edge (2,3)
+// and node 9 on edge (1,3): the last two are swapped), checked on files gmsh 4.8 writes
+// (tests/test_mesh_formats.cpp, "[mesh][tet10]": every edge node at its edge's midpoint).
+// Shape functions: `shape` names the cells/shape_functions.hpp family for the types that have one
+// (quadratic tetrahedron: tet10; hexahedron: hex8; quadratic hexahedron: hex20).
+#include <array>
+#include <optional>
+#include <string>
+
+#include "rayint/cells/shape_functions.hpp"
+
+namespace rayint {
+
+enum class CellSupport { Traversed, Skipped, NotYet };
+
+struct CellTypeInfo {
+  int vtk_id = 0;
+  const char* name = "";  // VTK's name without "VTK_", lower case ("tetra", "quadratic tetra")
+  int nodes = 0;          // -1: variable (polygon, poly-line, ...)
+  int dimension = 0;
+  int gmsh_id = 0;                       // 0: gmsh has no such element
+  std::array<int, 27> gmsh_to_vtk{};     // first `nodes` entries used when gmsh_id != 0
+  CellSupport support = CellSupport::NotYet;
+  std::optional<CellType> shape;         // cells/shape_functions.hpp family, when there is one
+};
+
+// VTK type ids used by name in readers.
+inline constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkTriangle = 5, kVtkQuad = 9, kVtkTetra = 10,
+                     kVtkQuadraticTetra = 24;
+
+// The row of a VTK type id / gmsh element type id, or nullptr for an id rayint does not know.
+const CellTypeInfo* cell_type_from_vtk(long long vtk_id);
+const CellTypeInfo* cell_type_from_gmsh(long long gmsh_id);
+
+// "cell type hexahedron (VTK id 12) is not supported yet (next: the hexahedral, wedge and pyramid
+// cells); only tetrahedra (VTK 10, 24) are integrated" for a NotYet row, or for an unknown id
+// "cell type N is not a cell type rayint knows".
+std::string unsupported_cell_message(long long vtk_id);
+
+// "triangle" etc. for a VTK id, "VTK id N" for an unknown one.
+std::string cell_type_label(long long vtk_id);
+
+}  // namespace rayint

@@ -1,0 +1,92 @@
+// `rayint mesh info` as JSON and text (see mesh_info.hpp).
+#include "rayint/report/mesh_info.hpp"
+
+#include <cstdio>
+
+#include "rayint/core/format.hpp"
+
+namespace rayint {
+namespace {
+
+std::pair<Vec3, Vec3> bounds(const TetMesh& m) {
+  Vec3 lo = m.points.front(), hi = m.points.front();
+  for (const Vec3& p : m.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
+std::string cell_label(const TetMesh& m, std::size_t t) {
+  return m.info.cell_ids.size() == m.tets.size() ? std::to_string(m.info.cell_ids[t]) : std::to_string(t);
+}
+
+}  // namespace
+
+nlohmann::json to_json(const MeshInfo& in) {
+  const TetMesh& m = *in.mesh;
+  const auto [lo, hi] = bounds(m);
+  nlohmann::json cells = nlohmann::json::object();
+  for (const auto& [type, n] : m.info.cells_by_type) {
+    const auto s = m.info.skipped_by_type.find(type);
+    const long skipped = s == m.info.skipped_by_type.end() ? 0 : s->second;
+    cells[type] = {{"read", n}, {"skipped", skipped}};
+  }
+  nlohmann::json arrays = nlohmann::json::array();
+  for (const MeshArrayInfo& a : m.info.arrays)
+    arrays.push_back({{"name", a.name}, {"association", a.association}, {"components", a.components},
+                      {"marker", a.marker}, {"scalar", a.name == m.info.scalar}});
+  nlohmann::json j = {{"file", in.file},
+                      {"points", m.points.size()},
+                      {"tets", m.tets.size()},
+                      {"bounds", {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}}},
+                      {"cells_by_type", cells},
+                      {"skipped_cells", m.info.skipped_cells},
+                      {"ghost_cells", m.info.ghost_cells},
+                      {"merged_points", m.info.merged_points},
+                      {"arrays", arrays},
+                      {"scalar", {{"name", m.info.scalar}, {"association", m.info.scalar_association}}},
+                      {"orientation", {{"positive", in.orientation.positive}, {"inverted", in.orientation.inverted},
+                                       {"zero_volume", in.orientation.zero_volume}, {"slivers", in.orientation.slivers}}}};
+  if (in.checked) {
+    j["check"] = {{"overlap", in.overlap.has_value()}, {"seconds", in.check_seconds}};
+    if (in.overlap)
+      j["check"]["overlapping_cells"] = {cell_label(m, in.overlap->first), cell_label(m, in.overlap->second)};
+  } else {
+    j["check"] = "not run (--check)";
+  }
+  return j;
+}
+
+std::string to_text(const MeshInfo& in) {
+  const TetMesh& m = *in.mesh;
+  const auto [lo, hi] = bounds(m);
+  std::string out = in.file + "\n";
+  out += "  points " + std::to_string(m.points.size()) + ", tetrahedra " + std::to_string(m.tets.size()) + "\n";
+  out += "  bounds [" + format_number(lo[0]) + ", " + format_number(hi[0]) + "] x [" + format_number(lo[1]) + ", " +
+         format_number(hi[1]) + "] x [" + format_number(lo[2]) + ", " + format_number(hi[2]) + "]\n";
+  out += "  cells:";
+  for (const auto& [type, n] : m.info.cells_by_type) {
+    const auto s = m.info.skipped_by_type.find(type);
+    out += " " + type + " " + std::to_string(n) + (s != m.info.skipped_by_type.end() ? " (skipped)" : "") + ";";
+  }
+  if (m.info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(m.info.ghost_cells) + ";";
+  out += "\n  arrays:";
+  if (m.info.arrays.empty()) out += " none";
+  for (const MeshArrayInfo& a : m.info.arrays)
+    out += " \"" + a.name + "\" (" + a.association + ", " + std::to_string(a.components) +
+           (a.marker ? ", marker" : "") + (a.name == m.info.scalar ? ", the scalar" : "") + ");";
+  out += "\n  orientation: positive " + std::to_string(in.orientation.positive) + ", inverted " +
+         std::to_string(in.orientation.inverted) + ", zero volume " + std::to_string(in.orientation.zero_volume) +
+         ", slivers " + std::to_string(in.orientation.slivers) + "\n";
+  if (in.checked) {
+    char t[64];
+    std::snprintf(t, sizeof t, " (%.3f s)", in.check_seconds);
+    out += in.overlap ? "  check: cells " + cell_label(m, in.overlap->first) + " and " + cell_label(m, in.overlap->second) +
+                            " overlap" + t + "\n"
+                      : std::string("  check: no overlapping tetrahedra") + t + "\n";
+  }
+  return out;
+}
+
+}  // namespace rayint
