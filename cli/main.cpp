@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "shard.hpp"
 #ifdef RAYINT_WITH_VTK
 #include "rayint/vtk/vtk_integrators.hpp"
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
   CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
   app.require_subcommand(1);
   rayint::cli::build_app(app);
+  rayint::cli::accept_integer_float_forms(app);  // --photons 1e6 (cli/options.hpp)
   for (int i = 2; i < argc; ++i) rayint::cli::shard_context().args.push_back(argv[i]);
   try {
     app.parse(argc, argv);
