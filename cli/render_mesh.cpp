@@ -37,7 +37,7 @@ std::string heat_map_path(const std::string& output) {
 }
 
 // --fit: the case's camera (or a 256 x 256 one looking down -z) moved to frame the mesh's bounds.
-void fit_camera_to_mesh(MeshCase& mc, const RenderOptions& options) {
+void fit_camera_to_mesh(MeshCase& mc) {
   if (mc.mesh.points.empty()) throw InputError(mc.mesh_source + ": points: --fit needs a mesh with points");
   Vec3 lo = mc.mesh.points.front(), hi = lo;
   for (const Vec3& p : mc.mesh.points) {
@@ -56,7 +56,7 @@ void fit_camera_to_mesh(MeshCase& mc, const RenderOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw InputError(mc.source + ": camera: --fit: " + e.what());
   }
-  if (!options.quiet) {
+  {  // the camera used is a result, not progress: printed with -q too
     const Camera& c = *mc.camera;
     const auto v = [](const Vec3& x) {
       return "[" + format_number(x.x()) + ", " + format_number(x.y()) + ", " + format_number(x.z()) + "]";
@@ -75,7 +75,7 @@ void fit_camera_to_mesh(MeshCase& mc, const RenderOptions& options) {
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) {
   const json_source::InputFileLog read;  // the mesh files the case names: shard inputs
   MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
-  if (options.fit) fit_camera_to_mesh(mc, options);
+  if (options.fit) fit_camera_to_mesh(mc);
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   // Validate the methods before the (long) render.
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
