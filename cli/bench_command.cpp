@@ -69,6 +69,10 @@ void set_bench_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "bench", "Accuracy/cost sweep: every method along its knob, error and time per ray");
+  cmd->footer(
+      "Exit status: 0 the report was written (a setting that failed on some rays is counted in "
+      "it: failed_rays, null errors where no ray ran, a failed: line per method); 2 bad input. "
+      "docs/exit-codes.md");
   cmd->add_option("cases", opt->files,
                   "Case files (JSON) or folders of them; default: the folder cases/");
   cmd->add_option("--methods", opt->methods,

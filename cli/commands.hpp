@@ -1,10 +1,16 @@
 #pragma once
 // One file per subcommand; each registers its options on the app and calls the library.
 #include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "rayint/integrators/integrator.hpp"
 
 namespace rayint::cli {
 
-// Exit codes: 0 success, 1 a check or gate failed, 2 bad input or usage.
+// Exit codes (docs/exit-codes.md): 0 success, 1 a check or gate failed or a method failed on
+// some ray (output written, the failures marked), 2 bad input or usage (nothing written), or an
+// output (a file or standard output) that could not be written completely.
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitBadInput = 2;
 
@@ -25,6 +31,12 @@ void set_cells_command(CLI::App& app);   // cells_command.cpp
 void set_slab_command(CLI::App& app);    // slab_command.cpp
 void set_scatter_command(CLI::App& app);  // scatter_command.cpp
 void set_tf_command(CLI::App& app);       // tf_command.cpp
+void set_methods_command(CLI::App& app);  // methods_command.cpp
+
+// A --methods value: parse_method_list with the option named in the message, e.g.
+// "--methods riemann:n=0: n must be an integer >= 1" (MethodSpecError).
+std::vector<MethodSpec> parse_methods_option(const std::string& csv,
+                                             const std::string& option = "--methods");
 
 // Prints `text` to stdout, or writes it atomically to `path` when non-empty.
 void emit(const std::string& text, const std::string& path);

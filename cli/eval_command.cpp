@@ -35,6 +35,10 @@ void set_eval_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "eval", "Evaluate case files with each method against the 50-digit reference");
+  cmd->footer(
+      "Exit status: 0 every method ran on every ray; 1 some method failed on some ray (output "
+      "written, the failed rays with null errors and their failure text, a failed count per "
+      "method); 2 bad input (nothing written). docs/exit-codes.md");
   cmd->add_option("cases", opt->files, "Case files (JSON) or folders of them")->required();
   cmd->add_option("--methods", opt->methods,
                   "Comma-separated methods, each name[:key=value...] (default: exact,paper)");
@@ -52,7 +56,7 @@ void set_eval_command(CLI::App& app) {
   add_strict_mesh_flag(cmd, opt->mesh.strict);
   cmd->callback([opt] {
     const std::vector<MethodSpec> methods =
-        opt->methods.empty() ? default_methods() : parse_method_list(opt->methods);
+        opt->methods.empty() ? default_methods() : parse_methods_option(opt->methods);
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
     auto last = start;
@@ -110,6 +114,7 @@ void set_eval_command(CLI::App& app) {
     }
     emit(opt->format == "table" ? evaluation_table(results) : eval_report_json(results).dump(2),
          opt->output);
+    if (failed_outcomes(results) > 0) throw ChecksFailed{};  // written, failures marked: exit 1
   });
 }
 

@@ -96,6 +96,10 @@ void set_gate_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "gate", "Check every method's tolerances on the corpus and a stress sample (exit 1 on failure)");
+  cmd->footer(
+      "Exit status: 0 every check passed; 1 some check failed (a method that failed on some ray "
+      "fails the check <part>.<case>.<method>.failed whatever its limits); 2 bad configuration, "
+      "including an invalid method spec in it. docs/exit-codes.md");
   cmd->add_option("--config", opt->config,
                   "Gate config (docs/gates.md); its relative paths are resolved against the "
                   "directory that holds it. Outside a source tree the default is the installed "

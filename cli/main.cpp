@@ -1,4 +1,7 @@
 // rayint -- numerical verification of the ray integrals of direct volume rendering.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "commands.hpp"
@@ -22,6 +25,14 @@ void emit(const std::string& text, const std::string& path) {
   }
 }
 
+std::vector<MethodSpec> parse_methods_option(const std::string& csv, const std::string& option) {
+  try {
+    return parse_method_list(csv);
+  } catch (const MethodSpecError& e) {
+    throw MethodSpecError(option + " " + e.what());
+  }
+}
+
 // Every subcommand on `app` (main's app, and the app `rayint merge` replays a run on).
 void build_app(CLI::App& app) {
   set_eval_command(app);
@@ -37,33 +48,67 @@ void build_app(CLI::App& app) {
   set_slab_command(app);
   set_scatter_command(app);
   set_tf_command(app);
+  set_methods_command(app);
   set_merge_command(app, build_app);
 }
 
 }  // namespace rayint::cli
 
+namespace {
+
+// Every byte of stdout is checked: a full disk or a closed reader is an error, not success.
+// Returns false (after one line on stderr) when stdout could not be written completely.
+bool flush_stdout() {
+  std::cout.flush();
+  const bool ok = !std::cout.fail() && std::fflush(stdout) == 0;
+  const int err = errno;
+  if (!ok) std::cerr << "rayint: error: standard output: cannot write (" << std::strerror(err) << ")\n";
+  return ok;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  rayint::remove_temporaries_on_signals();  // no out.npy.tmp.<pid> left by Ctrl-C or a kill
   rayint::register_standard_effects();  // multiple_scattering (scene/effect.hpp)
 #ifdef RAYINT_WITH_VTK
   rayint::register_vtk_methods();  // vtk_linear, vtk_partial_preint, vtk_preint, vtk_homogeneous
   rayint::register_vtk_mesh_readers();  // mesh_file .vtu, .pvtu
 #endif
   CLI::App app{"rayint: how far is a ray integration from the truth, and what does it cost"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);  // none: the usage (below), exit 2
+  app.set_version_flag("--version", std::string("rayint ") + RAYINT_VERSION);
+  app.footer("Exit codes: 0 ok; 1 a check, gate or method failed (output written, failures "
+             "marked); 2 bad input or usage (docs/exit-codes.md).");
   rayint::cli::build_app(app);
   rayint::cli::accept_integer_float_forms(app);  // --photons 1e6 (cli/options.hpp)
   for (int i = 2; i < argc; ++i) rayint::cli::shard_context().args.push_back(argv[i]);
+  // A command's outputs (-o, --stats, --junit, artifacts, ...) land together or not at all:
+  // each is staged beside its target and renamed when the command has finished.
+  int status = 0;
   try {
-    app.parse(argc, argv);
+    rayint::OutputBatch outputs;
+    try {
+      app.parse(argc, argv);
+    } catch (const rayint::cli::ChecksFailed&) {
+      status = rayint::cli::kExitFailed;  // the report of the failure is still written
+    }
+    outputs.commit();
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
-  } catch (const rayint::cli::ChecksFailed&) {
-    return rayint::cli::kExitFailed;
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const std::exception& e) {  // CLI::ParseError, InputError, std::invalid_argument, ...
+    std::cout.flush();
     std::cerr << "rayint: error: " << e.what() << "\n";
     return rayint::cli::kExitBadInput;
   }
-  return 0;
+  if (app.get_subcommands().empty()) {  // `rayint` alone: what it can do, on stderr
+    std::cerr << app.help();
+    return rayint::cli::kExitBadInput;
+  }
+  if (!flush_stdout()) return rayint::cli::kExitBadInput;
+  return status;
 }

@@ -46,6 +46,9 @@ void set_render_command(CLI::App& app) {
                   "scenes: measure each term against its reference on K x K pixels (all explicit rays)")
       ->check(CLI::Range(0, 4096));
   cmd->callback([opts] {
+    // --compare is one method spec, checked before anything is read or rendered.
+    if (!opts->compare.empty() && parse_methods_option(opts->compare, "--compare").size() != 1)
+      throw std::invalid_argument("--compare " + opts->compare + ": one method, not a list");
     const nlohmann::json root =
         json_source::parse(json_source::read_text_file(opts->input), opts->input);
     if (opts->shard.empty())  // a shard writes a shard file; `rayint merge -o` names the image

@@ -111,8 +111,12 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
     check_merge_inputs("render", inputs);
     const ShardContext& c = shard_context();
     std::vector<MeshRenderPart> parts;
-    for (std::size_t i = 0; i < c.data.size(); ++i)
-      if (!c.data[i].is_null()) parts.push_back(mesh_render_part_from_json(c.data[i], c.files[i], "data"));
+    for (std::size_t i = 0; i < c.data.size(); ++i) {
+      if (c.data[i].is_null()) continue;
+      parts.push_back(mesh_render_part_from_json(c.data[i], c.files[i], "data"));
+      check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
+                       parts.back().row_end, "data.row_begin");
+    }
     r = assemble_mesh_render(parts);
   } else {
     r = render_mesh(mc, mesh, *exact, compare.get(), settings);

@@ -88,8 +88,12 @@ void set_scatter_command(CLI::App& app) {
       check_merge_inputs("scatter", inputs);
       const ShardContext& c = shard_context();
       std::vector<VolumeComparisonPart> parts;
-      for (std::size_t i = 0; i < c.data.size(); ++i)
-        if (!c.data[i].is_null()) parts.push_back(volume_comparison_part_from_json(c.data[i], c.files[i], "data"));
+      for (std::size_t i = 0; i < c.data.size(); ++i) {
+        if (c.data[i].is_null()) continue;
+        parts.push_back(volume_comparison_part_from_json(c.data[i], c.files[i], "data"));
+        check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
+                         parts.back().row_end, "data.row_begin");
+      }
       r.volume = std::move(setup.volume);
       r.comparison = finish_volume_comparison(parts);
       if (r.comparison.width != s->width || r.comparison.height != s->height)

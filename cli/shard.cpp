@@ -144,6 +144,18 @@ void check_merge_inputs(const std::string& command, const std::vector<std::strin
                                 now + ", shards " + shard_context().fingerprint + ")");
 }
 
+void check_shard_band(std::size_t index, std::size_t total, long begin, long end, const std::string& field) {
+  const ShardContext& c = shard_context();
+  const ShardSpec spec{static_cast<long>(index), static_cast<long>(c.data.size())};
+  const IndexRange want = shard_range(total, spec);
+  if (want.size() == 0 && begin == end) return;  // an empty band (more shards than items)
+  if (begin != static_cast<long>(want.begin) || end != static_cast<long>(want.end))
+    throw InputError(c.files[index] + ": " + field + ": shard " + spec.label() + " of " +
+                     std::to_string(total) + " must cover [" + std::to_string(want.begin) + ", " +
+                     std::to_string(want.end) + "), but covers [" + std::to_string(begin) + ", " +
+                     std::to_string(end) + ")");
+}
+
 void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build) {
   struct Options {
     std::vector<std::string> shards;

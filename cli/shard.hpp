@@ -52,6 +52,12 @@ void write_shard(const std::string& path, const std::string& command, const Shar
 // Merge mode: checks the recorded fingerprint against the inputs as they are now.
 void check_merge_inputs(const std::string& command, const std::vector<std::string>& input_files);
 
+// Merge mode: shard `index` of the run must hold exactly the band of `total` items that
+// shard_range(total, index/count) gives it ([begin, end) as its data say): a hand-edited or
+// foreign shard that leaves a row out or repeats one is refused with one line naming its file
+// and `field` (e.g. "data.row_begin").
+void check_shard_band(std::size_t index, std::size_t total, long begin, long end, const std::string& field);
+
 // `rayint merge`; `build` registers every subcommand on a fresh app (to replay the run).
 void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build);
 

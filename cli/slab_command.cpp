@@ -1,11 +1,13 @@
 // rayint slab -- the plane-parallel slab (src/rayint/scattering/slab.hpp): either one problem
 // given by options, or every value of a published benchmark file (--benchmark), solved by the
-// adding-doubling method, by Monte Carlo and (isotropic problems) by the integral equation for
-// the source function. A table or JSON; exit 1 if a benchmark value is
+// adding-doubling method, by Monte Carlo, (isotropic problems) by the integral equation for
+// the source function, and (--method pn, one problem or a scene) by P_N. A table or JSON; exit 1
+// if a benchmark value is
 // not reproduced under the acceptance rule of slab_benchmark.hpp.
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "shard.hpp"
+#include "rayint/core/error.hpp"
 #include "rayint/input/shard_reader.hpp"
 #include "rayint/report/shard_json.hpp"
 #include "rayint/input/slab_benchmark_reader.hpp"
@@ -57,6 +60,55 @@ PhaseFunction parse_phase(const std::string& text) {
   throw std::invalid_argument("--phase: expected isotropic, lambert or hg:G, got '" + text + "'");
 }
 
+// --method: a comma-separated list of doubling, monte_carlo, both (the two) and
+// pn[:order=N][:bc=marshak|mark] (N odd in [1, kPnMaxOrder], default 15; Marshak by default).
+struct SlabMethods {
+  bool doubling = false, monte_carlo = false, pn = false;
+  PnOptions pn_options;
+};
+
+SlabMethods parse_slab_methods(const std::string& text) {
+  SlabMethods m;
+  const std::string expected = "expected doubling, monte_carlo, both or pn[:order=N][:bc=marshak|mark]";
+  std::stringstream list(text);
+  std::string item;
+  bool any = false;
+  while (std::getline(list, item, ',')) {
+    std::stringstream parts(item);
+    std::string name, part;
+    std::getline(parts, name, ':');
+    any = true;
+    if (name == "doubling" || name == "both") m.doubling = true;
+    if (name == "monte_carlo" || name == "both") m.monte_carlo = true;
+    if (name == "pn") m.pn = true;
+    if (name != "doubling" && name != "monte_carlo" && name != "both" && name != "pn")
+      throw std::invalid_argument("--method: " + expected + ", got '" + item + "'");
+    while (std::getline(parts, part, ':')) {
+      const auto eq = part.find('=');
+      const std::string key = eq == std::string::npos ? part : part.substr(0, eq);
+      const std::string value = eq == std::string::npos ? "" : part.substr(eq + 1);
+      if (name != "pn")
+        throw std::invalid_argument("--method: " + name + " takes no parameters, got '" + item + "'");
+      if (key == "order") {
+        const std::string range = "an odd integer in [1, " + std::to_string(kPnMaxOrder) + "]";
+        char* end = nullptr;
+        const long n = std::strtol(value.c_str(), &end, 10);
+        if (value.empty() || *end != '\0' || n < 1 || n > kPnMaxOrder || n % 2 == 0)
+          throw std::invalid_argument("--method pn: order must be " + range + ", got '" + value + "'");
+        m.pn_options.order = static_cast<int>(n);
+      } else if (key == "bc" && (value == "marshak" || value == "mark")) {
+        m.pn_options.boundary = value == "mark" ? PnBoundary::mark : PnBoundary::marshak;
+      } else if (key == "bc") {
+        throw std::invalid_argument("--method pn: bc must be marshak or mark, got '" + value + "'");
+      } else {
+        throw std::invalid_argument("--method pn: unknown parameter '" + part + "' (accepted: order, bc)");
+      }
+    }
+  }
+  if (!any) throw std::invalid_argument("--method: " + expected + ", got '" + text + "'");
+  return m;
+}
+
 SlabSource parse_source(const std::string& text) {
   if (text == "beam") return SlabSource::beam;
   if (text == "isotropic") return SlabSource::isotropic;
@@ -64,10 +116,13 @@ SlabSource parse_source(const std::string& text) {
 }
 
 // The solvers and their knobs, as the options set them (one problem, a scene or a benchmark).
-BenchmarkRunOptions run_options(const SlabOptions& s, bool doubling, bool mc) {
+BenchmarkRunOptions run_options(const SlabOptions& s, const SlabMethods& m) {
   BenchmarkRunOptions o = s.run;
+  const bool doubling = m.doubling;
   o.doubling = doubling;
-  o.monte_carlo = mc;
+  o.monte_carlo = m.monte_carlo;
+  o.pn = m.pn;
+  o.pn_options = m.pn_options;
   o.doubling_options.richardson = !s.no_richardson;
   o.integral_equation = doubling && !s.no_integral_equation;
   o.mc_split = !s.mc_analog;
@@ -87,9 +142,16 @@ MonteCarloShardIO shard_io_for(const ShardSpec& shard) {
     if (c.data[i].is_null()) continue;
     const nlohmann::json& parts = c.data[i].at("monte_carlo");
     per_shard.emplace_back();
-    for (std::size_t k = 0; k < parts.size(); ++k)
-      per_shard.back().push_back(monte_carlo_part_from_json(
-          parts[k], c.files[i], "data.monte_carlo[" + std::to_string(k) + "]"));
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const std::string field = "data.monte_carlo[" + std::to_string(k) + "]";
+      per_shard.back().push_back(monte_carlo_part_from_json(parts[k], c.files[i], field));
+      // Every shard holds exactly its blocks: no block left out or counted twice.
+      const CoveredBlocks covered = covered_blocks(per_shard.back().back());
+      if (!covered.contiguous)
+        throw InputError(c.files[i] + ": " + field + ".nodes: the blocks are not one contiguous range");
+      check_shard_band(i, per_shard.back().back().blocks, static_cast<long>(covered.range.begin),
+                       static_cast<long>(covered.range.end), field + ".nodes");
+    }
   }
   for (std::size_t k = 0; k < per_shard.front().size(); ++k) {
     std::vector<const MonteCarloPart*> parts;
@@ -122,7 +184,10 @@ void set_slab_command(CLI::App& app) {
                   "docs/multiple-scattering.md): solve it");
   cmd->add_option("--problems", s->problems, "benchmark: only these problem ids (e.g. 1a,3b)")
       ->delimiter(',');
-  cmd->add_option("--method", s->method, "doubling, monte_carlo or both (default)");
+  cmd->add_option("--method", s->method,
+                  "comma-separated: doubling, monte_carlo, both (default), "
+                  "pn[:order=N][:bc=marshak|mark] (P_N, N odd <= 127, default 15; P1 is the "
+                  "diffusion approximation); pn on one problem or a scene only");
   cmd->add_option("--photons", s->run.mc_options.photons, "Monte Carlo photons per problem (default 1e6)");
   cmd->add_option("--seed", s->run.mc_options.seed, "Monte Carlo seed (default 1)");
   cmd->add_option("--threads", s->run.mc_options.threads, "threads (default: all cores); results do not depend on it")
@@ -155,11 +220,12 @@ void set_slab_command(CLI::App& app) {
                   "one problem: Monte Carlo scattering orders (1: single scattering, compared "
                   "with the closed form)");
   cmd->callback([s]() {
-    const bool doubling = s->method == "doubling" || s->method == "both";
-    const bool mc = s->method == "monte_carlo" || s->method == "both";
-    if (!doubling && !mc)
-      throw std::invalid_argument("--method: expected doubling, monte_carlo or both, got '" +
-                                  s->method + "'");
+    const SlabMethods methods = parse_slab_methods(s->method);
+    if (methods.pn && !s->benchmark.empty())
+      throw std::invalid_argument("--method pn: runs on one problem or a --scene, not on --benchmark "
+                                  "(reports/scattering/pn_report.py compares it with the published values)");
+    if (methods.pn && s->max_order != 0)
+      throw std::invalid_argument("--max-order: P_N solves every order; give it without pn");
     if (s->run.mc_options.photons < 1) throw std::invalid_argument("--photons: must be >= 1");
     if (s->run.doubling_options.streams < 2 || s->run.doubling_options.streams > 1024) throw std::invalid_argument("--streams: must be in [2, 1024]");
     if (!(s->run.doubling_options.start_thickness > 0 && s->run.doubling_options.start_thickness <= 1e-3))
@@ -170,7 +236,7 @@ void set_slab_command(CLI::App& app) {
     if (s->max_order < 0) throw std::invalid_argument("--max-order: must be >= 0");
     if (!s->scene.empty() && !s->benchmark.empty())
       throw std::invalid_argument("--scene and --benchmark: give one of them");
-    BenchmarkRunOptions o = run_options(*s, doubling, mc);
+    BenchmarkRunOptions o = run_options(*s, methods);
     if (!s->scene.empty() || s->benchmark.empty()) o.mc_options.max_order = s->max_order;  // not a benchmark's
     // Shards: every solver runs as in the single run, but the Monte Carlo only over the shard's
     // blocks (or, merging, from the shards' block sums); the deterministic solvers run again.

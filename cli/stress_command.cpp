@@ -38,6 +38,10 @@ void set_stress_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "stress", "Adversarial pieces and rays, regime by regime, against the 50-digit reference");
+  cmd->footer(
+      "Exit status: 0 no method and no reference failed; 1 a method threw or returned a "
+      "non-finite result, or the reference failed, on some sample (report written, counted in "
+      "the nonfin and failed columns); 2 bad input. docs/exit-codes.md");
   cmd->add_option("--count", opt->count,
                   "Pieces in total, split evenly over the regimes (ray-level regimes draw whole "
                   "rays until their pieces reach their share)")
@@ -67,11 +71,7 @@ void set_stress_command(CLI::App& app) {
     StressOptions so;
     so.count = opt->count;
     so.seed = opt->seed;
-    try {
-      so.methods = parse_method_list(opt->methods);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("--methods: ") + e.what());
-    }
+    so.methods = parse_methods_option(opt->methods);
     so.threads = opt->threads;
     for (const auto& name : opt->regimes) {
       if (name == "all") {
@@ -104,6 +104,12 @@ void set_stress_command(CLI::App& app) {
     }
     if (!opt->no_worst && !opt->worst_dir.empty()) write_worst_cases(report, opt->worst_dir);
     emit(opt->json ? to_json(report).dump(2) : stress_table(report), opt->output);
+    // A method that failed (threw or returned a non-finite result) or a reference that failed on
+    // some sample: written and counted, exit 1.
+    long failed = 0;
+    for (const auto& m : report.overall) failed += m.non_finite;
+    for (const auto& reg : report.regimes) failed += reg.reference_failures;
+    if (failed > 0) throw ChecksFailed{};
   });
 }
 

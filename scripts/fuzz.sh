@@ -15,7 +15,7 @@
 # cases/scenes/*.json; vtk_legacy fuzz/seeds/vtk_legacy/ + cases/meshes/linear-box.vtk + the
 # meshio .vtk fixtures; gmsh tests/fixtures/meshes/*.msh; tetgen fuzz/seeds/tetgen/.
 # RAYINT_FUZZ_TARGET selects the target (default case_parser); preset_parser (ParaView presets)
-# seeds from fuzz/seeds/preset/.
+# seeds from fuzz/seeds/preset/; method_spec (parse_method_spec) from fuzz/seeds/method_spec/.
 # The image readers pfm_reader, exr_reader, npy_reader seed from fuzz/seeds/<format>/;
 # shard_reader (the shard data `rayint merge` reads) from fuzz/seeds/shard/.
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
@@ -41,10 +41,11 @@ case "$target" in
   gmsh) seed_files=("$root"/tests/fixtures/meshes/*.msh); what="rayint::parse_gmsh" ;;
   tetgen) seed_files=("$root"/fuzz/seeds/tetgen/*); what="rayint::parse_tetgen" ;;
   preset_parser) seed_files=("$root"/fuzz/seeds/preset/*.json); what="rayint::import_paraview_preset_text" ;;
+  method_spec) seed_files=("$root"/fuzz/seeds/method_spec/*); what="rayint::parse_method_spec" ;;
   shard_reader) seed_files=("$root"/fuzz/seeds/shard/*.json); what="rayint shard data readers (rayint merge)" ;;
   pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
     fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, vtu_reader, vti_reader, scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, method_spec, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

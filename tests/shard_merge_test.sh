@@ -92,6 +92,11 @@ case $kind in
     expect_fail "duplicate of shard 1/4" "$rayint" merge "$work"/s.{0,1,1,2,3}.json -o "$work/out.json"
     expect_fail "different run" "$rayint" merge "$work"/s.{0,2,3}.json "$work/other.1.json" -o "$work/out.json"
     expect_fail "not a shard file" "$rayint" merge "$src/cases/scattering/disort_slab.json" -o "$work/out.json"
+    # A Monte Carlo shard with a block node removed (its photons left out) is refused.
+    /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); n=j['data']['monte_carlo'][0]['nodes']; assert len(n) > 1, n; n.pop(); json.dump(j,open(sys.argv[2],'w'))" \
+      "$work/s.1.json" "$work/gap.s.1.json"
+    expect_fail "data.monte_carlo\[0\].nodes: shard 1/4 of 13 must cover \[3, 6), but covers \[3, 4)" \
+      "$rayint" merge "$work"/s.0.json "$work/gap.s.1.json" "$work"/s.{2,3}.json -o "$work/out.json"
     # a shard without -o is refused before the work (a run of hours here would hit the timeout)
     expect_fail "needs -o FILE" timeout 60 "$rayint" slab --tau 1 --albedo 0.9 --phase isotropic --mu-up 0.5 \
       --method monte_carlo --photons 100000000000 --seed 1 --shard 0/4
@@ -106,6 +111,12 @@ case $kind in
 JSON
     for i in 0 1; do "$rayint" render "$work/tetgen-cam.json" --shard $i/2 -o "$work/r.$i.json" --quiet; done
     "$rayint" merge "$work"/r.{0,1}.json -o "$work/r.png" 2>/dev/null  # unchanged inputs: merges
+    # A shard whose rows were edited (row 4 left out: shard 1/2 claims rows [5, 8)) is refused:
+    # every shard must hold exactly its band of the image.
+    /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); d=j['data']; d['row_begin']=5; d['image']=d['image'][3*d['width']:]; json.dump(j,open(sys.argv[2],'w'))" \
+      "$work/r.1.json" "$work/gap.1.json"
+    expect_fail "data.row_begin: shard 1/2 of 8 must cover \[4, 8), but covers \[5, 8)" \
+      "$rayint" merge "$work"/r.0.json "$work/gap.1.json" -o "$work/out.png"
     sed -i 's/^   1    -0.146254 /   1    -0.146255 /' "$work/cube.1.node"
     rm -f "$work/out.png"
     expect_fail "input files changed" "$rayint" merge "$work"/r.{0,1}.json -o "$work/out.png"
@@ -113,7 +124,7 @@ JSON
     "$rayint" merge --allow-partial "$work"/s.{0,1,3}.json -o "$work/partial.json" 2>"$work/err"
     grep -q "partial: 3 of 4 shards (missing 2/4)" "$work/err"
     /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); n=r['monte_carlo']['photons']; assert 0 < n < 50000, n; print('partial merge covers', n, 'photons')" "$work/partial.json"
-    echo "refusals: missing, duplicate, different run, not a shard, shard without -o, a changed mesh file: one line, exit 2, no output"
+    echo "refusals: missing, duplicate, different run, not a shard, shard without -o, a row or a block left out, a changed mesh file: one line, exit 2, no output"
     ;;
   rerun)
     # A shard killed mid-run leaves no file; running it again reproduces it (the shard data are

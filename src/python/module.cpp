@@ -11,7 +11,8 @@
 // Reports cross as JSON text (nlohmann's dump is round-trip exact for doubles; json.loads on the
 // Python side). Cases and candidates come as a path (read as the CLI reads it, so the messages name
 // the file) or as JSON text with a source name. rayint::InputError becomes rayint.InputError (a
-// ValueError) with the CLI's one-line message (the CLI prints it after "rayint: error: ");
+// ValueError) with the CLI's one-line message (the CLI prints it after "rayint: error: "), and so
+// does a method spec that is not valid (rayint::MethodSpecError);
 // std::invalid_argument becomes ValueError, other std::exceptions RuntimeError (pybind11).
 // src/python/rayint/__init__.py holds the Python-facing signatures, broadcasting and docs.
 #include <pybind11/numpy.h>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "rayint/core/error.hpp"
+#include "rayint/report/method_table.hpp"
 #include "rayint/core/format.hpp"
 #include "rayint/generators/regimes.hpp"
 #include "rayint/input/candidate_reader.hpp"
@@ -294,7 +296,17 @@ py::tuple mixed_regime_pieces(std::size_t count, std::uint64_t seed) {
 
 PYBIND11_MODULE(_rayint, m) {
   m.doc() = "rayint's library (see rayint/__init__.py for the Python-facing functions)";
-  py::register_exception<rayint::InputError>(m, "InputError", PyExc_ValueError);
+  static PyObject* input_error =
+      py::register_exception<rayint::InputError>(m, "InputError", PyExc_ValueError).ptr();
+  // A method spec that is not valid (unknown method or parameter, a value of the wrong type or
+  // out of range) is bad input too: rayint.InputError with the CLI's message.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const rayint::MethodSpecError& e) {
+      PyErr_SetString(input_error, e.what());
+    }
+  });
   py::class_<Document>(m, "_Document")
       .def(py::init([](bool is_path, std::string text, std::string source) {
         return Document{is_path, std::move(text), std::move(source)};
@@ -306,6 +318,7 @@ PYBIND11_MODULE(_rayint, m) {
   m.def("_integrate", &integrate);
   m.def("_composite", &composite);
   m.def("_method_names", &rayint::method_names);
+  m.def("_methods_json", [] { return rayint::methods_json(rayint::method_table()).dump(); });
   m.def("_mixed_regime_pieces", &mixed_regime_pieces);
   m.def("_regime_names", [] {  // piece i of _mixed_regime_pieces is of regime i % len(names)
     std::vector<std::string> names;

@@ -235,3 +235,64 @@ def test_example_script_exact_against_the_reference():
         assert np.allclose(report["values"]["pl_nerf"][ray], pl + pl_t * bg, rtol=1e-13, atol=0)
     for name, e in report["errors"].items():
         assert all(math.isfinite(v) for v in e.values()), name
+
+
+# Issue 26: a method spec is checked against the method table before anything runs (InputError,
+# the CLI's line), and a method that fails on a ray is reported as failed, never as a number.
+INVALID_SPECS = [
+    ("riemann:n=0", "riemann:n=0: n must be an integer >= 1"),
+    ("nerf:n=0", "nerf:n=0: n must be an integer >= 1"),
+    ("psi_table:size=1073741824", "psi_table:size=1073741824: size must be an integer <= 8192 "
+                                  "(the table takes 16 B per entry: 1 GiB at 8192)"),
+    ("ode:rtol=0", "ode:rtol=0: rtol must be a number >= 1e-15"),
+    ("riemann:n=64.5", "riemann:n=64.5: n must be an integer in [1, 1e9]"),
+    ("riemann:m=4", "riemann:m=4: unknown parameter 'm' (riemann takes n, dt, order, correction, ref_dt)"),
+]
+
+
+@pytest.mark.parametrize("spec,why", INVALID_SPECS)
+def test_invalid_method_spec_raises_input_error_with_the_cli_line(spec, why):
+    path = os.path.join(CASES, "paper-figure-2.json")
+    with pytest.raises(rayint.InputError) as err:
+        rayint.evaluate(path, methods=["exact", spec], timing=False)
+    assert str(err.value) == why
+    with pytest.raises(rayint.InputError) as err:
+        rayint.integrate(spec, path)
+    assert str(err.value) == why
+    r = cli("eval", path, "--no-timing", "--methods", spec)
+    assert r.returncode == 2
+    assert r.stdout == ""
+    assert r.stderr == "rayint: error: --methods " + why + "\n"
+
+
+def test_unknown_method_is_input_error():
+    with pytest.raises(rayint.InputError, match="nosuch: unknown method 'nosuch'"):
+        rayint.integrate("nosuch", os.path.join(CASES, "paper-figure-2.json"))
+
+
+def test_a_failed_method_is_null_and_counted_not_zero():
+    path = os.path.join(CASES, "per-channel-densities.json")
+    res = rayint.evaluate(path, methods=["exact", "particle"], timing=False)
+    case = res["cases"][0]
+    assert res["failed"] == len(case["rays"]) == 3
+    for ray in case["rays"]:
+        p = ray["methods"]["particle"]
+        assert p["failed"] is True
+        assert p["failure"].startswith("particle: needs a single transfer function")
+        for field in ("intensity", "rel_error", "abs_error", "ulp_error", "seconds_per_ray"):
+            assert p[field] is None
+        assert ray["methods"]["exact"]["failed"] is False
+        assert all(isinstance(x, float) for x in ray["methods"]["exact"]["rel_error"])
+    summary = {s["method"]: s for s in case["summary"]}
+    assert summary["particle"]["failed"] == 3 and summary["particle"]["max_rel_error"] is None
+    assert summary["exact"]["failed"] == 0 and summary["exact"]["max_rel_error"] < EXACT_REL
+    r = cli("eval", path, "--no-timing", "-q", "--methods", "exact,particle")
+    assert r.returncode == 1  # written, a method failed on some ray (docs/exit-codes.md)
+    assert json.loads(r.stdout)["cases"][0]["summary"] == case["summary"]
+
+
+def test_methods_is_the_table_the_validator_uses():
+    table = rayint.methods()
+    assert [m["name"] for m in table] == rayint.method_names()
+    n = next(p for m in table if m["name"] == "riemann" for p in m["params"] if p["name"] == "n")
+    assert (n["type"], n["default"], n["min"], n["max"]) == ("integer", "64", 1, 1e9)

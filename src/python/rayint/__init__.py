@@ -4,7 +4,11 @@ quadratures (nerf, pl_nerf) on explicit samples.
 
 Every function calls the same C++ code as the `rayint` CLI (src/python/module.cpp), so the
 numbers are the CLI's bit for bit. Bad input raises rayint.InputError (a ValueError) carrying the
-CLI's one-line message `<file>: <field>: <what>`; an unknown method or parameter raises ValueError.
+CLI's one-line message `<file>: <field>: <what>`; so does a method spec that is not valid (unknown
+method or parameter, a value of the wrong type or out of range: "riemann:n=0: n must be an
+integer >= 1"), before anything runs. A method that fails at run time on a ray is reported as
+failed, never as a number: evaluate() gives null errors, "failed": true and the "failure" text
+for that ray, and a "failed" count per method in each case's "summary".
 
 Conventions (model/ray.hpp): a piece or segment has two ends, `exit` (the eye side) and `far`
 (where light enters); rays run from the far end toward the eye.
@@ -18,7 +22,7 @@ from . import _rayint
 from ._rayint import InputError
 
 __all__ = ["InputError", "exact_pieces", "evaluate", "reference", "check", "integrate",
-           "method_names", "nerf_composite", "nerf_deltas", "pl_nerf_composite"]
+           "method_names", "methods", "nerf_composite", "nerf_deltas", "pl_nerf_composite"]
 
 
 def _document(obj, what):
@@ -62,7 +66,10 @@ def evaluate(case, methods=None, timing=True, threads=0):
 
     methods: a list of spec strings ("exact", "riemann:n=64", "nerf:n=32", ...) or one
     comma-separated string; None runs rayint eval's default (exact, paper). Returns the same
-    structure as `rayint eval --format json` (timing=False is `--no-timing`).
+    structure as `rayint eval --format json` (timing=False is `--no-timing`): a method that
+    failed on a ray has null intensity and errors there, "failed": true and its "failure" text;
+    each case's "summary" counts the failed rays per method, and the top-level "failed" counts
+    every failed method-ray. An invalid spec raises InputError before anything runs.
     """
     docs = [_document(c, "case") for c in (case if isinstance(case, (list, tuple)) else [case])]
     return json.loads(_rayint._evaluate(docs, _methods_csv(methods), bool(timing), int(threads)))
@@ -110,6 +117,12 @@ def integrate(method, case, length=None, scalar_far=None, scalar_exit=None, back
 def method_names():
     """The registered methods ("exact", "paper", "riemann", ..., "nerf", "pl_nerf")."""
     return list(_rayint._method_names())
+
+
+def methods():
+    """The method table `rayint methods --format json` prints: every method with its parameters
+    (name, type, default, allowed values), the table method specs are validated against."""
+    return json.loads(_rayint._methods_json())["methods"]
 
 
 def nerf_deltas(t, last="1e10"):

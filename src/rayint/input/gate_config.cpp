@@ -143,10 +143,13 @@ class GateConfigReader {
       const std::string mpath = member_path(path, item.key());
       MethodSpec spec;
       try {
-        spec = parse_method_spec(item.key());
-        make_integrator(spec, probe_);  // parameter values are checked when a method is built
-      } catch (const std::invalid_argument& e) {
-        s_.fail(mpath, e.what());
+        spec = parse_method_spec(item.key());  // type and range of every value: the method table
+      } catch (const MethodSpecError& e) {
+        // The message starts with the spec, which mpath names already.
+        std::string why = e.what();
+        if (why.compare(0, item.key().size() + 2, item.key() + ": ") == 0)
+          why.erase(0, item.key().size() + 2);
+        s_.fail(mpath, why);
       }
       const json& v = item.value();
       if (v.is_array()) {
@@ -202,21 +205,9 @@ class GateConfigReader {
         methods(s_.required(j, path, "methods"), member_path(path, "methods"), "regimes", names);
   }
 
-  // A small valid transfer-function set on which every method must build (linear density,
-  // constant colour, shared by the channels, as even the particle model accepts).
-  static TransferFunctions probe_transfer() {
-    TransferFunctions tf;
-    for (int c = 0; c < kChannels; ++c) {
-      tf.density[c] = {{0.0, 1.0}, {1.0, 2.0}};
-      tf.color[c] = {{0.0}, {1.0}};
-    }
-    return tf;
-  }
-
   OrderedJsonSchema s_;
   fs::path self_;
   fs::path base_;
-  TransferFunctions probe_ = probe_transfer();
 };
 
 }  // namespace

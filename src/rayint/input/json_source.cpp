@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <cstdlib>
+#include <sys/stat.h>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -45,6 +47,7 @@ class PathTrackingBuilder final : public Json::json_sax_t {
   bool binary(binary_t& val) override { return add(json(std::move(val))); }
 
   bool start_object(std::size_t /*elements*/) override {
+    check_depth();
     open(json(json::value_t::object), false);
     return true;
   }
@@ -57,6 +60,7 @@ class PathTrackingBuilder final : public Json::json_sax_t {
   }
   bool end_object() override { return close(); }
   bool start_array(std::size_t /*elements*/) override {
+    check_depth();
     const bool streams = streamed_ != nullptr && at_streamed_path();
     open(json(json::value_t::array), true);
     frames_.back().streamed = streams;
@@ -117,6 +121,13 @@ class PathTrackingBuilder final : public Json::json_sax_t {
       reason = what.substr(bracket + 2);
     return "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
            ": " + reason;
+  }
+
+  // Every rayint format nests fewer than 10 levels; a document nested deeper than kMaxJsonDepth
+  // is refused before its frames (and the DOM's recursive destruction) cost memory and stack.
+  void check_depth() const {
+    if (frames_.size() >= kMaxJsonDepth)
+      fail(source_, "", "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels (the limit)");
   }
 
   std::string path() const {
@@ -210,9 +221,35 @@ void InputFileLog::note(const std::string& path) {
   if (std::find(files.begin(), files.end(), path) == files.end()) files.push_back(path);
 }
 
+std::size_t max_input_bytes() {
+  const char* env = std::getenv("RAYINT_MAX_INPUT_BYTES");
+  if (env == nullptr || *env == '\0') return kDefaultMaxInputBytes;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(env, &end, 10);
+  if (end == env || *end != '\0' || errno != 0 || v == 0 || env[0] == '-')
+    throw InputError(one_line(std::string("RAYINT_MAX_INPUT_BYTES: must be a whole number of bytes >= 1, got '") +
+                              env + "'"));
+  return static_cast<std::size_t>(v);
+}
+
 std::string read_file_bytes(const std::string& file,
                             const std::function<void(const std::string& reason)>& fail) {
   InputFileLog::note(file);
+  const std::size_t limit = max_input_bytes();
+  const auto too_large = [&] {
+    fail("larger than the input limit of " + std::to_string(limit) +
+         " bytes; RAYINT_MAX_INPUT_BYTES raises it");
+  };
+  // What the path is, before reading: a directory or a device (/dev/zero, a terminal) is no
+  // input file; a regular file is measured first; a FIFO (/dev/stdin on a pipe) is read as a
+  // stream under the same limit.
+  struct stat st {};
+  if (::stat(file.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) fail("is a directory");
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) fail("is a device, not an input file");
+    if (S_ISREG(st.st_mode) && static_cast<unsigned long long>(st.st_size) > limit) too_large();
+  }
   errno = 0;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   auto cannot_read = [&fail]() {
@@ -223,7 +260,10 @@ std::string read_file_bytes(const std::string& file,
   std::string bytes;
   char buf[1 << 16];
   std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) bytes.append(buf, n);
+  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) {
+    if (n > limit - std::min(limit, bytes.size())) too_large();
+    bytes.append(buf, n);
+  }
   if (std::ferror(f.get())) cannot_read();
   return bytes;
 }

@@ -38,6 +38,15 @@ nlohmann::json parse(std::string_view text, const std::string& source, const Str
 // a gate config's checks are run and reported in the order it lists them).
 nlohmann::ordered_json parse_ordered(std::string_view text, const std::string& source);
 
+// Limits on what an input may cost (docs/limits.md): JSON nesting depth, and the bytes of one
+// input file (any format), which RAYINT_MAX_INPUT_BYTES overrides. 4 GiB holds the largest
+// inputs measured (a 10M-tet binary .vtu is ~0.6 GB, an ASCII legacy .vtk of it ~1.5 GB) with room.
+inline constexpr std::size_t kMaxJsonDepth = 256;
+inline constexpr std::size_t kDefaultMaxInputBytes = std::size_t{4} << 30;
+// The limit in force: RAYINT_MAX_INPUT_BYTES if set (InputError if it is not a whole number
+// >= 1), else kDefaultMaxInputBytes.
+std::size_t max_input_bytes();
+
 // The whole file as text; InputError "<path>: cannot read file (<reason>)".
 std::string read_text_file(const std::string& path);
 
@@ -59,7 +68,9 @@ class InputFileLog {
   InputFileLog* outer_;
 };
 // The whole file's bytes; when it cannot be opened or read, fail(reason), reason strerror(errno)
-// or "read error"; fail must throw.
+// or "read error"; fail must throw. A directory or a device is refused; a FIFO or /dev/stdin is
+// read as a stream; a file (or stream) larger than max_input_bytes() is refused, a regular file
+// before any byte is read.
 std::string read_file_bytes(const std::string& file,
                             const std::function<void(const std::string& reason)>& fail);
 

@@ -56,13 +56,6 @@
 namespace rayint {
 namespace {
 
-int intervals_param(const MethodSpec& spec) {
-  const double v = spec.number("n", 64);
-  if (!(v >= 1.0 && v <= 1e9 && v == std::floor(v)))
-    throw std::invalid_argument("method " + spec.name +
-                                ": n must be a whole number in [1, 1e9], got " + spec.text("n", ""));
-  return static_cast<int>(v);
-}
 
 }  // namespace
 
@@ -85,8 +78,8 @@ CompositeResult pl_nerf_composite(const double* sigma, const double* colour, con
 NerfOptions nerf_options(const MethodSpec& spec) {
   NerfOptions o;
   const std::string where = "method " + spec.name + ": ";
-  o.n = intervals_param(spec);
-  const std::string at = spec.text("at", "mid");
+  o.n = spec.integer("n");  // ranges and choices: the method table (registry.cpp)
+  const std::string at = spec.text("at");
   if (at == "mid") {
     o.at = NerfSampleAt::mid;
   } else if (at == "near") {
@@ -94,7 +87,7 @@ NerfOptions nerf_options(const MethodSpec& spec) {
   } else {
     throw std::invalid_argument(where + "at must be mid or near, got '" + at + "'");
   }
-  const std::string last = spec.text("last", "interval");
+  const std::string last = spec.text("last");
   if (last == "interval") {
     o.last_inf = false;
   } else if (last == "inf") {
@@ -107,8 +100,8 @@ NerfOptions nerf_options(const MethodSpec& spec) {
 
 NerfOptions pl_nerf_options(const MethodSpec& spec) {
   NerfOptions o;
-  o.n = intervals_param(spec);
-  const std::string colour = spec.text("color", "mid");
+  o.n = spec.integer("n");
+  const std::string colour = spec.text("color");
   if (colour == "mid") {
     o.mid_colour = true;
   } else if (colour == "near") {

@@ -108,9 +108,10 @@ double step_count(double length, double step) {
 
 PreintegratedOptions preintegrated_options(const MethodSpec& spec) {
   PreintegratedOptions o;
-  o.size = table::parse_int(spec, "size", o.size, 2, 16384);
-  o.lookup = table::parse_lookup(spec, o.lookup, false);
-  o.dims = table::parse_int(spec, "dims", o.dims, 2, 3);
+  // Types and ranges: the method table (registry.cpp); here what combines parameters.
+  o.size = spec.integer("size");
+  o.lookup = table::parse_lookup(spec);
+  o.dims = spec.integer("dims");
   const auto reject = [&](const char* key, const char* why) {
     if (spec.params.count(key))
       throw std::invalid_argument("method " + spec.name + ": " + key + " " + why);
@@ -118,16 +119,17 @@ PreintegratedOptions preintegrated_options(const MethodSpec& spec) {
   if (o.dims == 2) {
     reject("max_length", "applies to dims=3 only");
     reject("lengths", "applies to dims=3 only");
-    o.step = spec.number("step", o.step);
-    if (!(o.step > 0.0))
-      throw std::invalid_argument("method " + spec.name + ": step must be > 0");
+    o.step = spec.number("step");
   } else {
     reject("step", "applies to dims=2 only (dims=3 looks each segment up whole)");
-    o.max_length = spec.number("max_length", o.max_length);
-    if (!(o.max_length > 0.0))
-      throw std::invalid_argument("method " + spec.name + ": max_length must be > 0");
-    o.lengths = table::parse_int(spec, "lengths", std::min(o.size, 32), 2, 4096);
+    o.max_length = spec.number("max_length");
+    o.lengths = spec.has("lengths") ? spec.integer("lengths") : std::min(o.size, 32);
   }
+  if (preintegrated_table_bytes(o) > kPreintegratedMaxTableBytes)
+    throw std::invalid_argument(
+        "method " + spec.name + ": a table of " +
+        std::to_string(static_cast<long long>(preintegrated_table_bytes(o) / (1 << 20))) +
+        " MiB exceeds the 1 GiB limit; lower size or lengths");
   return o;
 }
 
@@ -204,11 +206,13 @@ PreintegratedIntegrator::PreintegratedIntegrator(const TransferFunctions& tf,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-double PreintegratedIntegrator::table_bytes() const {
-  const double entries = static_cast<double>(opt_.size) * opt_.size;
-  const double planes = opt_.dims == 2 ? 1.0 : opt_.lengths;
+double preintegrated_table_bytes(const PreintegratedOptions& o) {
+  const double entries = static_cast<double>(o.size) * o.size;
+  const double planes = o.dims == 2 ? 1.0 : o.lengths;
   return entries * kChannels * (1.0 + planes) * sizeof(double);
 }
+
+double PreintegratedIntegrator::table_bytes() const { return preintegrated_table_bytes(opt_); }
 
 PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far, double s_exit,
                                                                     double length) const {

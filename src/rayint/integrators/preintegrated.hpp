@@ -19,7 +19,11 @@ struct PreintegratedOptions {
   int lengths = 0;                        // dims = 3: planes on the length axis (0: auto)
 };
 
-PreintegratedOptions preintegrated_options(const MethodSpec& spec);  // throws invalid_argument
+// Reads a validated spec; throws std::invalid_argument for combinations that mean nothing
+// (step with dims=3, ...) or a table over kPreintegratedMaxTableBytes.
+PreintegratedOptions preintegrated_options(const MethodSpec& spec);
+// Bytes of the table these options build: size^2 entries x 3 channels x (1 + planes) doubles.
+double preintegrated_table_bytes(const PreintegratedOptions& o);
 
 // Limits (their origin is documented in preintegrated.cpp).
 inline constexpr long kPreintegratedMaxLookupsPerRay = 1L << 22;

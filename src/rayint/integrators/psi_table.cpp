@@ -201,8 +201,8 @@ RayResult PsiTableIntegrator::integrate(const Ray& ray, Diagnostics* diag) const
 
 std::unique_ptr<RayIntegrator> make_psi_table(const MethodSpec& spec,
                                               const TransferFunctions& tf) {
-  const int size = table::parse_int(spec, "size", 512, 2, 8192);
-  const table::Lookup lookup = table::parse_lookup(spec, table::Lookup::linear, true);
+  const int size = spec.integer("size");  // range: registry.cpp (16 B per entry, 1 GiB at 8192)
+  const table::Lookup lookup = table::parse_lookup(spec);
   return std::make_unique<PsiTableIntegrator>(tf, size, lookup);
 }
 

@@ -137,13 +137,6 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
   }
 }
 
-int count_param(const MethodSpec& spec, const char* key, int fallback) {
-  const double v = spec.number(key, fallback);
-  if (!(v >= 1.0 && v <= 1e9 && v == std::floor(v)))
-    throw std::invalid_argument("method " + spec.name + ": " + key +
-                                " must be a whole number in [1, 1e9], got " + spec.text(key, ""));
-  return static_cast<int>(v);
-}
 
 }  // namespace
 
@@ -152,11 +145,10 @@ RiemannOptions riemann_options(const MethodSpec& spec) {
   const std::string where = "method " + spec.name + ": ";
   if (spec.params.count("n") && spec.params.count("dt"))
     throw std::invalid_argument(where + "give n (samples per segment) or dt (step), not both");
-  o.n = count_param(spec, "n", 64);
-  o.dt = spec.number("dt", 0.0);
-  if (spec.params.count("dt") && !(o.dt > 0.0))
-    throw std::invalid_argument(where + "dt must be > 0");
-  const std::string order = spec.text("order", "btf");
+  // Types and ranges: the method table (registry.cpp); here only what combines parameters.
+  o.n = spec.integer("n");
+  o.dt = spec.has("dt") ? spec.number("dt") : 0.0;
+  const std::string order = spec.text("order");
   if (order == "btf") {
     o.order = CompositingOrder::back_to_front;
   } else if (order == "ftb") {
@@ -164,10 +156,9 @@ RiemannOptions riemann_options(const MethodSpec& spec) {
   } else {
     throw std::invalid_argument(where + "order must be btf or ftb, got '" + order + "'");
   }
-  const std::string correction = spec.text("correction", "exp");
-  const bool has_ref = spec.params.count("ref_dt") > 0;
-  o.ref_dt = spec.number("ref_dt", 0.0);
-  if (has_ref && !(o.ref_dt > 0.0)) throw std::invalid_argument(where + "ref_dt must be > 0");
+  const std::string correction = spec.text("correction");
+  const bool has_ref = spec.has("ref_dt");
+  o.ref_dt = has_ref ? spec.number("ref_dt") : 0.0;
   if (correction == "exp") {
     o.opacity = has_ref ? OpacityRule::corrected : OpacityRule::exact;
   } else if (correction == "none") {

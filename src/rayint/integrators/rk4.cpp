@@ -67,11 +67,7 @@ RayResult Rk4Integrator::integrate(const Ray& ray, Diagnostics* diag) const {
 }
 
 std::unique_ptr<RayIntegrator> make_rk4(const MethodSpec& spec, const TransferFunctions& tf) {
-  const double n = spec.number("n", 16);
-  if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n)))
-    throw std::invalid_argument("method rk4: n must be a whole number in [1, 1e9], got " +
-                                spec.text("n", ""));
-  return std::make_unique<Rk4Integrator>(tf, static_cast<int>(n));
+  return std::make_unique<Rk4Integrator>(tf, spec.integer("n"));  // range: registry.cpp
 }
 
 }  // namespace rayint

@@ -30,25 +30,12 @@ inline const char* lookup_name(Lookup l) {
 }
 
 // Reads spec's "lookup" parameter; `allow_floor` admits VTK's floor indexing.
-inline Lookup parse_lookup(const MethodSpec& spec, Lookup fallback, bool allow_floor) {
-  const std::string text = spec.text("lookup", lookup_name(fallback));
+// The lookup parameter of a validated spec (its choices are in the method table, registry.cpp).
+inline Lookup parse_lookup(const MethodSpec& spec) {
+  const std::string text = spec.text("lookup");
   if (text == "nearest") return Lookup::nearest;
-  if (text == "linear") return Lookup::linear;
-  if (text == "floor" && allow_floor) return Lookup::floor;
-  throw std::invalid_argument("method " + spec.name + ": lookup must be nearest or linear" +
-                              std::string(allow_floor ? " or floor" : "") + ", got '" + text +
-                              "'");
-}
-
-// Reads an integer parameter >= lo (and <= hi); rejects fractions.
-inline int parse_int(const MethodSpec& spec, const std::string& key, int fallback, int lo,
-                     int hi) {
-  const double v = spec.number(key, fallback);
-  if (v != std::floor(v) || v < lo || v > hi)
-    throw std::invalid_argument("method " + spec.name + ": " + key + " must be an integer in [" +
-                                std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                                spec.text(key, ""));
-  return static_cast<int>(v);
+  if (text == "floor") return Lookup::floor;
+  return Lookup::linear;
 }
 
 struct GridCoord {

@@ -38,16 +38,21 @@ nlohmann::json to_json(const ReferenceRay& ref) {
           {"quadrature_subintervals", ref.subintervals}};
 }
 
+// A failed outcome has no numbers: intensity, errors and time are null, "failed" is true and
+// "failure" says why.
 nlohmann::json to_json(const MethodOutcome& o, bool with_reference) {
-  nlohmann::json j = {{"intensity", rgb_json(o.result.intensity)},
-                      {"transmittance", rgb_json(o.result.transmittance)},
-                      {"seconds_per_ray", o.seconds_per_ray},
-                      {"finite", o.finite}};
+  const bool ok = !o.failed();
+  const auto rgb = [ok](const Rgb& v) { return ok ? rgb_json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j = {{"intensity", rgb(o.result.intensity)},
+                      {"transmittance", rgb(o.result.transmittance)},
+                      {"seconds_per_ray", ok ? number_or_null(o.seconds_per_ray) : nlohmann::json(nullptr)},
+                      {"finite", o.finite},
+                      {"failed", !ok}};
   if (with_reference) {
-    j["abs_error"] = rgb_json(o.abs_error);
-    j["rel_error"] = rgb_json(o.rel_error);
-    j["ulp_error"] = rgb_json(o.ulp_error);
-    j["transmittance_rel_error"] = rgb_json(o.transmittance_rel_error);
+    j["abs_error"] = rgb(o.abs_error);
+    j["rel_error"] = rgb(o.rel_error);
+    j["ulp_error"] = rgb(o.ulp_error);
+    j["transmittance_rel_error"] = rgb(o.transmittance_rel_error);
   }
   const nlohmann::json d = to_json(o.diagnostics);
   j["branches"] = d["branches"];
@@ -72,7 +77,21 @@ nlohmann::json to_json(const CaseEvaluation& c) {
     if (c.with_reference) ray["reference"] = to_json(c.rays[i].reference);
     rays.push_back(std::move(ray));
   }
-  nlohmann::json j = {{"name", c.name}, {"file", c.source}, {"description", c.description}, {"rays", rays}};
+  // Per method over the rays: the failed count and the largest errors over the rays that did not
+  // fail (null when none was scored).
+  nlohmann::json summary = nlohmann::json::array();
+  for (const MethodSummary& s : summarise_methods(c)) {
+    nlohmann::json m = {{"method", s.method}, {"rays", s.rays}, {"failed", s.failed}};
+    if (c.with_reference) {
+      m["max_rel_error"] = number_or_null(s.max_rel_error);
+      m["max_ulp_error"] = number_or_null(s.max_ulp_error);
+    }
+    m["mean_seconds_per_ray"] = number_or_null(s.mean_seconds_per_ray);
+    if (s.failed > 0) m["first_failure"] = s.first_failure;
+    summary.push_back(std::move(m));
+  }
+  nlohmann::json j = {{"name", c.name}, {"file", c.source}, {"description", c.description},
+                      {"summary", summary}, {"rays", rays}};
   if (!c.with_reference) j["reference"] = "skipped";
   if (c.mesh_repairs) j["mesh_repairs"] = to_json(*c.mesh_repairs);
   return j;
@@ -81,7 +100,8 @@ nlohmann::json to_json(const CaseEvaluation& c) {
 nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases) {
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& c : cases) arr.push_back(to_json(c));
-  return {{"tool", "rayint"}, {"report", "eval"}, {"cases", arr}};
+  // "failed": method-ray outcomes that failed, over all cases (0: every method ran on every ray).
+  return {{"tool", "rayint"}, {"report", "eval"}, {"failed", failed_outcomes(cases)}, {"cases", arr}};
 }
 
 std::string eval_progress_line(const std::string& case_name, const EvalProgress& p, double seconds) {

@@ -13,6 +13,11 @@ nlohmann::json values_json(const SlabValues& v) {
 
 }  // namespace
 
+std::string pn_label(int order) {
+  const std::string name = "P" + std::to_string(order);
+  return order == 1 ? name + " (the diffusion approximation of renderers)" : name;
+}
+
 nlohmann::json to_json(const Estimate& e) {
   return {{"mean", e.mean}, {"std_error", e.std_error}, {"lo95", e.lo95()}, {"hi95", e.hi95()}};
 }
@@ -40,6 +45,22 @@ nlohmann::json slab_run_json(nlohmann::json j, const SlabRun& run) {
     j["integral_equation"] = values_json(r.values);
     j["integral_equation"]["error_estimate"] = values_json(r.error_estimate);
     j["integral_equation"]["finest_segments"] = r.finest_segments;
+  }
+  if (run.pn) {
+    const PnSolution& s = *run.pn;
+    const PnOptions& o = run.options.pn_options;
+    nlohmann::json pn = values_json(s.values);
+    pn["order"] = o.order;
+    pn["boundary"] = o.boundary == PnBoundary::marshak ? "marshak" : "mark";
+    pn["label"] = pn_label(o.order);
+    pn["seconds"] = run.pn_seconds;
+    pn["series_intensity_up_top"] = s.series_up_top;
+    pn["series_intensity_down_bottom"] = s.series_down_bottom;
+    const PnDiagnostics& d = s.diagnostics;
+    pn["diagnostics"] = {{"modes", d.modes}, {"kappa_min", d.kappa_min}, {"kappa_max", d.kappa_max},
+                         {"conservative", d.conservative}, {"resonance_averaged", d.resonance_averaged},
+                         {"rcond", d.rcond}};
+    j["pn"] = pn;
   }
   if (run.single_scattering_closed_form)
     j["single_scattering_closed_form"] = values_json(*run.single_scattering_closed_form);

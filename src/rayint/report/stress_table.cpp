@@ -37,10 +37,10 @@ std::string method_row(const std::string& regime, const std::string& samples, co
                        const MethodStress& m) {
   char line[512];
   std::snprintf(line, sizeof line,
-                "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7ld %6ld  %s\n", regime.c_str(),
+                "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7ld %6ld %6ld  %s\n", regime.c_str(),
                 m.method.c_str(), samples.c_str(), pieces.c_str(), g3(m.rel.max).c_str(),
                 g3(m.rel.p99).c_str(), g3(m.rel.median).c_str(), g3(m.ulp.max).c_str(),
-                g3(m.ulp.p99).c_str(), g3(m.ulp.median).c_str(), m.non_finite, m.underflow,
+                g3(m.ulp.p99).c_str(), g3(m.ulp.median).c_str(), m.non_finite, m.failures, m.underflow,
                 branch_shares(m.branches).c_str());
   return line;
 }
@@ -53,11 +53,11 @@ std::string stress_table(const StressReport& r) {
   std::string out = "rayint stress: seed " + std::to_string(r.seed) + ", " +
                     std::to_string(r.count) + " pieces requested, methods " + methods + "\n";
   char line[512];
-  std::snprintf(line, sizeof line, "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7s %6s  %s\n",
+  std::snprintf(line, sizeof line, "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7s %6s %6s  %s\n",
                 "regime", "method", "samples", "pieces", "max rel", "p99 rel", "med rel",
-                "max ulp", "p99 ulp", "med ulp", "nonfin", "uflow", "branches");
+                "max ulp", "p99 ulp", "med ulp", "nonfin", "failed", "uflow", "branches");
   out += line;
-  out += std::string(150, '-') + "\n";
+  out += std::string(157, '-') + "\n";
   long samples = 0, pieces = 0;
   for (const auto& reg : r.regimes) {
     samples += reg.samples;
@@ -65,11 +65,12 @@ std::string stress_table(const StressReport& r) {
     for (const auto& m : reg.methods)
       out += method_row(reg.regime, std::to_string(reg.samples), std::to_string(reg.pieces), m);
   }
-  out += std::string(150, '-') + "\n";
+  out += std::string(157, '-') + "\n";
   for (const auto& m : r.overall)
     out += method_row("all", std::to_string(samples), std::to_string(pieces), m);
   out += "\nrel: relative error of the intensity (largest over a sample's channels); ulp: the same\n"
-         "in units in the last place; nonfin: non-finite results or failures; uflow: samples with\n"
+         "in units in the last place (both over the samples that did not fail); nonfin: non-finite\n"
+         "results or failures; failed: of those, samples where the method threw; uflow: samples with\n"
          "a reference below 1e-290 in magnitude, scored by absolute error instead (largest:";
   double max_uf = 0;
   for (const auto& m : r.overall) max_uf = std::max(max_uf, m.max_abs_error_underflow);

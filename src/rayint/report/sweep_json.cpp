@@ -23,8 +23,9 @@ nlohmann::json to_json(const SettingResult& s, double exact_seconds_per_ray) {
                         {"rays", c.rays},
                         {"failed_rays", c.failed_rays},
                         {"nonfinite", c.nonfinite},
-                        {"max_error", number_or_null(c.max_error)},
-                        {"median_error", number_or_null(c.median_error)},
+                        // null where no ray of the case ran (all failed): never an error of 0
+                        {"max_error", c.rays > c.failed_rays ? number_or_null(c.max_error) : nullptr},
+                        {"median_error", c.rays > c.failed_rays ? number_or_null(c.median_error) : nullptr},
                         {"seconds_per_ray", c.seconds_per_ray}});
   nlohmann::json j = {
       {"label", s.label},
@@ -34,8 +35,8 @@ nlohmann::json to_json(const SettingResult& s, double exact_seconds_per_ray) {
       {"channels", s.channels},
       {"nonfinite", s.nonfinite},
       {"complete", s.complete()},
-      {"max_error", number_or_null(s.max_error)},
-      {"median_error", number_or_null(s.median_error)},
+      {"max_error", s.channels > 0 ? number_or_null(s.max_error) : nullptr},  // over the rays that ran
+      {"median_error", s.channels > 0 ? number_or_null(s.median_error) : nullptr},
       {"seconds_per_ray", s.seconds_per_ray},
       {"median_seconds_per_ray", s.median_seconds_per_ray},
       {"cost_vs_exact", cost_ratio(s.seconds_per_ray, exact_seconds_per_ray)},

@@ -80,6 +80,22 @@ std::string sweep_targets_table(const SweepResult& r) {
     out += line;
   }
   if (r.truncated) out += "truncated: " + r.truncation + "\n";
+  // Settings that failed on some rays (threw, e.g. particle on a case with several transfer
+  // functions): their errors are over the other rays only, and they never meet a target.
+  for (const auto& m : r.methods) {
+    std::size_t failed_settings = 0;
+    const SettingResult* first = nullptr;
+    for (const auto& s : m.settings)
+      if (s.failed_rays > 0) {
+        ++failed_settings;
+        if (!first) first = &s;
+      }
+    if (failed_settings == 0) continue;
+    out += "failed: " + m.method + ": " + std::to_string(failed_settings) + " of " +
+           std::to_string(m.settings.size()) + " settings failed on some rays (" + first->label +
+           " on " + std::to_string(first->failed_rays) + " of " + std::to_string(first->rays) +
+           " rays; first: " + first->failure + ")\n";
+  }
   return out;
 }
 

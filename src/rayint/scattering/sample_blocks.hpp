@@ -118,6 +118,30 @@ struct MonteCarloPart {
   double seconds = 0;  // wall time, summed over shards
 };
 
+// The blocks a part's nodes cover, when they are one contiguous range [begin, end) (a shard's
+// part always is: shard_range gives it one); {0, 0} with `contiguous` false otherwise.
+struct CoveredBlocks {
+  IndexRange range;
+  bool contiguous = true;
+};
+inline CoveredBlocks covered_blocks(const MonteCarloPart& p) {
+  CoveredBlocks out;
+  if (p.nodes.empty()) return out;
+  std::size_t lo = p.blocks, hi = 0, total = 0;
+  for (const auto& [key, sums] : p.nodes) {
+    const std::size_t first = key.second << key.first;
+    const std::size_t last = std::min(p.blocks, (key.second + 1) << key.first);
+    if (last <= first) continue;
+    lo = std::min(lo, first);
+    hi = std::max(hi, last);
+    total += last - first;
+  }
+  if (total == 0) return out;
+  out.range = {lo, hi};
+  out.contiguous = total == hi - lo;
+  return out;
+}
+
 // What a Monte Carlo solver does with its block sums when it runs in a shard or a merge:
 // record: run only `shard`'s blocks and append its part; replay: run nothing, take the next
 // part (merged from every shard) and finish the tree. Solvers called in a fixed order (the

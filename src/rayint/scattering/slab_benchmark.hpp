@@ -33,6 +33,7 @@
 #include "rayint/scattering/slab_doubling.hpp"
 #include "rayint/scattering/slab_integral_equation.hpp"
 #include "rayint/scattering/slab_monte_carlo.hpp"
+#include "rayint/scattering/pn.hpp"
 
 namespace rayint {
 
@@ -85,6 +86,8 @@ struct BenchmarkRunOptions {
   bool doubling = true;
   bool monte_carlo = true;
   bool integral_equation = true;  // on the isotropic problems
+  bool pn = false;                 // P_N (pn.hpp); one problem or a slab scene only
+  PnOptions pn_options;
   DoublingOptions doubling_options;
   SlabIntegralEquationOptions ie_options;
   SlabMonteCarloOptions mc_options;

@@ -19,6 +19,11 @@ SlabRun run_slab_problem(const SlabProblem& p, const BenchmarkRunOptions& o) {
   }
   if (o.integral_equation && max_order == 0 && p.phase.kind() == PhaseFunction::Kind::isotropic)
     run.integral_equation = solve_slab_integral_equation(p, o.ie_options);
+  if (o.pn && max_order == 0) {
+    const auto t0 = std::chrono::steady_clock::now();
+    run.pn = solve_slab_pn(p, o.pn_options);
+    run.pn_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   if (max_order == 1) run.single_scattering_closed_form = single_scattering(p);
   if (o.monte_carlo) {
     run.mc_split = o.mc_split && max_order != 1;

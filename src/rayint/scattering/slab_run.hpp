@@ -13,7 +13,8 @@ namespace rayint {
 // The methods and their knobs are those of a benchmark run (slab_benchmark.hpp); besides,
 // options.mc_options.max_order 1 runs single scattering only, by Monte Carlo and in closed form.
 // The doubling and the integral equation run only without a max_order; the integral equation on
-// isotropic problems when options.integral_equation (the CLI sets it only with the doubling).
+// isotropic problems when options.integral_equation (the CLI sets it only with the doubling);
+// P_N when options.pn, without a max_order.
 // run_slab_benchmark solves every problem through this one dispatch.
 struct SlabRun {
   BenchmarkRunOptions options;
@@ -21,6 +22,8 @@ struct SlabRun {
   double doubling_seconds = 0;  // wall time of the doubling solve
   std::optional<SlabIntegralEquationResult> integral_equation;
   std::optional<SlabValues> single_scattering_closed_form;  // max_order 1
+  std::optional<PnSolution> pn;  // options.pn, without a max_order
+  double pn_seconds = 0;         // wall time of the P_N solve
   std::optional<SlabEstimates> monte_carlo;
   bool mc_split = false;  // the Monte Carlo estimator that ran
 };

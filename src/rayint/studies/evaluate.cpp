@@ -4,12 +4,61 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "rayint/core/parallel.hpp"
 #include "rayint/core/statistics.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 
 namespace rayint {
+
+void mark_failed(MethodOutcome& o, const std::string& why) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Rgb none{nan, nan, nan};
+  o.failure = why.empty() ? std::string("failed") : why;
+  o.finite = false;
+  o.result = {none, none};
+  o.abs_error = o.rel_error = o.ulp_error = o.transmittance_rel_error = none;
+  o.seconds_per_ray = nan;
+}
+
+std::vector<MethodSummary> summarise_methods(const CaseEvaluation& c) {
+  std::vector<MethodSummary> out;
+  if (c.rays.empty()) return out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t m = 0; m < c.rays.front().methods.size(); ++m) {
+    MethodSummary s;
+    s.method = c.rays.front().methods[m].method;
+    std::size_t ok = 0;
+    double seconds = 0.0;
+    for (std::size_t r = 0; r < c.rays.size(); ++r) {
+      const MethodOutcome& o = c.rays[r].methods[m];
+      ++s.rays;
+      if (o.failed()) {
+        if (s.failed++ == 0) s.first_failure = "ray " + std::to_string(r) + ": " + o.failure;
+        continue;
+      }
+      ++ok;
+      seconds += o.seconds_per_ray;
+      for (int ch = 0; ch < kChannels; ++ch) {
+        s.max_rel_error = std::max(s.max_rel_error, o.rel_error[ch]);
+        s.max_ulp_error = std::max(s.max_ulp_error, o.ulp_error[ch]);
+      }
+    }
+    if (ok == 0 || !c.with_reference) s.max_rel_error = s.max_ulp_error = nan;
+    s.mean_seconds_per_ray = ok > 0 ? seconds / static_cast<double>(ok) : nan;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::size_t failed_outcomes(const std::vector<CaseEvaluation>& cases) {
+  std::size_t n = 0;
+  for (const auto& c : cases)
+    for (const auto& ray : c.rays)
+      for (const auto& o : ray.methods) n += o.failed() ? 1 : 0;
+  return n;
+}
 
 void score_against_reference(MethodOutcome& o, const ReferenceRay& ref) {
   o.finite = true;
@@ -108,8 +157,7 @@ CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& metho
       if (opt.progress)
         opt.progress(EvalProgress{EvalProgress::Stage::methods, r, c.rays.size(), o.method});
       if (!integrators[m]) {
-        o.failure = build_errors[m];
-        o.finite = false;
+        mark_failed(o, build_errors[m]);
         ev.methods.push_back(std::move(o));
         continue;
       }
@@ -123,10 +171,17 @@ CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& metho
             if (!std::isfinite(o.result.intensity[ch]) || !std::isfinite(o.result.transmittance[ch]))
               o.finite = false;
         }
-        if (opt.measure_time) o.seconds_per_ray = time_per_ray(*integrators[m], c.rays[r], opt);
+        if (!o.finite) {
+          // The ODE methods stop early and return NaN; their diagnostics say why.
+          std::string why = "non-finite result (intensity or transmittance is NaN or infinite)";
+          for (const char* stop : {"step_budget_exhausted", "step_size_collapsed"})
+            if (o.diagnostics.branches.count(stop)) why = std::string("did not converge: ") + stop;
+          mark_failed(o, why);
+        } else if (opt.measure_time) {
+          o.seconds_per_ray = time_per_ray(*integrators[m], c.rays[r], opt);
+        }
       } catch (const std::exception& e) {
-        o.failure = e.what();
-        o.finite = false;
+        mark_failed(o, e.what());
       }
       ev.methods.push_back(std::move(o));
     }

@@ -33,16 +33,25 @@ struct EvalOptions {
   double progress_seconds = 1.0;
 };
 
+// One method on one ray. A method that threw (not applicable to the case, did not converge) or
+// returned a non-finite intensity or transmittance has failed: `failure` says why, and its
+// result, errors and time are not numbers (NaN here, null in JSON) -- never an error of 0.
 struct MethodOutcome {
-  std::string method;  // spec label, e.g. "riemann:n=64"
+  std::string method;  // spec label as typed, e.g. "nerf:n=64:at=near"
   RayResult result;
   Diagnostics diagnostics;
   Rgb abs_error{}, rel_error{}, ulp_error{};  // of intensity, per channel
   Rgb transmittance_rel_error{};
   double seconds_per_ray = 0.0;
   bool finite = true;  // all intensities and transmittances finite
-  std::string failure;  // non-empty if the method threw (message)
+  std::string failure;  // why the method failed on this ray; empty if it did not
+  bool failed() const { return !failure.empty(); }
 };
+
+// Marks `o` failed with `why` and makes every number in it NaN, so nothing downstream can read a
+// failure as a value.
+void mark_failed(MethodOutcome& o, const std::string& why);
+
 
 struct RayEvaluation {
   ReferenceRay reference;  // all zero when the case was evaluated without it
@@ -55,6 +64,19 @@ struct CaseEvaluation {
   bool with_reference = true;  // false: reference and error fields were not computed
   std::optional<TetRepairs> mesh_repairs;  // a mesh case: what reading its mesh repaired (set by the caller)
 };
+
+// One method over a case's rays: how many rays, how many failed (and the first failure), and the
+// largest errors over the rays that did not fail (NaN when none was scored).
+struct MethodSummary {
+  std::string method;
+  std::size_t rays = 0, failed = 0;
+  std::string first_failure;  // "ray I: message"
+  double max_rel_error = 0.0, max_ulp_error = 0.0;
+  double mean_seconds_per_ray = 0.0;  // over the rays that did not fail
+};
+std::vector<MethodSummary> summarise_methods(const CaseEvaluation& c);
+// Rays on which some method failed, over all cases.
+std::size_t failed_outcomes(const std::vector<CaseEvaluation>& cases);
 
 // Fills the error fields of `outcome` from its result against `ref`.
 void score_against_reference(MethodOutcome& outcome, const ReferenceRay& ref);

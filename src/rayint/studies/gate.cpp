@@ -21,10 +21,11 @@ bool applies(const GateMethod& m, const std::string& name) {
   return m.only.empty() || std::find(m.only.begin(), m.only.end(), name) != m.only.end();
 }
 
-// Index of the spec labelled like `spec` in `specs`, appended if absent.
+// Index of the spec with the same setting as `spec` in `specs` (whatever the order its
+// parameters were typed in), appended if absent.
 std::size_t index_of(std::vector<MethodSpec>& specs, const MethodSpec& spec) {
   for (std::size_t i = 0; i < specs.size(); ++i)
-    if (specs[i].label() == spec.label()) return i;
+    if (specs[i].canonical() == spec.canonical()) return i;
   specs.push_back(spec);
   return specs.size() - 1;
 }
@@ -65,8 +66,23 @@ MethodStress summarise(const CaseEvaluation& ev, std::size_t method) {
 
 // One check per limit of `gm`. A failed check's note says what went wrong: the first failure
 // (`m.worst.failure`), else where the worst value came from (`where`, may be empty).
+// A method that failed (threw, or did not converge) on some ray or sample adds a check
+// "<prefix>.<method>.failed" (the count, limit 0) whatever its limits: a failure fails the gate
+// even where a limit allows some non-finite results.
 void add_checks(GateReport& report, const std::string& prefix, const GateMethod& gm,
                 const MethodStress& m, const std::string& where) {
+  const std::string failed_name = prefix + "." + gm.spec.label() + ".failed";
+  const bool listed = std::any_of(report.checks.begin(), report.checks.end(),
+                                  [&](const GateCheck& c) { return c.name == failed_name; });
+  if (m.failures > 0 && !listed) {  // once per method, not once per limit set
+    GateCheck c;
+    c.name = failed_name;
+    c.measured = static_cast<double>(m.failures);
+    c.limit = 0;
+    c.pass = false;
+    c.note = m.worst.failure;
+    report.checks.push_back(std::move(c));
+  }
   for (const std::string& metric : gate_metrics()) {
     const auto it = gm.limits.find(metric);
     if (it == gm.limits.end()) continue;
@@ -144,7 +160,7 @@ void run_corpus(const GateConfig& cfg, GateReport& report,
     for (std::size_t k = 0; k < out.methods.size(); ++k) {
       add_checks(report, prefix, cfg.corpus_methods[out.methods[k]],
                  summarise(out.evaluation, out.spec[k]), "");
-      std::vector<Rgb>& rays = report.corpus_results[cfg.corpus_methods[out.methods[k]].spec.label()][cases[i].name];
+      std::vector<Rgb>& rays = report.corpus_results[cfg.corpus_methods[out.methods[k]].spec.canonical()][cases[i].name];
       if (!rays.empty()) continue;  // the same method under another limit set
       for (const RayEvaluation& ray : out.evaluation.rays) {
         const MethodOutcome& o = ray.methods[out.spec[k]];

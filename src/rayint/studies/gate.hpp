@@ -45,7 +45,7 @@ struct GateConfig {
 };
 
 struct GateCheck {
-  std::string name;  // "corpus.<case>.<method>.<metric>", "stress.<regime>.<method>.<metric>",
+  std::string name;  // "corpus.<case>.<method>.<metric>", "corpus.<case>.<method>.failed", "stress.<regime>.<method>.<metric>",
                      // "stress.<regime>.reference_failures", "corpus.<case>.evaluation"
   double measured = 0.0;
   double limit = 0.0;
@@ -55,7 +55,8 @@ struct GateCheck {
 
 struct GateReport {
   std::vector<GateCheck> checks;
-  // Per corpus method (spec label): its per-ray intensities on every case it ran on, for the
+  // Per corpus method (MethodSpec::canonical(), so a baseline matches however the spec was
+  // typed): its per-ray intensities on every case it ran on, for the
   // drift baselines (studies/drift.hpp); NaN where the method threw.
   std::map<std::string, RayResults> corpus_results;
   bool pass() const;

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -159,12 +160,14 @@ class VtkIntegrator final : public RayIntegrator {
   double s_min_ = 0.0, s_max_ = 1.0;
 };
 
-int int_knob(const MethodSpec& spec, const std::string& key, int fallback, int lo, int hi) {
-  const double v = spec.number(key, fallback);
-  if (v != std::floor(v) || v < lo || v > hi)
-    throw std::invalid_argument("method " + spec.name + ": parameter " + key + " must be an integer in [" +
-                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return static_cast<int>(v);
+// VTK's table holds scalar_res^2 x length_res entries of 4 floats (16 B) per component; kept
+// under 1 GiB like rayint's own tables (preintegrated, psi_table).
+void check_vtk_preint(const MethodSpec& spec) {
+  const double bytes = 16.0 * spec.integer("scalar_res") * spec.integer("scalar_res") *
+                       spec.integer("length_res");
+  if (bytes > 1024.0 * 1024.0 * 1024.0)
+    throw std::invalid_argument("a table of " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
+                                " MiB (16 B x scalar_res^2 x length_res) exceeds the 1 GiB limit");
 }
 
 std::unique_ptr<RayIntegrator> make_vtk_linear(const MethodSpec& spec, const TransferFunctions& tf) {
@@ -180,18 +183,16 @@ std::unique_ptr<RayIntegrator> make_vtk_partial(const MethodSpec& spec, const Tr
 std::unique_ptr<RayIntegrator> make_vtk_homogeneous(const MethodSpec& spec,
                                                     const TransferFunctions& tf) {
   auto h = vtkSmartPointer<vtkUnstructuredGridHomogeneousRayIntegrator>::New();
-  h->SetTransferFunctionTableSize(int_knob(spec, "table_size", 1024, 2, 1 << 20));
+  h->SetTransferFunctionTableSize(spec.integer("table_size"));  // range: register_vtk_methods
   return std::make_unique<VtkIntegrator>(spec.name, h, tf);
 }
 
 std::unique_ptr<RayIntegrator> make_vtk_preint(const MethodSpec& spec, const TransferFunctions& tf) {
   auto p = vtkSmartPointer<vtkUnstructuredGridPreIntegration>::New();
-  p->SetIncrementalPreIntegration(int_knob(spec, "incremental", 1, 0, 1));
-  p->SetIntegrationTableScalarResolution(int_knob(spec, "scalar_res", 128, 2, 4096));
-  p->SetIntegrationTableLengthResolution(int_knob(spec, "length_res", 256, 2, 4096));
-  const double max_length = spec.number("max_length", 1.0);
-  if (!(max_length > 0.0))
-    throw std::invalid_argument("method vtk_preint: parameter max_length must be > 0");
+  p->SetIncrementalPreIntegration(spec.integer("incremental"));  // ranges: register_vtk_methods
+  p->SetIntegrationTableScalarResolution(spec.integer("scalar_res"));
+  p->SetIntegrationTableLengthResolution(spec.integer("length_res"));
+  const double max_length = spec.number("max_length");
   return std::make_unique<VtkIntegrator>(spec.name, p, tf, max_length);
 }
 
@@ -200,10 +201,23 @@ std::unique_ptr<RayIntegrator> make_vtk_preint(const MethodSpec& spec, const Tra
 void register_vtk_methods() {
   static std::once_flag once;
   std::call_once(once, [] {
-    register_method("vtk_linear", "", make_vtk_linear);
-    register_method("vtk_partial_preint", "", make_vtk_partial);
-    register_method("vtk_preint", "incremental scalar_res length_res max_length", make_vtk_preint);
-    register_method("vtk_homogeneous", "table_size", make_vtk_homogeneous);
+    register_method({"vtk_linear", "VTK's vtkUnstructuredGridLinearRayIntegrator", {},
+                     make_vtk_linear, nullptr});
+    register_method({"vtk_partial_preint", "VTK's vtkUnstructuredGridPartialPreIntegration", {},
+                     make_vtk_partial, nullptr});
+    register_method(
+        {"vtk_preint",
+         "VTK's vtkUnstructuredGridPreIntegration (a scalar x scalar x length table)",
+         {integer_param("incremental", "1", 0, 1, "1: incremental pre-integration"),
+          integer_param("scalar_res", "128", 2, 4096, "table points per scalar axis"),
+          integer_param("length_res", "256", 2, 4096, "table points on the length axis"),
+          number_param("max_length", "1", 0.0, true, std::numeric_limits<double>::infinity(), false,
+                       "longest segment length in the table")},
+         make_vtk_preint, check_vtk_preint});
+    register_method({"vtk_homogeneous", "VTK's vtkUnstructuredGridHomogeneousRayIntegrator",
+                     {integer_param("table_size", "1024", 2, 1 << 20,
+                                    "transfer-function table entries")},
+                     make_vtk_homogeneous, nullptr});
     register_sweep_axis({"vtk_linear", "", {}});  // `rayint bench`: VTK's knob-free methods
     register_sweep_axis({"vtk_partial_preint", "", {}});
     register_sweep_axis({"vtk_homogeneous", "table_size", {"64", "256", "1024", "4096"}});
