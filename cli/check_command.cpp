@@ -67,7 +67,8 @@ void set_check_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_option("--artifacts", opt->image.artifacts,
-                  "Images: directory for error_heat_map.png and worst_pixel_<i>.json")
+                  "Images: folder (created when missing) for error_heat_map.png and worst_pixel_<i>.json; "
+                  "without it nothing but the diff is written")
       ->capture_default_str();
   cmd->add_option("--junit", opt->image.junit, "Also write the result as JUnit XML to this file");
   add_threads_option(cmd, opt->image.threads, "Images: render threads (0: all cores)");
@@ -98,6 +99,7 @@ void set_check_command(CLI::App& app) {
                 "Skip the 50-digit reference (reported for context only; costs time on big cases)");
   cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");
   add_strict_mesh_flag(cmd, opt->mesh.strict);
+  add_quiet_flag(cmd, opt->image.quiet);  // the verdict line on stderr; the diff and exit status stay
   cmd->callback([opt, candidate_json, candidate_image] {
     if (candidate_image->count() > 0) {
       ImageCheckOptions io = opt->image;
@@ -119,7 +121,7 @@ void set_check_command(CLI::App& app) {
     if (!opt->image.junit.empty())
       write_file_atomically(opt->image.junit, junit_xml({check_junit(result)}));
     std::cout.flush();
-    std::cerr << check_summary_line(result) << std::endl;
+    if (!opt->image.quiet) std::cerr << check_summary_line(result) << std::endl;
     // The callback cannot return an exit code and main() maps exceptions to 2 (bad input), so a
     // failed check ends here with 1, after its diff is written and flushed.
     if (!result.pass) throw ChecksFailed{};

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "rayint/core/output_dir.hpp"
 #include "render_kinds.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/core/error.hpp"
@@ -91,8 +92,7 @@ Image read_variance(const ImageCheckOptions& o, const Image& candidate) {
   } else if (o.samples > 0) {
     throw InputError("--samples: needs --candidate-variance (the per-sample variance image)");
   }
-  if (!std::filesystem::is_directory(o.artifacts))
-    throw InputError(o.artifacts + ": --artifacts: not a directory");
+  if (!o.artifacts.empty()) ensure_output_directory(o.artifacts, "--artifacts");
   return variance;
 }
 
@@ -125,9 +125,11 @@ void finish_check(const ImageCheckOptions& o, const Image& expected, const Image
   ctx.flip_x = o.flip_x;
   ctx.flip_y = o.flip_y;
   if (o.alpha_mode == "premultiplied" || o.alpha_mode == "straight") ctx.alpha_mode = o.alpha_mode;
-  ctx.heat_map = join(o.artifacts, "error_heat_map.png");
-  write_png(ctx.heat_map, error_heat_map(cmp.rel_error, cmp.width, cmp.height));
-  write_worst(cmp, ctx);
+  if (!o.artifacts.empty()) {  // without --artifacts nothing but the diff (-o) is written
+    ctx.heat_map = join(o.artifacts, "error_heat_map.png");
+    write_png(ctx.heat_map, error_heat_map(cmp.rel_error, cmp.width, cmp.height));
+    write_worst(cmp, ctx);
+  }
   emit(image_check_json(ctx, cmp).dump(2) + "\n", o.output);
   if (!o.junit.empty())
     write_file_atomically(o.junit, junit_xml({ctx.z_test ? z_test_junit(ctx.case_name, z, o.min_fraction)
@@ -187,8 +189,10 @@ void run_scene_image_check(const ImageCheckOptions& o, const nlohmann::json& roo
 
   const ReferenceImage ref = pipeline->reference_image(o.threads);
   ImageCheckContext::SceneReference info;
-  info.image = join(o.artifacts, "reference.npy");
-  write_image(info.image, ref.value);
+  if (!o.artifacts.empty()) {
+    info.image = join(o.artifacts, "reference.npy");
+    write_image(info.image, ref.value);
+  }
   info.max_error = ref.max_error;
   info.unconverged = ref.unconverged;
   info.evaluations = ref.evaluations;

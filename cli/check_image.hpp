@@ -14,7 +14,7 @@ struct ImageCheckOptions {
   bool flip_x = false, flip_y = false;
   std::string alpha_mode = "ignore";  // --candidate-alpha: ignore | premultiplied | straight
   int worst = 3;
-  std::string artifacts = ".";     // heat map and worst-pixel case files go here
+  std::string artifacts;  // heat map, worst-pixel case files (and a scene's reference.npy); empty: none
   std::string output;              // JSON diff; empty: stdout
   std::string junit;               // JUnit XML; empty: none
   unsigned threads = 0;

@@ -17,6 +17,9 @@
 
 namespace rayint::cli {
 
+// From this many rays on (a 32 x 32 camera), eval warns before it computes the reference.
+constexpr std::size_t kManyRays = 1024;
+
 void set_eval_command(CLI::App& app) {
   struct Options {
     std::vector<std::string> files;
@@ -92,6 +95,17 @@ void set_eval_command(CLI::App& app) {
       eo.progress = [&](const EvalProgress& p) {
         if (line_due()) std::fputs(eval_progress_line(name, p, seconds()).c_str(), stderr);
       };
+    // A camera case is one ray per pixel: say what the 50-digit reference is about to cost.
+    if (!opt->quiet && eo.with_reference)
+      for (const Case& c : cases)
+        if (c.rays.size() >= kManyRays) {
+          std::size_t segments = 0;
+          for (const Ray& r : c.rays) segments += r.segments.size();
+          std::fprintf(stderr,
+                       "eval: %s: %zu rays, %zu segments: the 50-digit reference traces every one "
+                       "(minutes or more); --no-reference skips it, `rayint render` draws the image\n",
+                       c.name.c_str(), c.rays.size(), segments);
+        }
     std::vector<CaseEvaluation> results;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       name = cases[i].name;

@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "data_dir.hpp"
 #include "options.hpp"
 #include "rayint/studies/gate.hpp"
+#include "rayint/core/output_dir.hpp"
 #include "rayint/input/gate_config.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/input/baseline_reader.hpp"
@@ -100,7 +102,8 @@ void set_gate_command(CLI::App& app) {
       "including an invalid method spec in it. docs/exit-codes.md");
   cmd->add_option("--config", opt->config,
                   "Gate config (docs/gates.md); its relative paths are resolved against the "
-                  "directory that holds it")
+                  "directory that holds it. Outside a source tree the default is the installed "
+                  "<prefix>/share/rayint/cases/gates.json")
       ->capture_default_str();
   add_threads_option(cmd, opt->threads)->capture_default_str();
   cmd->add_flag("--json", opt->json, "JSON instead of one line per check");
@@ -127,22 +130,20 @@ void set_gate_command(CLI::App& app) {
       throw InputError("--candidate: needs --baseline DIR or --write-baseline DIR");
     std::map<std::string, Baseline> baselines;  // read before the run: bad input fails early
     if (!opt->baseline.empty()) {
-      if (!std::filesystem::is_directory(opt->baseline))
-        throw InputError(opt->baseline + ": --baseline: not a directory");
+      require_input_directory(opt->baseline, "--baseline");
       for (const auto& e : std::filesystem::directory_iterator(opt->baseline))
         if (e.path().extension() == ".json") {
           Baseline b = read_baseline_file(e.path().string());
           baselines[b.method] = std::move(b);
         }
     }
-    if (!opt->write_baseline.empty() && !std::filesystem::is_directory(opt->write_baseline))
-      throw InputError(opt->write_baseline + ": --write-baseline: not a directory");
+    if (!opt->write_baseline.empty()) ensure_output_directory(opt->write_baseline, "--write-baseline");
     GateReport report;
     std::map<std::string, RayResults> now;
     if (!opt->candidates.empty()) {
       now["candidates"] = candidate_results(opt->candidates);
     } else {
-      GateConfig config = read_gate_config(opt->config);
+      GateConfig config = read_gate_config(bundled_path(opt->config));
       config.threads = opt->threads;
       std::function<void(const GateProgress&)> progress;
       if (!opt->quiet)

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "shard.hpp"
 #ifdef RAYINT_WITH_VTK
 #include "rayint/vtk/vtk_integrators.hpp"
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
   app.footer("Exit codes: 0 ok; 1 a check, gate or method failed (output written, failures "
              "marked); 2 bad input or usage (docs/exit-codes.md).");
   rayint::cli::build_app(app);
+  rayint::cli::accept_integer_float_forms(app);  // --photons 1e6 (cli/options.hpp)
   for (int i = 2; i < argc; ++i) rayint::cli::shard_context().args.push_back(argv[i]);
   // A command's outputs (-o, --stats, --junit, artifacts, ...) land together or not at all:
   // each is staged beside its target and renamed when the command has finished.

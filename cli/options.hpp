@@ -1,6 +1,8 @@
 #pragma once
 // Options several subcommands register the same way.
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <exception>
 #include <string>
 
 namespace rayint::cli {
@@ -23,6 +25,45 @@ inline CLI::Option* add_strict_mesh_flag(CLI::App* cmd, bool& strict) {
   return cmd->add_flag("--strict-mesh", strict,
                        "Mesh cases: refuse inverted, zero-volume and sliver tetrahedra (default: "
                        "reorient inverted ones, drop degenerate ones, and count both)");
+}
+
+}  // namespace rayint::cli
+
+namespace rayint::cli {
+
+// Integer options accept the forms people type for large counts: `--photons 1e6`, `--count
+// 2.5e5`, `--rays 1000.0` become 1000000, 250000, 1000. Only a number that is exactly an integer
+// (and within +-2^63) is rewritten; `1.5` and `1e30` are left as they are for the option's own
+// check to refuse. Applied to every INT/UINT option of every subcommand by
+// accept_integer_float_forms.
+inline std::string integer_from_float_form(std::string s) {
+  if (s.find_first_of(".eE") == std::string::npos) return s;
+  if (s.find_first_not_of("0123456789+-.eE") != std::string::npos) return s;
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    return s;
+  }
+  if (used != s.size() || !(v == v) || v != static_cast<double>(static_cast<long long>(v)) ||
+      std::abs(v) >= 9.2e18)
+    return s;
+  return std::to_string(static_cast<long long>(v));
+}
+
+inline void accept_integer_float_forms(CLI::App& app) {
+  for (CLI::Option* o : app.get_options()) {
+    const std::string type = o->get_type_name();  // "INT", "UINT", then ":<validator>"...
+    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0)
+      o->transform(CLI::Validator(
+          [](std::string& s) {
+            s = integer_from_float_form(s);
+            return std::string();
+          },
+          "", "integer float forms"));
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) accept_integer_float_forms(*sub);
 }
 
 }  // namespace rayint::cli

@@ -31,7 +31,7 @@ void set_render_command(CLI::App& app) {
   cmd->add_option("--exposure", opts->exposure, "radiance multiplier before 8-bit encoding")
       ->check(CLI::PositiveNumber);
   add_threads_option(cmd, opts->threads, "worker threads (0: all cores)");
-  cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");
+  add_quiet_flag(cmd, opts->quiet);
   add_strict_mesh_flag(cmd, opts->strict_mesh);
   cmd->add_option("--method", opts->methods,
                   "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "
@@ -39,6 +39,9 @@ void set_render_command(CLI::App& app) {
   cmd->add_option("--shard", opts->shard,
                   "mesh cases: I/N, render band I of N of the rows and write a shard file to -o; "
                   "`rayint merge` joins the bands into the image and statistics");
+  cmd->add_flag("--fit", opts->fit,
+                "mesh cases: frame the whole mesh, keeping the camera's direction, up, projection and "
+                "size (without a camera: 256 x 256, looking down -z); the camera used is printed on stderr");
   cmd->add_option("--errors", opts->error_grid,
                   "scenes: measure each term against its reference on K x K pixels (all explicit rays)")
       ->check(CLI::Range(0, 4096));

@@ -18,6 +18,7 @@ struct RenderOptions {
   std::vector<std::string> methods;  // scenes: EFFECT=SPEC overrides of the scene's "methods"
   int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
   std::string shard;                 // mesh cases: --shard I/N (rows)
+  bool fit = false;                  // mesh cases: --fit, frame the mesh (geometry/camera_fit.hpp)
 };
 
 // A slab scene (medium.type "slab"): `rayint slab --scene`, not render or check --candidate-image.

@@ -7,13 +7,19 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include <memory>
+
 #include "commands.hpp"
+#include "progress.hpp"
 #include "render_kinds.hpp"
 #include "shard.hpp"
 #include "rayint/input/shard_reader.hpp"
 #include "rayint/report/shard_json.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/core/atomic_file.hpp"
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
+#include "rayint/geometry/camera_fit.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/render/float_image.hpp"
@@ -30,11 +36,46 @@ std::string heat_map_path(const std::string& output) {
   return p.string() + ".error.png";
 }
 
+// --fit: the case's camera (or a 256 x 256 one looking down -z) moved to frame the mesh's bounds.
+void fit_camera_to_mesh(MeshCase& mc) {
+  if (mc.mesh.points.empty()) throw InputError(mc.mesh_source + ": points: --fit needs a mesh with points");
+  Vec3 lo = mc.mesh.points.front(), hi = lo;
+  for (const Vec3& p : mc.mesh.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  Camera base;
+  if (mc.camera) {
+    base = *mc.camera;
+  } else {
+    base.width = 256;
+    base.height = 256;
+  }
+  try {
+    mc.camera = fit_camera(base, lo, hi);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(mc.source + ": camera: --fit: " + e.what());
+  }
+  {  // the camera used is a result, not progress: printed with -q too
+    const Camera& c = *mc.camera;
+    const auto v = [](const Vec3& x) {
+      return "[" + format_number(x.x()) + ", " + format_number(x.y()) + ", " + format_number(x.z()) + "]";
+    };
+    std::fprintf(stderr, "rayint render: --fit: \"camera\": {\"position\": %s, \"look_at\": %s, \"up\": %s, %s, "
+                 "\"width\": %d, \"height\": %d}\n", v(c.position).c_str(), v(c.look_at).c_str(), v(c.up).c_str(),
+                 c.projection == Camera::Projection::perspective
+                     ? ("\"fov_deg\": " + format_number(c.fov_deg)).c_str()
+                     : ("\"ortho_height\": " + format_number(c.ortho_height)).c_str(),
+                 c.width, c.height);
+  }
+}
+
 }  // namespace
 
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) {
   const json_source::InputFileLog read;  // the mesh files the case names: shard inputs
-  const MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
+  MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
+  if (options.fit) fit_camera_to_mesh(mc);
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   // Validate the methods before the (long) render.
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
@@ -48,11 +89,12 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   const TetTraversal mesh(mc.mesh, mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = options.threads;
+  auto progress_line = std::make_shared<ProgressLine>();
   if (!options.quiet)
-    settings.progress = [](int done, int total) {
-      std::fprintf(stderr, "\rrayint render: %d/%d rows", done, total);
-      if (done == total) std::fputc('\n', stderr);
-      std::fflush(stderr);
+    settings.progress = [progress_line](int done, int total) {
+      progress_line->update("rayint render: " + std::to_string(done) + "/" + std::to_string(total) + " rows",
+                            static_cast<double>(done) / total);
+      if (done == total) progress_line->finish();
     };
   // --shard I/N: render the shard's band of rows and write it as a shard file (-o); merging:
   // the image and its figures assembled from the shards' bands, written as a single run would.

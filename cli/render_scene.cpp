@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "render_kinds.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
@@ -54,17 +55,13 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
   SceneRenderOptions ro;
   ro.threads = options.threads;
   ro.error_grid = options.error_grid;
-  int last_percent = -1;
+  ProgressLine progress_line;
   if (!options.quiet)
-    ro.progress = [&last_percent](double f) {
-      const int percent = static_cast<int>(f * 100.0);
-      if (percent / 10 != last_percent / 10) {
-        last_percent = percent;
-        std::cerr << "\rrendering " << percent << "%" << std::flush;
-      }
+    ro.progress = [&progress_line](double f) {
+      progress_line.update("rendering " + std::to_string(static_cast<int>(f * 100.0)) + "%", f);
     };
   const SceneRenderResult result = pipeline->render(ro);
-  if (!options.quiet) std::cerr << "\r";
+  if (!options.quiet) progress_line.finish();
   PngOptions png;
   png.exposure = options.exposure;
   write_image(options.output, result.image, png);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "shard.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/input/shard_reader.hpp"
@@ -50,7 +51,7 @@ void set_scatter_command(CLI::App& app) {
   cmd->add_option("--images", s->images, "write PNGs of every image into this folder");
   cmd->add_option("--exposure", s->exposure, "PNG exposure (default 1)");
   cmd->add_option("-o,--output", s->output, "JSON report here (atomically) instead of stdout");
-  cmd->add_flag("--quiet", s->quiet, "no progress on stderr");
+  add_quiet_flag(cmd, s->quiet);
   add_shard_option(cmd, s->shard);
   cmd->callback([s]() {
     if (s->width < 1 || s->height < 1 || s->width > 4096 || s->height > 4096)

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "progress.hpp"
+#include "options.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/report/scene_sweep_json.hpp"
@@ -29,7 +31,7 @@ void set_scene_sweep_command(CLI::App& app) {
   cmd->add_option("--errors", opt->errors, "compare on K x K pixels")->check(CLI::Range(1, 4096));
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
-  cmd->add_flag("--quiet", opt->quiet, "no progress on stderr");
+  add_quiet_flag(cmd, opt->quiet);
   cmd->callback([opt] {
     const Scene scene = read_scene_file(opt->input);
     std::vector<std::map<std::string, MethodSpec>> configs;
@@ -50,11 +52,15 @@ void set_scene_sweep_command(CLI::App& app) {
       }
       configs.push_back(c);
     }
+    ProgressLine progress_line;
     const SceneSweepResult r = sweep_scene(scene, configs, opt->errors, opt->threads,
-                                      [opt](std::size_t done, std::size_t total) {
-                                        if (!opt->quiet) std::cerr << "\rconfiguration " << done << "/" << total << std::flush;
+                                      [opt, &progress_line](std::size_t done, std::size_t total) {
+                                        if (!opt->quiet)
+                                          progress_line.update("configuration " + std::to_string(done) + "/" +
+                                                                   std::to_string(total),
+                                                               static_cast<double>(done) / static_cast<double>(total));
                                       });
-    if (!opt->quiet) std::cerr << "\n";
+    if (!opt->quiet) progress_line.finish();
     emit(scene_sweep_json(scene, r).dump(2) + "\n", opt->output);
   });
 }

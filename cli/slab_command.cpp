@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "shard.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/shard_reader.hpp"
@@ -205,7 +206,7 @@ void set_slab_command(CLI::App& app) {
   cmd->add_flag("--mc-analog", s->mc_analog,
                 "Monte Carlo of every order (default: exact orders 0-1 plus Monte Carlo of orders >= 2)");
   cmd->add_flag("--json", s->json, "benchmark: JSON instead of a table");
-  cmd->add_flag("--quiet", s->quiet, "no progress on stderr");
+  add_quiet_flag(cmd, s->quiet);
   cmd->add_option("-o,--output", s->output, "write the result here (atomically) instead of stdout");
   add_shard_option(cmd, s->shard);
   cmd->add_option("--tau", s->tau, "one problem: optical thickness");

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "shard.hpp"
+#include "rayint/core/output_dir.hpp"
 #include "rayint/input/shard_reader.hpp"
 #include "rayint/report/shard_json.hpp"
 #include "rayint/studies/stress.hpp"
@@ -29,7 +30,7 @@ void set_stress_command(CLI::App& app) {
     int threads = 0;
     bool json = false;
     std::string output;
-    std::string worst_dir = "reports/stress-worst";
+    std::string worst_dir;  // empty: the worst samples are not written
     bool no_worst = false;
     bool quiet = false;
     std::string shard;
@@ -61,9 +62,9 @@ void set_stress_command(CLI::App& app) {
   cmd->add_flag("--json", opt->json, "JSON report instead of the table");
   cmd->add_option("-o,--output", opt->output, "Write the report to this file instead of stdout");
   cmd->add_option("--worst-dir", opt->worst_dir,
-                  "Directory for the worst sample of each regime and method, as case files")
-      ->capture_default_str();
-  cmd->add_flag("--no-worst", opt->no_worst, "Do not write the worst samples");
+                  "Folder (created when missing) for the worst sample of each regime and method, as "
+                  "case files; without it they are not written");
+  cmd->add_flag("--no-worst", opt->no_worst, "Do not write the worst samples (the default without --worst-dir)");
   add_quiet_flag(cmd, opt->quiet);
   add_shard_option(cmd, opt->shard);
   cmd->callback([opt] {
@@ -84,6 +85,7 @@ void set_stress_command(CLI::App& app) {
     if (!opt->quiet)
       so.progress = [](const StressProgress& p) { std::fputs(stress_progress_line(p).c_str(), stderr); };
     const bool in_shard = !opt->shard.empty();
+    if (!in_shard && !opt->no_worst && !opt->worst_dir.empty()) ensure_output_directory(opt->worst_dir, "--worst-dir");
     so.shard = begin_shard(opt->shard, opt->output);
     if (in_shard) {  // this shard's part of the run, for `rayint merge`
       write_shard(opt->output, "stress", so.shard, {}, to_json(run_stress_part(so)));
@@ -100,7 +102,7 @@ void set_stress_command(CLI::App& app) {
     } else {
       report = run_stress(so);
     }
-    if (!opt->no_worst) write_worst_cases(report, opt->worst_dir);
+    if (!opt->no_worst && !opt->worst_dir.empty()) write_worst_cases(report, opt->worst_dir);
     emit(opt->json ? to_json(report).dump(2) : stress_table(report), opt->output);
     // A method that failed (threw or returned a non-finite result) or a reference that failed on
     // some sample: written and counted, exit 1.

@@ -23,6 +23,8 @@ packages=(build-essential cmake pkg-config
           python3-dev           # Python.h and the interpreter's config, to compile that module
           python3-numpy         # the module's array arguments and results (exact_pieces, ...)
           python3-pytest        # the module's tests (tests/python/, CTest test python_module)
+          python3-setuptools python3-wheel python3-pip  # `pip install .` of the Python module
+                                #   (pyproject.toml + setup.py; CTest python_pip_install)
           slurm-wlm munge)      # CTest slurm_cluster: a local Slurm cluster runs sharded jobs (scripts/slurm/)
 missing=()
 for p in "${packages[@]}"; do

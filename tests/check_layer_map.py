@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""CTest test `layer_map_matches_targets`: the README's map of the code is the build's.
+"""CTest test `layer_map_matches_targets`: the layer map (docs/architecture.md) is the build's.
 
 usage: check_layer_map.py PROJECT_ROOT
 
@@ -7,7 +7,7 @@ src/CMakeLists.txt declares one target per area of src/rayint/ with the areas it
 (`rayint_area(NAME DEPS a b ...)`); an area sees only those headers, so that list is the layering.
 This fails with one line per difference when
   - a folder of src/rayint/ is not declared as an area (its includes would not be checked), or
-  - the table between the markers `<!-- layer-map -->` and `<!-- /layer-map -->` in README.md
+  - the table between the markers `<!-- layer-map -->` and `<!-- /layer-map -->` in docs/architecture.md
     does not name every area once with exactly the areas it links (column "links").
 """
 import os
@@ -32,7 +32,7 @@ def declared_areas(root):
 
 
 def readme_map(root):
-    text = open(os.path.join(root, "README.md")).read()
+    text = open(os.path.join(root, "docs", "architecture.md")).read()
     m = re.search(r"<!-- layer-map -->(.*?)<!-- /layer-map -->", text, re.S)
     if not m:
         return None
@@ -63,23 +63,23 @@ def main(argv):
             problems.append(f"src/rayint/{d}/ is not an area target in src/CMakeLists.txt")
     rows = readme_map(root)
     if rows is None:
-        problems.append("README.md has no <!-- layer-map --> table")
+        problems.append("docs/architecture.md has no <!-- layer-map --> table")
         rows = {}
     for name, deps in sorted(areas.items()):
         if name not in rows:
-            problems.append(f"README.md layer map: area {name} is missing")
+            problems.append(f"docs/architecture.md layer map: area {name} is missing")
         elif rows[name] is None:
-            problems.append(f"README.md layer map: area {name} is named twice")
+            problems.append(f"docs/architecture.md layer map: area {name} is named twice")
         elif rows[name] != deps:
-            problems.append(f"README.md layer map: {name} links {sorted(deps)} in src/CMakeLists.txt, "
-                            f"the README says {sorted(rows[name])}")
+            problems.append(f"docs/architecture.md layer map: {name} links {sorted(deps)} in src/CMakeLists.txt, "
+                            f"docs/architecture.md says {sorted(rows[name])}")
     for name in sorted(set(rows) - set(areas)):
-        problems.append(f"README.md layer map: {name} is no area of src/CMakeLists.txt")
+        problems.append(f"docs/architecture.md layer map: {name} is no area of src/CMakeLists.txt")
     for p in problems:
         print("layer map: " + p)
     if problems:
         sys.exit(1)
-    print(f"layer map: {len(areas)} areas, README and src/CMakeLists.txt agree")
+    print(f"layer map: {len(areas)} areas, docs/architecture.md and src/CMakeLists.txt agree")
 
 
 if __name__ == "__main__":
