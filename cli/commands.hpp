@@ -25,6 +25,7 @@ void set_cells_command(CLI::App& app);   // cells_command.cpp
 void set_slab_command(CLI::App& app);    // slab_command.cpp
 void set_scatter_command(CLI::App& app);  // scatter_command.cpp
 void set_tf_command(CLI::App& app);       // tf_command.cpp
+void set_grad_command(CLI::App& app); void set_gradcheck_command(CLI::App& app);  // grad*_command.cpp
 
 // Prints `text` to stdout, or writes it atomically to `path` when non-empty.
 void emit(const std::string& text, const std::string& path);

@@ -36,6 +36,7 @@ void build_app(CLI::App& app) {
   set_slab_command(app);
   set_scatter_command(app);
   set_tf_command(app);
+  set_grad_command(app), set_gradcheck_command(app);
   set_merge_command(app, build_app);
 }
 

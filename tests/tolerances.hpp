@@ -244,4 +244,12 @@ struct IntegralEquationTolerances {
   static constexpr double start_independence_rel = 1e-8;
 };
 
+
+// Exact gradients (tests/test_grad.cpp, [grad]): integrators/exact_grad.* against the 50-digit
+// finite-difference reference gradient, max |error| / largest |entry| of the channel.
+struct GradTolerances {
+  // Issue 28 goal ~1e-15 (the forward's accuracy); measured: see test_grad.cpp / docs/gradients.md.
+  static constexpr double exact_vs_reference_rel = 1e-14;
+};
+
 }  // namespace rayint::test

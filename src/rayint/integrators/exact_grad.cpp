@@ -36,9 +36,10 @@
 //       2B M1 = (1 - e^{-T}) - A e0,  2B M2 = w_far - A M1
 //     lose at most 1/g1(2) ~ 10 and 6 more ulps. The e^{-T} terms are dropped for
 //     T > kMomentAsymptoticDepth = 50 (e^{-50} T^2 < 1e-18).
-//   - dawson (B < 0): for T <= 50 the midpoint series above (Q = -B/4 > 0, so every
-//     coefficient e_n has the sign of P^n and S, S_Q are sums of positive terms; S + S_P loses
-//     about A/4, at most 25 ulps at T = 50). For T > 50 (then y0 = A/(2 sqrt(-B)) > 7), the
+//   - dawson (B < 0): for T <= 50 the series in |B| about the exit end,
+//     M_n = sum_k |B|^k/k! m_{n+2k}(A), all terms positive (the midpoint series, whose
+//     S + S_P lost ~A/2 ulps: 1.07e-14 measured at A = 75, is not used here; see
+//     dawson_exit_series). For T > 50 (then y0 = A/(2 sqrt(-B)) > 7), the
 //     e^{-T} terms drop and M1 = d1(y0)/gamma^2, M2 = d2(y0)/gamma^3 with the Laplace series
 //     d_n(y) = int_0^y x^n e^{-2yx + x^2} dx ~ sum_k (n+2k)!/(k! (2y)^{n+2k+1}), whose
 //     smallest term (~e^{-y^2}) and neglected endpoint (~y^n e^{-y^2}) are below 1e-17.
@@ -68,35 +69,62 @@ struct Moments {
   bool converged = true;
 };
 
-// The midpoint series of exact.cpp's thin_weights and its derivatives in P and Q.
-Moments midpoint_moments(double a, double b, double T) {
-  Moments m;
-  m.method = MomentMethod::midpoint_series;
+// 1/(n+1), as exact.cpp's table (the same constant expressions, so the same doubles).
+struct Reciprocals {
+  double r[kMidpointBudget + 4];
+  constexpr Reciprocals() : r() {
+    for (int n = 0; n < kMidpointBudget + 4; ++n) r[n] = 1.0 / (n + 1);
+  }
+};
+constexpr Reciprocals kRecip;
+
+// The midpoint series of exact.cpp's thin_weights (same recurrence e_{n+1} = (P e_n +
+// 2 Q e_{n-1})/(n+1), P = -T/2, Q = -B/4, same arithmetic and stop), with the sums of its
+// derivatives in P and Q: S = 1 + s_minus_1, S_P = sum_{n odd} e_n/(n+2), S_Q = sum_{n even}
+// e_n/(n+3). The loop ends when two successive coefficients are below stop_abs + stop_rel * S.
+struct MidpointSums {
+  double s_minus_1 = 0.0, S_P = 0.0, S_Q = 0.0;
+  int terms = 0;
+  bool converged = true;
+};
+MidpointSums midpoint_sums(double a, double b, double T, double stop_abs, double stop_rel, int budget) {
+  MidpointSums m;
   const double P = -0.5 * T;
   const double Q = -0.125 * (b - a);
   double e_prev = 1.0;  // e_0
   double e = P;         // e_1
-  double S = 1.0, S_P = P / 3.0, S_Q = 1.0 / 3.0;
+  m.S_P = P * kRecip.r[2];
+  m.S_Q = kRecip.r[2];
   int n = 1;
-  for (; n < kMidpointBudget; ++n) {
-    const double e_next = (P * e + 2.0 * Q * e_prev) / (n + 1);  // e_{n+1}
+  for (; n < budget; ++n) {
+    const double e_next = (P * e + 2.0 * Q * e_prev) * kRecip.r[n];  // e_{n+1}
     if ((n & 1) == 1) {  // n + 1 even
-      S += e_next / (n + 2);
-      S_Q += e_next / (n + 4);
+      m.s_minus_1 += e_next * kRecip.r[n + 1];
+      m.S_Q += e_next * kRecip.r[n + 3];
     } else {
-      S_P += e_next / (n + 3);
+      m.S_P += e_next * kRecip.r[n + 2];
     }
     e_prev = e;
     e = e_next;
-    if (std::fabs(e) + std::fabs(e_prev) <= 0x1p-60 * std::fabs(S)) break;
+    if (std::fabs(e) + std::fabs(e_prev) <= stop_abs + stop_rel * (1.0 + m.s_minus_1)) break;
   }
   m.terms = n + 1;
-  m.converged = n < kMidpointBudget;
-  const double decay_mid = std::exp(-0.125 * (3.0 * a + b));
-  m.e0 = decay_mid * S;
-  m.m1 = 0.5 * decay_mid * (S + S_P);
-  m.m2 = 0.25 * decay_mid * (S + 2.0 * S_P + S_Q);
+  m.converged = n < budget;
   return m;
+}
+
+// Moments from the sums: e0 = e^{-tau_m} S, M1 = e^{-tau_m} (S + S_P)/2,
+// M2 = e^{-tau_m} (S + 2 S_P + S_Q)/4 (u = (1 + x)/2).
+Moments midpoint_moments(double decay_mid, const MidpointSums& m) {
+  Moments mo;
+  mo.method = MomentMethod::midpoint_series;
+  mo.terms = m.terms;
+  mo.converged = m.converged;
+  const double S = 1.0 + m.s_minus_1;
+  mo.e0 = decay_mid * S;
+  mo.m1 = 0.5 * decay_mid * (S + m.S_P);
+  mo.m2 = 0.25 * decay_mid * (S + 2.0 * m.S_P + m.S_Q);
+  return mo;
 }
 
 // m_n(A) = int_0^1 u^n e^{-A u} du for n = 0..6.
@@ -197,8 +225,51 @@ Moments erfcx_moments(double A, double B, double T, double t, double e0, double 
   return mo;
 }
 
-Moments dawson_moments(double a, double b, double A, double B, double T) {
-  if (T <= kMomentAsymptoticDepth) return midpoint_moments(a, b, T);
+// Dawson branch, T <= kMomentAsymptoticDepth: the series in |B| about the exit end,
+//   M_n = sum_k |B|^k/k! m_{n+2k}(A),  m_j(A) = int_0^1 u^j e^{-A u} du,
+// all of whose terms are positive (no cancellation). Here A <= 2T <= 100 and |B| <= A/2 <= 50;
+// after K = 4|B| + 40 terms the next is below (e/4)^K < 2^-70 of the sum. m_j: upward
+// m_j = (j m_{j-1} - e^{-A})/A for j <= A (errors shrink by j/A), downward
+// m_{j-1} = (A m_j + e^{-A})/j above (all terms positive), started 60 steps above the largest
+// index needed from m ~ e^{-A}/(j + 1 - A), whose error shrinks by A/j < 1/2 per step.
+Moments dawson_exit_series(double A, double B) {
+  Moments mo;
+  mo.method = MomentMethod::exit_series;
+  const double g2 = -B;
+  const int K = static_cast<int>(std::ceil(4.0 * g2 + 40.0));
+  const int J = 2 * K + 2;
+  const double eA = std::exp(-A);
+  const int up_to = std::min(J, static_cast<int>(std::floor(A)));
+  thread_local std::vector<double> m;
+  const int top = std::max(J, static_cast<int>(std::ceil(2.0 * A))) + 60;
+  m.assign(static_cast<std::size_t>(top) + 1, 0.0);
+  m[0] = -std::expm1(-A) / A;
+  for (int j = 1; j <= up_to; ++j) m[static_cast<std::size_t>(j)] = (j * m[static_cast<std::size_t>(j) - 1] - eA) / A;
+  if (up_to < J) {
+    double mj = eA / (top + 1 - A);
+    for (int j = top; j > up_to + 1; --j) {
+      mj = (A * mj + eA) / j;  // m_{j-1}
+      if (j - 1 <= J) m[static_cast<std::size_t>(j) - 1] = mj;
+    }
+  }
+  double t = 1.0, m1 = 0.0, m2 = 0.0;
+  int k = 0;
+  for (; k <= K; ++k) {
+    if (k > 0) t *= g2 / k;
+    const double d1 = t * m[static_cast<std::size_t>(2 * k + 1)], d2 = t * m[static_cast<std::size_t>(2 * k + 2)];
+    m1 += d1;
+    m2 += d2;
+    if (k > g2 && d1 <= 0x1p-60 * m1 && d2 <= 0x1p-60 * m2) break;
+  }
+  mo.terms = k + 1;
+  mo.converged = k <= K;
+  mo.m1 = m1;
+  mo.m2 = m2;
+  return mo;
+}
+
+Moments dawson_moments(double A, double B, double T) {
+  if (T <= kMomentAsymptoticDepth) return dawson_exit_series(A, B);
   Moments mo;
   mo.method = MomentMethod::asymptotic;
   const double gamma = std::sqrt(-B);
@@ -241,6 +312,7 @@ const char* moment_method_name(MomentMethod m) {
     case MomentMethod::q2_series: return "q2_series";
     case MomentMethod::identity: return "identity";
     case MomentMethod::continued_fraction: return "continued_fraction";
+    case MomentMethod::exit_series: return "exit_series";
     case MomentMethod::asymptotic: return "asymptotic";
   }
   return "?";
@@ -248,19 +320,36 @@ const char* moment_method_name(MomentMethod m) {
 
 PieceOpticsGrad exact_piece_grad(const ChannelPiece& p) {
   PieceOpticsGrad g;
-  g.optics = exact_piece(p);
-  const PieceOptics& o = g.optics;
-  const double t = o.transmittance;
   const double a = p.rho_exit * p.length;
   const double b = p.rho_far * p.length;
   const double T = 0.5 * (a + b);
   const double A = a, B = 0.5 * (b - a);
   Moments mo;
+  if (T > 0.0 && T <= kThinDepth) {
+    // exact_piece's thin branch (thin_weights), the same arithmetic in one loop with the
+    // derivative sums: its weights bit for bit (tests/test_grad.cpp).
+    PieceOptics& o = g.optics;
+    o.branch = ExactBranch::thin_series;
+    o.transmittance = std::exp(-T);
+    const MidpointSums sums = midpoint_sums(a, b, T, 0x1p-56 * 0.25 * T, 0.0, 100);
+    o.terms = sums.terms;
+    o.converged = sums.converged;
+    const double tau_m = 0.125 * (3.0 * a + b);
+    const double em1_mid = std::expm1(-tau_m);
+    const double em1_rest = std::expm1(-0.125 * (a + 3.0 * b));
+    const double decay_mid = 1.0 + em1_mid;
+    o.weight_exit = -em1_mid - decay_mid * sums.s_minus_1;
+    o.weight_far = decay_mid * (sums.s_minus_1 - em1_rest);
+    o.emission = p.kappa_exit * o.weight_exit + p.kappa_far * o.weight_far;
+    mo = midpoint_moments(decay_mid, sums);
+  } else {
+    g.optics = exact_piece(p);
+  }
+  const PieceOptics& o = g.optics;
+  const double t = o.transmittance;
   switch (o.branch) {
     case ExactBranch::transparent:
-      break;
     case ExactBranch::thin_series:
-      mo = midpoint_moments(a, b, T);
       break;
     case ExactBranch::q2_series:
       mo = q2_moments(A, B);
@@ -269,8 +358,8 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p) {
       mo = erfcx_moments(A, B, T, t, o.weight_far + t, o.weight_far);
       break;
     case ExactBranch::dawson:
-      mo = dawson_moments(a, b, A, B, T);
-      if (mo.method == MomentMethod::asymptotic) mo.e0 = o.weight_far + t;
+      mo = dawson_moments(A, B, T);
+      mo.e0 = o.weight_far + t;
       break;
   }
   g.e0 = mo.e0;
@@ -310,12 +399,31 @@ struct PieceRecord {
 }  // namespace
 
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
+  RayGradient grad;
+  exact_ray_gradient(tf, ray, grad);
+  return grad;
+}
+
+void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad) {
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("exact gradient: background must be finite");
-  const std::vector<double> breakpoints = tf.breakpoints();
-  std::vector<PieceRecord> pieces;
-  std::vector<double> ends;
+  // Per-thread scratch: no allocation per ray once warm (timing loops, images).
+  struct Scratch {
+    std::vector<double> breakpoints, ends, incoming;
+    std::vector<PieceRecord> pieces;
+    std::vector<PieceOpticsGrad> optics;
+  };
+  thread_local Scratch scratch;
+  std::vector<double>& breakpoints = scratch.breakpoints;
+  breakpoints.clear();
+  for (const auto* group : {&tf.density, &tf.color})
+    for (const PiecewiseLinear& f : *group) breakpoints.insert(breakpoints.end(), f.scalar.begin(), f.scalar.end());
+  std::sort(breakpoints.begin(), breakpoints.end());
+  breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
+  std::vector<PieceRecord>& pieces = scratch.pieces;
+  pieces.clear();
+  std::vector<double>& ends = scratch.ends;
   for (std::size_t j = 0; j < ray.segments.size(); ++j) {
     const Segment& seg = ray.segments[j];
     if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
@@ -348,11 +456,15 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
     }
   }
 
-  RayGradient grad = RayGradient::zeros(tf, ray);
+  grad.reset(tf, ray);
   const std::size_t n = pieces.size();
   // Forward: the optics of every piece-channel and the light entering it.
-  std::vector<PieceOpticsGrad> optics(n * kChannels);
-  std::vector<double> incoming(n * kChannels);
+  std::vector<PieceOpticsGrad>& optics = scratch.optics;
+  std::vector<double>& incoming = scratch.incoming;
+  if (optics.size() < n * kChannels) {
+    optics.resize(n * kChannels);
+    incoming.resize(n * kChannels);
+  }
   Rgb intensity = ray.background;
   for (std::size_t k = 0; k < n; ++k) {
     const PieceRecord& pr = pieces[k];
@@ -410,7 +522,6 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
     }
   }
   grad.background = adjoint;
-  return grad;
 }
 
 }  // namespace rayint

@@ -14,6 +14,7 @@ enum class MomentMethod {
   q2_series,        // series in B with the moments m_n(A) (the q2 branch's, term by term)
   identity,         // from e0 by integration by parts (erfcx branch, z0 <= kMomentCfFrom)
   continued_fraction,  // erfcx branch, z0 > kMomentCfFrom: ratios g_n/g_{n-1} by their fraction
+  exit_series,      // dawson branch, T <= kMomentAsymptoticDepth: series in |B| about u = 0
   asymptotic,       // dawson branch, T > kMomentAsymptoticDepth: Laplace series at y0
 };
 const char* moment_method_name(MomentMethod m);
@@ -45,5 +46,7 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece);
 // (model/pieces.hpp); compositing far -> near is differentiated in reverse. Throws
 // std::invalid_argument for a non-finite segment length or scalar or background.
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray);
+// The same into `out`, reusing its storage (no allocation per ray once warm).
+void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& out);
 
 }  // namespace rayint

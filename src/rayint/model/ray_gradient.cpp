@@ -7,15 +7,20 @@ namespace rayint {
 
 RayGradient RayGradient::zeros(const TransferFunctions& tf, const Ray& ray) {
   RayGradient g;
-  const std::size_t m = ray.segments.size();
-  g.length.assign(m, Rgb{});
-  g.scalar_far.assign(m, Rgb{});
-  g.scalar_exit.assign(m, Rgb{});
-  for (int c = 0; c < kChannels; ++c) {
-    g.density[c].assign(tf.density[c].scalar.size(), NodeDerivative{});
-    g.color[c].assign(tf.color[c].scalar.size(), NodeDerivative{});
-  }
+  g.reset(tf, ray);
   return g;
+}
+
+void RayGradient::reset(const TransferFunctions& tf, const Ray& ray) {
+  const std::size_t m = ray.segments.size();
+  intensity = background = Rgb{};
+  length.assign(m, Rgb{});
+  scalar_far.assign(m, Rgb{});
+  scalar_exit.assign(m, Rgb{});
+  for (int c = 0; c < kChannels; ++c) {
+    density[c].assign(tf.density[c].scalar.size(), NodeDerivative{});
+    color[c].assign(tf.color[c].scalar.size(), NodeDerivative{});
+  }
 }
 
 double RayGradient::channel_scale(int c) const {

@@ -37,6 +37,8 @@ struct RayGradient {
 
   // Zeroed blocks shaped for `tf` and `ray`.
   static RayGradient zeros(const TransferFunctions& tf, const Ray& ray);
+  // Makes this zeros(tf, ray), keeping the storage.
+  void reset(const TransferFunctions& tf, const Ray& ray);
   // The largest |entry| of channel c over every block (the scale of the pass rule and of the
   // relative errors).
   double channel_scale(int c) const;

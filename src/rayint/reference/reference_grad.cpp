@@ -169,10 +169,25 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
     out.gradient.background[c] = to_double(t);  // I is linear in the background: exact
   }
 
-  // Is scalar s exactly a node of any function (the kink convention)?
+  // Where I is not smooth in a parameter: a stencil never steps across such a point (its
+  // steps are capped at 1/16 of the distance), and a parameter sitting on one takes a one-sided
+  // stencil. I is C^1 there (C^0 only at the kink convention's points), but the jump in the
+  // second derivative can be huge (slopes of 1e25 in cases/narrow-pulse.json), so a central
+  // stencil across it is off by O(h) * that jump.
   const auto on_node = [&](double s) { return std::binary_search(bp.begin(), bp.end(), Real(s)); };
   const Real step = options.step;
   const auto step_for = [&](double x) { return step * Real(std::max(std::fabs(x), 1.0)); };
+  const auto capped = [](Real h, double x, const std::vector<Real>& kinks) {
+    for (const Real& k : kinks)
+      if (k != Real(x) && abs(k - Real(x)) < 16 * h) h = abs(k - Real(x)) / 16;
+    return h;
+  };
+  // Kinks in a node position: every other node (breakpoint) and every segment end scalar.
+  std::vector<Real> position_kinks = bp;
+  for (const Segment& s : ray.segments) {
+    position_kinks.emplace_back(s.scalar_far);
+    position_kinks.emplace_back(s.scalar_exit);
+  }
 
   std::vector<Parameter> params;
   for (std::size_t j = 0; j < m; ++j) {
@@ -180,28 +195,33 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
     if (!(s.length > 0.0)) continue;  // a zero-length segment: derivatives in its scalars are 0
     Parameter p{Parameter::length, j, true, 0, 0, Side::central, step_for(s.length)};
     params.push_back(p);
-    const bool kink = s.scalar_far == s.scalar_exit && on_node(s.scalar_far);
     for (const auto kind : {Parameter::s_far, Parameter::s_exit}) {
       const double x = kind == Parameter::s_far ? s.scalar_far : s.scalar_exit;
-      Real h = step_for(x);
-      // Never step across a breakpoint the scalar is not on.
-      for (const Real& b : bp)
-        if (b != Real(x) && abs(b - Real(x)) < 16 * h) h = abs(b - Real(x)) / 16;
-      params.push_back({kind, j, true, 0, 0, kink ? Side::forward : Side::central, h});
+      const double other = kind == Parameter::s_far ? s.scalar_exit : s.scalar_far;
+      Side side = Side::central;
+      if (on_node(x)) {
+        // Constant scalar: the kink convention (right of the node). Otherwise into the segment,
+        // where the piece keeps its interval.
+        side = x == other || other > x ? Side::forward : Side::backward;
+      }
+      params.push_back({kind, j, true, 0, 0, side, capped(step_for(x), x, bp)});
     }
   }
   for (int c = 0; c < kChannels; ++c) {
     for (const bool density : {true, false}) {
       const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
       for (std::size_t k = 0; k < f.scalar.size(); ++k) {
-        Real gap = std::numeric_limits<double>::infinity();
-        if (k > 0) gap = std::min(gap, Real(f.scalar[k]) - Real(f.scalar[k - 1]));
-        if (k + 1 < f.scalar.size()) gap = std::min(gap, Real(f.scalar[k + 1]) - Real(f.scalar[k]));
-        Real h = std::min(step_for(f.scalar[k]), gap / 16);
-        bool kink = false;
+        const double x = f.scalar[k];
+        // On another function's node or a segment end: one-sided, backward (for a constant
+        // segment there, the kink convention: the interval to the node's right is kept).
+        bool coincides = false;
         for (const Segment& s : ray.segments)
-          kink = kink || (s.length > 0.0 && s.scalar_far == s.scalar_exit && s.scalar_far == f.scalar[k]);
-        params.push_back({Parameter::node_position, 0, density, c, k, kink ? Side::backward : Side::central, h});
+          coincides = coincides || (s.length > 0.0 && (s.scalar_far == x || s.scalar_exit == x));
+        for (int c2 = 0; c2 < kChannels; ++c2)
+          for (const PiecewiseLinear* g : {&tf.density[c2], &tf.color[c2]})
+            if (g != &f) coincides = coincides || std::binary_search(g->scalar.begin(), g->scalar.end(), x);
+        params.push_back({Parameter::node_position, 0, density, c, k,
+                          coincides ? Side::backward : Side::central, capped(step_for(x), x, position_kinks)});
         const Real hv = step_for(f.value[k]);
         params.push_back({Parameter::node_value, 0, density, c, k,
                           Real(f.value[k]) < 2 * hv ? Side::forward : Side::central, hv});

@@ -10,9 +10,11 @@
 // ~1e-50 / h ~ 1e-30 relative. `noise` reports |D4 - D2| (the fourth- and second-order stencils
 // on the same points), which bounds both. See docs/gradients.md.
 //
-// Stencils: central, except forward for a node value within two steps of 0 (values must stay
-// >= 0) and at the kink convention of model/ray_gradient.hpp (a constant-scalar segment exactly
-// on a node: forward in that segment's scalars, backward in that node's position).
+// Stencils never step across a point where I is not smooth (steps capped at 1/16 of the distance
+// to it) and are one-sided where the parameter sits on one: forward for a node value within two
+// steps of 0 (values stay >= 0); for a segment scalar on a node, into the segment (forward for a
+// constant-scalar segment: the kink convention of model/ray_gradient.hpp); for a node position on
+// another node or a segment end, backward (the convention again for a constant segment there).
 #include "rayint/model/ray_gradient.hpp"
 
 namespace rayint {
