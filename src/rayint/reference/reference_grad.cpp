@@ -177,10 +177,19 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
   const auto on_node = [&](double s) { return std::binary_search(bp.begin(), bp.end(), Real(s)); };
   const Real step = options.step;
   const auto step_for = [&](double x) { return step * Real(std::max(std::fabs(x), 1.0)); };
-  const auto capped = [](Real h, double x, const std::vector<Real>& kinks) {
-    for (const Real& k : kinks)
-      if (k != Real(x) && abs(k - Real(x)) < 16 * h) h = abs(k - Real(x)) / 16;
-    return h;
+  // The stencil for x: `forced` one-sided, else central when no kink lies within 16 steps, else
+  // one-sided toward the side with more room; the step is capped at 1/16 of the room on the side
+  // (or sides) it uses, so that no stencil point crosses a kink.
+  const auto stencil = [](Real h, double x, const std::vector<Real>& kinks, Side forced, Side& side) {
+    Real left = std::numeric_limits<double>::infinity(), right = left;
+    for (const Real& k : kinks) {
+      if (k < Real(x)) left = std::min(left, Real(x) - k);
+      if (k > Real(x)) right = std::min(right, k - Real(x));
+    }
+    side = forced;
+    if (side == Side::central && std::min(left, right) < 16 * h) side = right >= left ? Side::forward : Side::backward;
+    const Real room = side == Side::central ? std::min(left, right) : side == Side::forward ? right : left;
+    return std::min(h, room / 16);
   };
   // Kinks in a node position: every other node (breakpoint) and every segment end scalar.
   std::vector<Real> position_kinks = bp;
@@ -198,13 +207,15 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
     for (const auto kind : {Parameter::s_far, Parameter::s_exit}) {
       const double x = kind == Parameter::s_far ? s.scalar_far : s.scalar_exit;
       const double other = kind == Parameter::s_far ? s.scalar_exit : s.scalar_far;
-      Side side = Side::central;
+      Side forced = Side::central;
       if (on_node(x)) {
         // Constant scalar: the kink convention (right of the node). Otherwise into the segment,
         // where the piece keeps its interval.
-        side = x == other || other > x ? Side::forward : Side::backward;
+        forced = x == other || other > x ? Side::forward : Side::backward;
       }
-      params.push_back({kind, j, true, 0, 0, side, capped(step_for(x), x, bp)});
+      Side side = forced;
+      const Real h = stencil(step_for(x), x, bp, forced, side);
+      params.push_back({kind, j, true, 0, 0, side, h});
     }
   }
   for (int c = 0; c < kChannels; ++c) {
@@ -220,8 +231,9 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
         for (int c2 = 0; c2 < kChannels; ++c2)
           for (const PiecewiseLinear* g : {&tf.density[c2], &tf.color[c2]})
             if (g != &f) coincides = coincides || std::binary_search(g->scalar.begin(), g->scalar.end(), x);
-        params.push_back({Parameter::node_position, 0, density, c, k,
-                          coincides ? Side::backward : Side::central, capped(step_for(x), x, position_kinks)});
+        Side side = Side::central;
+        const Real h = stencil(step_for(x), x, position_kinks, coincides ? Side::backward : Side::central, side);
+        params.push_back({Parameter::node_position, 0, density, c, k, side, h});
         const Real hv = step_for(f.value[k]);
         params.push_back({Parameter::node_value, 0, density, c, k,
                           Real(f.value[k]) < 2 * hv ? Side::forward : Side::central, hv});

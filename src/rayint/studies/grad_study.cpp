@@ -8,7 +8,9 @@
 
 namespace rayint {
 
-bool has_gradient(const MethodSpec& spec) { return spec.name == "exact" || spec.name == "riemann"; }
+bool has_gradient(const MethodSpec& spec) {
+  return spec.name == "exact" || spec.name == "riemann" || spec.name == "nerf" || spec.name == "pl_nerf";
+}
 
 RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray) {
   if (spec.name == "exact") {
@@ -18,8 +20,10 @@ RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf,
     return exact_ray_gradient(tf, ray);
   }
   if (spec.name == "riemann") return riemann_ray_gradient(tf, ray, riemann_options(spec));
+  if (spec.name == "nerf") return nerf_ray_gradient(tf, ray, nerf_options(spec), false);
+  if (spec.name == "pl_nerf") return nerf_ray_gradient(tf, ray, pl_nerf_options(spec), true);
   throw std::invalid_argument("method " + spec.label() +
-                              ": no gradient (gradients exist for exact and riemann)");
+                              ": no gradient (gradients exist for exact, riemann, nerf and pl_nerf)");
 }
 
 double gradient_relative_error(const RayGradient& got, const RayGradient& want, int c) {

@@ -3,10 +3,10 @@
 // grad`, issue 28), and the check of a renderer's gradients against the exact ones (`rayint
 // gradcheck`). The library computes; report/grad_json.* writes the JSON, cli/ formats.
 //
-// Methods with a gradient: exact (integrators/exact_grad.hpp, analytic) and riemann with n per
-// segment and correction=exp (integrators/riemann_grad.hpp, the derivative of its discrete sum,
-// what autodiff through a Riemann renderer computes). Any other method is reported as failed
-// ("no gradient"), never as a number.
+// Methods with a gradient: exact (integrators/exact_grad.hpp, analytic); riemann with n per
+// segment and correction=exp, nerf and pl_nerf (integrators/riemann_grad.hpp, the derivative of
+// their discrete sums, what autodiff through such a renderer computes). Any other method is
+// reported as failed ("no gradient"), never as a number.
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,7 +20,7 @@ namespace rayint {
 
 // The gradient of `spec` on `ray`; throws std::invalid_argument for a method without one.
 RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray);
-// Whether method_gradient supports `spec` (names only: exact, riemann).
+// Whether method_gradient supports `spec` (names only: exact, riemann, nerf, pl_nerf).
 bool has_gradient(const MethodSpec& spec);
 
 // max over channel c's entries of |got - want| / (largest |want| entry of channel c); NaN if
