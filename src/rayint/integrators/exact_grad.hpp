@@ -40,6 +40,9 @@ struct PieceOpticsGrad {
 };
 
 PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece);
+// The same with kappa_far - kappa_exit given (the ray gradient passes slope * (s_far - s_exit),
+// exact to a few ulps, where the difference of the two rounded end values is not).
+PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece, double kappa_far_minus_exit);
 
 // The gradient of every channel's intensity with respect to every input of the ray, with the
 // forward intensity of exact:path=scalar (bit for bit). Pieces are those of append_pieces
