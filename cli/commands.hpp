@@ -33,6 +33,8 @@ void set_scatter_command(CLI::App& app);  // scatter_command.cpp
 void set_tf_command(CLI::App& app);       // tf_command.cpp
 void set_methods_command(CLI::App& app);  // methods_command.cpp
 void set_mesh_command(CLI::App& app);     // mesh_command.cpp
+void set_grad_command(CLI::App& app);     // grad_command.cpp
+void set_gradcheck_command(CLI::App& app);  // gradcheck_command.cpp
 
 // A --methods value: parse_method_list with the option named in the message, e.g.
 // "--methods riemann:n=0: n must be an integer >= 1" (MethodSpecError).

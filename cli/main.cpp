@@ -50,6 +50,8 @@ void build_app(CLI::App& app) {
   set_scatter_command(app);
   set_tf_command(app);
   set_methods_command(app);
+  set_grad_command(app);
+  set_gradcheck_command(app);
   set_merge_command(app, build_app);
 }
 

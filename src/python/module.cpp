@@ -32,6 +32,7 @@
 #include "rayint/input/candidate_reader.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/integrators/exact_batch.hpp"
+#include "rayint/integrators/exact_grad.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/integrators/nerf.hpp"
 #include "rayint/report/check_json.hpp"
@@ -122,6 +123,46 @@ py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array&
     rayint::exact_batch(in, out);
   }
   return py::make_tuple(emission, transmittance);
+}
+
+// exact_grad: integrators/exact_grad.hpp's exact_piece_grad on every piece (issue 28): emission,
+// transmittance and their derivatives with respect to the five inputs, GIL released.
+py::tuple exact_grad(const Array& rho_exit, const Array& rho_far, const Array& kappa_exit,
+                     const Array& kappa_far, const Array& length) {
+  const std::size_t n = static_cast<std::size_t>(rho_exit.size());
+  for (const Array* a : {&rho_far, &kappa_exit, &kappa_far, &length})
+    if (static_cast<std::size_t>(a->size()) != n)
+      throw std::invalid_argument("exact_grad: the five arrays must have the same size");
+  constexpr int kOut = 10;
+  std::vector<Array> out;
+  for (int k = 0; k < kOut; ++k) out.emplace_back(static_cast<py::ssize_t>(n));
+  double* o[kOut];
+  for (int k = 0; k < kOut; ++k) o[k] = out[static_cast<std::size_t>(k)].mutable_data();
+  const double *re = rho_exit.data(), *rf = rho_far.data(), *ke = kappa_exit.data(),
+               *kf = kappa_far.data(), *len = length.data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(std::isfinite(re[i]) && re[i] >= 0.0))
+        bad_value("exact_grad", "rho_exit", i, "must be finite and >= 0", re[i]);
+      if (!(std::isfinite(rf[i]) && rf[i] >= 0.0))
+        bad_value("exact_grad", "rho_far", i, "must be finite and >= 0", rf[i]);
+      if (!std::isfinite(ke[i])) bad_value("exact_grad", "kappa_exit", i, "must be finite", ke[i]);
+      if (!std::isfinite(kf[i])) bad_value("exact_grad", "kappa_far", i, "must be finite", kf[i]);
+      if (!(std::isfinite(len[i]) && len[i] >= 0.0))
+        bad_value("exact_grad", "length", i, "must be finite and >= 0", len[i]);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const rayint::PieceOpticsGrad g = rayint::exact_piece_grad({len[i], rf[i], re[i], kf[i], ke[i]});
+      const double v[kOut] = {g.optics.emission, g.optics.transmittance, g.de_rho_exit, g.de_rho_far,
+                              g.de_kappa_exit, g.de_kappa_far, g.de_length, g.dt_rho_exit,
+                              g.dt_rho_far, g.dt_length};
+      for (int k = 0; k < kOut; ++k) o[k][i] = v[k];
+    }
+  }
+  py::tuple t(kOut);
+  for (int k = 0; k < kOut; ++k) t[static_cast<std::size_t>(k)] = out[static_cast<std::size_t>(k)];
+  return t;
 }
 
 std::string evaluate(const std::vector<Document>& docs, const std::string& methods_csv,
@@ -312,6 +353,7 @@ PYBIND11_MODULE(_rayint, m) {
         return Document{is_path, std::move(text), std::move(source)};
       }));
   m.def("_exact_pieces", &exact_pieces);
+  m.def("_exact_grad", &exact_grad);
   m.def("_evaluate", &evaluate);
   m.def("_reference", &reference);
   m.def("_check", &check);

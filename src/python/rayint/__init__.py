@@ -21,7 +21,7 @@ import numpy as np
 from . import _rayint
 from ._rayint import InputError
 
-__all__ = ["InputError", "exact_pieces", "evaluate", "reference", "check", "integrate",
+__all__ = ["InputError", "exact_pieces", "exact_grad", "evaluate", "reference", "check", "integrate",
            "method_names", "methods", "nerf_composite", "nerf_deltas", "pl_nerf_composite"]
 
 
@@ -59,6 +59,32 @@ def exact_pieces(rho_exit, rho_far, kappa_exit, kappa_far, length):
     flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
     emission, transmittance = _rayint._exact_pieces(*flat)
     return emission.reshape(shape), transmittance.reshape(shape)
+
+
+def exact_grad(rho_exit, rho_far, kappa_exit, kappa_far, length):
+    """exact_pieces and its exact derivatives (issue 28; docs/gradients.md).
+
+    Same inputs and broadcasting as exact_pieces. Returns a dict of float64 arrays of the
+    broadcast shape: "emission", "transmittance", and "d_emission" / "d_transmittance", each a
+    dict over the inputs ("rho_exit", "rho_far", "kappa_exit", "kappa_far", "length"; the
+    transmittance does not depend on kappa, so its two kappa entries are zeros). The C++
+    exact_piece_grad (integrators/exact_grad.hpp), GIL released; accurate to ~1e-15 of the
+    largest derivative (tests/test_grad.cpp).
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64)
+                                   for a in (rho_exit, rho_far, kappa_exit, kappa_far, length)))
+    shape = arrays[0].shape
+    flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
+    out = [a.reshape(shape) for a in _rayint._exact_grad(*flat)]
+    zeros = np.zeros(shape)
+    return {
+        "emission": out[0],
+        "transmittance": out[1],
+        "d_emission": {"rho_exit": out[2], "rho_far": out[3], "kappa_exit": out[4],
+                       "kappa_far": out[5], "length": out[6]},
+        "d_transmittance": {"rho_exit": out[7], "rho_far": out[8], "kappa_exit": zeros,
+                            "kappa_far": zeros.copy(), "length": out[9]},
+    }
 
 
 def evaluate(case, methods=None, timing=True, threads=0):

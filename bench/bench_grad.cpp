@@ -1,0 +1,73 @@
+// The cost of the exact gradient of a ray against its forward exact integral (issue 28's
+// "full gradient at most ~3x the forward exact"), on the same rays:
+//   BM_exact_ray/SET          ExactIntegrator (the default batch path) on every ray of SET;
+//   BM_exact_ray_scalar/SET   exact:path=scalar on the same rays (what the gradient's forward is);
+//   BM_exact_grad/SET         exact_ray_gradient (forward + every derivative) on the same rays.
+// SET 0: 20 rays of every stress regime (generators/regimes.hpp, seed 28; long_ray cut to 200
+// segments); SET 1: 4 long_ray rays of 10^4 segments. Integrators are built outside the loop.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "rayint/generators/regimes.hpp"
+#include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/exact_grad.hpp"
+
+namespace {
+
+struct RaySet {
+  std::vector<rayint::RaySample> rays;
+  std::vector<std::unique_ptr<rayint::ExactIntegrator>> batch, scalar;
+};
+
+const RaySet& ray_set(int which) {
+  static RaySet sets[2];
+  RaySet& s = sets[which];
+  if (s.rays.empty()) {
+    std::mt19937_64 rng(28);
+    if (which == 0) {
+      for (const rayint::Regime r : rayint::stress_regimes())
+        for (int i = 0; i < 20; ++i) {
+          rayint::RaySample rs = rayint::sample_ray(r, rng);
+          if (rs.ray.segments.size() > 200) rs.ray.segments.resize(200);
+          s.rays.push_back(std::move(rs));
+        }
+    } else {
+      for (int i = 0; i < 4; ++i) s.rays.push_back(rayint::sample_ray(rayint::Regime::long_ray, rng));
+    }
+    for (const rayint::RaySample& rs : s.rays) {
+      s.batch.push_back(std::make_unique<rayint::ExactIntegrator>(rs.transfer));
+      s.scalar.push_back(std::make_unique<rayint::ExactIntegrator>(rs.transfer, rayint::ExactIntegrator::Path::scalar));
+    }
+  }
+  return s;
+}
+
+void BM_exact_ray(benchmark::State& state) {
+  const RaySet& s = ray_set(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    for (std::size_t i = 0; i < s.rays.size(); ++i)
+      benchmark::DoNotOptimize(s.batch[i]->integrate(s.rays[i].ray, nullptr));
+}
+
+void BM_exact_ray_scalar(benchmark::State& state) {
+  const RaySet& s = ray_set(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    for (std::size_t i = 0; i < s.rays.size(); ++i)
+      benchmark::DoNotOptimize(s.scalar[i]->integrate(s.rays[i].ray, nullptr));
+}
+
+void BM_exact_grad(benchmark::State& state) {
+  const RaySet& s = ray_set(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    for (const rayint::RaySample& rs : s.rays)
+      benchmark::DoNotOptimize(rayint::exact_ray_gradient(rs.transfer, rs.ray));
+}
+
+}  // namespace
+
+BENCHMARK(BM_exact_ray)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_exact_ray_scalar)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_exact_grad)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);

@@ -1,0 +1,97 @@
+// rayint gradcheck CASE --candidate CAND.json [--rel-tol R] [--abs-tol A] [--junit J] -- a
+// renderer's gradients against the exact ones (issue 28; format: docs/gradients.md). Pass rule
+// per ray, channel and entry: |got - exact| <= max(A, R * largest |exact| entry of that ray's
+// channel). Exit 0 when all pass, 1 when one fails (the worst entry is named on stderr), 2 on
+// bad input.
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "commands.hpp"
+#include "options.hpp"
+#include "rayint/core/atomic_file.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/input/grad_candidate_reader.hpp"
+#include "rayint/report/grad_json.hpp"
+#include "rayint/report/junit.hpp"
+#include "rayint/studies/grad_study.hpp"
+
+namespace rayint::cli {
+namespace {
+
+const CLI::Validator kTolerance(
+    [](std::string& text) -> std::string {
+      double x = 0.0;
+      if (!CLI::detail::lexical_cast(text, x) || !std::isfinite(x) || x < 0.0)
+        return "must be a finite number >= 0, got " + text;
+      return {};
+    },
+    "TOL>=0");
+
+std::string entry_name(const GradCheckEntry& w) {
+  static const char* kChannel[3] = {"r", "g", "b"};
+  std::ostringstream s;
+  s << "ray " << w.ray << " " << w.block;
+  if (w.block == "density" || w.block == "color")
+    s << " node " << w.index << " " << w.parameter;
+  else if (w.block != "background")
+    s << " segment " << w.index;
+  s << " channel " << kChannel[w.channel];
+  return s.str();
+}
+
+}  // namespace
+
+void set_gradcheck_command(CLI::App& app) {
+  struct Options {
+    std::string case_file, candidate_file, output, junit;
+    double rel_tol = 1e-6, abs_tol = 0.0;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("gradcheck", "Compare a renderer's gradients with the exact ones");
+  cmd->add_option("case", opt->case_file, "Case file (JSON, ray case)")->required();
+  cmd->add_option("--candidate", opt->candidate_file, "The renderer's gradients (JSON, docs/gradients.md)")
+      ->required();
+  cmd->add_option("--rel-tol", opt->rel_tol,
+                  "Relative tolerance, of the largest |exact| entry of the ray's channel")
+      ->check(kTolerance)
+      ->capture_default_str();
+  cmd->add_option("--abs-tol", opt->abs_tol, "Absolute tolerance (see --rel-tol)")
+      ->check(kTolerance)
+      ->capture_default_str();
+  cmd->add_option("--junit", opt->junit, "Also write the result as JUnit XML to this file");
+  cmd->add_option("-o,--output", opt->output, "Write the JSON verdict to this file instead of stdout");
+  cmd->callback([opt] {
+    const Case c = read_case_file(opt->case_file);
+    const GradCandidate cand = read_grad_candidate_file(opt->candidate_file, c);
+    const GradCheckResult r = grad_check(c, cand, opt->rel_tol, opt->abs_tol);
+    emit(gradcheck_report_json(r).dump(2), opt->output);
+    std::string line = "gradcheck " + c.name + ": " + (r.passed() ? "PASS" : "FAIL") + ", " +
+                       std::to_string(r.failed) + " of " + std::to_string(r.entries) + " entries fail";
+    if (r.worst) {
+      const GradCheckEntry& w = *r.worst;
+      std::ostringstream s;
+      s.precision(17);
+      s << "; worst: " << entry_name(w) << ": got " << w.got << ", exact " << w.exact << ", allowed "
+        << w.allowed;
+      line += s.str();
+    }
+    if (!opt->junit.empty()) {
+      JUnitSuite suite{"rayint.gradcheck", {}};
+      JUnitCase jc;
+      jc.classname = "rayint.gradcheck." + c.name;
+      jc.name = "gradient_within_tolerance";
+      jc.pass = r.passed();
+      if (!jc.pass && r.worst) jc.message = entry_name(*r.worst) + ": " + junit_measure(r.worst->excess, 1.0);
+      suite.cases.push_back(jc);
+      write_file_atomically(opt->junit, junit_xml({suite}));
+    }
+    std::cout.flush();
+    std::cerr << line << std::endl;
+    if (!r.passed()) throw ChecksFailed{};
+  });
+}
+
+}  // namespace rayint::cli

@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Gradient error of Riemann renderers vs step count, from `rayint grad` JSON.
+
+Usage (from the repository root; the commands that made the files in this folder are in
+reports/gradients/README.md):
+  /usr/bin/python3 reports/gradients/make_table.py reports/gradients/grad.json reports/gradients
+
+Writes table.md (per case, ray and method: max relative gradient error per channel against the
+50-digit reference gradient, and the intensity's relative error) and gradient_error_vs_n.png.
+"""
+import json
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main(path, outdir):
+    with open(path) as f:
+        report = json.load(f)
+    rows = []
+    for case in report["cases"]:
+        for ray in case["rays"]:
+            for label, m in ray["methods"].items():
+                if m.get("gradient") is None:
+                    rows.append((case["case"], ray["index"], label, None, None))
+                    continue
+                e = m["errors"]
+                g = max(x for x in e["gradient_max_rel_vs_reference"] if x is not None)
+                i = max(x for x in e["intensity_rel_vs_reference"] if x is not None)
+                rows.append((case["case"], ray["index"], label, g, i))
+    lines = ["| case | ray | method | gradient max rel error (worst channel) | intensity rel error (worst channel) |",
+             "|---|---|---|---|---|"]
+    fmt = lambda x: "failed" if x is None else f"{x:.3g}"
+    for c, r, label, g, i in rows:
+        lines.append(f"| {c} | {r} | {label} | {fmt(g)} | {fmt(i)} |")
+    with open(f"{outdir}/table.md", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    series = {}
+    for c, r, label, g, i in rows:
+        mm = re.match(r"riemann:n=(\d+)$", label)
+        if not mm or g is None:
+            continue
+        n = int(mm.group(1))
+        series.setdefault((c, r), []).append((n, g, i))
+    for (c, r), pts in sorted(series.items()):
+        pts.sort()
+        ns = [p[0] for p in pts]
+        line, = ax.loglog(ns, [p[1] for p in pts], "o-", label=f"{c} ray {r}: gradient")
+        ax.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
+                  label=f"{c} ray {r}: intensity")
+    ax.set_xlabel("Riemann samples per segment n")
+    ax.set_ylabel("max relative error vs 50-digit reference")
+    ax.set_title("What a Riemann renderer's gradient costs in accuracy")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(f"{outdir}/gradient_error_vs_n.png", dpi=120)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])

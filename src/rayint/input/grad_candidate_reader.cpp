@@ -1,0 +1,146 @@
+// Candidate gradients for `rayint gradcheck`: json_source::parse, then a strict schema walk
+// (input/json_schema.hpp), as input/candidate_reader.cpp does for intensities.
+#include "rayint/input/grad_candidate_reader.hpp"
+
+#include <cmath>
+
+#include "rayint/input/json_schema.hpp"
+#include "rayint/input/json_source.hpp"
+
+namespace rayint {
+
+using json_source::fail;
+using json_source::quoted;
+
+namespace {
+
+using nlohmann::json;
+using json_source::format_number;
+using json_source::index_path;
+using json_source::member_path;
+
+constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
+
+double number(const JsonSchema& s, const json& x, const std::string& path) {
+  if (x.is_null()) s.fail(path, "must be a finite number, got null (JSON has no NaN or Inf)");
+  if (!x.is_number()) s.fail(path, "must be a finite number, got " + std::string(x.type_name()));
+  const double v = x.get<double>();
+  if (!std::isfinite(v)) s.fail(path, "must be a finite number, got " + format_number(v));
+  return v;
+}
+
+Rgb triple(const JsonSchema& s, const json& v, const std::string& path) {
+  s.array_of_size(v, path, kChannels, "an array of 3 numbers [r, g, b]");
+  Rgb out{};
+  for (std::size_t k = 0; k < kChannels; ++k) out[k] = number(s, v[k], index_path(path, k));
+  return out;
+}
+
+void node_blocks(const JsonSchema& s, const json& j, const std::string& path,
+                 std::array<std::vector<NodeDerivative>, kChannels>& out) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"r", "g", "b"});
+  for (int c = 0; c < kChannels; ++c) {
+    const std::string cpath = member_path(path, kChannelNames[c]);
+    const json& list = s.required(j, path, kChannelNames[c]);
+    s.non_empty_array(list, cpath, " of [d position, d value], one per node");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::string npath = index_path(cpath, k);
+      s.array_of_size(list[k], npath, 2, "an array of 2 numbers [d position, d value]");
+      out[c].push_back({number(s, list[k][0], index_path(npath, 0)), number(s, list[k][1], index_path(npath, 1))});
+    }
+  }
+}
+
+RayGradient gradient(const JsonSchema& s, const json& j, const std::string& path) {
+  s.require_object(j, path);
+  s.check_fields(j, path, {"background", "length", "scalar", "density", "color"});
+  RayGradient g;
+  g.background = triple(s, s.required(j, path, "background"), member_path(path, "background"));
+  const std::string lpath = member_path(path, "length"), spath = member_path(path, "scalar");
+  const json& length = s.required(j, path, "length");
+  const json& scalar = s.required(j, path, "scalar");
+  if (!length.is_array()) s.fail(lpath, "must be an array of [r, g, b], one per segment");
+  if (!scalar.is_array()) s.fail(spath, "must be an array of [[far r, g, b], [exit r, g, b]], one per segment");
+  if (scalar.size() != length.size())
+    s.fail(spath, "has " + std::to_string(scalar.size()) + " entries but length has " +
+                      std::to_string(length.size()) + " (one per segment each)");
+  for (std::size_t i = 0; i < length.size(); ++i) {
+    g.length.push_back(triple(s, length[i], index_path(lpath, i)));
+    const std::string p = index_path(spath, i);
+    s.array_of_size(scalar[i], p, 2, "an array [[far r, g, b], [exit r, g, b]]");
+    g.scalar_far.push_back(triple(s, scalar[i][0], index_path(p, 0)));
+    g.scalar_exit.push_back(triple(s, scalar[i][1], index_path(p, 1)));
+  }
+  node_blocks(s, s.required(j, path, "density"), member_path(path, "density"), g.density);
+  node_blocks(s, s.required(j, path, "color"), member_path(path, "color"), g.color);
+  return g;
+}
+
+GradCandidate read(const JsonSchema& s, const json& root) {
+  s.require_object(root, "");
+  s.check_fields(root, "", {"case", "renderer", "rays"});
+  GradCandidate c;
+  c.source = s.source();
+  c.case_name = s.non_empty_string(s.required(root, "", "case"), "case");
+  if (const json* r = s.optional(root, "renderer")) c.renderer = s.string_value(*r, "renderer");
+  const json& rays = s.required(root, "", "rays");
+  s.non_empty_array(rays, "rays", " of {\"gradient\": {...}}, one per ray of the case");
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const std::string path = index_path("rays", i);
+    s.require_object(rays[i], path);
+    s.check_fields(rays[i], path, {"index", "gradient"});
+    if (const json* index = s.optional(rays[i], "index")) {
+      if (!(index->is_number_unsigned() && index->get<std::size_t>() == i))
+        s.fail(member_path(path, "index"),
+               "must be " + std::to_string(i) + " (entries follow the case's rays in order), got " +
+                   index->dump());
+    }
+    c.rays.push_back(gradient(s, s.required(rays[i], path, "gradient"), member_path(path, "gradient")));
+  }
+  return c;
+}
+
+}  // namespace
+
+GradCandidate parse_grad_candidate_text(std::string_view text, const std::string& source) {
+  return read(JsonSchema(source), json_source::parse(text, source));
+}
+
+void require_grad_candidate_matches(const GradCandidate& cand, const Case& c) {
+  if (cand.case_name != c.name)
+    fail(cand.source, "case",
+         "is " + quoted(cand.case_name) + " but the case file " + c.source + " is named " + quoted(c.name));
+  if (cand.rays.size() != c.rays.size())
+    fail(cand.source, "rays",
+         "has " + std::to_string(cand.rays.size()) + " entries but the case file " + c.source + " has " +
+             std::to_string(c.rays.size()) + " rays (one entry per ray, in order)");
+  for (std::size_t i = 0; i < c.rays.size(); ++i) {
+    const std::string path = member_path(index_path("rays", i), "gradient");
+    const RayGradient& g = cand.rays[i];
+    const std::size_t m = c.rays[i].segments.size();
+    if (g.length.size() != m)
+      fail(cand.source, member_path(path, "length"),
+           "has " + std::to_string(g.length.size()) + " entries but ray " + std::to_string(i) + " of " +
+               c.source + " has " + std::to_string(m) + " segments");
+    for (int ch = 0; ch < kChannels; ++ch) {
+      for (const bool density : {true, false}) {
+        const std::size_t want = (density ? c.transfer.density : c.transfer.color)[ch].scalar.size();
+        const std::size_t have = (density ? g.density : g.color)[ch].size();
+        if (have != want)
+          fail(cand.source, member_path(member_path(path, density ? "density" : "color"), kChannelNames[ch]),
+               "has " + std::to_string(have) + " nodes but the case's " + (density ? "density " : "color ") +
+                   kChannelNames[ch] + " has " + std::to_string(want));
+      }
+    }
+  }
+}
+
+GradCandidate read_grad_candidate_file(const std::string& path, const Case& c) {
+  const std::string text = json_source::read_text_file(path);
+  GradCandidate cand = parse_grad_candidate_text(text, path);
+  require_grad_candidate_matches(cand, c);
+  return cand;
+}
+
+}  // namespace rayint

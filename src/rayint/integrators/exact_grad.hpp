@@ -1,0 +1,55 @@
+#pragma once
+// Exact derivatives of the exact piece integral (integrators/exact.hpp) and of a ray's intensity
+// with respect to every input of the ray (issue 28). See exact_grad.cpp for the forms by region
+// and docs/gradients.md for the mathematics, the conventions at kinks and the measured accuracy.
+#include "rayint/integrators/exact.hpp"
+#include "rayint/model/ray_gradient.hpp"
+
+namespace rayint {
+
+// How the two moments M1, M2 of a piece were formed (branch introspection).
+enum class MomentMethod {
+  transparent,      // T == 0: M1 = 1/2, M2 = 1/3
+  midpoint_series,  // Taylor series about u = 1/2 (the thin branch's, differentiated term by term)
+  q2_series,        // series in B with the moments m_n(A) (the q2 branch's, term by term)
+  identity,         // from e0 by integration by parts (erfcx branch, z0 <= kMomentCfFrom)
+  continued_fraction,  // erfcx branch, z0 > kMomentCfFrom: ratios g_n/g_{n-1} by their fraction
+  exit_series,      // dawson branch, T <= kMomentAsymptoticDepth: series in |B| about u = 0
+  asymptotic,       // dawson branch, T > kMomentAsymptoticDepth: Laplace series at y0
+};
+const char* moment_method_name(MomentMethod m);
+
+// Thresholds of the derivative (origin in exact_grad.cpp).
+inline constexpr double kMomentCfFrom = 1.0;             // z0 above which the fraction is used
+inline constexpr double kMomentAsymptoticDepth = 50.0;   // T above which e^{-T} terms are dropped
+
+// One channel of one piece: its optics (exact_piece's, bit for bit) and their derivatives with
+// respect to the piece's five inputs.
+struct PieceOpticsGrad {
+  PieceOptics optics;
+  // d emission / d (length, rho_far, rho_exit, kappa_far, kappa_exit)
+  double de_length = 0.0, de_rho_far = 0.0, de_rho_exit = 0.0, de_kappa_far = 0.0,
+         de_kappa_exit = 0.0;
+  // d transmittance / d (length, rho_far, rho_exit); it does not depend on kappa
+  double dt_length = 0.0, dt_rho_far = 0.0, dt_rho_exit = 0.0;
+  // The moments behind them: e0 = int_0^1 e^{-tau}, M_n = int_0^1 u^n e^{-tau} du.
+  double e0 = 1.0, m1 = 0.5, m2 = 1.0 / 3.0;
+  MomentMethod method = MomentMethod::transparent;
+  int terms = 0;           // series or fraction terms used for the moments
+  bool converged = true;   // false if a series hit its budget
+};
+
+PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece);
+// The same with kappa_far - kappa_exit given (the ray gradient passes slope * (s_far - s_exit),
+// exact to a few ulps, where the difference of the two rounded end values is not).
+PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece, double kappa_far_minus_exit);
+
+// The gradient of every channel's intensity with respect to every input of the ray, with the
+// forward intensity of exact:path=scalar (bit for bit). Pieces are those of append_pieces
+// (model/pieces.hpp); compositing far -> near is differentiated in reverse. Throws
+// std::invalid_argument for a non-finite segment length or scalar or background.
+RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray);
+// The same into `out`, reusing its storage (no allocation per ray once warm).
+void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& out);
+
+}  // namespace rayint

@@ -1,0 +1,111 @@
+#include "rayint/report/grad_json.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace rayint {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
+
+ojson number_or_null(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+
+ojson rgb(const Rgb& v) { return ojson::array({number_or_null(v[0]), number_or_null(v[1]), number_or_null(v[2])}); }
+
+ojson nodes(const std::array<std::vector<NodeDerivative>, kChannels>& per_channel) {
+  ojson j = ojson::object();
+  for (int c = 0; c < kChannels; ++c) {
+    ojson list = ojson::array();
+    for (const NodeDerivative& d : per_channel[c])
+      list.push_back(ojson::array({number_or_null(d.position), number_or_null(d.value)}));
+    j[kChannelNames[c]] = list;
+  }
+  return j;
+}
+
+}  // namespace
+
+ojson gradient_json(const RayGradient& g) {
+  ojson length = ojson::array(), scalar = ojson::array();
+  for (std::size_t j = 0; j < g.length.size(); ++j) {
+    length.push_back(rgb(g.length[j]));
+    scalar.push_back(ojson::array({rgb(g.scalar_far[j]), rgb(g.scalar_exit[j])}));
+  }
+  return {{"background", rgb(g.background)},
+          {"length", length},
+          {"scalar", scalar},
+          {"density", nodes(g.density)},
+          {"color", nodes(g.color)}};
+}
+
+ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
+  ojson out_cases = ojson::array();
+  for (const GradCaseResult& c : cases) {
+    ojson rays = ojson::array();
+    for (std::size_t i = 0; i < c.rays.size(); ++i) {
+      const GradRayResult& r = c.rays[i];
+      ojson ray = {{"index", i}};
+      if (r.reference) {
+        ray["reference"] = {{"intensity", rgb(r.reference->gradient.intensity)},
+                            {"gradient", gradient_json(r.reference->gradient)},
+                            {"noise", rgb(r.reference->noise)}};
+      } else {
+        ray["reference"] = nullptr;
+      }
+      ojson methods = ojson::object();
+      for (const GradMethodResult& m : r.methods) {
+        if (!m.ok) {
+          methods[m.label] = {{"intensity", nullptr}, {"gradient", nullptr}, {"error", m.error}};
+          continue;
+        }
+        methods[m.label] = {{"intensity", rgb(m.gradient.intensity)},
+                            {"gradient", gradient_json(m.gradient)},
+                            {"errors",
+                             {{"gradient_max_rel_vs_reference", rgb(m.error_vs_reference)},
+                              {"gradient_max_rel_vs_exact", rgb(m.error_vs_exact)},
+                              {"intensity_rel_vs_reference", rgb(m.intensity_error)}}}};
+      }
+      ray["methods"] = methods;
+      rays.push_back(ray);
+    }
+    out_cases.push_back({{"case", c.name}, {"file", c.source}, {"rays", rays}});
+  }
+  return {{"tool", "rayint"},
+          {"report", "grad"},
+          {"errors",
+           "gradient_max_rel_*: max over the channel's entries of |got - want| / (largest |want| "
+           "entry of that channel); null when not computed or not finite"},
+          {"cases", out_cases}};
+}
+
+ojson gradcheck_report_json(const GradCheckResult& r) {
+  ojson worst = nullptr;
+  if (r.worst) {
+    const GradCheckEntry& w = *r.worst;
+    worst = {{"ray", w.ray},
+             {"block", w.block},
+             {"index", w.index},
+             {"parameter", w.parameter},
+             {"channel", kChannelNames[w.channel]},
+             {"got", number_or_null(w.got)},
+             {"exact", number_or_null(w.exact)},
+             {"allowed", number_or_null(w.allowed)},
+             {"excess", number_or_null(w.excess)}};
+  }
+  return {{"tool", "rayint"},
+          {"report", "gradcheck"},
+          {"pass", r.passed()},
+          {"case", r.case_name},
+          {"renderer", r.renderer},
+          {"rule",
+           "pass if |got - exact| <= max(abs_tol, rel_tol * largest |exact| entry of the ray's "
+           "channel) for every entry"},
+          {"rel_tol", r.rel_tol},
+          {"abs_tol", r.abs_tol},
+          {"entries", r.entries},
+          {"failed", r.failed},
+          {"worst", worst}};
+}
+
+}  // namespace rayint

@@ -1,0 +1,93 @@
+#pragma once
+// Gradients of the ray integral per method against the 50-digit reference gradient (`rayint
+// grad`, issue 28), and the check of a renderer's gradients against the exact ones (`rayint
+// gradcheck`). The library computes; report/grad_json.* writes the JSON, cli/ formats.
+//
+// Methods with a gradient: exact (integrators/exact_grad.hpp, analytic); riemann with n per
+// segment and correction=exp, nerf and pl_nerf (integrators/riemann_grad.hpp, the derivative of
+// their discrete sums, what autodiff through such a renderer computes). Any other method is
+// reported as failed ("no gradient"), never as a number.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayint/integrators/integrator.hpp"
+#include "rayint/model/ray.hpp"
+#include "rayint/model/ray_gradient.hpp"
+#include "rayint/reference/reference_grad.hpp"
+
+namespace rayint {
+
+// The gradient of `spec` on `ray`; throws std::invalid_argument for a method without one.
+RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray);
+// Whether method_gradient supports `spec` (names only: exact, riemann, nerf, pl_nerf).
+bool has_gradient(const MethodSpec& spec);
+
+// max over channel c's entries of |got - want| / (largest |want| entry of channel c); NaN if
+// either has a NaN entry or the shapes differ. A channel whose reference is all zero uses 1.
+double gradient_relative_error(const RayGradient& got, const RayGradient& want, int c);
+
+struct GradMethodResult {
+  std::string label;
+  bool ok = false;
+  std::string error;               // why it failed (ok == false)
+  RayGradient gradient;
+  Rgb error_vs_reference{};        // gradient_relative_error(gradient, reference), per channel
+  Rgb error_vs_exact{};            // gradient_relative_error(gradient, exact), per channel
+  Rgb intensity_error{};           // |I - I_ref| / |I_ref| (absolute where I_ref == 0)
+};
+
+struct GradRayResult {
+  std::optional<ReferenceGradient> reference;
+  RayGradient exact;
+  std::vector<GradMethodResult> methods;
+};
+
+struct GradCaseResult {
+  std::string name;
+  std::string source;
+  std::vector<GradRayResult> rays;
+};
+
+struct GradStudyOptions {
+  std::vector<MethodSpec> methods;  // default: exact
+  bool reference = true;            // compute the 50-digit reference gradient
+  unsigned threads = 1;
+};
+
+GradCaseResult grad_case(const Case& c, const GradStudyOptions& options);
+
+// --- gradcheck ----------------------------------------------------------------------------
+
+struct GradCandidate {
+  std::string source;  // file, for messages
+  std::string case_name;
+  std::string renderer;
+  std::vector<RayGradient> rays;  // shaped like the case (checked by the reader)
+};
+
+struct GradCheckEntry {
+  std::size_t ray = 0;
+  int channel = 0;
+  std::string block;      // background, length, scalar_far, scalar_exit, density, color
+  std::size_t index = 0;  // segment or node
+  std::string parameter;  // position / value for nodes
+  double got = 0.0, exact = 0.0, allowed = 0.0;
+  double excess = 0.0;    // |got - exact| / allowed; > 1 fails (NaN: a non-finite value)
+};
+
+struct GradCheckResult {
+  std::string case_name;
+  std::string renderer;
+  double rel_tol = 0.0, abs_tol = 0.0;
+  std::size_t entries = 0, failed = 0;
+  std::vector<Rgb> channel_scale;  // [ray][c]: the largest |exact| entry
+  std::optional<GradCheckEntry> worst;  // the entry with the largest excess
+  bool passed() const { return failed == 0; }
+};
+
+// Pass rule per entry: |got - exact| <= max(abs_tol, rel_tol * channel_scale); a non-finite
+// got fails.
+GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, double rel_tol, double abs_tol);
+
+}  // namespace rayint

@@ -1,0 +1,259 @@
+// Exact gradients of the ray integral (issue 28): integrators/exact_grad.* against the 50-digit
+// reference gradient (reference/reference_grad.*), over the case corpus and the stress regimes.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "rayint/generators/regimes.hpp"
+#include "rayint/input/case_reader.hpp"
+#include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/exact_grad.hpp"
+#include "rayint/reference/reference_grad.hpp"
+#include "rayint/studies/grad_study.hpp"
+#include "tolerances.hpp"
+
+using namespace rayint;
+
+namespace {
+
+// Max over entries of |got - want| / (largest |want| entry of the channel), per channel; the
+// worst entry is named in `where`.
+double gradient_error(const RayGradient& got, const RayGradient& want, int c, std::string* where) {
+  const double scale = want.channel_scale(c);
+  std::vector<double> w;
+  want.for_each(c, [&w](double v, const char*, std::size_t, const char*) { w.push_back(v); });
+  std::size_t i = 0;
+  double worst = 0.0;
+  got.for_each(c, [&](double v, const char* block, std::size_t idx, const char* param) {
+    const double diff = std::fabs(v - w[i++]);
+    const double e = scale > 0.0 ? diff / scale : diff;
+    if (!(e <= worst)) {
+      worst = e;
+      if (where) *where = std::string(block) + "[" + std::to_string(idx) + "]" + (*param ? "." : "") + param;
+    }
+  });
+  return worst;
+}
+
+struct Worst {
+  double err = 0.0;
+  std::string where;
+  long samples = 0;
+  void add(const RayGradient& got, const RayGradient& want, const std::string& label) {
+    for (int c = 0; c < kChannels; ++c) {
+      std::string w;
+      const double e = gradient_error(got, want, c, &w);
+      ++samples;
+      if (!(e <= err)) {
+        err = e;
+        where = label + " channel " + std::to_string(c) + " " + w;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("exact gradient: forward intensity is exact:path=scalar's, bit for bit", "[grad]") {
+  const Case cs = read_case_file(RAYINT_SOURCE_DIR "/cases/medical-ct.json");
+  ExactIntegrator scalar(cs.transfer, ExactIntegrator::Path::scalar);
+  for (const Ray& ray : cs.rays) {
+    const RayGradient g = exact_ray_gradient(cs.transfer, ray);
+    const RayResult r = scalar.integrate(ray, nullptr);
+    for (int c = 0; c < kChannels; ++c) CHECK(g.intensity[c] == r.intensity[c]);
+  }
+}
+
+TEST_CASE("exact gradient against the 50-digit reference: piece regimes", "[grad]") {
+  std::mt19937_64 rng(28);
+  for (const Regime r : all_regimes()) {
+    Worst wr;
+    for (int i = 0; i < 40; ++i) {
+      const RaySample s = sample_ray(r, rng);
+      const RayGradient got = exact_ray_gradient(s.transfer, s.ray);
+      const ReferenceGradient ref = reference_gradient(s.transfer, s.ray);
+      wr.add(got, ref.gradient, regime_name(r) + " #" + std::to_string(i));
+    }
+    WARN(regime_name(r) << ": worst " << wr.err << " at " << wr.where << " (" << wr.samples << " channels)");
+    CHECK(wr.err <= test::GradTolerances::exact_vs_reference_rel);
+  }
+}
+
+TEST_CASE("exact gradient against the 50-digit reference: ray regimes", "[grad]") {
+  std::mt19937_64 rng(2028);
+  for (const Regime r : ray_regimes()) {
+    Worst wr;
+    for (int i = 0; i < 10; ++i) {
+      RaySample s = sample_ray(r, rng);
+      if (s.ray.segments.size() > 60) s.ray.segments.resize(60);  // long_ray: 60 of its 10^4 segments
+      const RayGradient got = exact_ray_gradient(s.transfer, s.ray);
+      const ReferenceGradient ref = reference_gradient(s.transfer, s.ray);
+      wr.add(got, ref.gradient, regime_name(r) + " #" + std::to_string(i));
+    }
+    WARN(regime_name(r) << ": worst " << wr.err << " at " << wr.where << " (" << wr.samples << " channels)");
+    CHECK(wr.err <= (r == Regime::out_of_range   ? test::GradTolerances::saturated_rel
+                     : r == Regime::narrow_pulse ? test::GradTolerances::narrow_pulse_rel
+                                                 : test::GradTolerances::exact_vs_reference_rel));
+  }
+}
+
+TEST_CASE("exact gradient against the 50-digit reference: case corpus", "[grad]") {
+  Worst w;
+  for (const std::string& file : list_case_files(RAYINT_SOURCE_DIR "/cases")) {
+    if (file.find("/mesh-") != std::string::npos || file.find("gates.json") != std::string::npos) continue;
+    const Case cs = read_case_file(file);
+    for (std::size_t i = 0; i < cs.rays.size(); ++i) {
+      const RayGradient got = exact_ray_gradient(cs.transfer, cs.rays[i]);
+      const ReferenceGradient ref = reference_gradient(cs.transfer, cs.rays[i]);
+      w.add(got, ref.gradient, cs.name + " ray " + std::to_string(i));
+    }
+  }
+  WARN("corpus: worst " << w.err << " at " << w.where << " (" << w.samples << " ray-channels)");
+  CHECK(w.err <= test::GradTolerances::exact_vs_reference_rel);
+}
+
+TEST_CASE("exact gradient: kink convention at a constant-scalar segment on a node", "[grad]") {
+  // density slopes 4 left of 0.5 and -6 right of it; one segment of constant scalar s.
+  TransferFunctions tf;
+  for (int c = 0; c < kChannels; ++c) {
+    tf.density[c] = {{0.0, 0.5, 1.0}, {1.0, 3.0, 0.0}};
+    tf.color[c] = {{0.0, 1.0}, {0.6, 0.6}};
+  }
+  const auto at = [&](double s) {
+    Ray ray;
+    ray.segments = {{0.7, s, s}};
+    return ray;
+  };
+  const RayGradient on = exact_ray_gradient(tf, at(0.5));
+  const RayGradient right = exact_ray_gradient(tf, at(0.5 + 1e-9));
+  const RayGradient left = exact_ray_gradient(tf, at(0.5 - 1e-9));
+  // The documented side: the interval to the right of the node.
+  for (int c = 0; c < kChannels; ++c) {
+    CHECK(std::fabs(on.scalar_far[0][c] - right.scalar_far[0][c]) <= 1e-7 * std::fabs(right.scalar_far[0][c]));
+    CHECK(std::fabs(on.density[c][1].position - right.density[c][1].position) <=
+          1e-7 * std::fabs(right.density[c][1].position));
+    // ... and not the left one: the slopes differ in sign.
+    CHECK(on.scalar_far[0][c] * left.scalar_far[0][c] < 0.0);  // colour constant: only rho moves
+  }
+  // The reference takes the same side by its one-sided stencils.
+  const ReferenceGradient ref = reference_gradient(tf, at(0.5));
+  for (int c = 0; c < kChannels; ++c) CHECK(gradient_error(on, ref.gradient, c, nullptr) <= 1e-15);
+}
+
+namespace {
+
+// Central differences in double of a method's own intensity (registry) with respect to each
+// segment input and node of `tf`: step 1e-6, so truncation ~1e-12 and rounding ~1e-10 relative.
+RayGradient finite_difference(const std::string& spec_text, TransferFunctions tf, Ray ray) {
+  RayGradient g = RayGradient::zeros(tf, ray);
+  const MethodSpec spec = parse_method_spec(spec_text);
+  const auto I = [&](const TransferFunctions& t, const Ray& r) { return make_integrator(spec, t)->integrate(r, nullptr).intensity; };
+  const auto diff = [&](double& x, auto&& store) {
+    const double x0 = x, h = 1e-6 * std::max(1.0, std::fabs(x0));
+    x = x0 + h;
+    const Rgb up = I(tf, ray);
+    x = x0 - h;
+    const Rgb down = I(tf, ray);
+    x = x0;
+    for (int c = 0; c < kChannels; ++c) store(c, (up[c] - down[c]) / (2 * h));
+  };
+  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
+    diff(ray.segments[j].length, [&](int c, double d) { g.length[j][c] = d; });
+    diff(ray.segments[j].scalar_far, [&](int c, double d) { g.scalar_far[j][c] = d; });
+    diff(ray.segments[j].scalar_exit, [&](int c, double d) { g.scalar_exit[j][c] = d; });
+  }
+  for (int c = 0; c < kChannels; ++c) {
+    g.background[c] = make_integrator(spec, tf)->integrate(ray, nullptr).transmittance[c];
+    for (const bool density : {true, false}) {
+      PiecewiseLinear& f = (density ? tf.density : tf.color)[c];
+      auto& out = (density ? g.density : g.color)[c];
+      for (std::size_t k = 0; k < f.scalar.size(); ++k) {
+        diff(f.scalar[k], [&](int ch, double d) { if (ch == c) out[k].position = d; });
+        diff(f.value[k], [&](int ch, double d) { if (ch == c) out[k].value = d; });
+      }
+    }
+  }
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("riemann, nerf, pl_nerf gradients: the derivative of each renderer's own sum", "[grad]") {
+  // Kinks inside segments, no sample within 1e-6 of a node (sample positions are k/n, (k+1/2)/n
+  // of scalar spans with irrational-looking ends).
+  TransferFunctions tf;
+  tf.density = {PiecewiseLinear{{0.0, 0.43, 1.0}, {0.3, 2.1, 0.7}}, PiecewiseLinear{{0.0, 1.0}, {0.5, 1.5}},
+                PiecewiseLinear{{0.1, 0.61, 0.9}, {1.0, 0.2, 2.5}}};
+  tf.color = {PiecewiseLinear{{0.0, 1.0}, {0.9, 0.3}}, PiecewiseLinear{{0.0, 0.57, 1.0}, {0.4, 0.8, 0.5}},
+              PiecewiseLinear{{0.0, 1.0}, {0.2, 0.7}}};
+  Ray ray;
+  ray.background = {0.3, 0.1, 0.6};
+  ray.segments = {{0.7, 0.0123, 0.8871}, {0.45, 0.8871, 0.3317}, {0.3, 0.3317, 0.9533}};
+  for (const char* spec : {"riemann:n=16", "nerf:n=16", "nerf:n=16:at=near", "pl_nerf:n=16", "pl_nerf:n=16:color=near"}) {
+    const RayGradient got = method_gradient(parse_method_spec(spec), tf, ray);
+    const RayGradient fd = finite_difference(spec, tf, ray);
+    for (int c = 0; c < kChannels; ++c) {
+      INFO(spec << " channel " << c);
+      CHECK(gradient_error(got, fd, c, nullptr) <= 1e-8);
+      // ... and the intensity is the renderer's (up to the summation order's rounding).
+      const double I = make_integrator(parse_method_spec(spec), tf)->integrate(ray, nullptr).intensity[c];
+      CHECK(std::fabs(got.intensity[c] - I) <= 1e-14 * std::fabs(I));
+    }
+  }
+}
+
+TEST_CASE("exact gradient against the 50-digit reference: every moment method near its thresholds", "[grad]") {
+  // One-piece rays (piece_as_ray, length 1) by (A, B) = (a, (b - a)/2) in each region of
+  // exact_grad.cpp, concentrated at its thresholds.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const char* names[] = {"erfcx identity (z0 in [0.3, 2])", "erfcx fraction (z0 in [1, 11])",
+                         "erfcx fraction (z0 in [10, 4e3])", "dawson exit series (T <= 50)",
+                         "dawson Laplace series (T > 50)", "q2 series near 2^-26",
+                         "dawson rho_far = 0, T in [40, 50]"};
+  for (int cls = 0; cls < 7; ++cls) {
+    Worst w;
+    for (int i = 0; i < 40; ++i) {
+      double A = 0.0, B = 0.0;
+      const double u = U(rng);
+      if (cls == 0) {
+        const double z0 = 0.3 + 1.7 * u;
+        B = std::pow(10.0, -2.0 + 5.0 * U(rng));
+        A = 2.0 * z0 * std::sqrt(B);
+      } else if (cls == 1) {
+        const double z0 = 1.0 + 10.0 * u * u;
+        B = std::pow(10.0, -3.0 + 5.0 * U(rng));
+        A = 2.0 * z0 * std::sqrt(B);
+      } else if (cls == 2) {
+        const double z0 = std::pow(10.0, 1.0 + 2.6 * u);
+        A = 1.0 + 100.0 * U(rng);
+        B = (A / (2.0 * z0)) * (A / (2.0 * z0));
+      } else if (cls == 3 || cls == 4) {
+        const double T = cls == 3 ? 1.0 + 49.0 * u : 50.0 + 100.0 * u;
+        const double frac = cls == 3 ? U(rng) : std::pow(10.0, -7.0 + 7.0 * U(rng));
+        A = 2.0 * T / (2.0 - frac);
+        B = 0.5 * (A * (1.0 - frac) - A);
+      } else if (cls == 5) {
+        A = 1.0 + 100.0 * u;
+        B = std::pow(10.0, -9.0 + 3.0 * U(rng)) * (U(rng) < 0.5 ? -1.0 : 1.0) * A * A;
+      } else {
+        const double T = 40.0 + 10.0 * u;
+        A = 2.0 * T;
+        B = -T;
+      }
+      const double b = std::max(0.0, A + 2.0 * B);
+      RegimeSample s;
+      s.piece = {1.0, b, A, 10.0 * U(rng), 10.0 * U(rng)};
+      s.incoming = U(rng);
+      const RaySample rs = piece_as_ray(s);
+      w.add(exact_ray_gradient(rs.transfer, rs.ray), reference_gradient(rs.transfer, rs.ray).gradient,
+            std::string(names[cls]) + " #" + std::to_string(i) + " (" +
+                moment_method_name(exact_piece_grad(s.piece).method) + ")");
+    }
+    WARN(names[cls] << ": worst " << w.err << " at " << w.where);
+    CHECK(w.err <= test::GradTolerances::exact_vs_reference_rel);
+  }
+}

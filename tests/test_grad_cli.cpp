@@ -1,0 +1,113 @@
+// `rayint grad` and `rayint gradcheck` (issue 28): the JSON layout, an exact candidate passes,
+// a wrong one fails naming its worst entry, bad input is one line and exit 2.
+#include <nlohmann/json.hpp>
+
+#include "cli_harness.hpp"
+#include "rayint/input/grad_candidate_reader.hpp"
+
+using rayint::test::run_cli;
+using rayint::test::slurp;
+using rayint::test::TempDir;
+using nlohmann::json;
+
+namespace {
+
+// A gradcheck candidate from `rayint grad` output: method `label` of the first case.
+std::string candidate_from(const json& report, const std::string& label) {
+  json cand = {{"case", report["cases"][0]["case"]}, {"renderer", label}, {"rays", json::array()}};
+  for (const json& ray : report["cases"][0]["rays"])
+    cand["rays"].push_back({{"gradient", ray["methods"][label]["gradient"]}});
+  return cand.dump();
+}
+
+}  // namespace
+
+TEST_CASE("grad: layout of the issue, reference and errors per method", "[grad][grad_cli]") {
+  TempDir dir;
+  dir.copy_case("paper-figure-2");
+  const auto r = run_cli(dir.path, "grad paper-figure-2.json --methods exact,riemann:n=16,ode -o g.json");
+  REQUIRE(r.status == 0);
+  const json j = json::parse(slurp(dir.path / "g.json"));
+  const json& ray1 = j["cases"][0]["rays"][1];
+  const json& g = ray1["methods"]["exact"]["gradient"];
+  CHECK(g["background"].size() == 3);
+  CHECK(g["length"].size() == 2);  // ray 1 has two segments
+  CHECK(g["scalar"].size() == 2);
+  CHECK(g["scalar"][0].size() == 2);
+  CHECK(g["scalar"][0][0].size() == 3);
+  CHECK(g["density"]["r"].size() == 2);  // the case's density has two nodes
+  CHECK(g["density"]["r"][0].size() == 2);
+  CHECK(g["color"]["b"].size() == 2);
+  CHECK(ray1["reference"]["gradient"]["length"].size() == 2);
+  // exact against the 50-digit reference: within the tested tolerance.
+  for (int c = 0; c < 3; ++c)
+    CHECK(ray1["methods"]["exact"]["errors"]["gradient_max_rel_vs_reference"][c].get<double>() <= 1e-14);
+  // riemann n=16 has an error; ode has no gradient and is shown failed, not as a number.
+  CHECK(ray1["methods"]["riemann:n=16"]["errors"]["gradient_max_rel_vs_reference"][0].get<double>() > 1e-8);
+  CHECK(ray1["methods"]["ode"]["gradient"].is_null());
+  CHECK(ray1["methods"]["ode"]["error"].get<std::string>().find("no gradient") != std::string::npos);
+}
+
+TEST_CASE("gradcheck: the exact candidate passes, a perturbed entry and Riemann n=16 fail by name", "[grad][grad_cli]") {
+  TempDir dir;
+  dir.copy_case("paper-figure-2");
+  REQUIRE(run_cli(dir.path, "grad paper-figure-2.json --no-reference --methods exact,riemann:n=16 -o g.json").status == 0);
+  const json report = json::parse(slurp(dir.path / "g.json"));
+  dir.write("exact.json", candidate_from(report, "exact"));
+  dir.write("riemann.json", candidate_from(report, "riemann:n=16"));
+  json wrong = json::parse(candidate_from(report, "exact"));
+  double& entry = wrong["rays"][1]["gradient"]["color"]["g"][1][1].get_ref<double&>();
+  entry *= 1.001;
+  dir.write("wrong.json", wrong.dump());
+
+  const auto ok = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate exact.json --rel-tol 1e-12");
+  CHECK(ok.status == 0);
+  CHECK(json::parse(ok.out)["pass"] == true);
+
+  const auto bad = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate wrong.json --rel-tol 1e-6 --junit j.xml");
+  CHECK(bad.status == 1);
+  CHECK(bad.err.find("worst: ray 1 color node 1 value channel g") != std::string::npos);
+  CHECK(json::parse(bad.out)["failed"] == 1);
+  CHECK(slurp(dir.path / "j.xml").find("<failure") != std::string::npos);
+
+  const auto rie = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate riemann.json --rel-tol 1e-6");
+  CHECK(rie.status == 1);
+  CHECK(rie.err.find("FAIL") != std::string::npos);
+  CHECK(rie.err.find("worst: ray ") != std::string::npos);
+}
+
+TEST_CASE("gradcheck: bad input is one line naming the file and field, exit 2", "[grad][grad_cli]") {
+  TempDir dir;
+  dir.copy_case("paper-figure-2");
+  dir.write("nan.json", R"({"case": "paper-figure-2", "rays": [{"gradient": {"background": [1, null, 0]}}]})");
+  const auto r = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate nan.json");
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(rayint::test::line_count(r.err) == 1);
+  CHECK(r.err.find("nan.json: rays[0].gradient") != std::string::npos);
+  dir.write("short.json", R"({"case": "paper-figure-2", "rays": [{"gradient": {"background": [1, 1, 0]}}]})");
+  const auto s = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate short.json");
+  CHECK(s.status == 2);
+  CHECK(s.err.find("short.json: rays[0].gradient") != std::string::npos);
+}
+
+TEST_CASE("grad candidate reader: shape mismatches name the field", "[grad]") {
+  rayint::Case c;
+  c.name = "x";
+  c.source = "x.json";
+  for (int ch = 0; ch < 3; ++ch) {
+    c.transfer.density[ch] = {{0.0, 1.0}, {1.0, 2.0}};
+    c.transfer.color[ch] = {{0.0}, {1.0}};
+  }
+  c.rays.resize(1);
+  c.rays[0].segments.resize(1);
+  const std::string good =
+      R"({"case": "x", "rays": [{"gradient": {"background": [1, 1, 1], "length": [[0, 0, 0]], )"
+      R"("scalar": [[[0, 0, 0], [0, 0, 0]]], "density": {"r": [[0, 0], [0, 0]], "g": [[0, 0], [0, 0]], )"
+      R"("b": [[0, 0], [0, 0]]}, "color": {"r": [[0, 1]], "g": [[0, 1]], "b": [[0, 1]]}}}]})";
+  const rayint::GradCandidate cand = rayint::parse_grad_candidate_text(good, "c.json");
+  CHECK_NOTHROW(rayint::require_grad_candidate_matches(cand, c));
+  c.transfer.color[1] = {{0.0, 1.0}, {1.0, 1.0}};
+  CHECK_THROWS_WITH(rayint::require_grad_candidate_matches(cand, c),
+                    Catch::Contains("c.json: rays[0].gradient.color.g: has 1 nodes"));
+}
