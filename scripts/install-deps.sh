@@ -26,6 +26,10 @@ packages=(build-essential cmake pkg-config
           python3-setuptools python3-wheel python3-pip  # `pip install .` of the Python module
                                 #   (pyproject.toml + setup.py; CTest python_pip_install)
           slurm-wlm munge)      # CTest slurm_cluster: a local Slurm cluster runs sharded jobs (scripts/slurm/)
+# --test: also what only the test suite needs (scripts/test.sh):
+if [ "${1:-}" = "--test" ]; then
+  packages+=(python3-torch)  # rayint.torch's autograd.Function is checked with torch.autograd.gradcheck
+fi                           #   (tests/python/test_grad.py); the module itself works without torch
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
