@@ -60,8 +60,17 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
     ro.progress = [&progress_line](double f) {
       progress_line.update("rendering " + std::to_string(static_cast<int>(f * 100.0)) + "%", f);
     };
+  ProgressLine error_line;
+  if (!options.quiet && options.error_grid > 0)
+    ro.error_progress = [&progress_line, &error_line](double f) {
+      progress_line.finish();  // the rendering line is complete when the error phase starts
+      error_line.update("errors against the references " + std::to_string(static_cast<int>(f * 100.0)) + "%", f);
+    };
   const SceneRenderResult result = pipeline->render(ro);
-  if (!options.quiet) progress_line.finish();
+  if (!options.quiet) {
+    progress_line.finish();
+    error_line.finish();
+  }
   PngOptions png;
   png.exposure = options.exposure;
   write_image(options.output, result.image, png);

@@ -228,6 +228,8 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
     // One accumulator per sampled ray, merged in order: independent of the thread count.
     std::vector<std::vector<ErrorAccumulator>> acc(subset.size(), std::vector<ErrorAccumulator>(ne + 1));
     const Clock::time_point t_err = Clock::now();
+    std::mutex error_progress_mutex;
+    std::size_t error_rays_done = 0;
     parallel_for(static_cast<long long>(subset.size()), threads, [&](long long s) {
       const PixelRay pr = ray(subset[static_cast<std::size_t>(s)]);
       std::vector<ErrorAccumulator>& ray_acc = acc[static_cast<std::size_t>(s)];
@@ -248,6 +250,10 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
         }
       }
       ray_acc[ne].add(total_approx, total_ref, total_ref_err);
+      if (options.error_progress) {
+        std::lock_guard<std::mutex> lock(error_progress_mutex);
+        options.error_progress(static_cast<double>(++error_rays_done) / static_cast<double>(subset.size()));
+      }
     });
     out.error_seconds = seconds_since(t_err);
     for (std::size_t e = 0; e <= ne; ++e) {

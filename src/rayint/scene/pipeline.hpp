@@ -44,6 +44,8 @@ struct SceneRenderOptions {
   // explicit rays, every ray is compared when error_grid > 0.
   int error_grid = 0;
   std::function<void(double fraction)> progress;  // called from worker threads, serialised
+  // The error_grid phase (references are slow): sampled rays done / sampled rays, likewise.
+  std::function<void(double fraction)> error_progress;
 };
 
 struct SceneRenderResult {
