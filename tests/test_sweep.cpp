@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "rayint/report/sweep_table.hpp"
 #include "rayint/studies/sweep.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/report/sweep_json.hpp"
@@ -214,4 +215,27 @@ TEST_CASE("a budget that runs out stops the sweep cleanly and is recorded", "[sw
     CHECK(!rows[1].reached);
     CHECK(rows[1].truncated);
   }
+}
+
+TEST_CASE("A bench progress line shows a setting that failed on every ray without numbers", "[sweep][failure]") {
+  rayint::SettingResult failed;
+  failed.label = "particle";
+  failed.rays = 3;
+  failed.failed_rays = 3;  // no channel scored
+  rayint::SweepProgress p;
+  p.stage = rayint::SweepProgress::Stage::setting;
+  p.what = failed.label;
+  p.done = 1;
+  p.total = 1;
+  p.setting = &failed;
+  const std::string line = rayint::sweep_progress_line(p);
+  INFO(line);
+  CHECK(line.find("max -") != std::string::npos);
+  CHECK(line.find("median -") != std::string::npos);
+  CHECK(line.find("failed on 3 rays") != std::string::npos);
+  CHECK(line.find("0.00e+00") == std::string::npos);
+  failed.channels = 3;  // one ray ran: its numbers are shown
+  failed.failed_rays = 2;
+  failed.max_error = 1.5e-3;
+  CHECK(rayint::sweep_progress_line(p).find("max 1.50e-03") != std::string::npos);
 }

@@ -35,6 +35,8 @@ std::string sweep_progress_line(const SweepProgress& p) {
       break;
     case SweepProgress::Stage::setting: {
       const SettingResult& s = *p.setting;
+      // A setting that ran on no ray has no error and no time: "-", never "max 0".
+      const bool scored = s.channels > 0;
       std::string note;
       if (s.failed_rays > 0) note += "  failed on " + std::to_string(s.failed_rays) + " rays";
       if (s.nonfinite > 0) note += "  " + std::to_string(s.nonfinite) + " non-finite";
@@ -45,8 +47,9 @@ std::string sweep_progress_line(const SweepProgress& p) {
       }
       std::snprintf(line, sizeof line,
                     "[%3zu/%zu] %-26s max %-10s median %-10s %11s/ray %7.1f s%s\n", p.done, p.total,
-                    p.what.c_str(), format_error(s.max_error).c_str(),
-                    format_error(s.median_error).c_str(), format_seconds(s.seconds_per_ray).c_str(),
+                    p.what.c_str(), scored ? format_error(s.max_error).c_str() : "-",
+                    scored ? format_error(s.median_error).c_str() : "-",
+                    scored ? format_seconds(s.seconds_per_ray).c_str() : "-",
                     p.elapsed_seconds, note.c_str());
       break;
     }
