@@ -136,6 +136,16 @@ with tempfile.TemporaryDirectory(prefix="rayint-friction-") as tmp:
     check(r.returncode == 0 and len(builds) == 1 and builds[0].endswith("--target rayint_cli")
           and "rayint eval cases --format table" in r.stdout,
           f"scripts/run.sh builds only rayint_cli, then evaluates cases/ (cmake calls: {calls})")
+    # A failed method (exit 1 of rayint eval) is explained in one line, and the job still ran;
+    # bad input (exit 2) is passed on.
+    for code, want in ((1, 0), (2, 2)):
+        with open(os.path.join(build, "rayint"), "w") as f:
+            f.write(f"#!/bin/sh\necho rayint \"$@\"\nexit {code}\n")
+        r = subprocess.run([os.path.join(source, "scripts", "run.sh")], env=env, stdout=subprocess.PIPE,
+                           stderr=subprocess.STDOUT, text=True)
+        explained = "FAILED" in r.stdout and "exits 1" in r.stdout
+        check(r.returncode == want and (explained if code == 1 else not explained),
+              f"scripts/run.sh with rayint eval exiting {code}: exits {r.returncode} (want {want})")
 
 print(f"cli_friction: {len(failures)} failures")
 sys.exit(1 if failures else 0)
