@@ -5,7 +5,13 @@
 // DiffusionTolerances, each from the measured figure and the Monte Carlo's own noise.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
+
+#include "cli_harness.hpp"
 
 #include "rayint/scattering/diffusion.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
@@ -131,4 +137,34 @@ TEST_CASE("diffusion on a voxel grid conserves the scattered power", "[scatter][
   INFO("source " << source << " absorbed " << absorbed << " escaped " << escaped << ", imbalance / source "
                  << std::scientific << std::fabs(source - absorbed - escaped) / source);
   CHECK(std::fabs(source - absorbed - escaped) <= DiffusionTolerances::balance_rel * source);
+}
+
+TEST_CASE("rayint render --method multiple_scattering=diffusion: the scene effect, and a bad grid", "[scatter][diffusion][cli]") {
+  rayint::test::TempDir dir;
+  const std::string scene = R"({"name": "c", "medium": {"type": "homogeneous", "shape": "box", "density": 1,
+      "lower": [0, 0, 0], "upper": [1, 1, 1]},
+    "transfer": {"extinction": [[0, 0], [1, 10]], "albedo": [[0, 0.99]]},
+    "lights": [{"type": "directional", "direction": [0.3, 0.2, -1], "intensity": 1}],
+    "phase": {"type": "isotropic"},
+    "camera": {"position": [0.5, 2.5, 3.5], "look_at": [0.5, 0.5, 0.5], "fov_deg": 30, "width": 8, "height": 8},
+    "background": {"color": [0, 0, 0]}, "effects": ["multiple_scattering"]})";
+  std::ofstream(dir.path / "c.json") << scene;
+  const auto ok = rayint::test::run_cli(
+      dir.path, "render c.json -o c.pfm --stats s.json -q --method multiple_scattering=diffusion:grid=8");
+  INFO(ok.err);
+  REQUIRE(ok.status == 0);
+  const auto st = nlohmann::json::parse(rayint::test::slurp(dir.path / "s.json"));
+  bool found = false;
+  for (const auto& e : st["effects"])
+    if (e["effect"] == "multiple_scattering") {
+      found = true;
+      CHECK(e["method"] == "diffusion:grid=8");
+      CHECK(e["mean_term"][0].get<double>() > 0);
+    }
+  CHECK(found);
+  const auto bad = rayint::test::run_cli(dir.path, "render c.json -o d.pfm -q --method multiple_scattering=diffusion:grid=1");
+  CHECK(bad.status == 2);
+  CHECK(rayint::test::line_count(bad.err) == 1);
+  CHECK(bad.err.find("grid") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.path / "d.pfm"));
 }
