@@ -82,6 +82,19 @@ TEST_CASE("P_N with a Lambertian ground converges to the doubling with the groun
           }
 }
 
+TEST_CASE("P_N with Mark's boundary conditions and a Lambertian ground converges too", "[pn][ground]") {
+  // tau 1, omega 0.9, A 0.6, beam (mu0 0.5) and isotropic light, P127 with Mark's conditions.
+  for (SlabSource src : {SlabSource::beam, SlabSource::isotropic}) {
+    const SlabProblem p = ground_problem(1.0, 0.9, 0.6, src);
+    PnOptions o;
+    o.order = 127;
+    o.boundary = PnBoundary::mark;
+    const double e = largest_rel(solve_slab_pn(p, o).values, solve_slab_doubling(p));
+    INFO("beam " << (src == SlabSource::beam) << ": " << e);
+    CHECK(e <= PnGroundTolerances::mark_p127);
+  }
+}
+
 TEST_CASE("P_N with a white ground and no absorption reflects all the light", "[pn][ground]") {
   // omega = 1, A = 1: nothing is absorbed, so the flux up at the top is the incident flux pi.
   // Marshak's first bottom row makes the upward flux at the ground A times the downward one, so

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "rayint/core/math.hpp"
 #include "rayint/scattering/cell_passes.hpp"
@@ -15,7 +16,9 @@ namespace rayint {
 
 DiffusionSolution solve_diffusion(const ScatteringVolume& v, const DiffusionOptions& o) {
   v.validate();
-  if (o.grid < 2) throw std::invalid_argument("diffusion: grid must be >= 2 cells per axis");
+  if (o.grid < 2 || o.grid > kDiffusionMaxGrid)
+    throw std::invalid_argument("diffusion: grid must be in [2, " + std::to_string(kDiffusionMaxGrid) +
+                                "] cells per axis, got " + std::to_string(o.grid));
   if (!(o.tolerance > 0) || o.max_iterations < 1)
     throw std::invalid_argument("diffusion: tolerance must be > 0 and max_iterations >= 1");
   if (!(o.min_sigma_factor > 0)) throw std::invalid_argument("diffusion: min_sigma_factor must be > 0");

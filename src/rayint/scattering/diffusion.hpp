@@ -43,9 +43,13 @@
 namespace rayint {
 
 inline constexpr double kDiffusionMinSigmaFactor = 1.0;
+// Largest grid: 128^3 = 2.1e6 unknowns, about 0.6 GB for the matrix, its triplets and the
+// preconditioner (7 entries a row; estimated from the entry counts, not measured); a memory
+// bound, not an accuracy one.
+inline constexpr int kDiffusionMaxGrid = 128;
 
 struct DiffusionOptions {
-  int grid = 32;              // cells per axis
+  int grid = 32;              // cells per axis, 2..kDiffusionMaxGrid
   double tolerance = 1e-10;   // relative residual of the conjugate gradients
   int max_iterations = 5000;
   double min_sigma_factor = kDiffusionMinSigmaFactor;  // sigma_tr floor times the shortest edge
