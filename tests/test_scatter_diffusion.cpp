@@ -13,7 +13,10 @@
 
 #include "cli_harness.hpp"
 
+#include "rayint/core/math.hpp"
 #include "rayint/scattering/diffusion.hpp"
+#include "rayint/scattering/pn.hpp"
+#include "rayint/scattering/slab_single_scattering.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
 #include "tolerances_ground_table_diffusion.hpp"
 
@@ -167,4 +170,37 @@ TEST_CASE("rayint render --method multiple_scattering=diffusion: the scene effec
   CHECK(rayint::test::line_count(bad.err) == 1);
   CHECK(bad.err.find("grid") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.path / "d.pfm"));
+}
+
+TEST_CASE("diffusion on a wide flat box matches the slab's P1 at its centre", "[scatter][diffusion]") {
+  // An independent check of the 3-D finite volumes: a box 20 x 20 x 1 of optical thickness tau,
+  // lit straight down with irradiance pi, is the slab of slab.hpp near its centre (lateral faces
+  // 20 tau mean free paths away; the diffusion length 1/sqrt(3 (1 - omega)) is 1.8). Its
+  // orders >= 2 seen straight down at the centre must be the slab's P1 (pn.cpp, a different
+  // code: eigen-solution in closed form, source-function integration) minus the exact single
+  // scattering, up to the grid's discretisation.
+  for (double tau : {1.0, 4.0}) {
+    ScatteringVolume v;
+    v.density = VoxelGrid({2, 2, 2}, Vec3::Zero(), Vec3(20, 20, 1), std::vector<double>(8, 1.0));
+    v.extinction_per_density = tau;
+    v.albedo = 0.9;
+    v.light.direction = Vec3(0, 0, -1);
+    v.light.irradiance = kPi;
+    DiffusionOptions o;
+    o.grid = 64;
+    const DiffusionSolution s = solve_diffusion(v, o);
+    REQUIRE(s.converged);
+    const double diffusion = gather_diffusion(v, s, ViewRay{Vec3(10.01, 9.99, 2), Vec3(0, 0, -1)}, false);
+    SlabProblem p;
+    p.tau = tau;
+    p.albedo = 0.9;
+    p.mu0 = 1;
+    p.mu_up = {1.0};
+    PnOptions po;
+    po.order = 1;
+    const double p1 = solve_slab_pn(p, po).values.intensity_up_top[0] - single_scattering(p).intensity_up_top[0];
+    INFO("tau " << tau << ": diffusion " << diffusion << ", slab P1 " << p1 << ", relative "
+                << std::fabs(diffusion - p1) / p1);
+    CHECK(std::fabs(diffusion - p1) <= DiffusionTolerances::slab_p1_rel * p1);
+  }
 }

@@ -38,6 +38,9 @@ struct DiffusionTolerances {
   static constexpr double thin_brightness_rel = 0.21;
   // The thin cube's brightness error over the thick cube's: measured 1.95.
   static constexpr double thin_over_thick = 1.5;
+  // A 20 x 20 x 1 box against the slab's P1 at its centre (grid 64, omega 0.9): measured
+  // 8.9e-5 (tau 1), 5.4e-4 (tau 4): the 3-D solve is the slab's P1 to its discretisation.
+  static constexpr double slab_p1_rel = 7e-4;
   // Power balance of the finite-volume solve (thick cube, grid 12): measured 2.5e-13.
   static constexpr double balance_rel = 1e-11;
 };
