@@ -40,7 +40,7 @@ struct SlabOptions {
   bool quiet = false;
   std::string output;
   // one problem
-  double tau = 1, albedo = 1, mu0 = 1;
+  double tau = 1, albedo = 1, mu0 = 1, ground_albedo = 0;
   std::string phase = "isotropic", source = "beam";
   std::vector<double> mu_up, mu_down;
   int max_order = 0;
@@ -211,6 +211,9 @@ void set_slab_command(CLI::App& app) {
   add_shard_option(cmd, s->shard);
   cmd->add_option("--tau", s->tau, "one problem: optical thickness");
   cmd->add_option("--albedo", s->albedo, "one problem: single-scattering albedo");
+  cmd->add_option("--ground-albedo", s->ground_albedo,
+                  "one problem: albedo of a Lambertian ground below the slab (default 0: black); "
+                  "doubling, pn, analog Monte Carlo");
   cmd->add_option("--phase", s->phase, "one problem: isotropic, lambert or hg:G");
   cmd->add_option("--source", s->source, "one problem: beam or isotropic");
   cmd->add_option("--mu0", s->mu0, "one problem: beam cosine");
@@ -256,8 +259,20 @@ void set_slab_command(CLI::App& app) {
     };
     if (!s->scene.empty()) {
       const SlabScene scene = read_slab_scene(s->scene);
+      if (!scene.legendre.empty()) {
+        if (methods.doubling || methods.monte_carlo)
+          throw std::invalid_argument(s->scene + ": phase.type: a " + scene.phase_name +
+                                      " phase function is solved by --method pn only");
+        o.pn_options.legendre = scene.legendre;
+      }
       const SlabRun run = run_slab_problem(scene.problem, o);
-      finish(slab_run_json(slab_scene_json(s->scene, scene.name, scene.problem), run).dump(2));
+      nlohmann::json j = slab_scene_json(s->scene, scene.name, scene.problem);
+      j["phase"] = scene.phase_name;
+      if (!scene.legendre.empty()) {
+        j["phase_legendre_terms"] = scene.legendre.size();
+        j["phase_mean_cosine"] = scene.legendre.size() > 1 ? scene.legendre[1] : 0.0;
+      }
+      finish(slab_run_json(j, run).dump(2));
       return;
     }
     if (s->benchmark.empty()) {
@@ -269,6 +284,9 @@ void set_slab_command(CLI::App& app) {
       p.mu0 = s->mu0;
       p.mu_up = s->mu_up;
       p.mu_down = s->mu_down;
+      p.ground_albedo = s->ground_albedo;
+      if (!(p.ground_albedo >= 0 && p.ground_albedo <= 1))
+        throw std::invalid_argument("--ground-albedo: must be in [0, 1]");
       validate(p);
       const SlabRun run = run_slab_problem(p, o);
       finish(slab_run_json(slab_problem_json(p, s->phase, s->source), run).dump(2));

@@ -3,7 +3,9 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
+#include "rayint/scattering/diffusion.hpp"
 #include "rayint/scattering/discrete_ordinates.hpp"
 #include "rayint/scattering/scattering_volume.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
@@ -33,6 +35,15 @@ class MultipleScatteringEffect final : public Effect {
       ZonalOptions o;
       o.grid = static_cast<int>(spec_.number("grid", 12));
       for (const auto& v : volumes_) zonal_.push_back(solve_zonal(v, o));
+    } else if (spec_.name == "diffusion") {
+      DiffusionOptions o;
+      o.grid = static_cast<int>(spec_.number("grid", 32));
+      for (const auto& v : volumes_) {
+        diffusion_.push_back(solve_diffusion(v, o));
+        if (!diffusion_.back().converged)
+          throw std::runtime_error("multiple_scattering: the diffusion solve did not converge (relative residual " +
+                                   std::to_string(diffusion_.back().residual) + ")");
+      }
     } else if (spec_.name == "monte_carlo") {
       spp_ = static_cast<int>(spec_.number("spp", 64));
       seed_ = static_cast<std::uint64_t>(spec_.number("seed", 1));
@@ -51,6 +62,8 @@ class MultipleScatteringEffect final : public Effect {
       double value = 0;
       if (!ordinates_.empty()) {
         value = gather_discrete_ordinates(volumes_[c], ordinates_[c], pr.ray, false);
+      } else if (!diffusion_.empty()) {
+        value = gather_diffusion(volumes_[c], diffusion_[c], pr.ray, false);
       } else if (!zonal_.empty()) {
         value = gather_zonal(volumes_[c], zonal_[c], pr.ray, false);
       } else {
@@ -101,6 +114,7 @@ class MultipleScatteringEffect final : public Effect {
   std::vector<double> majorants_;
   std::vector<DiscreteOrdinatesSolution> ordinates_;
   std::vector<ZonalSolution> zonal_;
+  std::vector<DiffusionSolution> diffusion_;
   int spp_ = 64;
   std::uint64_t seed_ = 1;
 };
@@ -118,6 +132,7 @@ EffectInfo multiple_scattering_effect_info() {
           "discrete_ordinates:grid=32:bins=3",
           {{"discrete_ordinates", {"grid", "bins", "points"}, "Max's direction bins on a grid^3 cell grid"},
            {"zonal", {"grid", "points"}, "zonal method, isotropic scattering only"},
+           {"diffusion", {"grid", "points"}, "P1 (diffusion) on a grid^3 cell grid, Marshak boundaries"},
            {"monte_carlo", {"spp", "seed", "points"}, "path tracing of orders >= 2"}},
           make_multiple_scattering_effect};
 }

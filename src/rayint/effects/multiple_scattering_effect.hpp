@@ -9,6 +9,9 @@
 // Methods (`"methods": {"multiple_scattering": "..."}`):
 //   discrete_ordinates:grid=G:bins=B:points=P  Max's direction bins (6 B^2), G^3 cells (default G 32, B 3)
 //   zonal:grid=G:points=P                      isotropic only (default G 12)
+//   diffusion:grid=G:points=P                  P1 / diffusion on G^3 cells (default G 32;
+//                                              scattering/diffusion.hpp); a solve that does not
+//                                              converge is an error, never an image
 //   monte_carlo:spp=N:seed=S:points=P          path tracing of orders >= 2 (default spp 64)
 // points: the medium is resampled on P^3 points for every method (default 64;
 // scattering/scattering_volume.hpp, volume_from_medium).

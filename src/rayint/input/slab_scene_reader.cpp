@@ -1,6 +1,7 @@
 // Reading slab scenes; see slab_scene.hpp.
 #include "rayint/input/slab_scene_reader.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "rayint/input/json_schema.hpp"
@@ -29,7 +30,7 @@ SlabScene parse_slab_scene(const std::string& text, const std::string& source) {
   const JsonSchema s(source);
   const json j = json_source::parse(text, source);
   s.require_object(j, "");
-  s.check_fields(j, "", {"name", "description", "medium", "phase", "lights", "detectors"});
+  s.check_fields(j, "", {"name", "description", "medium", "phase", "lights", "detectors", "ground"});
   SlabScene scene;
   scene.name = s.non_empty_string(s.required(j, "", "name"), "name");
   if (const json* d = s.optional(j, "description")) scene.description = s.string_value(*d, "description");
@@ -57,9 +58,34 @@ SlabScene parse_slab_scene(const std::string& text, const std::string& source) {
   } else if (pt == "lambert_sphere") {
     s.check_fields(ph, "phase", {"type"});
     p.phase = PhaseFunction::lambert_sphere();
+  } else if (pt == "legendre") {
+    s.check_fields(ph, "phase", {"type", "coefficients"});
+    const json& c = s.required(ph, "phase", "coefficients");
+    s.non_empty_array(c, "phase.coefficients", "Legendre coefficients");
+    for (std::size_t l = 0; l < c.size(); ++l) {
+      const std::string at = index_path("phase.coefficients", l);
+      const double chi = s.finite_number(c[l], at);
+      if (l == 0 && chi != 1) s.fail(at, "must be 1 (the normalisation chi_0), got " + json_source::format_number(chi));
+      if (l > 0 && !(std::fabs(chi) < 1)) s.fail(at, "must be in (-1, 1), got " + json_source::format_number(chi));
+      scene.legendre.push_back(chi);
+    }
+    scene.phase_name = "legendre";
+  } else if (pt == "tabulated") {
+    s.check_fields(ph, "phase", {"type", "points"});
+    const PiecewiseLinear t = s.points(s.required(ph, "phase", "points"), "phase.points");
+    if (t.scalar.front() != -1 || t.scalar.back() != 1)
+      s.fail("phase.points", "the cosines must run from -1 to 1");
+    try {
+      scene.legendre = legendre_from_table(t.scalar, t.value, kSlabTableOrder);
+    } catch (const std::invalid_argument& e) {
+      s.fail("phase.points", e.what());
+    }
+    scene.phase_name = "tabulated";
   } else {
-    s.fail("phase.type", "must be isotropic, henyey_greenstein or lambert_sphere, got " + json_source::quoted(pt));
+    s.fail("phase.type", "must be isotropic, henyey_greenstein, lambert_sphere, legendre or tabulated, got " +
+                             json_source::quoted(pt));
   }
+  if (scene.phase_name.empty()) scene.phase_name = p.phase.name();
 
   const json& lights = s.required(j, "", "lights");
   s.non_empty_array(lights, "lights", "lights");
@@ -78,6 +104,14 @@ SlabScene parse_slab_scene(const std::string& text, const std::string& source) {
     p.source = SlabSource::isotropic;
   } else {
     s.fail(member_path(lp, "type"), "must be \"beam\" or \"isotropic\", got " + json_source::quoted(lt));
+  }
+
+  if (const json* g = s.optional(j, "ground")) {
+    s.require_object(*g, "ground");
+    s.check_fields(*g, "ground", {"type", "albedo"});
+    const std::string gt = s.string_value(s.required(*g, "ground", "type"), "ground.type");
+    if (gt != "lambertian") s.fail("ground.type", "must be \"lambertian\", got " + json_source::quoted(gt));
+    p.ground_albedo = s.in_range(s.required(*g, "ground", "albedo"), "ground.albedo", 0, 1);
   }
 
   if (const json* d = s.optional(j, "detectors")) {

@@ -26,14 +26,14 @@ nlohmann::json slab_problem_json(const SlabProblem& p, const std::string& phase,
                                  const std::string& source) {
   return {{"tau", p.tau},       {"albedo", p.albedo}, {"phase", phase},
           {"source", source},   {"mu0", p.mu0},       {"mu_up", p.mu_up},
-          {"mu_down", p.mu_down}};
+          {"mu_down", p.mu_down}, {"ground_albedo", p.ground_albedo}};
 }
 
 nlohmann::json slab_scene_json(const std::string& path, const std::string& name, const SlabProblem& p) {
   const bool beam = p.source == SlabSource::beam;
   nlohmann::json j = {{"scene", path}, {"name", name}, {"tau", p.tau}, {"albedo", p.albedo},
                       {"phase", p.phase.name()}, {"source", beam ? "beam" : "isotropic"},
-                      {"mu_up", p.mu_up}, {"mu_down", p.mu_down}};
+                      {"mu_up", p.mu_up}, {"mu_down", p.mu_down}, {"ground_albedo", p.ground_albedo}};
   if (beam) j["mu0"] = p.mu0;
   return j;
 }

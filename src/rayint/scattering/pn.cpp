@@ -201,6 +201,20 @@ PnSolution solve_core(const SlabProblem& p, const Setup& s, PnBoundary boundary,
   Matrix Rtop(M, N + 1), Rbot(M, N + 1);
   Vector gtop = Vector::Zero(M);
   const bool iso = !beam;
+  // h_l = int_0^1 mu P_l(mu) dmu: the downward flux at the bottom is 2 pi sum_l h_l a_l(tau).
+  Vector h = Vector::Zero(N + 1);
+  {
+    const GaussLegendre gl = gauss_legendre_01(N + 1);
+    for (std::size_t q = 0; q < gl.nodes.size(); ++q) {
+      const std::vector<double> P = legendre_all(gl.nodes[q], N);
+      for (int l = 0; l <= N; ++l) h(l) += gl.weights[q] * gl.nodes[q] * P[static_cast<std::size_t>(l)];
+    }
+  }
+  // Lambertian ground (pn.hpp): the upward intensity at the bottom is the constant
+  // I_g = (A / pi) F_down = 2 A h . a(tau) + A e^{-tau/mu0} (beam). Per boundary row, its weight
+  // against that constant: int_0^1 P_i dmu (Marshak) or 1 (Mark).
+  const double ground = p.ground_albedo;
+  Vector gbot = Vector::Zero(M);
   if (boundary == PnBoundary::marshak) {
     const GaussLegendre gl = gauss_legendre_01(N + 1);  // exact for degree <= 2N + 1
     Rtop.setZero();
@@ -209,10 +223,11 @@ PnSolution solve_core(const SlabProblem& p, const Setup& s, PnBoundary boundary,
       for (int m = 0; m < M; ++m) {
         const double wp = gl.weights[q] * P[static_cast<std::size_t>(2 * m + 1)];
         for (int l = 0; l <= N; ++l) Rtop(m, l) += wp * P[static_cast<std::size_t>(l)];
-        if (iso) gtop(m) += wp;
+        gbot(m) += wp;
       }
     }
     for (int l = 0; l <= N; ++l) Rbot.col(l) = (l % 2 ? -1.0 : 1.0) * Rtop.col(l);
+    if (iso) gtop = gbot;
   } else {
     const GaussLegendre gl = gauss_legendre_01(N + 1);  // roots of P_{N+1} mapped to [0, 1]
     int m = 0;
@@ -225,9 +240,12 @@ PnSolution solve_core(const SlabProblem& p, const Setup& s, PnBoundary boundary,
         Rbot(m, l) = (l % 2 ? -1.0 : 1.0) * P[static_cast<std::size_t>(l)];
       }
       if (iso) gtop(m) = 1;
+      gbot(m) = 1;
       ++m;
     }
   }
+
+  Rbot -= 2 * ground * gbot * h.transpose();
 
   const Index n = 2 * M;
   Matrix S(n, n);
@@ -241,7 +259,7 @@ PnSolution solve_core(const SlabProblem& p, const Setup& s, PnBoundary boundary,
   }
   Vector rhs(n);
   const double beam_bottom = beam ? std::exp(-tau / mu0) : 0.0;
-  rhs << gtop - Rtop * part, -Rbot * (part * beam_bottom);
+  rhs << gtop - Rtop * part, ground * beam_bottom * gbot - Rbot * (part * beam_bottom);
   const Eigen::PartialPivLU<Matrix> lu(S);
   dg.rcond = lu.rcond();
   const Vector coef = lu.solve(rhs);
@@ -257,22 +275,19 @@ PnSolution solve_core(const SlabProblem& p, const Setup& s, PnBoundary boundary,
     atop += shape_at(t, 0, tau) * t.a;
     abot += shape_at(t, tau, tau) * t.a;
   }
-  // Fluxes from the moments: h_l = int_0^1 mu P_l(mu) dmu.
+  // Fluxes from the moments.
   {
-    const GaussLegendre gl = gauss_legendre_01(N + 1);
     double up = 0, down = 0;
-    for (std::size_t q = 0; q < gl.nodes.size(); ++q) {
-      const std::vector<double> P = legendre_all(gl.nodes[q], N);
-      for (int l = 0; l <= N; ++l) {
-        const double h = gl.weights[q] * gl.nodes[q] * P[static_cast<std::size_t>(l)];
-        up += (l % 2 ? -1.0 : 1.0) * h * atop(l);
-        down += h * abot(l);
-      }
+    for (int l = 0; l <= N; ++l) {
+      up += (l % 2 ? -1.0 : 1.0) * h(l) * atop(l);
+      down += h(l) * abot(l);
     }
     sol.values.flux_up_top = 2 * kPi * up;
     sol.values.diffuse_down_bottom = 2 * kPi * down;
     sol.values.direct_down_bottom = beam ? kPi * std::exp(-tau / p.mu0) : 0.0;
   }
+  // The ground's radiance (from the moments' downward flux), seen from the top through e^{-tau/mu}.
+  const double ground_radiance = ground * (2 * h.dot(abot) + beam_bottom);
 
   // Source-function integration (pn.hpp). Amplitude of a term's source toward cosine mu (signed).
   auto amplitude = [&](const Term& t, const std::vector<double>& P) {
@@ -284,7 +299,7 @@ PnSolution solve_core(const SlabProblem& p, const Setup& s, PnBoundary boundary,
   const double F0 = kPi / mu0;
   for (double mu : p.mu_up) {
     const std::vector<double> P = legendre_all(-mu, N);
-    double I = 0;
+    double I = ground_radiance * std::exp(-tau / mu);
     for (const Term& t : terms) I += amplitude(t, P) * up_integral(t.shape, t.rate, tau, mu);
     if (beam)
       I += omega * F0 * exact_p0(p, s, -mu, mu0) * up_integral(Shape::from_top, 1 / mu0, tau, mu);
@@ -342,6 +357,34 @@ std::vector<double> phase_legendre_coefficients(const PhaseFunction& phase, int 
       return chi;
     }
   }
+  return chi;
+}
+
+std::vector<double> legendre_from_table(const std::vector<double>& x, const std::vector<double>& y, int lmax) {
+  if (lmax < 0) throw std::invalid_argument("pn: lmax must be >= 0");
+  if (x.size() < 2 || x.size() != y.size())
+    throw std::invalid_argument("phase table: needs at least two points and as many values as cosines");
+  if (x.front() != -1 || x.back() != 1) throw std::invalid_argument("phase table: cosines must run from -1 to 1");
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (i > 0 && !(x[i] > x[i - 1])) throw std::invalid_argument("phase table: cosines must increase");
+    if (!(std::isfinite(y[i]) && y[i] >= 0)) throw std::invalid_argument("phase table: values must be finite and >= 0");
+  }
+  const GaussLegendre gl = gauss_legendre_01((lmax + 3) / 2 + 1);
+  std::vector<double> chi(static_cast<std::size_t>(lmax) + 1, 0.0);
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double w = x[i + 1] - x[i];
+    for (std::size_t q = 0; q < gl.nodes.size(); ++q) {
+      const double u = gl.nodes[q], c = x[i] + u * w;
+      const double pv = y[i] + u * (y[i + 1] - y[i]);
+      const std::vector<double> P = legendre_all(c, lmax);
+      for (int l = 0; l <= lmax; ++l)
+        chi[static_cast<std::size_t>(l)] += 2 * kPi * w * gl.weights[q] * pv * P[static_cast<std::size_t>(l)];
+    }
+  }
+  const double norm = chi[0];
+  if (!(norm > 0)) throw std::invalid_argument("phase table: its integral is 0");
+  for (double& c : chi) c /= norm;
+  chi[0] = 1;
   return chi;
 }
 

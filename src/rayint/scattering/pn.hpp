@@ -28,7 +28,12 @@
 //   int_0^1 P_i(mu) I(0, mu) dmu = int_0^1 P_i(mu) I_inc(mu) dmu,  int_0^1 P_i(mu) I(tau, -mu) dmu = 0,
 // i = 1, 3, ..., N; or Mark's, I(0, mu_j) = I_inc(mu_j) and I(tau, -mu_j) = 0 at the (N+1)/2
 // positive roots mu_j of P_{N+1}. I_inc = 1 for isotropic incidence, 0 for the beam (the direct
-// beam is carried separately). Black lower boundary only (the slab problem has no other).
+// beam is carried separately). Lambertian lower boundary of albedo A (SlabProblem::ground_albedo):
+// the bottom's incoming intensity is I_g = (A/pi) F_down(tau), F_down = 2 pi sum_l h_l a_l(tau)
+// + pi e^{-tau/mu0} (beam), h_l = int_0^1 mu P_l dmu, so Marshak's bottom rows become
+//   int_0^1 P_i(mu) I(tau, -mu) dmu = I_g int_0^1 P_i dmu   (Mark's: I(tau, -mu_j) = I_g),
+// still linear in the moments (a rank-one change of the rows); A = 0 is the black ground.
+// The source-function integration adds I_g e^{-tau/mu} to the upward intensity at the top.
 //
 // Regions and thresholds:
 // - Scaled exponentials: every decaying mode is normalised at the face it decays away from
@@ -116,5 +121,14 @@ PnSolution solve_slab_pn(const SlabProblem& problem, const PnOptions& options = 
 // that algebraic: the same formula with numpy's 2048- and 4096-point rules differs by
 // <= 2.6e-13 absolute for l <= 127; chi_1 within 1.5e-13 of -4/9).
 std::vector<double> phase_legendre_coefficients(const PhaseFunction& phase, int lmax);
+
+// chi_0..chi_lmax of a tabulated phase function p(cos Theta) per steradian, linear between the
+// points (cos_theta strictly increasing from -1 to 1, values >= 0), normalised to chi_0 = 1 (the
+// table's own integral 2 pi int p is divided out, so an unnormalised table is accepted).
+// Exact for the piecewise-linear p: Gauss-Legendre with (lmax + 3) / 2 points per interval
+// integrates the degree-(lmax + 1) integrand exactly, to rounding. Throws std::invalid_argument
+// for a table that does not span [-1, 1], is not increasing, has a negative value or integral 0.
+std::vector<double> legendre_from_table(const std::vector<double>& cos_theta, const std::vector<double>& value,
+                                        int lmax);
 
 }  // namespace rayint

@@ -88,6 +88,17 @@ Responses doubled(const SlabProblem& p, const std::vector<double>& mu, const std
 SlabValues solve_slab_doubling(const SlabProblem& p, const DoublingOptions& options,
                                DoublingDiagnostics* diagnostics) {
   validate(p);
+  if (p.ground_albedo > 0) {
+    // Lambertian ground: the adding of the ground to the black-ground slab (slab.hpp).
+    SlabProblem black = p;
+    black.ground_albedo = 0;
+    SlabProblem iso = black;
+    iso.source = SlabSource::isotropic;
+    iso.mu_up = p.mu_down;
+    iso.mu_down = p.mu_up;
+    const SlabValues b = solve_slab_doubling(black, options, diagnostics);
+    return add_lambertian_ground(p, b, solve_slab_doubling(iso, options));
+  }
   if (options.streams < 2) throw std::invalid_argument("doubling: streams must be >= 2");
   // 1e-3 is a sanity bound on the input (the start must be optically thin), not an accuracy
   // one: at 1e-3 the error is already 1.4e-4 (DISORT 1a) to 0.68 (1e) (slab_doubling.hpp).

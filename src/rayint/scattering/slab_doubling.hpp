@@ -44,6 +44,9 @@
 //     D = (I - R R)^-1 (t + e R r),   r' = r + (E + Td)(e r + R D),   t' = e t + (E + Td) D,
 //   every term non-negative, so nothing cancels (the diffuse part never comes from
 //   subtracting the direct one).
+// Lambertian ground (SlabProblem::ground_albedo > 0): the black-ground solution plus the adding
+// of the ground (add_lambertian_ground, slab.hpp), exact, at the cost of a second (isotropic)
+// solve; its accuracy is that of the two black-ground solves.
 // Fluxes are the Gauss sums 2 pi sum w_j mu_j I(mu_j); the unscattered isotropic incidence
 // adds 2 pi E3(tau) (Boost.Math expint).
 //

@@ -22,6 +22,8 @@ SlabEstimates solve_slab_monte_carlo(const SlabProblem& p, const SlabMonteCarloO
   if (o.photons < 1) throw std::invalid_argument("slab Monte Carlo: photons must be >= 1");
   if (o.max_order < 0) throw std::invalid_argument("slab Monte Carlo: max_order must be >= 0");
   if (o.min_order < 0) throw std::invalid_argument("slab Monte Carlo: min_order must be >= 0");
+  if (p.ground_albedo > 0 && (o.max_order != 0 || o.min_order != 0))
+    throw std::invalid_argument("slab Monte Carlo: a ground albedo needs every order (no max_order, min_order)");
   const int min_order = o.min_order;
   const bool beam = p.source == SlabSource::beam;
   const std::size_t n_up = p.mu_up.size(), n_down = p.mu_down.size();
@@ -30,7 +32,7 @@ SlabEstimates solve_slab_monte_carlo(const SlabProblem& p, const SlabMonteCarloO
   const std::size_t blocks =
       static_cast<std::size_t>((o.photons + kBlockPhotons - 1) / kBlockPhotons);
   std::atomic<long long> block_collisions_total{0};
-  const double omega = p.albedo, tau = p.tau;
+  const double omega = p.albedo, tau = p.tau, ground = p.ground_albedo;
 
   auto run_block = [&](std::size_t b) {
     Rng rng = block_rng(o.seed, b);
@@ -57,7 +59,21 @@ SlabEstimates solve_slab_monte_carlo(const SlabProblem& p, const SlabMonteCarloO
         const double t_next = t + step * dir.z();
         if (t_next >= tau) {
           if (order >= min_order) score[(order == 0 && beam) ? 2 : 1] += w;
-          break;
+          if (ground <= 0) break;
+          // Lambertian ground: the weight A w leaves upward, cosine-weighted. Its radiance
+          // A w / pi reaches the top detector through exp(-tau/mu) (next event, exact in mean).
+          w *= ground;
+          for (std::size_t d = 0; d < n_up; ++d) score[3 + d] += w / kPi * std::exp(-tau / p.mu_up[d]);
+          if (w < kRouletteWeight) {
+            if (w <= 0 || rng.uniform() * kRouletteWeight >= w) break;
+            w = kRouletteWeight;
+          }
+          const double mu = std::sqrt(rng.uniform_open0());
+          const double phi = 2 * kPi * rng.uniform();
+          const double sn = std::sqrt(std::max(0.0, 1 - mu * mu));
+          dir = Vec3(sn * std::cos(phi), sn * std::sin(phi), -mu);
+          t = tau;
+          continue;
         }
         if (t_next <= 0) {
           if (order >= min_order) score[0] += w;
@@ -121,6 +137,7 @@ SlabEstimates solve_slab_monte_carlo_split(const SlabProblem& p, const SlabMonte
   SlabMonteCarloOptions higher = o;
   higher.min_order = 2;
   if (o.max_order == 1) throw std::invalid_argument("slab Monte Carlo split: max_order must not be 1");
+  if (p.ground_albedo > 0) throw std::invalid_argument("slab Monte Carlo split: black ground only");
   SlabEstimates e = solve_slab_monte_carlo(p, higher);
   const SlabValues s = single_scattering(p);
   e.flux_up_top.mean += s.flux_up_top;

@@ -18,6 +18,11 @@
 //   equation with the collision density as source), so the estimator has no angular-bin bias;
 //   it is bounded by omega max(p) / mu, so its variance is finite. For isotropic incidence the
 //   unscattered intensity exp(-tau/mu) is added at the bottom (deterministic, zero variance).
+// Lambertian ground (SlabProblem::ground_albedo A > 0): a photon reaching the bottom is scored
+// there (downward flux) and continues upward from the ground with weight A w in a cosine-weighted
+// direction; the ground's radiance A w / pi is scored at the top detectors through exp(-tau/mu).
+// A ground reflection is not a scattering (the order does not change); only with every order
+// (max_order = min_order = 0), so not in the split estimator.
 // `max_order` truncates the series at that many scatterings (1: single scattering, which must
 // match slab_single_scattering.hpp); `min_order` drops the lower orders from every score
 // (2: multiple scattering only, to be added to the exact single scattering; see

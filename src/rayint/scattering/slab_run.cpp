@@ -12,12 +12,15 @@ SlabRun run_slab_problem(const SlabProblem& p, const BenchmarkRunOptions& o) {
   SlabRun run;
   run.options = o;
   const int max_order = o.mc_options.max_order;
+  const bool ground = p.ground_albedo > 0;
+  if (ground && max_order != 0)
+    throw std::invalid_argument("--max-order: truncated orders need a black ground (ground albedo 0)");
   if (o.doubling && max_order == 0) {
     const auto t0 = std::chrono::steady_clock::now();
     run.doubling = solve_slab_doubling(p, o.doubling_options);
     run.doubling_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  if (o.integral_equation && max_order == 0 && p.phase.kind() == PhaseFunction::Kind::isotropic)
+  if (o.integral_equation && max_order == 0 && !ground && p.phase.kind() == PhaseFunction::Kind::isotropic)
     run.integral_equation = solve_slab_integral_equation(p, o.ie_options);
   if (o.pn && max_order == 0) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -26,7 +29,7 @@ SlabRun run_slab_problem(const SlabProblem& p, const BenchmarkRunOptions& o) {
   }
   if (max_order == 1) run.single_scattering_closed_form = single_scattering(p);
   if (o.monte_carlo) {
-    run.mc_split = o.mc_split && max_order != 1;
+    run.mc_split = o.mc_split && max_order != 1 && !ground;
     run.monte_carlo = run.mc_split ? solve_slab_monte_carlo_split(p, o.mc_options)
                                    : solve_slab_monte_carlo(p, o.mc_options);
   }

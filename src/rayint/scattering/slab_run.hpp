@@ -14,7 +14,8 @@ namespace rayint {
 // options.mc_options.max_order 1 runs single scattering only, by Monte Carlo and in closed form.
 // The doubling and the integral equation run only without a max_order; the integral equation on
 // isotropic problems when options.integral_equation (the CLI sets it only with the doubling);
-// P_N when options.pn, without a max_order.
+// P_N when options.pn, without a max_order. A ground albedo > 0 (Lambertian ground): doubling,
+// P_N and the analog Monte Carlo (not the split one); no integral equation, no max_order (throws).
 // run_slab_benchmark solves every problem through this one dispatch.
 struct SlabRun {
   BenchmarkRunOptions options;

@@ -8,6 +8,7 @@
 
 #include "rayint/core/parallel.hpp"
 #include "rayint/scattering/discrete_ordinates.hpp"
+#include "rayint/scattering/diffusion.hpp"
 #include "rayint/scattering/zonal.hpp"
 
 namespace rayint {
@@ -75,10 +76,12 @@ MethodRun run_method(const char* method, int grid, int bins, const Camera& cam, 
 
 namespace {
 
-// One entry of the run list: discrete ordinates (grid, bins per edge), or zonal (grid, 0).
+// One entry of the run list: discrete ordinates (grid, bins per edge), zonal (grid, 0) or
+// diffusion (grid, 0).
 struct PlannedRun {
   bool zonal = false;
   int grid = 0, bins_per_edge = 0;
+  bool diffusion = false;
 };
 
 std::vector<PlannedRun> planned_runs(const ScatteringVolume& v, const ComparisonOptions& o) {
@@ -87,6 +90,7 @@ std::vector<PlannedRun> planned_runs(const ScatteringVolume& v, const Comparison
     for (int b : o.do_bins) out.push_back({false, g, b});
   if (v.phase.kind() == PhaseFunction::Kind::isotropic)
     for (int g : o.zonal_grids) out.push_back({true, g, 0});
+  for (int g : o.diffusion_grids) out.push_back({false, g, 0, true});
   return out;
 }
 
@@ -122,7 +126,15 @@ VolumeComparisonPart compare_volume_methods_part(const ScatteringVolume& v, cons
   for (std::size_t k = mine.begin; k < mine.end; ++k) {
     const PlannedRun& p = plan[k];
     MethodRun r;
-    if (!p.zonal) {
+    if (p.diffusion) {
+      say("diffusion grid " + std::to_string(p.grid));
+      DiffusionOptions df;
+      df.grid = p.grid;
+      df.threads = o.threads;
+      r = run_method(
+          "diffusion", p.grid, 0, cam, o.threads, [&] { return solve_diffusion(v, df); },
+          [&](const DiffusionSolution& sol, const ViewRay& ray) { return gather_diffusion(v, sol, ray); });
+    } else if (!p.zonal) {
       const int g = p.grid, b = p.bins_per_edge;
       say("discrete ordinates grid " + std::to_string(g) + " bins " + std::to_string(6 * b * b));
       DiscreteOrdinatesOptions d;

@@ -20,6 +20,7 @@ struct ComparisonOptions {
   std::vector<int> do_grids{8, 16, 24, 32};
   std::vector<int> do_bins{1, 2, 3, 4};    // bins per cube-face edge: 6 b^2 bins
   std::vector<int> zonal_grids{6, 8, 10};  // isotropic phase only
+  std::vector<int> diffusion_grids{};      // P1 / diffusion (diffusion.hpp); none by default
   unsigned threads = 0;  // 0: all cores
 };
 
@@ -29,7 +30,7 @@ struct ImageError {
 };
 
 struct MethodRun {
-  std::string method;  // "discrete_ordinates" / "zonal"
+  std::string method;  // "discrete_ordinates" / "zonal" / "diffusion"
   int grid = 0, bins = 0;  // bins: total number (6 b^2); 0 for zonal
   int iterations = 0;
   bool converged = false;
