@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <memory>
+#include <utility>
 
 #include "commands.hpp"
 #include "progress.hpp"
@@ -86,7 +87,9 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
     compare = make_integrator(spec, mc.transfer);
     comparison = {spec.label(), heat_map_path(options.output)};
   }
-  const TetTraversal mesh(mc.mesh, mc.mesh_source);
+  // The mesh moves into the traversal (one copy of it in memory, not two: issue 33); the case
+  // keeps its other fields.
+  const TetTraversal mesh(std::move(mc.mesh), mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = options.threads;
   auto progress_line = std::make_shared<ProgressLine>();
