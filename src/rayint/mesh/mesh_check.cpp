@@ -56,14 +56,15 @@ OrientationCounts orientation_counts(const TetMesh& mesh) {
   return c;
 }
 
-bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
+namespace {
+
+// tets_overlap with the pair's size (the larger box diagonal) given.
+bool overlap_exact(const TetMesh& m, std::size_t ia, std::size_t ib, double size) {
   std::array<Vec3, 4> a, b;
   for (std::size_t k = 0; k < 4; ++k) {
     a[k] = m.points[static_cast<std::size_t>(m.tets[ia][k])];
     b[k] = m.points[static_cast<std::size_t>(m.tets[ib][k])];
   }
-  const Box ba = box_of(m, ia), bb = box_of(m, ib);
-  const double size = std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm());
   const double tol = kOverlapTolerance * size;
   static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
@@ -72,6 +73,16 @@ bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
     if (!(n > 1e-12 * size * size)) return false;  // parallel edges: no axis
     return overlap_on(a, b, axis / n) <= tol;
   };
+  // A cheap axis first, the line through the two centroids: the projections being apart on any
+  // axis proves the interiors disjoint, and it never changes the answer: the smallest overlap of
+  // two convex polyhedra over all directions (their penetration depth) is attained on one of the
+  // 44 axes below, so an overlap <= tol here means one <= tol there too. On the generated balls
+  // it settles most of the pairs that share no point (issue 33).
+  {
+    const Vec3 axis = (b[0] + b[1] + b[2] + b[3]) - (a[0] + a[1] + a[2] + a[3]);
+    const double len = axis.norm();
+    if (len > 1e-12 * size && overlap_on(a, b, axis / len) <= tol) return false;
+  }
   for (const auto* p : {&a, &b})
     for (const auto& f : kFaces) {
       const auto& q = *p;
@@ -86,6 +97,13 @@ bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
       if (separates(da.cross(db))) return false;
     }
   return true;
+}
+
+}  // namespace
+
+bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
+  const Box ba = box_of(m, ia), bb = box_of(m, ib);
+  return overlap_exact(m, ia, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()));
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& m, OverlapScope scope) {
@@ -123,7 +141,6 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
     double size;
   };
   std::vector<Span> spans(n);
-  std::size_t n_recs = 0;
   for (std::size_t t = 0; t < n; ++t) {
     Span& s = spans[t];
     for (int k = 0; k < 3; ++k) {
@@ -131,20 +148,25 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
       s.hi[static_cast<std::size_t>(k)] = index(boxes[t].hi, k);
     }
     s.size = (boxes[t].hi - boxes[t].lo).norm();
-    n_recs += static_cast<std::size_t>(s.hi[0] - s.lo[0] + 1) * static_cast<std::size_t>(s.hi[1] - s.lo[1] + 1) *
-              static_cast<std::size_t>(s.hi[2] - s.lo[2] + 1);
   }
-  const auto key = [&](long i, long j, long k) { return static_cast<std::uint64_t>(i + dims[0] * (j + dims[1] * k)); };
-  // (grid cell, tet) records sorted by cell: the members of a cell are one run, in tet order.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> recs;
-  recs.reserve(n_recs);
-  for (std::size_t t = 0; t < n; ++t) {
-    const Span& s = spans[t];
-    for (long k = s.lo[2]; k <= s.hi[2]; ++k)
-      for (long j = s.lo[1]; j <= s.hi[1]; ++j)
-        for (long i = s.lo[0]; i <= s.hi[0]; ++i) recs.emplace_back(key(i, j, k), static_cast<std::uint32_t>(t));
-  }
-  std::sort(recs.begin(), recs.end());
+  // The members of every grid cell, in tet order: a counting sort by cell (linear in the number
+  // of (cell, tet) records; issue 33). begin[c] .. begin[c + 1] indexes `members`.
+  const auto n_cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
+  const auto key = [&](long i, long j, long k) { return static_cast<std::size_t>(i + dims[0] * (j + dims[1] * k)); };
+  const auto for_cells = [&](const Span& sp, auto&& f) {
+    for (long k = sp.lo[2]; k <= sp.hi[2]; ++k)
+      for (long j = sp.lo[1]; j <= sp.hi[1]; ++j)
+        for (long i = sp.lo[0]; i <= sp.hi[0]; ++i) f(key(i, j, k));
+  };
+  std::vector<std::size_t> begin(n_cells + 1, 0);
+  for (std::size_t t = 0; t < n; ++t) for_cells(spans[t], [&](std::size_t c) { ++begin[c + 1]; });
+  for (std::size_t c = 0; c < n_cells; ++c) begin[c + 1] += begin[c];
+  std::vector<std::uint32_t> members(begin[n_cells]);
+  for (std::size_t t = n; t-- > 0;)  // backwards, each cell filled from its end: tet order
+    for_cells(spans[t], [&](std::size_t c) { members[--begin[c + 1]] = static_cast<std::uint32_t>(t); });
+  // Now begin[c + 1] is where cell c starts.
+  begin.erase(begin.begin());
+  begin.push_back(members.size());
   std::optional<std::pair<std::size_t, std::size_t>> first;
   const auto test = [&](std::size_t a, std::size_t b) {
     if (a > b) std::swap(a, b);
@@ -159,7 +181,7 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
         for (const std::int32_t pb : m.tets[b])
           if (pa == pb) return;
     }
-    if (tets_overlap(m, a, b)) first = std::make_pair(a, b);
+    if (overlap_exact(m, a, b, std::max(spans[a].size, spans[b].size))) first = std::make_pair(a, b);
   };
   // A pair is tested once: in the grid cell of the lower corner of the boxes' intersection,
   // max(A.lo, B.lo), whose cell is the larger of the two lower cells on each axis (the cell index
@@ -168,19 +190,18 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
   // are sorted into 8 lists by the axes on which they start in c (a bit each); only lists whose
   // bits cover all three axes are paired, so the pairs tested elsewhere are never visited.
   std::array<std::vector<std::uint32_t>, 8> by_start;
-  for (std::size_t r0 = 0; r0 < recs.size();) {
-    std::size_t r1 = r0 + 1;
-    while (r1 < recs.size() && recs[r1].first == recs[r0].first) ++r1;
-    const std::uint64_t cell_key = recs[r0].first;
-    const std::array<std::int32_t, 3> c{
-        static_cast<std::int32_t>(cell_key % static_cast<std::uint64_t>(dims[0])),
-        static_cast<std::int32_t>((cell_key / static_cast<std::uint64_t>(dims[0])) % static_cast<std::uint64_t>(dims[1])),
-        static_cast<std::int32_t>(cell_key / static_cast<std::uint64_t>(dims[0] * dims[1]))};
+  for (std::size_t cell_key = 0; cell_key < n_cells; ++cell_key) {
+    const std::size_t r0 = begin[cell_key], r1 = begin[cell_key + 1];
+    if (r1 - r0 < 2) continue;
+    const auto d0 = static_cast<std::size_t>(dims[0]), d1 = static_cast<std::size_t>(dims[1]);
+    const std::array<std::int32_t, 3> c{static_cast<std::int32_t>(cell_key % d0),
+                                        static_cast<std::int32_t>((cell_key / d0) % d1),
+                                        static_cast<std::int32_t>(cell_key / (d0 * d1))};
     for (auto& l : by_start) l.clear();
     for (std::size_t x = r0; x < r1; ++x) {
-      const Span& sp = spans[recs[x].second];
+      const Span& sp = spans[members[x]];
       const unsigned bits = (sp.lo[0] == c[0] ? 1U : 0U) | (sp.lo[1] == c[1] ? 2U : 0U) | (sp.lo[2] == c[2] ? 4U : 0U);
-      by_start[bits].push_back(recs[x].second);
+      by_start[bits].push_back(members[x]);
     }
     const auto& all_axes = by_start[7];
     for (std::size_t x = 0; x < all_axes.size(); ++x)
@@ -190,7 +211,6 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
         if ((ma | mb) == 7)
           for (const std::uint32_t a : by_start[ma])
             for (const std::uint32_t b : by_start[mb]) test(a, b);
-    r0 = r1;
   }
   return first;
 }

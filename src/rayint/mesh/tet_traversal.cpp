@@ -65,17 +65,20 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
     if (a.key[2] != b.key[2]) return a.key[2] < b.key[2];
     return a.tet_k < b.tet_k;
   });
-  // The walk's per-cell records (see CellRecord), filled face by face from the sorted records:
-  // face k of cell t gets the face's normal times the cell's sign (+1: the normal points out).
-  cells_.resize(n);
-  for (std::size_t t = 0; t < n; ++t) {
-    CellRecord& r = cells_[t];
-    std::int32_t lowest = mesh_.tets[t][0];
-    for (std::size_t k = 1; k < 4; ++k) lowest = std::min(lowest, mesh_.tets[t][k]);
-    r.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
-    r.second_point = r.first_point;
-    r.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
-  }
+  // Phase 1, adjacency: equal triples are one face; the cell across face k of t goes to next[t][k]
+  // (-1: boundary). The face's plane (rule 1) is a function of its sorted point triple alone, so
+  // phase 2 recomputes it per cell, the same doubles, after recs is freed: the two never share
+  // memory (peak memory, issue 33).
+  const auto plane = [&](const std::array<std::int32_t, 3>& key) {
+    const Vec3& a = mesh_.points[static_cast<std::size_t>(key[0])];
+    return (mesh_.points[static_cast<std::size_t>(key[1])] - a).cross(mesh_.points[static_cast<std::size_t>(key[2])] - a);
+  };
+  // +1 when the face's normal points out of cell t (away from its point k).
+  const auto sign_of = [&](const std::array<std::int32_t, 3>& key, const Vec3& normal, std::size_t t, std::size_t k) {
+    const Vec3& opposite = mesh_.points[static_cast<std::size_t>(mesh_.tets[t][k])];
+    return normal.dot(opposite - mesh_.points[static_cast<std::size_t>(key[0])]) < 0.0 ? 1 : -1;
+  };
+  std::vector<std::array<std::int32_t, 4>> next(n);
   face_count_ = 0;
   for (std::size_t i = 0; i < recs.size();) {
     std::size_t j = i + 1;
@@ -87,30 +90,19 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
                        std::to_string(recs[i].tet_k / 4) + "] and tets[" + std::to_string(recs[i + 1].tet_k / 4) + "])");
     Face f;
     f.points = recs[i].key;
-    const Vec3& a = mesh_.points[static_cast<std::size_t>(f.points[0])];
-    f.normal = (mesh_.points[static_cast<std::size_t>(f.points[1])] - a).cross(mesh_.points[static_cast<std::size_t>(f.points[2])] - a);
-    std::array<std::int8_t, 2> sign{};
+    f.normal = plane(f.points);
+    std::array<int, 2> sign{};
     for (std::size_t r = i; r < j; ++r) {
       const auto t = static_cast<std::size_t>(recs[r].tet_k / 4);
-      const auto k = static_cast<std::size_t>(recs[r].tet_k % 4);
-      const Vec3& opposite = mesh_.points[static_cast<std::size_t>(mesh_.tets[t][k])];
-      sign[r - i] = f.normal.dot(opposite - a) < 0.0 ? std::int8_t{1} : std::int8_t{-1};
+      sign[r - i] = sign_of(f.points, f.normal, t, static_cast<std::size_t>(recs[r].tet_k % 4));
       f.cells[r - i] = recs[r].tet_k / 4;
     }
     if (j - i == 2 && sign[0] == sign[1])
       throw InputError(source + ": tets[" + std::to_string(f.cells[1]) + "]: overlaps tets[" + std::to_string(f.cells[0]) +
                        "] (both lie on the same side of their shared face)");
-    for (std::size_t r = i; r < j; ++r) {
-      const auto t = static_cast<std::size_t>(recs[r].tet_k / 4);
-      const auto k = static_cast<std::size_t>(recs[r].tet_k % 4);
-      CellRecord& c = cells_[t];
-      c.normal[k] = sign[r - i] > 0 ? f.normal : Vec3(-f.normal);
-      c.next[k] = j - i == 2 ? f.cells[1 - (r - i)] : -1;
-      if (f.points[0] != std::min({mesh_.tets[t][0], mesh_.tets[t][1], mesh_.tets[t][2], mesh_.tets[t][3]})) {
-        c.k_second = static_cast<std::int32_t>(k);
-        c.second_point = mesh_.points[static_cast<std::size_t>(f.points[0])];
-      }
-    }
+    for (std::size_t r = i; r < j; ++r)
+      next[static_cast<std::size_t>(recs[r].tet_k / 4)][static_cast<std::size_t>(recs[r].tet_k % 4)] =
+          j - i == 2 ? f.cells[1 - (r - i)] : -1;
     if (j - i == 1) {
       boundary_.push_back(f);
       boundary_k_.push_back(static_cast<std::int8_t>(recs[i].tet_k % 4));
@@ -119,6 +111,30 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
     i = j;
   }
   std::vector<Rec>().swap(recs);
+  // Phase 2, the walk's per-cell records (see CellRecord): face k of cell t gets its face's normal
+  // times the cell's sign (+1: the normal points out).
+  cells_.resize(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    CellRecord& c = cells_[t];
+    const auto& tet = mesh_.tets[t];
+    const std::int32_t lowest = std::min({tet[0], tet[1], tet[2], tet[3]});
+    c.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
+    c.second_point = c.first_point;
+    c.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
+    for (std::size_t k = 0; k < 4; ++k) {
+      std::array<std::int32_t, 3> key{};
+      for (std::size_t j = 0; j < 3; ++j) key[j] = tet[static_cast<std::size_t>(kFacePoints[k][j])];
+      std::sort(key.begin(), key.end());
+      const Vec3 normal = plane(key);
+      c.normal[k] = sign_of(key, normal, t, k) > 0 ? normal : Vec3(-normal);
+      c.next[k] = next[t][k];
+      if (key[0] != lowest) {
+        c.k_second = static_cast<std::int32_t>(k);
+        c.second_point = mesh_.points[static_cast<std::size_t>(key[0])];
+      }
+    }
+  }
+  std::vector<std::array<std::int32_t, 4>>().swap(next);
   // Eq. 9 per cell.
   for (std::size_t t = 0; t < n; ++t) {
     std::array<Vec3, 4> x;
