@@ -10,7 +10,10 @@ give 10k, 105k, 1.05M, 10.4M), written as binary .vtk and, by scripts/big_meshes
 Every figure is a median over --repeats runs; runs of the binaries compared (--before, the
 current build) are interleaved, so a change of the machine's load hits both alike. Times:
   cpu_s   user + system CPU seconds of the whole process (/usr/bin/time), the load measures;
-  wall_s  elapsed seconds of a render phase (rayint's own summary; VTK: around Render()).
+  wall_s  elapsed seconds of a render phase (rayint's own summary; VTK: around Render());
+  render CPU: rayint, CPU of the 512 x 512 run minus the 16 x 16 one; VTK, process_time() around
+          Render() (every thread: llvmpipe's rasteriser threads too), the fairer measure when
+          the wall clock depends on what the other engineers run.
 The machine is shared (2 cores, ~6 engineers building): wall-clock times are noisy, ratios
 measured side by side are what the report quotes; the load average at the start and the end
 is recorded.
@@ -89,7 +92,7 @@ def rayint_runs(binaries, work, n, fmt, repeats):
     small = case(os.path.join(work, "load-%d-%s.json" % (n, fmt)), mesh, 16)
     big = case(os.path.join(work, "render-%d-%s.json" % (n, fmt)), mesh, 512)
     out = {name: {"read": [], "check": [], "load": [], "render_wall": [], "render_rss_kb": [],
-                  "load_rss_kb": [], "rays_per_s": []} for name in binaries}
+                  "load_rss_kb": [], "rays_per_s": [], "render_cpu": []} for name in binaries}
     for _ in range(repeats):
         for name, exe in binaries.items():
             r = out[name]
@@ -101,8 +104,9 @@ def rayint_runs(binaries, work, n, fmt, repeats):
             r["load"].append(cpu_l)
             r["load_rss_kb"].append(rss_l)
             if fmt == "vtk":  # the render is the same whatever the format
-                _, rss, _, err = timed([exe, "render", big, "-o", os.path.join(work, "o-%s.png" % name),
-                                        "--threads", "2"])
+                cpu_r, rss, _, err = timed([exe, "render", big, "-o", os.path.join(work, "o-%s.png" % name),
+                                            "--threads", "2"])
+                r["render_cpu"].append(max(0.0, cpu_r - cpu_l))  # the 512 x 512 run minus the 16 x 16 one
                 m = re.search(r"(\d+) rays in ([\d.e+-]+) s on (\d+) threads", err)
                 if not m:
                     raise SystemExit("no render summary from " + exe + ":\n" + err[-1000:])
@@ -163,18 +167,20 @@ def vtk_one(case_path, mapper, integrator):
     ren.AddVolume(vol)
     ren.SetActiveCamera(vr.make_vtk_camera(cam, vr.vtk_camera_settings(cam, mapper, "nominal")))
     ren.ResetCameraClippingRange()
-    t0 = time.perf_counter()
+    arr = vtk.vtkUnsignedCharArray()
+    t0, c0 = time.perf_counter(), time.process_time()
     win.Render()
-    t_first = time.perf_counter() - t0
+    win.GetRGBACharPixelData(0, 0, w - 1, h - 1, 0, arr)  # waits for the frame to finish
+    t_first, c_first = time.perf_counter() - t0, time.process_time() - c0
     # A new frame: the camera moves by a hair, so nothing cached for the last view is reused.
     ren.GetActiveCamera().Azimuth(1e-6)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     win.Render()
-    t_second = time.perf_counter() - t0
-    arr = vtk.vtkUnsignedCharArray()
-    win.GetRGBACharPixelData(0, 0, w - 1, h - 1, 0, arr)  # forces the frame to finish
+    win.GetRGBACharPixelData(0, 0, w - 1, h - 1, 0, arr)
+    t_second, c_second = time.perf_counter() - t0, time.process_time() - c0
+    # process_time: CPU of every thread of the process (llvmpipe's rasteriser threads too).
     print(json.dumps({"read_s": t_read, "first_frame_s": t_first, "frame_s": t_second,
-                      "cells": grid.GetNumberOfCells()}))
+                      "first_frame_cpu_s": c_first, "frame_cpu_s": c_second, "cells": grid.GetNumberOfCells()}))
 
 
 def vtk_runs(work, n, repeats, skip):
@@ -198,7 +204,8 @@ def vtk_runs(work, n, repeats, skip):
             res[key] = {"failed": str(e).splitlines()[0][:300] + " " + " ".join(str(e).split())[-200:]}
             skip[key] = "failed at a smaller size"
             continue
-        res[key] = {k: med([r[k] for r in runs]) for k in ("read_s", "first_frame_s", "frame_s", "rss_kb")}
+        res[key] = {k: med([r[k] for r in runs])
+                    for k in ("read_s", "first_frame_s", "frame_s", "first_frame_cpu_s", "frame_cpu_s", "rss_kb")}
         res[key]["samples"] = runs
     return res
 
@@ -217,6 +224,8 @@ def main():
                          "extrapolated linearly in the tets")
     ap.add_argument("--out", default=os.path.join(ROOT, "reports", "scaling"))
     ap.add_argument("--vtk-one", nargs=3)
+    ap.add_argument("--vtk-mappers", nargs="*", default=None,
+                    help="only these VTK mappers (e.g. projected_tetrahedra raycast-homogeneous)")
     a = ap.parse_args()
     if a.vtk_one:
         vtk_one(a.vtk_one[0], a.vtk_one[1], "" if a.vtk_one[2] == "-" else a.vtk_one[2])
@@ -230,6 +239,11 @@ def main():
               "repeats": a.repeats, "started": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
               "sizes": []}
     skip = {}
+    if a.vtk_mappers is not None:
+        for mapper, integ in VTK_MAPPERS:
+            key = mapper + ("-" + integ if integ else "")
+            if key not in a.vtk_mappers:
+                skip[key] = "not asked for (--vtk-mappers)"
     for n in a.sizes:
         tets = 48 * n ** 3
         row = {"n": n, "tets": tets, "formats": {}}
