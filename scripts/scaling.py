@@ -217,7 +217,8 @@ def main():
     ap.add_argument("--work", default="/tmp/rayint-scaling")
     ap.add_argument("--sizes", type=int, nargs="+", default=[6, 13, 28])
     ap.add_argument("--vtk-sizes", type=int, nargs="*", default=None)
-    ap.add_argument("--formats", nargs="+", default=["vtk", "vtu", "msh"])
+    ap.add_argument("--formats", nargs="*", default=["vtk", "vtu", "msh"],
+                    help="the files rayint loads (none: only the VTK mappers)")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--vtk-budget", type=float, default=240.0,
                     help="skip a VTK mapper at the next size when its frame would exceed this (s), "

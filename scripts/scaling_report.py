@@ -42,8 +42,17 @@ def main():
     for extra in sys.argv[2:]:
         with open(extra) as fh:
             e = json.load(fh)
-        have = {s["tets"] for s in d["sizes"]}
-        d["sizes"] += [s for s in e["sizes"] if s["tets"] not in have]
+        by_tets = {s["tets"]: s for s in d["sizes"]}
+        for s in e["sizes"]:  # a size measured in parts (formats, binaries, VTK) is merged
+            if s["tets"] not in by_tets:
+                d["sizes"].append(s)
+                by_tets[s["tets"]] = s
+                continue
+            into = by_tets[s["tets"]]
+            for fmt, per in s["formats"].items():
+                into["formats"].setdefault(fmt, {}).update(per)
+            if "vtk" in s:
+                into.setdefault("vtk", {}).update(s["vtk"])
         d.setdefault("appended", []).append(
             {"sizes": [s["n"] for s in e["sizes"]], "binaries": e["binaries"], "repeats": e["repeats"],
              "started": e["started"], "finished": e.get("finished"), "load_average_start": e["load_average_start"],
@@ -67,14 +76,14 @@ def main():
              "draws); numbers from one run, %s to %s, on a %d-core machine shared with other builds: load "
              "average %s at the start, %s at the end. Meshes: `rayint generate-mesh ball --n N` "
              "(48 N^3 tets), the same mesh as binary legacy .vtk, .vtu (VTK's writer, appended raw) and "
-             ".msh (meshio, MSH 4.1 binary). Medians of %d runs (VTK at 1M: 2, at 10M: 1); the binaries "
+             ".msh (meshio, MSH 4.1 binary). Main run: medians of %d runs of the 10k and 100k meshes; the binaries "
              "compared were run interleaved."
              % (d["started"], d.get("finished", "(unfinished)"), d["nproc"],
                 " ".join("%.1f" % x for x in d["load_average_start"]),
                 " ".join("%.1f" % x for x in d.get("load_average_end", [float("nan")] * 3)), d["repeats"]))
     for ap in d.get("appended", []):
         L.append("")
-        L.append("A separate run for %s tets (%s only, %d run; it overlapped the main run in time): %s to %s, load average %s at the start, %s at the end."
+        L.append("A separate run for %s tets (%s; %d run(s); runs overlapped in time): %s to %s, load average %s at the start, %s at the end."
                  % (", ".join("{:,}".format(48 * n ** 3) for n in ap["sizes"]), ", ".join(ap["binaries"]),
                     ap["repeats"], ap["started"], ap.get("finished", "(unfinished)"),
                     " ".join("%.1f" % x for x in ap["load_average_start"]),
