@@ -78,9 +78,10 @@ def main():
              "(48 N^3 tets), the same mesh as binary legacy .vtk, .vtu (VTK's writer, appended raw) and "
              ".msh (meshio, MSH 4.1 binary). Main run: medians of %d runs of the 10k and 100k meshes; the binaries "
              "compared were run interleaved."
-             % (d["started"], d.get("finished", "(unfinished)"), d["nproc"],
+             % (d["started"], d.get("finished", "(stopped by hand during the next size, to fit the deadline; its end load average was not recorded)"), d["nproc"],
                 " ".join("%.1f" % x for x in d["load_average_start"]),
-                " ".join("%.1f" % x for x in d.get("load_average_end", [float("nan")] * 3)), d["repeats"]))
+                " ".join("%.1f" % x for x in d["load_average_end"]) if "load_average_end" in d else "not recorded",
+                d["repeats"]))
     for ap in d.get("appended", []):
         L.append("")
         L.append("A separate run for %s tets (%s; %d run(s); runs overlapped in time): %s to %s, load average %s at the start, %s at the end."
