@@ -4,9 +4,13 @@
 // carriage returns. Every subcommand's -q/--quiet turns it off (add_quiet_flag).
 #include <unistd.h>
 
+#include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include <thread>
+#include <utility>
 
 namespace rayint::cli {
 
@@ -43,6 +47,51 @@ class ProgressLine {
   std::mutex mutex_;
   int last_tenth_ = -1;
   bool open_ = false;
+};
+
+// A stage without a measure of its own progress (reading a mesh, building the traversal): silent
+// when it ends within a second; past a second, one line "<label> ..." then, at its end,
+// "<label>: <summary> (<seconds> s)" (issue 33: a 10M-tet mesh takes tens of seconds to load).
+class SlowStage {
+ public:
+  SlowStage(std::string label, bool quiet) : label_(std::move(label)), start_(std::chrono::steady_clock::now()) {
+    if (quiet) return;
+    watcher_ = std::thread([this] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (cv_.wait_for(lock, std::chrono::seconds(1), [this] { return ended_; })) return;
+      std::fprintf(stderr, "%s ...\n", label_.c_str());
+      std::fflush(stderr);
+      announced_ = true;
+    });
+  }
+  ~SlowStage() { stop(); }
+  SlowStage(const SlowStage&) = delete;
+  SlowStage& operator=(const SlowStage&) = delete;
+  // Ends the stage; prints the summary when the stage was announced.
+  void done(const std::string& summary) {
+    stop();
+    if (!announced_) return;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::fprintf(stderr, "%s: %s (%.1f s)\n", label_.c_str(), summary.c_str(), s);
+    std::fflush(stderr);
+  }
+
+ private:
+  void stop() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      ended_ = true;
+    }
+    cv_.notify_all();
+    if (watcher_.joinable()) watcher_.join();
+  }
+  std::string label_;
+  std::chrono::steady_clock::time_point start_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool ended_ = false;
+  bool announced_ = false;  // written by the watcher, read after join
+  std::thread watcher_;
 };
 
 }  // namespace rayint::cli

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <memory>
+#include <utility>
 
 #include "commands.hpp"
 #include "progress.hpp"
@@ -74,7 +75,9 @@ void fit_camera_to_mesh(MeshCase& mc) {
 
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) {
   const json_source::InputFileLog read;  // the mesh files the case names: shard inputs
+  SlowStage reading("rayint render: reading the mesh of " + options.input, options.quiet);
   MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
+  reading.done(std::to_string(mc.mesh.tets.size()) + " tets, " + std::to_string(mc.mesh.points.size()) + " points");
   if (options.fit) fit_camera_to_mesh(mc);
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   // Validate the methods before the (long) render.
@@ -86,7 +89,11 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
     compare = make_integrator(spec, mc.transfer);
     comparison = {spec.label(), heat_map_path(options.output)};
   }
-  const TetTraversal mesh(mc.mesh, mc.mesh_source);
+  // The mesh moves into the traversal (one copy of it in memory, not two: issue 33); the case
+  // keeps its other fields.
+  SlowStage building("rayint render: building the traversal", options.quiet);
+  const TetTraversal mesh(std::move(mc.mesh), mc.mesh_source);
+  building.done(std::to_string(mesh.face_count()) + " faces, " + std::to_string(mesh.boundary_face_count()) + " on the boundary");
   MeshRenderSettings settings;
   settings.threads = options.threads;
   auto progress_line = std::make_shared<ProgressLine>();

@@ -75,7 +75,8 @@ class VtkCursor {
         fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
                           " values, file has " + std::to_string((b_.size() - pos_) / width));
       out.resize(count);
-      for (std::size_t i = 0; i < count; ++i) out[i] = binary_value(type, width);
+      decode_big_endian(type, width, out.data(), count);  // one type dispatch per array, not per value
+      pos_ += count * width;
       return out;
     }
     out.reserve(std::min(count, (b_.size() - pos_) / 2 + 1));
@@ -120,24 +121,38 @@ class VtkCursor {
     fail(section, "unknown data type '" + type.substr(0, 40) + "'");
   }
 
-  double binary_value(const std::string& type, std::size_t width) {
-    unsigned char be[8];
-    std::memcpy(be, b_.data() + pos_, width);
-    pos_ += width;
-    unsigned char le[8];
-    for (std::size_t i = 0; i < width; ++i) le[i] = be[width - 1 - i];
-    if (type == "float") { float f; std::memcpy(&f, le, 4); return static_cast<double>(f); }
-    if (type == "double") { double d; std::memcpy(&d, le, 8); return d; }
-    if (type == "char") { std::int8_t v; std::memcpy(&v, le, 1); return v; }
-    if (type == "unsigned_char") return le[0];
-    if (type == "short") { std::int16_t v; std::memcpy(&v, le, 2); return v; }
-    if (type == "unsigned_short") { std::uint16_t v; std::memcpy(&v, le, 2); return v; }
-    if (type == "int") { std::int32_t v; std::memcpy(&v, le, 4); return v; }
-    if (type == "unsigned_int") { std::uint32_t v; std::memcpy(&v, le, 4); return v; }
-    if (type == "unsigned_long" || type == "vtktypeuint64") {
-      std::uint64_t v; std::memcpy(&v, le, 8); return static_cast<double>(v);
+  // `count` big-endian values of `type` (width bytes each) from the cursor, as doubles.
+  template <typename T>
+  static void decode_as(const unsigned char* p, std::size_t width, double* out, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i, p += width) {
+      std::uint64_t bits = 0;
+      for (std::size_t b = 0; b < width; ++b) bits = (bits << 8) | p[b];
+      if constexpr (sizeof(T) == 8) {
+        T v;
+        std::memcpy(&v, &bits, 8);
+        out[i] = static_cast<double>(v);
+      } else {
+        const auto narrow = static_cast<std::uint32_t>(bits);
+        unsigned char le[sizeof(T)];
+        for (std::size_t b = 0; b < sizeof(T); ++b) le[b] = static_cast<unsigned char>(narrow >> (8 * b));
+        T v;
+        std::memcpy(&v, le, sizeof(T));
+        out[i] = static_cast<double>(v);
+      }
     }
-    std::int64_t v; std::memcpy(&v, le, 8); return static_cast<double>(v);
+  }
+  void decode_big_endian(const std::string& type, std::size_t width, double* out, std::size_t count) const {
+    const auto* p = reinterpret_cast<const unsigned char*>(b_.data() + pos_);
+    if (type == "float") decode_as<float>(p, width, out, count);
+    else if (type == "double") decode_as<double>(p, width, out, count);
+    else if (type == "char") decode_as<std::int8_t>(p, width, out, count);
+    else if (type == "unsigned_char") decode_as<std::uint8_t>(p, width, out, count);
+    else if (type == "short") decode_as<std::int16_t>(p, width, out, count);
+    else if (type == "unsigned_short") decode_as<std::uint16_t>(p, width, out, count);
+    else if (type == "int") decode_as<std::int32_t>(p, width, out, count);
+    else if (type == "unsigned_int") decode_as<std::uint32_t>(p, width, out, count);
+    else if (type == "unsigned_long" || type == "vtktypeuint64") decode_as<std::uint64_t>(p, width, out, count);
+    else decode_as<std::int64_t>(p, width, out, count);
   }
 
   std::string_view b_;
@@ -159,9 +174,10 @@ void need_words(const VtkCursor& c, const std::vector<std::string>& w, std::size
   if (w.size() < n) c.fail(w.empty() ? "(file)" : w[0], "expected '" + form + "'");
 }
 
-long long as_index(const VtkCursor& c, const std::string& section, double v) {
+// The section is named "<section>[i]" only when it fails (no string built per value).
+long long as_index(const VtkCursor& c, const char* section, std::size_t i, double v) {
   if (!(v == std::floor(v)) || v < -2147483648.0 || v > 2147483647.0)
-    c.fail(section, "not an integer point index: " + std::to_string(v));
+    c.fail(std::string(section) + "[" + std::to_string(i) + "]", "not an integer point index: " + std::to_string(v));
   return static_cast<long long>(v);
 }
 
@@ -204,7 +220,8 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
                           ? "STRUCTURED_POINTS is image data, not a mesh: give it to a scene as \"grid_file\""
                           : "UNSTRUCTURED_GRID is a mesh, not an image: use it as a mesh case's \"mesh_file\"");
   RawMesh& raw = d.raw;
-  std::vector<std::vector<long long>> cells;
+  // Cells go straight into raw.offsets / raw.connectivity (no vector per cell: issue 33).
+  std::size_t n_cells_read = 0;
   std::size_t attribute_count = 0;  // tuples of the current POINT_DATA / CELL_DATA block
   bool in_point_data = false, in_data = false;
   const auto add_array = [&](const std::string& name, std::size_t comps, bool active, std::vector<double> values) {
@@ -253,28 +270,36 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
           c.fail("CELLS", "expected 'CONNECTIVITY type' (file version 5.x)");
         const std::vector<double> conn = c.values("CONNECTIVITY", wc[1], size, binary);
         if (n == 0) c.fail("OFFSETS", "empty (needs cells + 1 entries)");
+        raw.offsets.assign(1, 0);
+        raw.connectivity.clear();
+        raw.offsets.reserve(n);
+        raw.connectivity.reserve(size);
         for (std::size_t i = 0; i + 1 < n; ++i) {
           const double a = offsets[i], b = offsets[i + 1];
           if (!(a >= 0 && b >= a && b <= static_cast<double>(size)))
             c.fail("OFFSETS[" + std::to_string(i + 1) + "]", "offsets must increase within CONNECTIVITY");
-          std::vector<long long> cell;
           for (auto k = static_cast<std::size_t>(a); k < static_cast<std::size_t>(b); ++k)
-            cell.push_back(as_index(c, "CONNECTIVITY[" + std::to_string(k) + "]", conn[k]));
-          cells.push_back(std::move(cell));
+            raw.connectivity.push_back(as_index(c, "CONNECTIVITY", k, conn[k]));
+          raw.offsets.push_back(raw.connectivity.size());
         }
+        n_cells_read = n - 1;
       } else {
         const std::vector<double> rawc = c.values("CELLS", "int", size, binary);
         std::size_t k = 0;
+        raw.offsets.assign(1, 0);
+        raw.connectivity.clear();
+        raw.offsets.reserve(n + 1);
+        raw.connectivity.reserve(size);
         for (std::size_t i = 0; i < n; ++i) {
-          const std::string sec = "CELLS[" + std::to_string(i) + "]";
-          if (k >= rawc.size()) c.fail(sec, "cell list ends early (size " + std::to_string(size) + ")");
+          if (k >= rawc.size())
+            c.fail("CELLS[" + std::to_string(i) + "]", "cell list ends early (size " + std::to_string(size) + ")");
           const double m = rawc[k++];
-          if (!(m >= 0 && m <= static_cast<double>(rawc.size() - k)))
-            c.fail(sec, "point count " + format_number(m) + " overruns the cell list");  // m may be huge or NaN
-          std::vector<long long> cell;
-          for (auto j = static_cast<std::size_t>(m); j > 0; --j) cell.push_back(as_index(c, sec, rawc[k++]));
-          cells.push_back(std::move(cell));
+          if (!(m >= 0 && m <= static_cast<double>(rawc.size() - k)))  // m may be huge or NaN
+            c.fail("CELLS[" + std::to_string(i) + "]", "point count " + format_number(m) + " overruns the cell list");
+          for (auto j = static_cast<std::size_t>(m); j > 0; --j) raw.connectivity.push_back(as_index(c, "CELLS", i, rawc[k++]));
+          raw.offsets.push_back(raw.connectivity.size());
         }
+        n_cells_read = n;
         if (k != rawc.size())
           c.fail("CELLS", "size " + std::to_string(size) + " does not match the cell list (" + std::to_string(k) + " used)");
       }
@@ -360,13 +385,8 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
     if (!d.have_points) c.fail("POINTS", "missing");
     if (!d.have_cells) c.fail("CELLS", "missing");
     if (!d.have_types) c.fail("CELL_TYPES", "missing");
-    if (raw.types.size() != cells.size())
-      c.fail("CELL_TYPES", std::to_string(raw.types.size()) + " types for " + std::to_string(cells.size()) + " cells");
-    raw.offsets.assign(1, 0);
-    for (const auto& cell : cells) {
-      raw.connectivity.insert(raw.connectivity.end(), cell.begin(), cell.end());
-      raw.offsets.push_back(raw.connectivity.size());
-    }
+    if (raw.types.size() != n_cells_read)
+      c.fail("CELL_TYPES", std::to_string(raw.types.size()) + " types for " + std::to_string(n_cells_read) + " cells");
   } else if (!d.have_dims) {
     c.fail("DIMENSIONS", "missing");
   }

@@ -56,14 +56,15 @@ OrientationCounts orientation_counts(const TetMesh& mesh) {
   return c;
 }
 
-bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
+namespace {
+
+// tets_overlap with the pair's size (the larger box diagonal) given.
+bool overlap_exact(const TetMesh& m, std::size_t ia, std::size_t ib, double size) {
   std::array<Vec3, 4> a, b;
   for (std::size_t k = 0; k < 4; ++k) {
     a[k] = m.points[static_cast<std::size_t>(m.tets[ia][k])];
     b[k] = m.points[static_cast<std::size_t>(m.tets[ib][k])];
   }
-  const Box ba = box_of(m, ia), bb = box_of(m, ib);
-  const double size = std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm());
   const double tol = kOverlapTolerance * size;
   static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
@@ -72,6 +73,16 @@ bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
     if (!(n > 1e-12 * size * size)) return false;  // parallel edges: no axis
     return overlap_on(a, b, axis / n) <= tol;
   };
+  // A cheap axis first, the line through the two centroids: the projections being apart on any
+  // axis proves the interiors disjoint, and it never changes the answer: the smallest overlap of
+  // two convex polyhedra over all directions (their penetration depth) is attained on one of the
+  // 44 axes below, so an overlap <= tol here means one <= tol there too. On the generated balls
+  // it settles most of the pairs that share no point (issue 33).
+  {
+    const Vec3 axis = (b[0] + b[1] + b[2] + b[3]) - (a[0] + a[1] + a[2] + a[3]);
+    const double len = axis.norm();
+    if (len > 1e-12 * size && overlap_on(a, b, axis / len) <= tol) return false;
+  }
   for (const auto* p : {&a, &b})
     for (const auto& f : kFaces) {
       const auto& q = *p;
@@ -88,6 +99,13 @@ bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
   return true;
 }
 
+}  // namespace
+
+bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
+  const Box ba = box_of(m, ia), bb = box_of(m, ib);
+  return overlap_exact(m, ia, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()));
+}
+
 std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& m, OverlapScope scope) {
   const std::size_t n = m.tets.size();
   if (n < 2) return std::nullopt;
@@ -101,7 +119,9 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
     mean_extent += boxes[t].hi - boxes[t].lo;
   }
   mean_extent /= static_cast<double>(n);
-  // Grid cells of about the mean box extent, at most ~8 n of them.
+  // Grid cells of about the mean box extent, at most ~8 n of them. (For boxes of one size e,
+  // the number of pairs met in the cells, ~ (h + e)^6 / h^3 for cells of size h, is smallest at
+  // h = e.)
   std::array<long, 3> dims{};
   Vec3 cell;
   for (int k = 0; k < 3; ++k) {
@@ -112,43 +132,85 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
   }
   const auto index = [&](const Vec3& p, int k) {
     const long i = static_cast<long>(std::floor((p[k] - all.lo[k]) / cell[k]));
-    return std::clamp(i, 0L, dims[static_cast<std::size_t>(k)] - 1);
+    return static_cast<std::int32_t>(std::clamp(i, 0L, dims[static_cast<std::size_t>(k)] - 1));
   };
-  const auto key = [&](long i, long j, long k) { return i + dims[0] * (j + dims[1] * k); };
-  // (grid cell, tet) records sorted by cell: the members of a cell are one run.
-  std::vector<std::pair<long, std::uint32_t>> recs;
-  recs.reserve(n * 4);
-  for (std::size_t t = 0; t < n; ++t)
-    for (long k = index(boxes[t].lo, 2); k <= index(boxes[t].hi, 2); ++k)
-      for (long j = index(boxes[t].lo, 1); j <= index(boxes[t].hi, 1); ++j)
-        for (long i = index(boxes[t].lo, 0); i <= index(boxes[t].hi, 0); ++i)
-          recs.emplace_back(key(i, j, k), static_cast<std::uint32_t>(t));
-  std::sort(recs.begin(), recs.end());
+  // The grid cells a tet's box covers, lo[k]..hi[k] on axis k, and its tolerance (the box
+  // diagonal; the pair's tolerance is kOverlapTolerance x the larger of the two).
+  struct Span {
+    std::array<std::int32_t, 3> lo, hi;
+    double size;
+  };
+  std::vector<Span> spans(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    Span& s = spans[t];
+    for (int k = 0; k < 3; ++k) {
+      s.lo[static_cast<std::size_t>(k)] = index(boxes[t].lo, k);
+      s.hi[static_cast<std::size_t>(k)] = index(boxes[t].hi, k);
+    }
+    s.size = (boxes[t].hi - boxes[t].lo).norm();
+  }
+  // The members of every grid cell, in tet order: a counting sort by cell (linear in the number
+  // of (cell, tet) records; issue 33). begin[c] .. begin[c + 1] indexes `members`.
+  const auto n_cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
+  const auto key = [&](long i, long j, long k) { return static_cast<std::size_t>(i + dims[0] * (j + dims[1] * k)); };
+  const auto for_cells = [&](const Span& sp, auto&& f) {
+    for (long k = sp.lo[2]; k <= sp.hi[2]; ++k)
+      for (long j = sp.lo[1]; j <= sp.hi[1]; ++j)
+        for (long i = sp.lo[0]; i <= sp.hi[0]; ++i) f(key(i, j, k));
+  };
+  std::vector<std::size_t> begin(n_cells + 1, 0);
+  for (std::size_t t = 0; t < n; ++t) for_cells(spans[t], [&](std::size_t c) { ++begin[c + 1]; });
+  for (std::size_t c = 0; c < n_cells; ++c) begin[c + 1] += begin[c];
+  std::vector<std::uint32_t> members(begin[n_cells]);
+  for (std::size_t t = n; t-- > 0;)  // backwards, each cell filled from its end: tet order
+    for_cells(spans[t], [&](std::size_t c) { members[--begin[c + 1]] = static_cast<std::uint32_t>(t); });
+  // Now begin[c + 1] is where cell c starts.
+  begin.erase(begin.begin());
+  begin.push_back(members.size());
   std::optional<std::pair<std::size_t, std::size_t>> first;
-  for (std::size_t r0 = 0; r0 < recs.size();) {
-    std::size_t r1 = r0 + 1;
-    while (r1 < recs.size() && recs[r1].first == recs[r0].first) ++r1;
-    const long cell_key = recs[r0].first;
-    for (std::size_t x = r0; x < r1; ++x)
-      for (std::size_t y = x + 1; y < r1; ++y) {
-        const std::size_t a = recs[x].second, b = recs[y].second;  // a < b: sorted within the run
-        const Box& A = boxes[a];
-        const Box& B = boxes[b];
-        const double tol = kOverlapTolerance * std::max((A.hi - A.lo).norm(), (B.hi - B.lo).norm());
-        bool apart = false;
-        for (int k = 0; k < 3 && !apart; ++k) apart = std::min(A.hi[k], B.hi[k]) - std::max(A.lo[k], B.lo[k]) <= tol;
-        if (apart) continue;
-        const Vec3 corner = A.lo.cwiseMax(B.lo);  // test the pair once: in the cell of this corner
-        if (key(index(corner, 0), index(corner, 1), index(corner, 2)) != cell_key) continue;
-        if (scope == OverlapScope::disjoint_pairs) {
-          bool shared = false;
-          for (const std::int32_t pa : m.tets[a])
-            for (const std::int32_t pb : m.tets[b]) shared = shared || pa == pb;
-          if (shared) continue;
-        }
-        if (tets_overlap(m, a, b) && (!first || std::make_pair(a, b) < *first)) first = std::make_pair(a, b);
-      }
-    r0 = r1;
+  const auto test = [&](std::size_t a, std::size_t b) {
+    if (a > b) std::swap(a, b);
+    if (first && std::make_pair(a, b) >= *first) return;
+    const Box& A = boxes[a];
+    const Box& B = boxes[b];
+    const double tol = kOverlapTolerance * std::max(spans[a].size, spans[b].size);
+    for (int k = 0; k < 3; ++k)
+      if (std::min(A.hi[k], B.hi[k]) - std::max(A.lo[k], B.lo[k]) <= tol) return;
+    if (scope == OverlapScope::disjoint_pairs) {
+      for (const std::int32_t pa : m.tets[a])
+        for (const std::int32_t pb : m.tets[b])
+          if (pa == pb) return;
+    }
+    if (overlap_exact(m, a, b, std::max(spans[a].size, spans[b].size))) first = std::make_pair(a, b);
+  };
+  // A pair is tested once: in the grid cell of the lower corner of the boxes' intersection,
+  // max(A.lo, B.lo), whose cell is the larger of the two lower cells on each axis (the cell index
+  // is monotone in the coordinate). Both boxes cover the cell c of the run, so their lower cells
+  // are at most c: the corner is in c iff on every axis one of the two starts in c. The members
+  // are sorted into 8 lists by the axes on which they start in c (a bit each); only lists whose
+  // bits cover all three axes are paired, so the pairs tested elsewhere are never visited.
+  std::array<std::vector<std::uint32_t>, 8> by_start;
+  for (std::size_t cell_key = 0; cell_key < n_cells; ++cell_key) {
+    const std::size_t r0 = begin[cell_key], r1 = begin[cell_key + 1];
+    if (r1 - r0 < 2) continue;
+    const auto d0 = static_cast<std::size_t>(dims[0]), d1 = static_cast<std::size_t>(dims[1]);
+    const std::array<std::int32_t, 3> c{static_cast<std::int32_t>(cell_key % d0),
+                                        static_cast<std::int32_t>((cell_key / d0) % d1),
+                                        static_cast<std::int32_t>(cell_key / (d0 * d1))};
+    for (auto& l : by_start) l.clear();
+    for (std::size_t x = r0; x < r1; ++x) {
+      const Span& sp = spans[members[x]];
+      const unsigned bits = (sp.lo[0] == c[0] ? 1U : 0U) | (sp.lo[1] == c[1] ? 2U : 0U) | (sp.lo[2] == c[2] ? 4U : 0U);
+      by_start[bits].push_back(members[x]);
+    }
+    const auto& all_axes = by_start[7];
+    for (std::size_t x = 0; x < all_axes.size(); ++x)
+      for (std::size_t y = x + 1; y < all_axes.size(); ++y) test(all_axes[x], all_axes[y]);
+    for (unsigned ma = 0; ma < 7; ++ma)
+      for (unsigned mb = ma + 1; mb < 8; ++mb)
+        if ((ma | mb) == 7)
+          for (const std::uint32_t a : by_start[ma])
+            for (const std::uint32_t b : by_start[mb]) test(a, b);
   }
   return first;
 }

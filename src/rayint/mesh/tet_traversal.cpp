@@ -43,83 +43,98 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
                          "]: coordinate " + format_number(mesh_.points[i][k]) +
                          " beyond +-1e18, the range of the boundary ray tracer (Embree, single precision)");
   const std::size_t n = mesh_.tets.size();
-  // Faces: sort (sorted point triple, tet, k) records and merge equal triples.
+  if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 4))
+    throw InputError(source + ": tets: " + std::to_string(n) + " tetrahedra; at most 2^29 - 1 are supported");
+  // Faces: sort (sorted point triple, 4 tet + k) records and merge equal triples. 16 bytes a
+  // record, 64 per tet: the largest transient of the build besides cells_ (issue 33).
   struct Rec {
     std::array<std::int32_t, 3> key;
-    std::int32_t tet;
-    std::int8_t k;
+    std::int32_t tet_k;  // 4 tet + k: sorts as (tet, k)
   };
-  std::vector<Rec> recs;
-  recs.reserve(4 * n);
+  std::vector<Rec> recs(4 * n);
   for (std::size_t t = 0; t < n; ++t)
     for (int k = 0; k < 4; ++k) {
-      Rec r{};
+      Rec& r = recs[4 * t + static_cast<std::size_t>(k)];
       for (int j = 0; j < 3; ++j) r.key[static_cast<std::size_t>(j)] = mesh_.tets[t][static_cast<std::size_t>(kFacePoints[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)])];
       std::sort(r.key.begin(), r.key.end());
-      r.tet = static_cast<std::int32_t>(t);
-      r.k = static_cast<std::int8_t>(k);
-      recs.push_back(r);
+      r.tet_k = static_cast<std::int32_t>(4 * t) + k;
     }
   std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
-    return std::tie(a.key, a.tet) < std::tie(b.key, b.tet);
+    if (a.key[0] != b.key[0]) return a.key[0] < b.key[0];
+    if (a.key[1] != b.key[1]) return a.key[1] < b.key[1];
+    if (a.key[2] != b.key[2]) return a.key[2] < b.key[2];
+    return a.tet_k < b.tet_k;
   });
-  // Face ids opposite point k and signs (+1: the face normal points out), used to build cells_.
-  std::vector<Face> faces;
-  std::vector<std::array<std::int32_t, 4>> cell_faces(n, {-1, -1, -1, -1});
-  std::vector<std::array<std::int8_t, 4>> cell_signs(n, {0, 0, 0, 0});
+  // Phase 1, adjacency: equal triples are one face; the cell across face k of t goes to next[t][k]
+  // (-1: boundary). The face's plane (rule 1) is a function of its sorted point triple alone, so
+  // phase 2 recomputes it per cell, the same doubles, after recs is freed: the two never share
+  // memory (peak memory, issue 33).
+  const auto plane = [&](const std::array<std::int32_t, 3>& key) {
+    const Vec3& a = mesh_.points[static_cast<std::size_t>(key[0])];
+    return (mesh_.points[static_cast<std::size_t>(key[1])] - a).cross(mesh_.points[static_cast<std::size_t>(key[2])] - a);
+  };
+  // +1 when the face's normal points out of cell t (away from its point k).
+  const auto sign_of = [&](const std::array<std::int32_t, 3>& key, const Vec3& normal, std::size_t t, std::size_t k) {
+    const Vec3& opposite = mesh_.points[static_cast<std::size_t>(mesh_.tets[t][k])];
+    return normal.dot(opposite - mesh_.points[static_cast<std::size_t>(key[0])]) < 0.0 ? 1 : -1;
+  };
+  std::vector<std::array<std::int32_t, 4>> next(n);
+  face_count_ = 0;
   for (std::size_t i = 0; i < recs.size();) {
     std::size_t j = i + 1;
     while (j < recs.size() && recs[j].key == recs[i].key) ++j;
     if (j - i > 2)
-      throw InputError(source + ": tets[" + std::to_string(recs[i + 2].tet) + "]: face (" +
+      throw InputError(source + ": tets[" + std::to_string(recs[i + 2].tet_k / 4) + "]: face (" +
                        std::to_string(recs[i].key[0]) + ", " + std::to_string(recs[i].key[1]) + ", " +
                        std::to_string(recs[i].key[2]) + ") is shared by more than two tetrahedra (also tets[" +
-                       std::to_string(recs[i].tet) + "] and tets[" + std::to_string(recs[i + 1].tet) + "])");
+                       std::to_string(recs[i].tet_k / 4) + "] and tets[" + std::to_string(recs[i + 1].tet_k / 4) + "])");
     Face f;
     f.points = recs[i].key;
-    const Vec3& a = mesh_.points[f.points[0]];
-    f.normal = (mesh_.points[f.points[1]] - a).cross(mesh_.points[f.points[2]] - a);
-    const auto id = static_cast<std::int32_t>(faces.size());
+    f.normal = plane(f.points);
+    std::array<int, 2> sign{};
     for (std::size_t r = i; r < j; ++r) {
-      const auto t = static_cast<std::size_t>(recs[r].tet);
-      const auto k = static_cast<std::size_t>(recs[r].k);
-      const Vec3& opposite = mesh_.points[mesh_.tets[t][k]];
-      cell_faces[t][k] = id;
-      cell_signs[t][k] = f.normal.dot(opposite - a) < 0.0 ? std::int8_t{1} : std::int8_t{-1};
-      f.cells[r - i] = recs[r].tet;
+      const auto t = static_cast<std::size_t>(recs[r].tet_k / 4);
+      sign[r - i] = sign_of(f.points, f.normal, t, static_cast<std::size_t>(recs[r].tet_k % 4));
+      f.cells[r - i] = recs[r].tet_k / 4;
     }
-    if (j - i == 2) {
-      const auto t0 = static_cast<std::size_t>(f.cells[0]), t1 = static_cast<std::size_t>(f.cells[1]);
-      if (cell_signs[t0][static_cast<std::size_t>(recs[i].k)] == cell_signs[t1][static_cast<std::size_t>(recs[i + 1].k)])
-        throw InputError(source + ": tets[" + std::to_string(t1) + "]: overlaps tets[" + std::to_string(t0) +
-                         "] (both lie on the same side of their shared face)");
-    } else {
+    if (j - i == 2 && sign[0] == sign[1])
+      throw InputError(source + ": tets[" + std::to_string(f.cells[1]) + "]: overlaps tets[" + std::to_string(f.cells[0]) +
+                       "] (both lie on the same side of their shared face)");
+    for (std::size_t r = i; r < j; ++r)
+      next[static_cast<std::size_t>(recs[r].tet_k / 4)][static_cast<std::size_t>(recs[r].tet_k % 4)] =
+          j - i == 2 ? f.cells[1 - (r - i)] : -1;
+    if (j - i == 1) {
       boundary_.push_back(f);
-      boundary_k_.push_back(recs[i].k);
+      boundary_k_.push_back(static_cast<std::int8_t>(recs[i].tet_k % 4));
     }
-    faces.push_back(f);
+    ++face_count_;
     i = j;
   }
-  face_count_ = faces.size();
-  // The walk's per-cell records (see CellRecord).
+  std::vector<Rec>().swap(recs);
+  // Phase 2, the walk's per-cell records (see CellRecord): face k of cell t gets its face's normal
+  // times the cell's sign (+1: the normal points out).
   cells_.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
-    CellRecord& r = cells_[t];
-    std::int32_t lowest = mesh_.tets[t][0];
-    for (std::size_t k = 1; k < 4; ++k) lowest = std::min(lowest, mesh_.tets[t][k]);
-    r.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
-    r.second_point = r.first_point;
-    r.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
+    CellRecord& c = cells_[t];
+    const auto& tet = mesh_.tets[t];
+    const std::int32_t lowest = std::min({tet[0], tet[1], tet[2], tet[3]});
+    c.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
+    c.second_point = c.first_point;
+    c.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
     for (std::size_t k = 0; k < 4; ++k) {
-      const Face& f = faces[static_cast<std::size_t>(cell_faces[t][k])];
-      r.normal[k] = cell_signs[t][k] > 0 ? f.normal : Vec3(-f.normal);
-      r.next[k] = f.cells[0] == static_cast<std::int32_t>(t) ? f.cells[1] : f.cells[0];
-      if (f.points[0] != lowest) {
-        r.k_second = static_cast<std::int32_t>(k);
-        r.second_point = mesh_.points[static_cast<std::size_t>(f.points[0])];
+      std::array<std::int32_t, 3> key{};
+      for (std::size_t j = 0; j < 3; ++j) key[j] = tet[static_cast<std::size_t>(kFacePoints[k][j])];
+      std::sort(key.begin(), key.end());
+      const Vec3 normal = plane(key);
+      c.normal[k] = sign_of(key, normal, t, k) > 0 ? normal : Vec3(-normal);
+      c.next[k] = next[t][k];
+      if (key[0] != lowest) {
+        c.k_second = static_cast<std::int32_t>(k);
+        c.second_point = mesh_.points[static_cast<std::size_t>(key[0])];
       }
     }
   }
+  std::vector<std::array<std::int32_t, 4>>().swap(next);
   // Eq. 9 per cell.
   for (std::size_t t = 0; t < n; ++t) {
     std::array<Vec3, 4> x;

@@ -29,8 +29,8 @@ nlohmann::json mesh_render_json(const MeshCase& mc, const TetTraversal& mesh, co
                                 const MeshRenderComparison* compare) {
   nlohmann::json stats = {{"case", mc.name},
                           {"source", mc.source},
-                          {"mesh", {{"source", mc.mesh_source}, {"points", mc.mesh.points.size()},
-                                    {"tets", mc.mesh.tets.size()}, {"boundary_faces", mesh.boundary_face_count()},
+                          {"mesh", {{"source", mc.mesh_source}, {"points", mesh.mesh().points.size()},
+                                    {"tets", mesh.mesh().tets.size()}, {"boundary_faces", mesh.boundary_face_count()},
                                     {"repairs", to_json(mc.repairs)}}},
                           {"width", mc.camera->width},
                           {"height", mc.camera->height},

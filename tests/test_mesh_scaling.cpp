@@ -1,0 +1,169 @@
+// The load path rewritten for big meshes (issue 33), checked against brute force: the overlap
+// check's candidate grid against every pair, the traversal's face adjacency against a map of
+// faces, and the legacy reader's binary decoding of every VTK type (tag [mesh][scaling]).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rayint/input/vtk_legacy_reader.hpp"
+#include "rayint/mesh/mesh_check.hpp"
+#include "rayint/mesh/mesh_generators.hpp"
+#include "rayint/mesh/tet_traversal.hpp"
+
+using namespace rayint;
+
+namespace {
+
+// The first overlapping pair (a < b, lexicographically smallest) by testing every pair.
+std::optional<std::pair<std::size_t, std::size_t>> brute_force_overlap(const TetMesh& m, OverlapScope scope) {
+  for (std::size_t a = 0; a < m.tets.size(); ++a)
+    for (std::size_t b = a + 1; b < m.tets.size(); ++b) {
+      if (scope == OverlapScope::disjoint_pairs) {
+        bool shared = false;
+        for (const auto pa : m.tets[a])
+          for (const auto pb : m.tets[b]) shared = shared || pa == pb;
+        if (shared) continue;
+      }
+      if (tets_overlap(m, a, b)) return std::make_pair(a, b);
+    }
+  return std::nullopt;
+}
+
+// Two copies of `m`, the second moved by `shift` (an Append of two meshes without shared points).
+TetMesh appended(const TetMesh& m, const Vec3& shift) {
+  TetMesh out = m;
+  const auto n = static_cast<std::int32_t>(m.points.size());
+  for (const Vec3& p : m.points) out.points.push_back(p + shift);
+  out.scalars.insert(out.scalars.end(), m.scalars.begin(), m.scalars.end());
+  for (auto t : m.tets) {
+    for (auto& i : t) i += n;
+    out.tets.push_back(t);
+  }
+  return out;
+}
+
+void append_be(std::string& out, const void* value, std::size_t width) {
+  const auto* p = static_cast<const unsigned char*>(value);
+  for (std::size_t i = width; i > 0; --i) out.push_back(static_cast<char>(p[i - 1]));  // host is little-endian
+}
+
+}  // namespace
+
+TEST_CASE("overlap check: the candidate grid finds what testing every pair finds", "[mesh][scaling]") {
+  const TetMesh box = generate_mesh("linear-box", 3, 7).mesh;  // jittered Kuhn box, 162 tets
+  const TetMesh ball = generate_mesh("ball", 2, 1).mesh;      // 384 tets
+  std::vector<std::pair<std::string, TetMesh>> meshes{{"box", box}, {"ball", ball}};
+  // Shifts from far apart (no overlap) to half a cell (many overlaps), and one exact touch.
+  for (const Vec3& shift : {Vec3(3.0, 0.0, 0.0), Vec3(1.0, 0.0, 0.0), Vec3(0.5, 0.13, 0.0), Vec3(0.9, 0.9, 0.95),
+                            Vec3(0.05, 0.02, 0.01)})
+    meshes.emplace_back("box + shifted box", appended(box, shift));
+  meshes.emplace_back("ball + shifted ball", appended(ball, Vec3(1.7, 0.4, -0.3)));
+  int overlapping = 0;
+  for (const auto& [name, m] : meshes)
+    for (const OverlapScope scope : {OverlapScope::all_pairs, OverlapScope::disjoint_pairs}) {
+      INFO(name << ", " << m.tets.size() << " tets, scope " << static_cast<int>(scope));
+      const auto fast = find_overlapping_tets(m, scope);
+      const auto slow = brute_force_overlap(m, scope);
+      CHECK(fast == slow);
+      if (slow) ++overlapping;
+    }
+  CHECK(overlapping >= 6);  // the sample has overlapping meshes, in both scopes
+  // A touching copy of an unjittered box (shifted by exactly its size along x: the copies share a
+  // plane, no volume) is not an overlap; shifted by 0.999 it is.
+  const TetMesh cube = structured_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), 2, 2, 2);
+  CHECK_FALSE(find_overlapping_tets(appended(cube, Vec3(1.0, 0.0, 0.0)), OverlapScope::disjoint_pairs).has_value());
+  CHECK_FALSE(brute_force_overlap(appended(cube, Vec3(1.0, 0.0, 0.0)), OverlapScope::disjoint_pairs).has_value());
+  CHECK(find_overlapping_tets(appended(cube, Vec3(0.999, 0.0, 0.0)), OverlapScope::disjoint_pairs).has_value());
+}
+
+TEST_CASE("traversal adjacency equals a map of sorted faces", "[mesh][scaling]") {
+  for (const std::string kind : {"ball", "linear-box", "ring"}) {
+    const TetMesh m = generate_mesh(kind, 3, 1).mesh;
+    std::map<std::array<std::int32_t, 3>, std::vector<std::pair<std::size_t, int>>> faces;
+    for (std::size_t t = 0; t < m.tets.size(); ++t)
+      for (int k = 0; k < 4; ++k) {
+        std::array<std::int32_t, 3> key{};
+        std::size_t j = 0;
+        for (int q = 0; q < 4; ++q)
+          if (q != k) key[j++] = m.tets[t][static_cast<std::size_t>(q)];
+        std::sort(key.begin(), key.end());
+        faces[key].emplace_back(t, k);
+      }
+    const TetTraversal tr(m, kind);
+    INFO(kind);
+    CHECK(tr.face_count() == faces.size());
+    std::size_t boundary = 0;
+    for (const auto& [key, users] : faces) {
+      REQUIRE(users.size() <= 2);
+      if (users.size() == 1) {
+        ++boundary;
+        CHECK(tr.neighbor(users[0].first, users[0].second) == -1);
+      } else {
+        CHECK(tr.neighbor(users[0].first, users[0].second) == static_cast<std::int32_t>(users[1].first));
+        CHECK(tr.neighbor(users[1].first, users[1].second) == static_cast<std::int32_t>(users[0].first));
+      }
+    }
+    CHECK(tr.boundary_face_count() == boundary);
+  }
+}
+
+TEST_CASE("legacy reader: binary arrays of every VTK type decode to their values", "[mesh][scaling]") {
+  std::string f = "# vtk DataFile Version 3.0\ntypes\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n";
+  const double xyz[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (const double v : xyz) append_be(f, &v, 8);
+  f += "\nCELLS 1 5\n";
+  for (const std::int32_t v : {4, 0, 1, 2, 3}) append_be(f, &v, 4);
+  f += "\nCELL_TYPES 1\n";
+  const std::int32_t tetra = 10;
+  append_be(f, &tetra, 4);
+  f += "\nPOINT_DATA 4\nFIELD arrays 10\n";
+  // Per type: the values written and read back (as doubles, exact for each).
+  const double expect[10][4] = {{0, 1, 200, 255},           {-128, -1, 0, 127},   {-32768, -2, 3, 32767},
+                                {0, 1, 40000, 65535},       {-2147483647.0 - 1, -5, 6, 2147483647.0},
+                                {0, 7, 3000000000.0, 4294967295.0},
+                                {-9007199254740992.0, -9, 10, 9007199254740992.0},
+                                {0, 11, 1e15, 9007199254740992.0},
+                                {-0.5, 0.25, 3.0e38, -1.5e-38}, {-1e300, 0.1, 2.5e-300, 7.0}};
+  const char* names[10] = {"unsigned_char", "char", "short", "unsigned_short", "int", "unsigned_int",
+                           "vtktypeint64", "vtktypeuint64", "float", "double"};
+  for (int a = 0; a < 10; ++a) {
+    f += std::string("a") + std::to_string(a) + " 1 4 " + names[a] + "\n";
+    for (const double v : expect[a]) {
+      switch (a) {
+        case 0: { const auto x = static_cast<std::uint8_t>(v); append_be(f, &x, 1); break; }
+        case 1: { const auto x = static_cast<std::int8_t>(v); append_be(f, &x, 1); break; }
+        case 2: { const auto x = static_cast<std::int16_t>(v); append_be(f, &x, 2); break; }
+        case 3: { const auto x = static_cast<std::uint16_t>(v); append_be(f, &x, 2); break; }
+        case 4: { const auto x = static_cast<std::int32_t>(v); append_be(f, &x, 4); break; }
+        case 5: { const auto x = static_cast<std::uint32_t>(v); append_be(f, &x, 4); break; }
+        case 6: { const auto x = static_cast<std::int64_t>(v); append_be(f, &x, 8); break; }
+        case 7: { const auto x = static_cast<std::uint64_t>(v); append_be(f, &x, 8); break; }
+        case 8: { const auto x = static_cast<float>(v); append_be(f, &x, 4); break; }
+        default: append_be(f, &v, 8);
+      }
+    }
+    f += "\n";
+  }
+  for (int a = 0; a < 10; ++a) {
+    INFO(names[a]);
+    const TetMesh m = parse_vtk_legacy(f, "types.vtk", "a" + std::to_string(a));
+    REQUIRE(m.scalars.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i)
+      CHECK(m.scalars[i] == (a == 8 ? static_cast<double>(static_cast<float>(expect[a][i])) : expect[a][i]));
+  }
+  const TetMesh m = parse_vtk_legacy(f, "types.vtk", "a9");
+  REQUIRE(m.points.size() == 4);
+  for (std::size_t i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) CHECK(m.points[i][k] == xyz[3 * i + static_cast<std::size_t>(k)]);
+  REQUIRE(m.tets.size() == 1);
+  CHECK(m.tets[0] == std::array<std::int32_t, 4>{0, 1, 2, 3});
+}
