@@ -3,6 +3,7 @@
 #include "rayint/cells/cell_integral.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/roots.hpp>
@@ -20,9 +21,13 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxDegree = 64;
 constexpr int kMaxSubintervals = 256;
 
-// 15-point Gauss-Kronrod on [a, b] with the embedded 7-point Gauss rule (Boost.Math's nodes).
+using Channels = std::array<double, kChannels>;
+
+// 15-point Gauss-Kronrod on [a, b] with the embedded 7-point Gauss rule (Boost.Math's nodes),
+// all channels at once (they share the scalar at every node).
 struct RuleSums {
-  double a = 0.0, b = 0.0, kronrod = 0.0, error = 0.0, l1 = 0.0;
+  double a = 0.0, b = 0.0;
+  Channels kronrod{}, error{}, l1{};
 };
 
 template <class F>
@@ -33,35 +38,56 @@ RuleSums gauss_kronrod_15(F& f, double a, double b) {
   static const auto& wk = GK::weights();
   static const auto& wg = G::weights();
   const double c = 0.5 * (a + b), h = 0.5 * (b - a);
-  const double f0 = f(c);
-  double K = wk[0] * f0, Gs = wg[0] * f0, L1 = wk[0] * std::abs(f0);
-  for (std::size_t j = 1; j < x.size(); ++j) {
-    const double fm = f(c - h * x[j]), fp = f(c + h * x[j]);
-    K += wk[j] * (fm + fp);
-    L1 += wk[j] * (std::abs(fm) + std::abs(fp));
-    if (j % 2 == 0) Gs += wg[j / 2] * (fm + fp);
+  const Channels f0 = f(c);
+  Channels K{}, Gs{}, L1{};
+  for (std::size_t ch = 0; ch < kChannels; ++ch) {
+    K[ch] = wk[0] * f0[ch], Gs[ch] = wg[0] * f0[ch], L1[ch] = wk[0] * std::abs(f0[ch]);
   }
-  return {a, b, h * K, std::abs(h * (K - Gs)), h * L1};
+  for (std::size_t j = 1; j < x.size(); ++j) {
+    const Channels fm = f(c - h * x[j]), fp = f(c + h * x[j]);
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      K[ch] += wk[j] * (fm[ch] + fp[ch]);
+      L1[ch] += wk[j] * (std::abs(fm[ch]) + std::abs(fp[ch]));
+      if (j % 2 == 0) Gs[ch] += wg[j / 2] * (fm[ch] + fp[ch]);
+    }
+  }
+  RuleSums r;
+  r.a = a, r.b = b;
+  for (std::size_t ch = 0; ch < kChannels; ++ch) {
+    r.kronrod[ch] = h * K[ch], r.error[ch] = std::abs(h * (K[ch] - Gs[ch])), r.l1[ch] = h * L1[ch];
+  }
+  return r;
 }
 
-// Globally adaptive: the subinterval with the largest |K - G| is halved until the sum of the
-// estimates is below tol * L1 (or 8 ulps of L1: the rounding floor of the sums), at most
-// kMaxSubintervals. Returns false when the budget ran out first.
+// Globally adaptive: the subinterval with the largest |K - G| relative to its channel's
+// tolerance is halved until, in every channel, the sum of the estimates is below tol * L1 (or 8
+// ulps of L1: the rounding floor of the sums) or below `floor` (the channel's rounding noise,
+// see integrate_curved), at most kMaxSubintervals. Returns false when the budget ran out first.
 template <class F>
-bool adaptive_integral(F& f, double a, double b, double tol, double& value, double& error) {
+bool adaptive_integral(F& f, double a, double b, double tol, const Channels& floor, Channels& value,
+                       Channels& error) {
   std::vector<RuleSums> parts{gauss_kronrod_15(f, a, b)};
+  const double rel = std::max(tol, 8 * std::numeric_limits<double>::epsilon());
   for (;;) {
-    double K = 0.0, E = 0.0, L1 = 0.0;
-    std::size_t worst = 0;
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      K += parts[k].kronrod, E += parts[k].error, L1 += parts[k].l1;
-      if (parts[k].error > parts[worst].error) worst = k;
-    }
+    Channels K{}, E{}, L1{};
+    for (const RuleSums& p : parts)
+      for (std::size_t ch = 0; ch < kChannels; ++ch) K[ch] += p.kronrod[ch], E[ch] += p.error[ch], L1[ch] += p.l1[ch];
     value = K;
     error = E;
-    if (!std::isfinite(K)) return false;
-    if (E <= std::max(tol, 8 * std::numeric_limits<double>::epsilon()) * L1) return true;
+    bool done = true;
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      if (!std::isfinite(K[ch])) return false;
+      done = done && E[ch] <= std::max(rel * L1[ch], floor[ch]);
+    }
+    if (done) return true;
     if (static_cast<int>(parts.size()) >= kMaxSubintervals) return false;
+    std::size_t worst = 0;
+    double worst_ratio = -1.0;
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      for (std::size_t ch = 0; ch < kChannels; ++ch) {
+        const double ratio = parts[k].error[ch] / std::max({rel * L1[ch], floor[ch], std::numeric_limits<double>::min()});
+        if (ratio > worst_ratio) worst_ratio = ratio, worst = k;
+      }
     const RuleSums w = parts[worst];
     const double m = 0.5 * (w.a + w.b);
     parts[worst] = gauss_kronrod_15(f, w.a, m);
@@ -322,45 +348,66 @@ CellPieceIntegral CellIntegrator::integrate_curved(const LinearCell& cell, const
   for (const Interpolant& I : parts) {  // near -> far
     const double h = 0.5 * (I.b - I.a) * speed;  // world length per unit x
     const std::vector<double> xs = knots(I, breakpoints_);
+    const std::vector<double> P = antiderivative(I.c);
     for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
       const double x0 = xs[k], x1 = xs[k + 1];
       if (!(x1 > x0)) continue;
       const double f_mid = clenshaw(I.c, 0.5 * (x0 + x1));
       const double length = h * (x1 - x0);
+      const double P0 = clenshaw(P, x0);
       ++out.pieces;
+      std::array<LinearPart, kChannels> rho, kappa;
+      bool emits = false;
       for (std::size_t c = 0; c < kChannels; ++c) {
-        const LinearPart rho = linear_part(tf_->density[c], f_mid);
-        const LinearPart kappa = linear_part(tf_->color[c], f_mid);
-        std::vector<double> r(I.c.size());
-        for (std::size_t j = 0; j < r.size(); ++j) r[j] = rho.beta * I.c[j];
-        r[0] = rho.v0 + rho.beta * (I.c[0] - rho.s0);
-        const std::vector<double> R = antiderivative(r);
-        const double R0 = clenshaw(R, x0);
-        const double piece_depth = h * (clenshaw(R, x1) - R0);
-        double piece_emission = 0.0, quadrature_error = 0.0;
-        if (rho.max_value > 0.0 && kappa.max_value > 0.0) {
-          const auto integrand = [&](double x) {
-            const double f = clenshaw(I.c, x);
-            const double rho_x = rho.v0 + rho.beta * (f - rho.s0);
-            const double kappa_x = kappa.v0 + kappa.beta * (f - kappa.s0);
-            return kappa_x * rho_x * std::exp(-h * (clenshaw(R, x) - R0));
-          };
-          if (!adaptive_integral(integrand, x0, x1, kQuadratureTolerance, piece_emission, quadrature_error)) {
-            out.converged = false;
-            out.failure = "emission quadrature missed its tolerance";
+        rho[c] = linear_part(tf_->density[c], f_mid);
+        kappa[c] = linear_part(tf_->color[c], f_mid);
+        emits = emits || (rho[c].max_value > 0.0 && kappa[c].max_value > 0.0);
+      }
+      // tau_c(x) = h int_x0^x (v0 + beta (f - s0)) = h (v0 dx + beta ((P(x) - P(x0)) - s0 dx)):
+      // exact for the series (no quadrature error in the optical depth).
+      const auto tau = [&](std::size_t c, double dx, double dP) {
+        return h * (rho[c].v0 * dx + rho[c].beta * (dP - rho[c].s0 * dx));
+      };
+      const double dP1 = clenshaw(P, x1) - P0;
+      Channels piece_emission{}, quadrature_error{};
+      if (emits) {
+        const auto integrand = [&](double x) {
+          const double f = clenshaw(I.c, x), dx = x - x0, dP = clenshaw(P, x) - P0;
+          Channels v{};
+          for (std::size_t c = 0; c < kChannels; ++c) {
+            const double rho_x = rho[c].v0 + rho[c].beta * (f - rho[c].s0);
+            const double kappa_x = kappa[c].v0 + kappa[c].beta * (f - kappa[c].s0);
+            const double weight = kappa_x * rho_x;
+            v[c] = weight == 0.0 ? 0.0 : weight * std::exp(-tau(c, dx, dP));
           }
-          piece_emission *= h;
-          quadrature_error *= h;
+          return v;
+        };
+        // The integrand's rounding noise: rho = v0 + beta (f - s0) carries ~eps |beta| (|f| + |s0|)
+        // absolutely (relative error unbounded where rho -> 0 at a breakpoint), kappa likewise;
+        // the quadrature cannot resolve below kNoiseUlps = 64 ulps of that scale.
+        Channels floor{};
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          const double rho_noise = std::abs(rho[c].v0) + std::abs(rho[c].beta) * (value_scale + std::abs(rho[c].s0));
+          const double kappa_noise = std::abs(kappa[c].v0) + std::abs(kappa[c].beta) * (value_scale + std::abs(kappa[c].s0));
+          floor[c] = 64 * std::numeric_limits<double>::epsilon() * (x1 - x0) *
+                     (kappa[c].max_value * rho_noise + rho[c].max_value * kappa_noise);
         }
-        const double e_f = I.tail;
-        const double depth_error = std::abs(rho.beta) * e_f * length;
+        if (!adaptive_integral(integrand, x0, x1, kQuadratureTolerance, floor, piece_emission, quadrature_error)) {
+          out.converged = false;
+          out.failure = "emission quadrature missed its tolerance";
+        }
+      }
+      const double e_f = I.tail;
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        const double E = h * piece_emission[c];
+        const double depth_error = std::abs(rho[c].beta) * e_f * length;
         error[c] += std::exp(-depth[c]) *
-                        (quadrature_error + length * e_f * (std::abs(kappa.beta) * rho.max_value +
-                                                            kappa.max_value * std::abs(rho.beta)) +
-                         piece_emission * depth_error) +
+                        (h * quadrature_error[c] +
+                         length * e_f * (std::abs(kappa[c].beta) * rho[c].max_value + kappa[c].max_value * std::abs(rho[c].beta)) +
+                         E * depth_error) +
                     depth_error;
-        emission[c] += std::exp(-depth[c]) * piece_emission;
-        depth[c] += piece_depth;
+        emission[c] += std::exp(-depth[c]) * E;
+        depth[c] += tau(c, x1 - x0, dP1);
       }
     }
   }

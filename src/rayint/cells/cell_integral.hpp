@@ -32,7 +32,12 @@
 //      emission int kappa rho exp(-tau) is 15-point Gauss-Kronrod (Boost.Math's nodes and
 //      weights), globally adaptive: the subinterval with the largest |K - G| is halved (at most
 //      256) until sum |K - G| <= kQuadratureTolerance = 1e-14 of the integral of |integrand|
-//      (or 8 ulps of it, the rounding floor of the sums). Boost's own recursive
+//      (or 8 ulps of it, the rounding floor of the sums), or below the integrand's own rounding
+//      noise: 64 eps (x1 - x0) (kappa_max (|v0| + |beta| (max|f_i| + |s0|)) + the same with rho
+//      and kappa swapped). Where rho or kappa -> 0 at a breakpoint its relative error is
+//      unbounded in double, so a channel's relative error there is bounded by that floor, not by
+//      1e-14 (reports/cells/accuracy.md states both relative and absolute errors). All three
+//      channels share the nodes (one evaluation of f and its antiderivative per node). Boost's own recursive
 //      gauss_kronrod::integrate (1.74) is not used: its error estimate on [a, b] away from 0
 //      did not shrink with the interval (2.6e-11 on [0.2, 0.2 + 1e-12], measured), which
 //      drove it to its depth limit on short pieces.

@@ -31,7 +31,7 @@
 // the intervals between face hits by locating their midpoints instead (see chord()).
 //
 // Inverse map (world -> parametric): Newton on x(p) = x_target from a warm start (the cell's
-// centre by default), the 3x3 Jacobian solved by Eigen's partial-pivot LU. Converged when the
+// centre by default), the 3x3 step by Eigen's closed-form (adjugate) inverse. Converged when the
 // step is below kNewtonStepTolerance = 4e-15 (parametric units: ~20 ulps of coordinates <= 1)
 // or the world residual below 8 eps * the cell's extent; budget kNewtonMaxIterations = 40
 // steps, each at most kNewtonMaxStep = 0.5 long (damping for starts far away). A singular
