@@ -14,6 +14,7 @@
 
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
+#include "rayint/cells/vtk_split.hpp"
 #include "rayint/reference/cell_reference.hpp"
 #include "rayint/reference/reference.hpp"
 #include "transfer_builders.hpp"
@@ -473,4 +474,44 @@ TEST_CASE("cell reference: the double path on distorted cells of every type, bot
       }
   INFO("worst relative error " << worst << " over " << chords << " chords");
   CHECK(chords >= 30);
+}
+
+TEST_CASE("vtk split: the recorded tables give VTK's own tetrahedra on distorted cells with random ids", "[cells][isoparametric]") {
+  std::ifstream in(RAYINT_SOURCE_DIR "/tests/fixtures/cells/vtk_split_check.json");
+  REQUIRE(in.good());
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  int checked = 0;
+  for (const auto& c : doc.at("cells")) {
+    LinearCellType type{};
+    REQUIRE(linear_cell_type_from_vtk(c.at("vtk_id").get<int>(), type));
+    std::vector<std::int64_t> ids;
+    for (const auto& v : c.at("ids")) ids.push_back(v.get<std::int64_t>());
+    std::vector<std::array<int, 4>> mine = vtk_split(type, ids.data());
+    for (auto& t : mine) std::sort(t.begin(), t.end());
+    std::sort(mine.begin(), mine.end());
+    std::vector<std::array<int, 4>> theirs;
+    for (const auto& t : c.at("tets")) theirs.push_back({t[0].get<int>(), t[1].get<int>(), t[2].get<int>(), t[3].get<int>()});
+    INFO(linear_cell_name(type));
+    CHECK(mine == theirs);
+    ++checked;
+  }
+  CHECK(checked == 200);
+  // The split tiles the cell: the tets' volumes add up to the cell's (undistorted reference cells).
+  for (LinearCellType type : kTypes) {
+    const std::vector<Vec3>& r = linear_reference_nodes(type);
+    const std::vector<std::int64_t> ids = {3, 0, 5, 1, 7, 2, 6, 4};
+    std::vector<std::int64_t> use(ids.begin(), ids.begin() + linear_node_count(type));
+    // ids must be a set of distinct values; the first n of the list are.
+    double volume = 0.0;
+    for (const auto& t : vtk_split(type, use.data()))
+      volume += std::abs((r[static_cast<std::size_t>(t[1])] - r[static_cast<std::size_t>(t[0])])
+                             .dot((r[static_cast<std::size_t>(t[2])] - r[static_cast<std::size_t>(t[0])])
+                                      .cross(r[static_cast<std::size_t>(t[3])] - r[static_cast<std::size_t>(t[0])]))) / 6.0;
+    const double expected = type == LinearCellType::tetra ? 1.0 / 6.0 : type == LinearCellType::wedge ? 0.5
+                            : type == LinearCellType::pyramid ? 1.0 / 3.0 : 1.0;
+    INFO(linear_cell_name(type));
+    CHECK(std::abs(volume - expected) <= 1e-15);
+  }
+  for (LinearCellType type : {LinearCellType::hexahedron, LinearCellType::voxel})
+    for (int parity : {0, 1}) CHECK(vtk_structured_split(type, parity).size() == 5);
 }

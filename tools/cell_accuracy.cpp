@@ -32,6 +32,7 @@
 
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
+#include "rayint/cells/vtk_split.hpp"
 #include "rayint/reference/cell_reference.hpp"
 
 using namespace rayint;
@@ -103,6 +104,37 @@ TransferFunctions make_tf() {
   return tf;
 }
 
+// The same ray through VTK's split of the cell (random distinct global ids, as an unstructured
+// grid), each tetra's chord integrated by the exact path and composited front to back.
+bool split_integral(const CellIntegrator& integrator, const LinearCell& cell, const ViewRay& ray, std::mt19937& rng,
+                    CellPieceIntegral& out) {
+  const int n = linear_node_count(cell.type);
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) ids[static_cast<std::size_t>(i)] = i;
+  std::shuffle(ids.begin(), ids.end(), rng);
+  struct Part {
+    double t0;
+    CellPieceIntegral r;
+  };
+  std::vector<Part> parts;
+  for (const std::array<int, 4>& tet : vtk_split(cell.type, ids.data())) {
+    std::vector<Vec3> nodes;
+    std::vector<double> values;
+    for (int k : tet) {
+      nodes.push_back(cell.x[static_cast<std::size_t>(k)]);
+      values.push_back(cell.value[static_cast<std::size_t>(k)]);
+    }
+    const LinearCell t = make_linear_cell(LinearCellType::tetra, nodes, values);
+    const Chord ch = chord(t, ray);
+    if (ch.failed) return false;
+    for (const ChordInterval& iv : ch.intervals) parts.push_back({iv.t_near, integrator.integrate(t, ray, iv.t_near, iv.t_far)});
+  }
+  std::sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.t0 < b.t0; });
+  out = CellPieceIntegral{};
+  for (auto it = parts.rbegin(); it != parts.rend(); ++it) out = composite(it->r, out);  // far -> near
+  return out.converged;
+}
+
 double rel(double x, double ref) { return ref == 0.0 ? std::abs(x) : std::abs(x - ref) / std::abs(ref); }
 
 struct Stats {
@@ -111,6 +143,8 @@ struct Stats {
   double worst_emission = 0.0, worst_depth = 0.0, worst_reference_bound = 0.0, worst_abs = 0.0;
   std::vector<double> errors;
   double seconds_double = 0.0;
+  std::vector<double> split_diffs;  // max over channels |E_split - E_ref| / E_ref, per ray
+  int split_failed = 0;
   long pieces = 0, samples = 0;
   int max_degree = 0;
 };
@@ -198,11 +232,22 @@ int main(int argc, char** argv) {
             st.worst_reference_bound = std::max(st.worst_reference_bound, ref.emission_error[c] / ref.emission[c]);
         }
         if (chord_abs > d.error_estimate) ++st.estimate_below_error;
+        if (ch.intervals.size() == 1) {  // the split against the own interpolation on the same ray
+          CellPieceIntegral sp;
+          if (!split_integral(integrator, cell, ray, rng, sp)) {
+            ++st.split_failed;
+          } else {
+            double diff = 0.0;
+            for (std::size_t c = 0; c < kChannels; ++c) diff = std::max(diff, rel(sp.emission[c], ref.emission[c]));
+            st.split_diffs.push_back(diff);
+          }
+        }
         st.worst_abs = std::max(st.worst_abs, chord_abs);
         st.errors.push_back(chord_worst);
       }
     }
     std::sort(st.errors.begin(), st.errors.end());
+    std::sort(st.split_diffs.begin(), st.split_diffs.end());
     std::cerr << fam.name << ": " << st.chords << " chords, worst emission " << st.worst_emission << ", depth "
               << st.worst_depth << "\n";
     all.push_back(std::move(st));
@@ -219,13 +264,13 @@ int main(int argc, char** argv) {
                     "    {\"family\": \"%s\", \"path\": \"%s\", \"rays\": %d, \"chords\": %d, \"failed_double\": %d, "
                     "\"failed_reference\": %d, \"worst_emission_rel\": %.3e, \"worst_depth_rel\": %.3e, \"worst_abs\": %.3e, "
                     "\"median_rel\": %.3e, \"estimate_below_error\": %d, \"worst_reference_bound_rel\": %.3e, "
-                    "\"us_per_chord\": %.3f, \"pieces_per_chord\": %.2f, \"samples_per_chord\": %.1f, \"max_degree\": %d}%s\n",
+                    "\"us_per_chord\": %.3f, \"pieces_per_chord\": %.2f, \"samples_per_chord\": %.1f, \"max_degree\": %d, \"split_rays\": %zu, \"split_median_rel\": %.3e, \"split_worst_rel\": %.3e}%s\n",
                     s.family.c_str(), s.path.c_str(), s.rays, s.chords, s.failed_double, s.failed_reference,
                     s.worst_emission, s.worst_depth, s.worst_abs, median(s.errors), s.estimate_below_error,
                     s.worst_reference_bound, 1e6 * s.seconds_double / std::max(1, s.chords),
                     static_cast<double>(s.pieces) / std::max(1, s.chords),
-                    static_cast<double>(s.samples) / std::max(1, s.chords), s.max_degree,
-                    k + 1 < all.size() ? "," : "");
+                    static_cast<double>(s.samples) / std::max(1, s.chords), s.max_degree, s.split_diffs.size(),
+                    median(s.split_diffs), s.split_diffs.empty() ? 0.0 : s.split_diffs.back(), k + 1 < all.size() ? "," : "");
       js << buf;
     }
     js << "  ]\n}\n";
@@ -238,16 +283,20 @@ int main(int argc, char** argv) {
           "through each of `rays` random cells per family; error = max over channels of |double - ref| / ref "
           "for emission and optical depth; `worst abs`: max over channels of |dE| + |dD| (emissions and depths are O(0.01-1) here). `est<err`: chords whose error exceeded the double path's own "
           "error_estimate. Time: the double path's `CellIntegrator::integrate` per chord on this machine "
-          "(shared, 2 cores; indicative only).\n\n"
-       << "| family | path | chords | failed (double / ref) | worst emission rel | worst depth rel | worst abs | median rel | est<err | us/chord | pieces/chord | samples/chord | max degree |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "(shared, 2 cores; indicative only). `split`: the same ray through VTK's tetrahedralisation of the "
+          "cell (cells/vtk_split.hpp, random global ids, tets by the exact path) against the 50-digit "
+          "own-interpolation reference, max over channels of the relative emission difference, rays whose "
+          "chord is one interval.\n\n"
+       << "| family | path | chords | failed (double / ref) | worst emission rel | worst depth rel | worst abs | median rel | est<err | us/chord | pieces/chord | samples/chord | max degree | split: rays | split median | split worst |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Stats& s : all) {
       char buf[512];
-      std::snprintf(buf, sizeof buf, "| %s | %s | %d | %d / %d | %.2e | %.2e | %.2e | %.2e | %d | %.1f | %.2f | %.1f | %d |\n",
+      std::snprintf(buf, sizeof buf, "| %s | %s | %d | %d / %d | %.2e | %.2e | %.2e | %.2e | %d | %.1f | %.2f | %.1f | %d | %zu | %.2e | %.2e |\n",
                     s.family.c_str(), s.path.c_str(), s.chords, s.failed_double, s.failed_reference,
                     s.worst_emission, s.worst_depth, s.worst_abs, median(s.errors), s.estimate_below_error,
                     1e6 * s.seconds_double / std::max(1, s.chords), static_cast<double>(s.pieces) / std::max(1, s.chords),
-                    static_cast<double>(s.samples) / std::max(1, s.chords), s.max_degree);
+                    static_cast<double>(s.samples) / std::max(1, s.chords), s.max_degree, s.split_diffs.size(),
+                    median(s.split_diffs), s.split_diffs.empty() ? 0.0 : s.split_diffs.back());
       md << buf;
     }
   }
