@@ -154,13 +154,14 @@ struct Stats {
 int main(int argc, char** argv) {
   int rays = 200;
   unsigned seed = 1;
-  std::string json_path, markdown_path;
+  std::string json_path, markdown_path, only_family;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--rays") rays = std::atoi(argv[i + 1]);
     else if (a == "--seed") seed = static_cast<unsigned>(std::atoi(argv[i + 1]));
     else if (a == "--json") json_path = argv[i + 1];
     else if (a == "--markdown") markdown_path = argv[i + 1];
+    else if (a == "--family") only_family = argv[i + 1];  // one family only (diagnosis)
     else {
       std::cerr << "rayint_cell_accuracy: unknown option " << a << "\n";
       return 2;
@@ -174,7 +175,9 @@ int main(int argc, char** argv) {
   const CellIntegrator integrator(tf);
   std::vector<Stats> all;
   for (const Family& fam : kFamilies) {
-    std::mt19937 rng(seed * 1000003u + static_cast<unsigned>(all.size()));
+    const unsigned family_index = static_cast<unsigned>(&fam - kFamilies);
+    std::mt19937 rng(seed * 1000003u + family_index);
+    if (!only_family.empty() && only_family != fam.name) continue;
     Stats st;
     st.family = fam.name;
     for (int r = 0; r < rays; ++r) {
@@ -232,6 +235,10 @@ int main(int argc, char** argv) {
             st.worst_reference_bound = std::max(st.worst_reference_bound, ref.emission_error[c] / ref.emission[c]);
         }
         if (chord_abs > d.error_estimate) ++st.estimate_below_error;
+        if (chord_worst > 1e-13)
+          std::cerr << fam.name << " ray " << r << ": relative error " << chord_worst << ", absolute " << chord_abs
+                    << ", estimate " << d.error_estimate << ", pieces " << d.pieces << ", degree " << d.max_degree
+                    << ", reference pieces " << ref.pieces << "\n";
         if (ch.intervals.size() == 1) {  // the split against the own interpolation on the same ray
           CellPieceIntegral sp;
           if (!split_integral(integrator, cell, ray, rng, sp)) {
