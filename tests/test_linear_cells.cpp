@@ -39,7 +39,9 @@ struct LinearCellTolerances {
   static constexpr double path_agreement_rel = 1e-12;
   // The double path against the 50-digit reference on distorted cells, per channel, relative:
   // the target of issue 29 is "near machine precision". Measured worst 2.98e-15 over this
-  // file's 30 chords, and over 200 rays per family in reports/cells/accuracy.md; 1e-13.
+  // file's 30 chords (values not tiny here); 1e-13. Over 4,803 chords in
+  // reports/cells/accuracy.md absolute errors are <= 1.07e-14, relative ones reach 2.2e-11 only
+  // where the value itself is ~1e-5 or below.
   static constexpr double reference_rel = 1e-13;
 };
 

@@ -49,8 +49,15 @@
 // a Newton solve that did not converge, a chord whose interpolant missed the tail target after
 // the bisection budget, a quadrature that missed its tolerance by more than 10x.
 //
-// Accuracy against the independent 50-digit reference (reference/cell_reference.hpp):
-// see reports/cells/accuracy.md (measured by `rayint_cell_accuracy`, tests [cells][isoparametric]).
+// Accuracy against the independent 50-digit reference (reference/cell_reference.hpp), 600 random
+// distorted cells per family (twisted and perturbed hexahedra, perturbed voxels, wedges in VTK's
+// and gmsh's orientation, warped pyramids, 10-30 % of the edge; 4,803 chords,
+// reports/cells/accuracy.md, made by tools/cell_accuracy.cpp): every chord converged; absolute
+// error (emission + depth, values O(0.01-1)) <= 1.07e-14 in every family, median relative ~1e-15;
+// no chord's error above its error_estimate. Relative errors reach 2.2e-11 only where a channel's
+// value is itself tiny (absolute 8e-17 there). Tests [cells][isoparametric] re-check 30 chords.
+// Cost (bench/bench_cells.cpp, BM_cell, CPU time, loaded machine): ~25 us per distorted
+// hexahedron (chord + integral) against ~3.4 us for its 5-tet split by the closed form: 7.5x.
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
