@@ -56,8 +56,9 @@
 // error (emission + depth, values O(0.01-1)) <= 1.07e-14 in every family, median relative ~1e-15;
 // no chord's error above its error_estimate. Relative errors reach 2.2e-11 only where a channel's
 // value is itself tiny (absolute 8e-17 there). Tests [cells][isoparametric] re-check 30 chords.
-// Cost (bench/bench_cells.cpp, BM_cell, CPU time, loaded machine): ~25 us per distorted
-// hexahedron (chord + integral) against ~3.4 us for its 5-tet split by the closed form: 7.5x.
+// Cost (bench/bench_cells.cpp, BM_cell, CPU time, median of 3, loaded machine; see
+// reports/cells/bench.md): 23.0 us per distorted hexahedron (chord + integral) against 3.9 us
+// for its 5-tet split by the closed form: 5.9x per cell (the mesh target is 3x).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
