@@ -1,0 +1,425 @@
+// The ray integral through one linear cell in its own interpolation (see cell_integral.hpp for
+// the paths, thresholds and error estimate).
+#include "rayint/cells/cell_integral.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "rayint/integrators/exact.hpp"
+
+namespace rayint {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kMaxDegree = 64;
+constexpr int kMaxSubintervals = 256;
+
+using Channels = std::array<double, kChannels>;
+
+// 15-point Gauss-Kronrod on [a, b] with the embedded 7-point Gauss rule (Boost.Math's nodes),
+// all channels at once (they share the scalar at every node).
+struct RuleSums {
+  double a = 0.0, b = 0.0;
+  Channels kronrod{}, error{}, l1{};
+};
+
+template <class F>
+RuleSums gauss_kronrod_15(F& f, double a, double b) {
+  using GK = boost::math::quadrature::gauss_kronrod<double, 15>;
+  using G = boost::math::quadrature::gauss<double, 7>;
+  static const auto& x = GK::abscissa();  // 0 and the 7 positive nodes; Gauss nodes at even indices
+  static const auto& wk = GK::weights();
+  static const auto& wg = G::weights();
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  const Channels f0 = f(c);
+  Channels K{}, Gs{}, L1{};
+  for (std::size_t ch = 0; ch < kChannels; ++ch) {
+    K[ch] = wk[0] * f0[ch], Gs[ch] = wg[0] * f0[ch], L1[ch] = wk[0] * std::abs(f0[ch]);
+  }
+  for (std::size_t j = 1; j < x.size(); ++j) {
+    const Channels fm = f(c - h * x[j]), fp = f(c + h * x[j]);
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      K[ch] += wk[j] * (fm[ch] + fp[ch]);
+      L1[ch] += wk[j] * (std::abs(fm[ch]) + std::abs(fp[ch]));
+      if (j % 2 == 0) Gs[ch] += wg[j / 2] * (fm[ch] + fp[ch]);
+    }
+  }
+  RuleSums r;
+  r.a = a, r.b = b;
+  for (std::size_t ch = 0; ch < kChannels; ++ch) {
+    r.kronrod[ch] = h * K[ch], r.error[ch] = std::abs(h * (K[ch] - Gs[ch])), r.l1[ch] = h * L1[ch];
+  }
+  return r;
+}
+
+// Globally adaptive: the subinterval with the largest |K - G| relative to its channel's
+// tolerance is halved until, in every channel, the sum of the estimates is below tol * L1 (or 8
+// ulps of L1: the rounding floor of the sums) or below `floor` (the channel's rounding noise,
+// see integrate_curved), at most kMaxSubintervals. Returns false when the budget ran out first.
+template <class F>
+bool adaptive_integral(F& f, double a, double b, double tol, const Channels& floor, Channels& value,
+                       Channels& error) {
+  std::vector<RuleSums> parts{gauss_kronrod_15(f, a, b)};
+  const double rel = std::max(tol, 8 * std::numeric_limits<double>::epsilon());
+  for (;;) {
+    Channels K{}, E{}, L1{};
+    for (const RuleSums& p : parts)
+      for (std::size_t ch = 0; ch < kChannels; ++ch) K[ch] += p.kronrod[ch], E[ch] += p.error[ch], L1[ch] += p.l1[ch];
+    value = K;
+    error = E;
+    bool done = true;
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      if (!std::isfinite(K[ch])) return false;
+      done = done && E[ch] <= std::max(rel * L1[ch], floor[ch]);
+    }
+    if (done) return true;
+    if (static_cast<int>(parts.size()) >= kMaxSubintervals) return false;
+    std::size_t worst = 0;
+    double worst_ratio = -1.0;
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      for (std::size_t ch = 0; ch < kChannels; ++ch) {
+        const double ratio = parts[k].error[ch] / std::max({rel * L1[ch], floor[ch], std::numeric_limits<double>::min()});
+        if (ratio > worst_ratio) worst_ratio = ratio, worst = k;
+      }
+    const RuleSums w = parts[worst];
+    const double m = 0.5 * (w.a + w.b);
+    parts[worst] = gauss_kronrod_15(f, w.a, m);
+    parts.push_back(gauss_kronrod_15(f, m, w.b));
+  }
+}
+
+// Chebyshev series sum_k c[k] T_k(x) on x in [-1, 1].
+double clenshaw(const std::vector<double>& c, double x) {
+  double b1 = 0.0, b2 = 0.0;
+  for (std::size_t k = c.size(); k-- > 1;) {
+    const double b0 = 2.0 * x * b1 - b2 + c[k];
+    b2 = b1;
+    b1 = b0;
+  }
+  return x * b1 - b2 + (c.empty() ? 0.0 : c[0]);
+}
+
+// Coefficients from values v[j] at x_j = cos(pi j / n), j = 0..n (DCT-I).
+void chebyshev_coefficients(const std::vector<double>& v, int n, std::vector<double>& c) {
+  c.assign(static_cast<std::size_t>(n) + 1, 0.0);
+  std::vector<double> cosine(2 * static_cast<std::size_t>(n));
+  for (int m = 0; m < 2 * n; ++m) cosine[static_cast<std::size_t>(m)] = std::cos(kPi * m / n);
+  for (int k = 0; k <= n; ++k) {
+    double sum = 0.5 * (v[0] + ((k % 2 == 0) ? 1.0 : -1.0) * v[static_cast<std::size_t>(n)]);
+    for (int j = 1; j < n; ++j)
+      sum += v[static_cast<std::size_t>(j)] * cosine[static_cast<std::size_t>((j * k) % (2 * n))];
+    c[static_cast<std::size_t>(k)] = 2.0 * sum / n;
+  }
+  c[0] *= 0.5;
+  c[static_cast<std::size_t>(n)] *= 0.5;
+}
+
+std::vector<double> derivative(const std::vector<double>& c) {
+  const std::size_t n = c.size() - 1;
+  if (n == 0) return {0.0};
+  std::vector<double> d(n + 2, 0.0);
+  for (std::size_t k = n; k >= 1; --k) d[k - 1] = d[k + 1] + 2.0 * static_cast<double>(k) * c[k];
+  d[0] *= 0.5;
+  d.resize(n);
+  return d;
+}
+
+std::vector<double> antiderivative(const std::vector<double>& c) {
+  const std::size_t n = c.size() - 1;
+  std::vector<double> C(n + 2, 0.0);
+  auto at = [&](std::size_t k) { return k <= n ? c[k] : 0.0; };
+  C[1] = c[0] - 0.5 * at(2);
+  for (std::size_t k = 2; k <= n + 1; ++k) C[k] = (at(k - 1) - at(k + 1)) / (2.0 * static_cast<double>(k));
+  return C;
+}
+
+struct LinearPart {  // v0 + beta (f - s0) on the transfer function's interval holding f_mid
+  double v0 = 0.0, beta = 0.0, s0 = 0.0, max_value = 0.0;
+};
+
+LinearPart linear_part(const PiecewiseLinear& f, double f_mid) {
+  const std::size_t n = f.scalar.size();
+  if (n == 1 || f_mid <= f.scalar.front()) return {f.value.front(), 0.0, 0.0, f.value.front()};
+  if (f_mid >= f.scalar.back()) return {f.value.back(), 0.0, 0.0, f.value.back()};
+  const std::size_t k = static_cast<std::size_t>(std::upper_bound(f.scalar.begin(), f.scalar.end(), f_mid) - f.scalar.begin());
+  const double s0 = f.scalar[k - 1], s1 = f.scalar[k], v0 = f.value[k - 1], v1 = f.value[k];
+  return {v0, (v1 - v0) / (s1 - s0), s0, std::max(v0, v1)};
+}
+
+// One Chebyshev interpolant of f on [a, b] (t), with its tail.
+struct Interpolant {
+  double a = 0.0, b = 0.0;
+  std::vector<double> c;
+  double tail = 0.0;
+};
+
+struct Sampler {
+  const LinearCell* cell;
+  const ViewRay* ray;
+  bool use_newton;
+  Vec3 start;
+  int samples = 0;
+  bool ok = true;
+  double operator()(double t) {
+    ++samples;
+    const Vec3 x = ray->origin + t * ray->direction;
+    if (!use_newton) return cell_scalar(*cell, cell->affine_inverse * (x - cell->affine_origin));
+    InverseMap m = inverse_map(*cell, x, start);
+    if (!m.converged) m = inverse_map(*cell, x);  // from the centre
+    if (!m.converged) {
+      ok = false;
+      return 0.0;
+    }
+    start = m.p;
+    return cell_scalar(*cell, m.p);
+  }
+};
+
+// Interpolants covering [a, b]; false on a Newton failure or a missed tail after the budget.
+bool interpolate(Sampler& f, double a, double b, int depth, int n0, double tail_target,
+                 std::vector<Interpolant>& out, int& max_degree) {
+  std::vector<double> v(static_cast<std::size_t>(n0) + 1);
+  auto node = [&](int j, int n) { return 0.5 * (a + b) + 0.5 * (b - a) * std::cos(kPi * j / n); };
+  for (int j = 0; j <= n0; ++j) v[static_cast<std::size_t>(j)] = f(node(j, n0));
+  if (!f.ok) return false;
+  Interpolant I{a, b, {}, 0.0};
+  for (int n = n0;; n *= 2) {
+    chebyshev_coefficients(v, n, I.c);
+    I.tail = std::abs(I.c[static_cast<std::size_t>(n) - 1]) + std::abs(I.c[static_cast<std::size_t>(n)]);
+    if (I.tail <= tail_target) {
+      max_degree = std::max(max_degree, n);
+      out.push_back(std::move(I));
+      return true;
+    }
+    if (2 * n > kMaxDegree) break;
+    std::vector<double> w(2 * static_cast<std::size_t>(n) + 1);
+    for (int j = 0; j <= 2 * n; ++j)
+      w[static_cast<std::size_t>(j)] = (j % 2 == 0) ? v[static_cast<std::size_t>(j / 2)] : f(node(j, 2 * n));
+    if (!f.ok) return false;
+    v.swap(w);
+  }
+  if (depth >= kMaxBisections) return false;
+  const double mid = 0.5 * (a + b);
+  return interpolate(f, a, mid, depth + 1, n0, tail_target, out, max_degree) &&
+         interpolate(f, mid, b, depth + 1, n0, tail_target, out, max_degree);
+}
+
+double root(const std::vector<double>& c, double level, double lo, double hi, double f_lo, double f_hi) {
+  boost::math::tools::eps_tolerance<double> tol(std::numeric_limits<double>::digits - 1);
+  std::uintmax_t iterations = 200;
+  const auto g = [&](double x) { return clenshaw(c, x) - level; };
+  const auto r = boost::math::tools::toms748_solve(g, lo, hi, f_lo - level, f_hi - level, tol, iterations);
+  return 0.5 * (r.first + r.second);
+}
+
+// Knots in x of one interpolant: -1, critical points, breakpoint crossings, 1.
+std::vector<double> knots(const Interpolant& I, const std::vector<double>& breakpoints) {
+  const std::vector<double> d = derivative(I.c);
+  const int n = static_cast<int>(I.c.size()) - 1;
+  const int M = std::max(8, 2 * n);
+  std::vector<double> monotone{-1.0};
+  double x_prev = -1.0, d_prev = clenshaw(d, -1.0);
+  for (int m = M - 1; m >= 0; --m) {
+    const double x = (m == 0) ? 1.0 : std::cos(kPi * m / M);
+    const double dx = clenshaw(d, x);
+    if (dx == 0.0 && m != 0) {
+      monotone.push_back(x);
+    } else if (d_prev != 0.0 && (dx < 0.0) != (d_prev < 0.0) && dx != 0.0) {
+      monotone.push_back(root(d, 0.0, x_prev, x, d_prev, dx));
+    }
+    x_prev = x;
+    d_prev = dx;
+  }
+  monotone.push_back(1.0);
+  std::vector<double> out;
+  for (std::size_t k = 0; k + 1 < monotone.size(); ++k) {
+    const double lo = monotone[k], hi = monotone[k + 1];
+    if (!(hi > lo)) continue;
+    out.push_back(lo);
+    const double f_lo = clenshaw(I.c, lo), f_hi = clenshaw(I.c, hi);
+    const double f_min = std::min(f_lo, f_hi), f_max = std::max(f_lo, f_hi);
+    for (double level : breakpoints)
+      if (level > f_min && level < f_max) out.push_back(root(I.c, level, lo, hi, f_lo, f_hi));
+  }
+  out.push_back(1.0);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+const char* cell_path_name(CellPath path) {
+  switch (path) {
+    case CellPath::linear_exact: return "linear_exact";
+    case CellPath::polynomial: return "polynomial";
+    case CellPath::isoparametric: return "isoparametric";
+  }
+  return "?";
+}
+
+CellPieceIntegral composite(const CellPieceIntegral& near, const CellPieceIntegral& far) {
+  CellPieceIntegral out = near;
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    out.emission[c] = near.emission[c] + std::exp(-near.optical_depth[c]) * far.emission[c];
+    out.optical_depth[c] = near.optical_depth[c] + far.optical_depth[c];
+  }
+  out.error_estimate = near.error_estimate + far.error_estimate;
+  out.pieces = near.pieces + far.pieces;
+  out.samples = near.samples + far.samples;
+  out.max_degree = std::max(near.max_degree, far.max_degree);
+  out.converged = near.converged && far.converged;
+  out.failure = !near.converged ? near.failure : far.failure;
+  return out;
+}
+
+CellIntegrator::CellIntegrator(const TransferFunctions& tf)
+    : tf_(&tf), breakpoints_(tf.breakpoints()), splitter_(tf) {}
+
+CellPieceIntegral CellIntegrator::integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
+                                            double t_far) const {
+  if (cell.type != LinearCellType::tetra) return integrate_curved(cell, ray, t_near, t_far, !cell.affine);
+  CellPieceIntegral out;
+  out.path = CellPath::linear_exact;
+  const Vec3 x_near = ray.origin + t_near * ray.direction, x_far = ray.origin + t_far * ray.direction;
+  const double f_near = cell_scalar(cell, cell.affine_inverse * (x_near - cell.affine_origin));
+  const double f_far = cell_scalar(cell, cell.affine_inverse * (x_far - cell.affine_origin));
+  out.samples = 2;
+  const Segment segment{(t_far - t_near) * ray.direction.norm(), f_far, f_near};
+  Rgb intensity{0.0, 0.0, 0.0};
+  for (const Piece& piece : splitter_.pieces(segment)) {  // far -> near
+    for (int c = 0; c < kChannels; ++c) {
+      const auto cc = static_cast<std::size_t>(c);
+      const PieceOptics optics = exact_piece(piece.channel(c));
+      if (!optics.converged) {
+        out.converged = false;
+        out.failure = "exact piece series missed its term budget";
+      }
+      intensity[cc] = intensity[cc] * optics.transmittance + optics.emission;
+      out.optical_depth[cc] += piece.length * 0.5 * (piece.rho_far[cc] + piece.rho_exit[cc]);
+    }
+    ++out.pieces;
+  }
+  out.emission = intensity;
+  // exact_piece's measured worst relative error (integrators/exact.cpp) is 8.05e-14.
+  for (std::size_t c = 0; c < kChannels; ++c)
+    out.error_estimate = std::max(out.error_estimate, 1e-13 * (out.emission[c] + out.optical_depth[c]));
+  return out;
+}
+
+CellPieceIntegral CellIntegrator::integrate_isoparametric(const LinearCell& cell, const ViewRay& ray,
+                                                          double t_near, double t_far) const {
+  return integrate_curved(cell, ray, t_near, t_far, true);
+}
+
+CellPieceIntegral CellIntegrator::integrate_curved(const LinearCell& cell, const ViewRay& ray,
+                                                   double t_near, double t_far, bool use_newton) const {
+  CellPieceIntegral out;
+  out.path = use_newton ? CellPath::isoparametric : CellPath::polynomial;
+  if (!(t_far >= t_near) || !std::isfinite(t_near) || !std::isfinite(t_far)) {
+    out.converged = false;
+    out.failure = "chord ends not finite or reversed";
+    return out;
+  }
+  if (t_far == t_near) return out;
+  double value_scale = 0.0;
+  for (int i = 0; i < linear_node_count(cell.type); ++i)
+    value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
+  const double tail_target = std::max(kChebyshevTail * value_scale, std::numeric_limits<double>::min());
+
+  Sampler sampler{&cell, &ray, use_newton, linear_reference_centre(cell.type)};
+  std::vector<Interpolant> parts;
+  const bool ok = interpolate(sampler, t_near, t_far, 0, use_newton ? 16 : 8, tail_target, parts, out.max_degree);
+  out.samples = sampler.samples;
+  if (!ok) {
+    out.converged = false;
+    out.failure = sampler.ok ? "scalar interpolant missed its tail target" : "inverse map did not converge";
+    return out;
+  }
+  const double speed = ray.direction.norm();
+  Rgb depth{0.0, 0.0, 0.0}, emission{0.0, 0.0, 0.0}, error{0.0, 0.0, 0.0};
+  for (const Interpolant& I : parts) {  // near -> far
+    const double h = 0.5 * (I.b - I.a) * speed;  // world length per unit x
+    const std::vector<double> xs = knots(I, breakpoints_);
+    const std::vector<double> P = antiderivative(I.c);
+    for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
+      const double x0 = xs[k], x1 = xs[k + 1];
+      if (!(x1 > x0)) continue;
+      const double f_mid = clenshaw(I.c, 0.5 * (x0 + x1));
+      const double length = h * (x1 - x0);
+      const double P0 = clenshaw(P, x0);
+      ++out.pieces;
+      std::array<LinearPart, kChannels> rho, kappa;
+      bool emits = false;
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        rho[c] = linear_part(tf_->density[c], f_mid);
+        kappa[c] = linear_part(tf_->color[c], f_mid);
+        emits = emits || (rho[c].max_value > 0.0 && kappa[c].max_value > 0.0);
+      }
+      // tau_c(x) = h int_x0^x (v0 + beta (f - s0)) = h (v0 dx + beta ((P(x) - P(x0)) - s0 dx)):
+      // exact for the series (no quadrature error in the optical depth).
+      const auto tau = [&](std::size_t c, double dx, double dP) {
+        return h * (rho[c].v0 * dx + rho[c].beta * (dP - rho[c].s0 * dx));
+      };
+      const double dP1 = clenshaw(P, x1) - P0;
+      Channels piece_emission{}, quadrature_error{};
+      if (emits) {
+        const auto integrand = [&](double x) {
+          const double f = clenshaw(I.c, x), dx = x - x0, dP = clenshaw(P, x) - P0;
+          Channels v{};
+          for (std::size_t c = 0; c < kChannels; ++c) {
+            const double rho_x = rho[c].v0 + rho[c].beta * (f - rho[c].s0);
+            const double kappa_x = kappa[c].v0 + kappa[c].beta * (f - kappa[c].s0);
+            const double weight = kappa_x * rho_x;
+            v[c] = weight == 0.0 ? 0.0 : weight * std::exp(-tau(c, dx, dP));
+          }
+          return v;
+        };
+        // The integrand's rounding noise: rho = v0 + beta (f - s0) carries ~eps |beta| (|f| + |s0|)
+        // absolutely (relative error unbounded where rho -> 0 at a breakpoint), kappa likewise;
+        // the quadrature cannot resolve below kNoiseUlps = 64 ulps of that scale.
+        Channels floor{};
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          const double rho_noise = std::abs(rho[c].v0) + std::abs(rho[c].beta) * (value_scale + std::abs(rho[c].s0));
+          const double kappa_noise = std::abs(kappa[c].v0) + std::abs(kappa[c].beta) * (value_scale + std::abs(kappa[c].s0));
+          floor[c] = 64 * std::numeric_limits<double>::epsilon() * (x1 - x0) *
+                     (kappa[c].max_value * rho_noise + rho[c].max_value * kappa_noise);
+        }
+        if (!adaptive_integral(integrand, x0, x1, kQuadratureTolerance, floor, piece_emission, quadrature_error)) {
+          out.converged = false;
+          out.failure = "emission quadrature missed its tolerance";
+        }
+      }
+      const double e_f = I.tail;
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        const double E = h * piece_emission[c];
+        const double depth_error = std::abs(rho[c].beta) * e_f * length;
+        error[c] += std::exp(-depth[c]) *
+                        (h * quadrature_error[c] +
+                         length * e_f * (std::abs(kappa[c].beta) * rho[c].max_value + kappa[c].max_value * std::abs(rho[c].beta)) +
+                         E * depth_error) +
+                    depth_error;
+        emission[c] += std::exp(-depth[c]) * E;
+        depth[c] += tau(c, x1 - x0, dP1);
+      }
+    }
+  }
+  out.emission = emission;
+  out.optical_depth = depth;
+  // Rounding: the inverse maps (residual 8 eps), Clenshaw sums and compositing, a few ulps of
+  // the emission and depth each; kRoundingUlps = 32 is that with a margin (measured: see
+  // reports/cells/accuracy.md, column est<err).
+  constexpr double kRoundingUlps = 32 * std::numeric_limits<double>::epsilon();
+  for (std::size_t c = 0; c < kChannels; ++c) error[c] += kRoundingUlps * (emission[c] + depth[c]);
+  out.error_estimate = std::max({error[0], error[1], error[2]});
+  return out;
+}
+
+}  // namespace rayint

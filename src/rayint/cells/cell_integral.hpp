@@ -1,0 +1,113 @@
+#pragma once
+// The emission-absorption integral (Williams & Max 1992, Eq. 4: L = int kappa rho exp(-int rho))
+// along a chord [t_near, t_far] of a ray inside one linear VTK cell (cells/linear_cells.hpp),
+// with the scalar the cell's own interpolant f(t) = sum_i N_i(p(t)) f_i, p(t) the inverse map of
+// the ray point. The transfer functions are the six piecewise-linear functions of Sec. 3.1
+// (model/transfer_function.hpp), per channel, as the exact integrator uses them.
+//
+// Paths (CellPieceIntegral::path says which was taken):
+//   linear_exact   tetra: the scalar is linear in t; the chord is one Segment split at the
+//                  breakpoints (model/pieces.hpp) and each piece integrated in closed form by
+//                  exact_piece (integrators/exact.hpp; measured 8.05e-14 relative worst there).
+//   polynomial     an affine voxel, hexahedron or wedge (linear_cells.hpp, kAffineTolerance):
+//                  p(t) is the exact linear inverse, so f(t) is a polynomial of degree <= 3 in t;
+//                  it is sampled at 9 Chebyshev-Lobatto points (exact up to rounding for degree
+//                  <= 8) and integrated below. No Newton solves.
+//   isoparametric  any other cell: f(t) sampled through Newton inverse maps (warm-started from
+//                  the previous point) at the Chebyshev-Lobatto points of [t_near, t_far].
+// Both curved paths then do:
+//   1. Chebyshev interpolant of f on the chord, degree n = 16, 32, 64 (nested points, values
+//      reused) until the last two coefficients are below kChebyshevTail = 64 eps * max|f_i|
+//      (rounding noise of f is ~eps max|f_i|); otherwise the interval is halved (depth
+//      budget kMaxBisections = 6) and each half interpolated alone. The tail (|c_{n-1}| + |c_n|)
+//      is kept as the interpolant's error estimate e_f.
+//   2. Critical points: sign changes of f' at 2n + 1 points, refined by TOMS 748 on the
+//      interpolant's derivative; between them f is monotone. Breakpoint crossings: every
+//      breakpoint strictly between the values at the ends of a monotone stretch is bracketed
+//      there and refined by TOMS 748 (Boost.Math, to full double precision). Limitation: two
+//      critical points closer than the sampling grid (~ chord / 2n) are missed; the kink then
+//      lies inside a piece and shows in the quadrature's error estimate.
+//   3. On each piece rho_c and kappa_c are linear in f, so rho_c(t) is a Chebyshev series;
+//      tau is its exact antiderivative (no quadrature error in the optical depth), and the
+//      emission int kappa rho exp(-tau) is 15-point Gauss-Kronrod (Boost.Math's nodes and
+//      weights), globally adaptive: the subinterval with the largest |K - G| is halved (at most
+//      256) until sum |K - G| <= kQuadratureTolerance = 1e-14 of the integral of |integrand|
+//      (or 8 ulps of it, the rounding floor of the sums), or below the integrand's own rounding
+//      noise: 64 eps (x1 - x0) (kappa_max (|v0| + |beta| (max|f_i| + |s0|)) + the same with rho
+//      and kappa swapped). Where rho or kappa -> 0 at a breakpoint its relative error is
+//      unbounded in double, so a channel's relative error there is bounded by that floor, not by
+//      1e-14 (reports/cells/accuracy.md states both relative and absolute errors). All three
+//      channels share the nodes (one evaluation of f and its antiderivative per node). Boost's own recursive
+//      gauss_kronrod::integrate (1.74) is not used: its error estimate on [a, b] away from 0
+//      did not shrink with the interval (2.6e-11 on [0.2, 0.2 + 1e-12], measured), which
+//      drove it to its depth limit on short pieces.
+// error_estimate adds, per channel, the quadrature's estimate and the propagated interpolation
+// error (|beta_kappa| rho_max + kappa_max |beta_rho|) e_f * length + emission * |beta_rho| e_f *
+// length (beta: the transfer functions' slopes on the piece), and the depth's |beta_rho| e_f *
+// length; the largest channel's sum is reported.
+// Failure (converged = false, `failure` says why; emission and depth are then not a result):
+// a Newton solve that did not converge, a chord whose interpolant missed the tail target after
+// the bisection budget, a quadrature that missed its tolerance by more than 10x.
+//
+// Accuracy against the independent 50-digit reference (reference/cell_reference.hpp), 600 random
+// distorted cells per family (twisted and perturbed hexahedra, perturbed voxels, wedges in VTK's
+// and gmsh's orientation, warped pyramids, 10-30 % of the edge; 4,803 chords,
+// reports/cells/accuracy.md, made by tools/cell_accuracy.cpp): every chord converged; absolute
+// error (emission + depth, values O(0.01-1)) <= 1.07e-14 in every family, median relative ~1e-15;
+// no chord's error above its error_estimate. Relative errors reach 2.2e-11 only where a channel's
+// value is itself tiny (absolute 8e-17 there). Tests [cells][isoparametric] re-check 30 chords.
+// Cost (bench/bench_cells.cpp, BM_cell, CPU time, median of 3, loaded machine; see
+// reports/cells/bench.md): 23.0 us per distorted hexahedron (chord + integral) against 3.9 us
+// for its 5-tet split by the closed form: 5.9x per cell (the mesh target is 3x).
+#include <vector>
+
+#include "rayint/cells/linear_cells.hpp"
+#include "rayint/model/pieces.hpp"
+#include "rayint/model/transfer_function.hpp"
+
+namespace rayint {
+
+inline constexpr double kChebyshevTail = 64 * 2.220446049250313e-16;
+inline constexpr int kMaxBisections = 6;
+inline constexpr double kQuadratureTolerance = 1e-14;
+
+enum class CellPath { linear_exact, polynomial, isoparametric };
+const char* cell_path_name(CellPath path);  // "linear_exact", "polynomial", "isoparametric"
+
+struct CellPieceIntegral {
+  Rgb emission{};        // light leaving t_near toward the eye, nothing entering at t_far
+  Rgb optical_depth{};   // int rho over the chord (world length)
+  double error_estimate = 0.0;  // absolute, emission + depth of the worst channel
+  CellPath path = CellPath::isoparametric;
+  int pieces = 0;        // smooth pieces integrated (between crossings and critical points)
+  int samples = 0;       // scalar evaluations (inverse-map solves on the isoparametric path)
+  int max_degree = 0;    // largest Chebyshev degree used
+  bool converged = true;
+  const char* failure = "";  // why not converged ("" when converged)
+};
+
+// Front-to-back compositing: `near` then `far` behind it (C = C_near + exp(-D_near) C_far,
+// D = D_near + D_far); the error estimates add, a failure of either is a failure.
+CellPieceIntegral composite(const CellPieceIntegral& near, const CellPieceIntegral& far);
+
+class CellIntegrator {
+ public:
+  explicit CellIntegrator(const TransferFunctions& tf);
+  // The chord [t_near, t_far] (t_near <= t_far, both inside the cell, e.g. from chord()) of
+  // ray.origin + t ray.direction; lengths are world lengths (|direction| need not be 1).
+  CellPieceIntegral integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
+                              double t_far) const;
+  // Forces the isoparametric (Newton) path on an affine cell too (for tests and measurements).
+  CellPieceIntegral integrate_isoparametric(const LinearCell& cell, const ViewRay& ray,
+                                            double t_near, double t_far) const;
+  const TransferFunctions& transfer() const { return *tf_; }
+
+ private:
+  CellPieceIntegral integrate_curved(const LinearCell& cell, const ViewRay& ray, double t_near,
+                                     double t_far, bool use_newton) const;
+  const TransferFunctions* tf_;
+  std::vector<double> breakpoints_;
+  PieceSplitter splitter_;
+};
+
+}  // namespace rayint

@@ -1,0 +1,168 @@
+#pragma once
+// The linear volume cells of VTK in their own (isoparametric) interpolation: tetra (VTK id 10),
+// voxel (11), hexahedron (12), wedge (13), pyramid (14). A cell maps parametric coordinates
+// p = (r, s, t) to world points x(p) = sum_i N_i(p) x_i and carries the scalar
+// f(p) = sum_i N_i(p) f_i (Williams & Max 1992, appendix, last equation) with the same N_i.
+//
+// Node order, parametric domain and shape functions are VTK's (Common/DataModel/vtkTetra.cxx,
+// vtkVoxel.cxx, vtkHexahedron.cxx, vtkWedge.cxx, vtkPyramid.cxx, InterpolationFunctions and
+// InterpolationDerivs), all on [0, 1] coordinates:
+//   tetra       N = 1 - r - s - t, r, s, t;                  r, s, t >= 0, r + s + t <= 1
+//   voxel       N_i = prod of (1 - u) or u, node i = x fastest, then y, then z (bits of i);
+//               [0, 1]^3
+//   hexahedron  N0 = (1-r)(1-s)(1-t), N1 = r(1-s)(1-t), N2 = rs(1-t), N3 = (1-r)s(1-t),
+//               N4..N7 the same times t instead of (1-t);  [0, 1]^3
+//   wedge       N0 = (1-r-s)(1-t), N1 = r(1-t), N2 = s(1-t), N3 = (1-r-s)t, N4 = rt, N5 = st;
+//               r, s >= 0, r + s <= 1, t in [0, 1]
+//   pyramid     N0..N3 the hexahedron's bottom four, N4 = t (apex); [0, 1]^3 (the whole top
+//               face t = 1 collapses onto the apex, where the Jacobian is singular)
+// Checked against VTK 9.1 itself (scripts/cells/vtk_shape_fixture.py wrote
+// tests/fixtures/cells/vtk_linear_cells.json: vtkCell::EvaluateLocation and
+// InterpolateFunctions/InterpolateDerivs at 300 random points of 20 random distorted cells;
+// tests [cells][isoparametric]): shape functions and derivatives bit-identical to VTK's, world
+// positions within 4.4e-16 (VTK's voxel uses its axis-aligned shortcut there).
+//
+// Faces: VTK's face node lists (the `Faces` tables of the same sources), in VTK's order; a
+// voxel's are listed here in cyclic order (VTK lists them in pixel order, which is not a
+// polygon). Triangles are planes, quadrilaterals bilinear patches
+//   P(u, v) = (1-u)(1-v) A + u(1-v) B + uv C + (1-u)v D   (A, B, C, D cyclic).
+// Face orientation is not used to decide whether a ray enters or leaves: gmsh prisms have the
+// opposite Jacobian sign to VTK's documented wedge order (issue 29), and the chord classifies
+// the intervals between face hits by locating their midpoints instead (see chord()).
+//
+// Inverse map (world -> parametric): Newton on x(p) = x_target from a warm start (the cell's
+// centre by default), the 3x3 step by Eigen's closed-form (adjugate) inverse. Converged when the
+// step is below kNewtonStepTolerance = 4e-15 (parametric units: ~20 ulps of coordinates <= 1)
+// or the world residual below 8 eps * the cell's extent; budget kNewtonMaxIterations = 40
+// steps, each at most kNewtonMaxStep = 0.5 long (damping for starts far away). A singular
+// Jacobian or an exhausted budget is reported as not converged. Both orientations of a cell
+// (det J > 0 or < 0) work alike: nothing depends on the sign.
+//
+// Affine cells: a tetra always, and a voxel, hexahedron, wedge or pyramid whose map has no
+// bilinear or trilinear part (a parallelepiped, a prism with parallel congruent triangles, a
+// pyramid over a parallelogram ... note VTK's pyramid map is never affine: N4 = t makes the
+// apex a collapsed face, so only tetra, voxel, hexahedron and wedge qualify). The non-affine
+// coefficient vectors of the map (e.g. x0 - x1 + x2 - x3 for a hexahedron's rs term) are
+// compared with kAffineTolerance = 64 eps times the largest node coordinate magnitude: below
+// that they are rounding noise of a parallelepiped built from its axes (each node sum of at most
+// 4 terms, a few ulps each; 64 leaves a factor 8 margin). An affine cell's inverse map is the
+// exact linear inverse, so along a ray the scalar is a polynomial of degree <= 3 in t, computed
+// without Newton (cells/cell_integral.hpp routes it accordingly).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "rayint/geometry/vec3.hpp"
+
+namespace rayint {
+
+enum class LinearCellType : int { tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14 };
+
+inline constexpr int kMaxLinearNodes = 8;
+inline constexpr double kNewtonStepTolerance = 4e-15;
+inline constexpr int kNewtonMaxIterations = 40;
+inline constexpr double kNewtonMaxStep = 0.5;
+inline constexpr double kAffineTolerance = 64 * 2.220446049250313e-16;
+
+// The linear type of a VTK id, or false for any other id.
+bool linear_cell_type_from_vtk(int vtk_id, LinearCellType& type);
+const char* linear_cell_name(LinearCellType type);  // "tetra", "voxel", ... (VTK's names)
+int linear_node_count(LinearCellType type);          // 4, 8, 8, 6, 5
+int linear_face_count(LinearCellType type);          // 4, 6, 6, 5, 5
+
+// N_i(p) for every node (n = linear_node_count entries written).
+void linear_shape_functions(LinearCellType type, const Vec3& p, double* N);
+// Derivatives in VTK's layout: dN[i] = dN_i/dr, dN[n + i] = dN_i/ds, dN[2n + i] = dN_i/dt.
+void linear_shape_derivatives(LinearCellType type, const Vec3& p, double* dN);
+// The nodes in parametric coordinates, VTK order.
+const std::vector<Vec3>& linear_reference_nodes(LinearCellType type);
+// The parametric centre used as Newton's default start (the centroid of the domain).
+Vec3 linear_reference_centre(LinearCellType type);
+// Whether p lies in the parametric domain, widened by `slack` on every bounding plane.
+bool inside_reference(LinearCellType type, const Vec3& p, double slack = 0.0);
+
+// Face f's nodes (local indices, VTK order; quadrilaterals cyclic). count = 3 or 4.
+struct FaceNodes {
+  std::array<int, 4> node{};
+  int count = 0;
+};
+FaceNodes linear_face(LinearCellType type, int face);
+
+struct LinearCell {
+  LinearCellType type = LinearCellType::hexahedron;
+  std::array<Vec3, kMaxLinearNodes> x{};        // node positions, VTK order
+  std::array<double, kMaxLinearNodes> value{};  // node scalars
+  // Derived by make_linear_cell:
+  bool affine = false;
+  Eigen::Matrix3d affine_inverse = Eigen::Matrix3d::Identity();  // p = A^-1 (x - x(0)) if affine
+  Vec3 affine_origin = Vec3::Zero();                             // x(p = 0)
+  double extent = 0.0;                                           // largest node-node distance
+};
+
+// A cell from n = linear_node_count(type) nodes and values. Throws std::invalid_argument for a
+// wrong count, non-finite input or a cell of zero extent. Nothing else is required (distorted,
+// non-convex and inverted cells are accepted; their Newton solves report failure when they fail).
+LinearCell make_linear_cell(LinearCellType type, const std::vector<Vec3>& nodes,
+                            const std::vector<double>& values);
+
+Vec3 cell_position(const LinearCell& cell, const Vec3& p);   // x(p)
+double cell_scalar(const LinearCell& cell, const Vec3& p);   // f(p)
+Eigen::Matrix3d cell_jacobian(const LinearCell& cell, const Vec3& p);  // columns dx/dr, dx/ds, dx/dt
+Vec3 cell_scalar_gradient(const LinearCell& cell, const Vec3& p);     // (df/dr, df/ds, df/dt)
+
+struct InverseMap {
+  Vec3 p = Vec3::Zero();  // parametric coordinates
+  int iterations = 0;
+  bool converged = false;
+};
+// p with x(p) = world, Newton from `start` (affine cells: the linear inverse, 0 iterations).
+InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& start);
+InverseMap inverse_map(const LinearCell& cell, const Vec3& world);
+
+// ---- Ray and faces -------------------------------------------------------------------------
+
+// A canonical order of a face's nodes that depends only on the set of nodes, not on which cell
+// lists the face or how: given global ids (distinct) in the cell's cyclic order, the cyclic
+// order rotated to start at the smallest id and reflected so that the second is the smaller of
+// its two neighbours. Returns the permutation: canonical[k] = cyclic[perm[k]]. Two cells that
+// share a face and pass its nodes in this order get bit-identical hits from intersect_face.
+std::array<int, 4> canonical_face_order(const std::array<std::int64_t, 4>& global_ids, int count);
+// The same with the node coordinates as keys (lexicographic), for callers without global ids.
+std::array<int, 4> canonical_face_order(const std::array<Vec3, 4>& coordinates, int count);
+
+struct FaceHit {
+  double t = 0.0;        // ray parameter: origin + t direction
+  double u = 0.0, v = 0.0;  // face parameters (triangle: barycentrics of nodes 1 and 2)
+  double normal_dot_direction = 0.0;  // (dP/du x dP/dv) . direction in the order given
+};
+struct FaceHits {
+  std::array<FaceHit, 2> hit{};
+  int count = 0;  // 0, 1 or 2 (two only for a bilinear patch), sorted by t
+};
+// Every hit of the whole line origin + t direction (any t) with the closed face, nodes in the
+// order given (pass them in canonical order for watertightness). Bilinear patch: projecting
+// onto two planes through the ray gives two bilinear equations in (u, v); eliminating v leaves
+// a u^2 + b u + c = 0, solved by the cancellation-free pair q = -(b + sign(b) sqrt(disc)) / 2,
+// u = q / a, u = c / q (a = 0: the linear root; a planar parallelogram); v from whichever of
+// the two equations has the larger coefficient; t from the hit point along the direction.
+// Accepted when u, v lie in [-kFaceSlack, 1 + kFaceSlack], kFaceSlack = 1e-12 (hits on an
+// edge are found from both faces; the chord dedupes them). Triangles: Moller-Trumbore with the
+// same slack.
+inline constexpr double kFaceSlack = 1e-12;
+FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewRay& ray);
+
+// The pieces of the line inside the cell: all face hits (every face, nodes put in canonical
+// order by coordinates unless `global_ids` are given), sorted; each interval between
+// consecutive distinct hits is inside when the inverse map of its midpoint converges into the
+// domain (slack 1e-9). Adjacent inside intervals are merged. Intervals are over all t; the
+// caller clips to t >= 0. `failed` is set when an inverse map of a midpoint did not converge.
+struct ChordInterval {
+  double t_near = 0.0, t_far = 0.0;  // t_near < t_far
+};
+struct Chord {
+  std::vector<ChordInterval> intervals;  // sorted by t
+  bool failed = false;
+};
+Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* global_ids = nullptr);
+
+}  // namespace rayint

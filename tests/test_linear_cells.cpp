@@ -1,0 +1,519 @@
+// The linear VTK cells in their own interpolation (cells/linear_cells.hpp, cells/cell_integral.hpp):
+// shape functions against VTK itself (fixture written by VTK 9.1, scripts/cells/vtk_shape_fixture.py),
+// partition of unity, the inverse map, ray-face hits (watertight on shared faces), chords through
+// edges and vertices, and the integral against independent paths and the 50-digit reference
+// (reference/cell_reference.hpp).
+#include <algorithm>
+#include <array>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <vector>
+
+#include "rayint/cells/cell_integral.hpp"
+#include "rayint/cells/linear_cells.hpp"
+#include "rayint/cells/vtk_split.hpp"
+#include "rayint/reference/cell_reference.hpp"
+#include "rayint/reference/reference.hpp"
+#include "transfer_builders.hpp"
+
+using namespace rayint;
+
+namespace {
+
+struct LinearCellTolerances {
+  // Shape functions, derivatives and world positions against VTK's at the same parametric
+  // point. VTK evaluates the same products in a different order (e.g. (1-r)(1-s) first), so a
+  // few ulps of O(1) weights and of coordinates up to ~4 could differ: measured (VTK 9.1, 300
+  // samples) 0 for weights and derivatives (bit-identical), 4.4e-16 for positions; 1e-14.
+  static constexpr double vtk_abs = 1e-14;
+  // Partition of unity and sum of derivatives, O(1) terms: a few ulps; 1e-14.
+  static constexpr double unity_abs = 1e-14;
+  // Inverse map round trip: Newton stops at a residual of 8 eps * max|x| (max|x| ~ 3 here),
+  // and the Jacobian of the cells used is >= ~0.3 in every direction, so |dp| <= ~2e-14; 1e-12.
+  static constexpr double round_trip_abs = 1e-12;
+  // An affine cell through the Newton path against its exact polynomial path, and a tetra's
+  // curved path against the closed form: both are ~1e-15 relative; the estimate claims ~1e-14.
+  static constexpr double path_agreement_rel = 1e-12;
+  // The double path against the 50-digit reference on distorted cells, per channel, relative:
+  // the target of issue 29 is "near machine precision". Measured worst 2.98e-15 over this
+  // file's 30 chords (values not tiny here); 1e-13. Over 4,803 chords in
+  // reports/cells/accuracy.md absolute errors are <= 1.07e-14, relative ones reach 2.2e-11 only
+  // where the value itself is ~1e-5 or below.
+  static constexpr double reference_rel = 1e-13;
+};
+
+const std::array<LinearCellType, 5> kTypes = {LinearCellType::tetra, LinearCellType::voxel,
+                                              LinearCellType::hexahedron, LinearCellType::wedge,
+                                              LinearCellType::pyramid};
+
+// A cell of the type: its reference nodes times 2, each perturbed by up to `noise` (edge
+// fraction), optionally mirrored (z -> -z, negative Jacobian), values random in [0, 1].
+LinearCell random_cell(LinearCellType type, std::mt19937& rng, double noise, bool mirror = false) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), v(0.0, 1.0);
+  std::vector<Vec3> nodes;
+  std::vector<double> values;
+  for (const Vec3& r : linear_reference_nodes(type)) {
+    Vec3 x = 2.0 * r + 2.0 * noise * Vec3(u(rng), u(rng), u(rng));
+    if (mirror) x[2] = -x[2];
+    nodes.push_back(x);
+    values.push_back(v(rng));
+  }
+  return make_linear_cell(type, nodes, values);
+}
+
+Vec3 random_inside(LinearCellType type, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (;;) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    if (inside_reference(type, p)) return p;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("linear cells: shape functions, derivatives and positions match VTK's own", "[cells][isoparametric]") {
+  std::ifstream in(RAYINT_SOURCE_DIR "/tests/fixtures/cells/vtk_linear_cells.json");
+  REQUIRE(in.good());
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  double worst_weight = 0.0, worst_deriv = 0.0, worst_x = 0.0;
+  int samples = 0;
+  std::array<int, 15> per_type{};
+  for (const auto& c : doc.at("cells")) {
+    LinearCellType type{};
+    REQUIRE(linear_cell_type_from_vtk(c.at("vtk_id").get<int>(), type));
+    std::vector<Vec3> nodes;
+    for (const auto& x : c.at("nodes")) nodes.emplace_back(x[0].get<double>(), x[1].get<double>(), x[2].get<double>());
+    const std::vector<double> zeros(nodes.size(), 0.0);
+    const LinearCell cell = make_linear_cell(type, nodes, zeros);
+    const int n = linear_node_count(type);
+    for (const auto& s : c.at("samples")) {
+      const Vec3 p(s["pcoords"][0].get<double>(), s["pcoords"][1].get<double>(), s["pcoords"][2].get<double>());
+      double N[kMaxLinearNodes], dN[3 * kMaxLinearNodes];
+      linear_shape_functions(type, p, N);
+      linear_shape_derivatives(type, p, dN);
+      for (int i = 0; i < n; ++i) worst_weight = std::max(worst_weight, std::abs(N[i] - s["weights"][i].get<double>()));
+      for (int i = 0; i < 3 * n; ++i) worst_deriv = std::max(worst_deriv, std::abs(dN[i] - s["derivs"][i].get<double>()));
+      const Vec3 x = cell_position(cell, p);
+      for (int k = 0; k < 3; ++k) worst_x = std::max(worst_x, std::abs(x[k] - s["x"][k].get<double>()));
+      ++samples;
+      ++per_type[static_cast<std::size_t>(static_cast<int>(type))];
+    }
+  }
+  INFO("samples " << samples << ", worst |dN| " << worst_weight << ", |d dN| " << worst_deriv << ", |dx| " << worst_x);
+  for (LinearCellType t : kTypes) CHECK(per_type[static_cast<std::size_t>(static_cast<int>(t))] >= 40);
+  CHECK(worst_weight <= LinearCellTolerances::vtk_abs);
+  CHECK(worst_deriv <= LinearCellTolerances::vtk_abs);
+  CHECK(worst_x <= LinearCellTolerances::vtk_abs);
+}
+
+TEST_CASE("linear cells: partition of unity, nodal values and derivative sums", "[cells][isoparametric]") {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-0.5, 1.5);
+  for (LinearCellType type : kTypes) {
+    const int n = linear_node_count(type);
+    const std::vector<Vec3>& ref = linear_reference_nodes(type);
+    for (int i = 0; i < n; ++i) {
+      double N[kMaxLinearNodes];
+      linear_shape_functions(type, ref[static_cast<std::size_t>(i)], N);
+      for (int j = 0; j < n; ++j) CHECK(std::abs(N[j] - (i == j ? 1.0 : 0.0)) <= LinearCellTolerances::unity_abs);
+    }
+    for (int k = 0; k < 200; ++k) {
+      const Vec3 p(u(rng), u(rng), u(rng));
+      double N[kMaxLinearNodes], dN[3 * kMaxLinearNodes];
+      linear_shape_functions(type, p, N);
+      linear_shape_derivatives(type, p, dN);
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) sum += N[i];
+      CHECK(std::abs(sum - 1.0) <= LinearCellTolerances::unity_abs);
+      for (int j = 0; j < 3; ++j) {
+        double d = 0.0;
+        for (int i = 0; i < n; ++i) d += dN[j * n + i];
+        CHECK(std::abs(d) <= LinearCellTolerances::unity_abs);
+        // Derivative against a central difference (h = 1e-6: error ~1e-10 for these
+        // polynomials of degree <= 3).
+        Vec3 pp = p, pm = p;
+        pp[j] += 1e-6;
+        pm[j] -= 1e-6;
+        double Np[kMaxLinearNodes], Nm[kMaxLinearNodes];
+        linear_shape_functions(type, pp, Np);
+        linear_shape_functions(type, pm, Nm);
+        for (int i = 0; i < n; ++i) CHECK(std::abs((Np[i] - Nm[i]) / 2e-6 - dN[j * n + i]) <= 1e-8);
+      }
+    }
+  }
+}
+
+TEST_CASE("linear cells: inverse map round trip on distorted cells in both orientations", "[cells][isoparametric]") {
+  std::mt19937 rng(7);
+  for (LinearCellType type : kTypes)
+    for (bool mirror : {false, true})
+      for (int c = 0; c < 20; ++c) {
+        const LinearCell cell = random_cell(type, rng, 0.15, mirror);
+        for (int k = 0; k < 20; ++k) {
+          const Vec3 p = random_inside(type, rng);
+          const InverseMap m = inverse_map(cell, cell_position(cell, p));
+          INFO(linear_cell_name(type) << " mirror " << mirror << " iterations " << m.iterations);
+          REQUIRE(m.converged);
+          CHECK((m.p - p).cwiseAbs().maxCoeff() <= LinearCellTolerances::round_trip_abs);
+        }
+      }
+}
+
+TEST_CASE("linear cells: affine detection", "[cells][isoparametric]") {
+  std::mt19937 rng(3);
+  // A parallelepiped hexahedron from its axes is affine; moving one node by 1e-6 is not.
+  const Vec3 o(0.3, -1.0, 2.0), a(1.0, 0.2, 0.1), b(-0.3, 1.1, 0.2), c(0.1, 0.3, 0.9);
+  std::vector<Vec3> nodes;
+  for (const Vec3& r : linear_reference_nodes(LinearCellType::hexahedron)) nodes.push_back(o + r[0] * a + r[1] * b + r[2] * c);
+  const std::vector<double> values(8, 0.5);
+  CHECK(make_linear_cell(LinearCellType::hexahedron, nodes, values).affine);
+  nodes[6][1] += 1e-6;
+  CHECK_FALSE(make_linear_cell(LinearCellType::hexahedron, nodes, values).affine);
+  CHECK(random_cell(LinearCellType::tetra, rng, 0.2).affine);
+  CHECK_FALSE(random_cell(LinearCellType::pyramid, rng, 0.0).affine);  // VTK's pyramid map never is
+  CHECK_FALSE(random_cell(LinearCellType::hexahedron, rng, 0.2).affine);
+}
+
+TEST_CASE("linear cells: a shared bilinear face gives bit-identical hits from both cells", "[cells][isoparametric]") {
+  // Two distorted hexahedra sharing the face of global nodes 1 2 6 5 (cell A's face 1) = cell B's
+  // nodes 0 3 7 4 (its face 0), listed by B in a different cyclic start and orientation.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.25, 0.25), w(0.0, 1.0);
+  std::vector<Vec3> pts;
+  for (int k = 0; k < 12; ++k) {  // a 3 x 2 x 2 block of nodes, x fastest
+    const int i = k % 3, j = (k / 3) % 2, l = k / 6;
+    pts.emplace_back(i + u(rng), j + u(rng), l + u(rng));
+  }
+  auto id = [](int i, int j, int l) { return static_cast<std::int64_t>(i + 3 * j + 6 * l); };
+  const std::array<std::int64_t, 8> ids_a = {id(0, 0, 0), id(1, 0, 0), id(1, 1, 0), id(0, 1, 0),
+                                             id(0, 0, 1), id(1, 0, 1), id(1, 1, 1), id(0, 1, 1)};
+  const std::array<std::int64_t, 8> ids_b = {id(1, 0, 0), id(2, 0, 0), id(2, 1, 0), id(1, 1, 0),
+                                             id(1, 0, 1), id(2, 0, 1), id(2, 1, 1), id(1, 1, 1)};
+  auto make = [&](const std::array<std::int64_t, 8>& ids) {
+    std::vector<Vec3> nodes;
+    std::vector<double> values;
+    for (std::int64_t g : ids) {
+      nodes.push_back(pts[static_cast<std::size_t>(g)]);
+      values.push_back(0.1 * static_cast<double>(g));
+    }
+    return make_linear_cell(LinearCellType::hexahedron, nodes, values);
+  };
+  const LinearCell A = make(ids_a), B = make(ids_b);
+  int shared = 0;
+  for (int k = 0; k < 500; ++k) {
+    // Rays from the left toward random points of the shared patch.
+    const double s = w(rng), t = w(rng);
+    const Vec3 target = (1 - s) * (1 - t) * pts[1] + s * (1 - t) * pts[4] + s * t * pts[10] + (1 - s) * t * pts[7];
+    const Vec3 eye(-3.0 + u(rng), 0.5 + 4 * u(rng), 0.5 + 4 * u(rng));
+    const ViewRay ray{eye, (target - eye).normalized()};
+    const Chord ca = chord(A, ray, ids_a.data()), cb = chord(B, ray, ids_b.data());
+    REQUIRE_FALSE(ca.failed);
+    REQUIRE_FALSE(cb.failed);
+    if (ca.intervals.size() != 1 || cb.intervals.size() != 1) continue;
+    ++shared;
+    CHECK(ca.intervals[0].t_far == cb.intervals[0].t_near);  // bit-identical, no gap, no overlap
+  }
+  CHECK(shared >= 400);
+}
+
+TEST_CASE("linear cells: rays through shared edges and vertices neither drop nor double a piece", "[cells][isoparametric]") {
+  // A 2 x 2 x 2 block of distorted hexahedra (27 nodes, the centre node moved); rays through
+  // the centre vertex, through interior edges and through random points: the chords of the 8
+  // cells tile the block's chord.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2), w(0.0, 1.0);
+  std::vector<Vec3> pts;
+  auto id = [](int i, int j, int l) { return static_cast<std::int64_t>(i + 3 * j + 9 * l); };
+  for (int l = 0; l < 3; ++l)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        // A coordinate moves only along an axis where the node is interior (index 1), so the
+        // block's outer faces stay the planes of [0, 2]^3 and the inner faces are curved.
+        const int index[3] = {i, j, l};
+        Vec3 x(i, j, l);
+        for (int k = 0; k < 3; ++k)
+          if (index[k] == 1) x[k] += u(rng);
+        pts.push_back(x);
+      }
+  std::vector<LinearCell> cells;
+  std::vector<std::array<std::int64_t, 8>> ids;
+  for (int l = 0; l < 2; ++l)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        std::array<std::int64_t, 8> g = {id(i, j, l), id(i + 1, j, l), id(i + 1, j + 1, l), id(i, j + 1, l),
+                                         id(i, j, l + 1), id(i + 1, j, l + 1), id(i + 1, j + 1, l + 1), id(i, j + 1, l + 1)};
+        std::vector<Vec3> nodes;
+        std::vector<double> values;
+        for (std::int64_t k : g) {
+          nodes.push_back(pts[static_cast<std::size_t>(k)]);
+          values.push_back(w(rng));
+        }
+        cells.push_back(make_linear_cell(LinearCellType::hexahedron, nodes, values));
+        ids.push_back(g);
+      }
+  std::vector<Vec3> targets = {pts[static_cast<std::size_t>(id(1, 1, 1))]};
+  for (std::int64_t e : {id(1, 1, 0), id(1, 0, 1), id(0, 1, 1)})  // interior edge midpoints
+    targets.push_back(0.5 * (pts[static_cast<std::size_t>(e)] + pts[static_cast<std::size_t>(id(1, 1, 1))]));
+  for (int k = 0; k < 40; ++k) targets.emplace_back(0.2 + 1.6 * w(rng), 0.2 + 1.6 * w(rng), 0.2 + 1.6 * w(rng));
+  for (const Vec3& target : targets) {
+    const Vec3 eye(-5.0 + u(rng), -4.0 + u(rng), -3.0 + u(rng));
+    const ViewRay ray{eye, (target - eye).normalized()};
+    std::vector<ChordInterval> all;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const Chord ch = chord(cells[c], ray, ids[c].data());
+      REQUIRE_FALSE(ch.failed);
+      all.insert(all.end(), ch.intervals.begin(), ch.intervals.end());
+    }
+    std::sort(all.begin(), all.end(), [](const ChordInterval& a, const ChordInterval& b) { return a.t_near < b.t_near; });
+    REQUIRE_FALSE(all.empty());
+    // The block is the unit cube scaled by 2 (outer faces planar): its chord by slab clipping.
+    double t0 = -1e300, t1 = 1e300;
+    for (int k = 0; k < 3; ++k) {
+      const double a = (0.0 - eye[k]) / ray.direction[k], b = (2.0 - eye[k]) / ray.direction[k];
+      t0 = std::max(t0, std::min(a, b));
+      t1 = std::min(t1, std::max(a, b));
+    }
+    INFO("target " << target.transpose() << " pieces " << all.size());
+    CHECK(std::abs(all.front().t_near - t0) <= 1e-12);
+    CHECK(std::abs(all.back().t_far - t1) <= 1e-12);
+    for (std::size_t k = 0; k + 1 < all.size(); ++k)
+      CHECK(std::abs(all[k].t_far - all[k + 1].t_near) <= 1e-12 * t1);  // no gap, no overlap
+  }
+}
+
+TEST_CASE("linear cells: the curved paths agree with the exact ones where both apply", "[cells][isoparametric]") {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  TransferFunctions tf;
+  for (int c = 0; c < kChannels; ++c) {
+    tf.density[static_cast<std::size_t>(c)] = {{0.0, 0.3, 0.55, 1.0}, {0.2, 1.5 + c, 0.4, 2.0}};
+    tf.color[static_cast<std::size_t>(c)] = {{0.1, 0.6, 0.9}, {1.0, 0.2 * c, 0.7}};
+  }
+  const CellIntegrator integrator(tf);
+  int compared = 0;
+  for (LinearCellType type : {LinearCellType::tetra, LinearCellType::hexahedron, LinearCellType::wedge}) {
+    for (int k = 0; k < 30; ++k) {
+      LinearCell cell = random_cell(type, rng, 0.0);  // undistorted: affine
+      if (type == LinearCellType::hexahedron) {       // a sheared parallelepiped
+        const Vec3 shear(0.3, -0.2, 0.1);
+        std::vector<Vec3> nodes;
+        std::vector<double> values;
+        for (int i = 0; i < 8; ++i) {
+          const auto ii = static_cast<std::size_t>(i);
+          nodes.push_back(cell.x[ii] + cell.x[ii][2] * shear);
+          values.push_back(cell.value[ii]);
+        }
+        cell = make_linear_cell(type, nodes, values);
+      }
+      REQUIRE(cell.affine);
+      const Vec3 target = cell_position(cell, linear_reference_centre(type));
+      const Vec3 eye = target + 6.0 * Vec3(u(rng), u(rng), u(rng)).normalized();
+      const ViewRay ray{eye, (target - eye).normalized()};
+      const Chord ch = chord(cell, ray);
+      REQUIRE(ch.intervals.size() == 1);
+      const CellPieceIntegral exact = integrator.integrate(cell, ray, ch.intervals[0].t_near, ch.intervals[0].t_far);
+      const CellPieceIntegral curved =
+          integrator.integrate_isoparametric(cell, ray, ch.intervals[0].t_near, ch.intervals[0].t_far);
+      INFO(linear_cell_name(type) << ": " << exact.failure << " / " << curved.failure);
+      REQUIRE(exact.converged);
+      REQUIRE(curved.converged);
+      CHECK(exact.path == (type == LinearCellType::tetra ? CellPath::linear_exact : CellPath::polynomial));
+      CHECK(curved.path == CellPath::isoparametric);
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        CHECK(std::abs(curved.emission[c] - exact.emission[c]) <= LinearCellTolerances::path_agreement_rel * exact.emission[c]);
+        CHECK(std::abs(curved.optical_depth[c] - exact.optical_depth[c]) <=
+              LinearCellTolerances::path_agreement_rel * exact.optical_depth[c]);
+      }
+      ++compared;
+    }
+  }
+  CHECK(compared == 90);
+}
+
+TEST_CASE("linear cells: compositing two halves of a chord gives the whole", "[cells][isoparametric]") {
+  std::mt19937 rng(17);
+  const TransferFunctions tf = test::uniform_tf(test::line(0.0, 0.1, 1.0, 3.0), test::line(0.0, 1.0, 1.0, 0.2));
+  const CellIntegrator integrator(tf);
+  for (LinearCellType type : kTypes) {
+    const LinearCell cell = random_cell(type, rng, 0.15);
+    const Vec3 target = cell_position(cell, linear_reference_centre(type));
+    const ViewRay ray{target + Vec3(4.0, 1.0, 0.5), -Vec3(4.0, 1.0, 0.5).normalized()};
+    const Chord ch = chord(cell, ray);
+    REQUIRE(ch.intervals.size() == 1);
+    const double a = ch.intervals[0].t_near, b = ch.intervals[0].t_far, m = 0.4 * a + 0.6 * b;
+    const CellPieceIntegral whole = integrator.integrate(cell, ray, a, b);
+    const CellPieceIntegral halves = composite(integrator.integrate(cell, ray, a, m), integrator.integrate(cell, ray, m, b));
+    REQUIRE(whole.converged);
+    REQUIRE(halves.converged);
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      CHECK(std::abs(halves.emission[c] - whole.emission[c]) <= 1e-13 + whole.error_estimate + halves.error_estimate);
+      CHECK(std::abs(halves.optical_depth[c] - whole.optical_depth[c]) <= 1e-13 * whole.optical_depth[c]);
+    }
+  }
+}
+
+TEST_CASE("linear cells: bad input and failures are reported, never a number", "[cells][isoparametric]") {
+  const TransferFunctions tf = test::uniform_tf(test::constant(1.0), test::constant(1.0));
+  const CellIntegrator integrator(tf);
+  std::vector<Vec3> nodes(8, Vec3::Zero());
+  CHECK_THROWS_AS(make_linear_cell(LinearCellType::hexahedron, nodes, std::vector<double>(8, 0.0)), std::invalid_argument);
+  CHECK_THROWS_AS(make_linear_cell(LinearCellType::wedge, nodes, std::vector<double>(8, 0.0)), std::invalid_argument);
+  std::mt19937 rng(1);
+  const LinearCell cell = random_cell(LinearCellType::hexahedron, rng, 0.1);
+  const ViewRay ray{Vec3(0.5, 0.5, -3.0), Vec3(0.0, 0.0, 1.0)};
+  const CellPieceIntegral reversed = integrator.integrate(cell, ray, 1.0, 0.0);
+  CHECK_FALSE(reversed.converged);
+  CHECK(std::string(reversed.failure).size() > 0);
+}
+
+// ---- The 50-digit reference (reference/cell_reference.hpp) --------------------------------
+
+namespace {
+
+CellReferenceInput reference_input(const LinearCell& cell, const ViewRay& ray, double t_near, double t_far) {
+  CellReferenceInput in;
+  in.vtk_id = static_cast<int>(cell.type);
+  for (int i = 0; i < linear_node_count(cell.type); ++i) {
+    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
+    in.nodes.push_back({x[0], x[1], x[2]});
+    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
+  }
+  in.origin = {ray.origin[0], ray.origin[1], ray.origin[2]};
+  in.direction = {ray.direction[0], ray.direction[1], ray.direction[2]};
+  in.t_near = t_near;
+  in.t_far = t_far;
+  return in;
+}
+
+TransferFunctions breakpoint_tf() {
+  TransferFunctions tf;
+  tf.density[0] = {{0.1, 0.3, 0.45, 0.7, 0.9}, {0.5, 4.0, 1.0, 6.0, 2.0}};
+  tf.density[1] = {{0.2, 0.5, 0.8}, {0.0, 3.0, 0.5}};
+  tf.density[2] = {{0.0, 0.35, 0.6, 1.0}, {1.0, 0.2, 5.0, 1.5}};
+  tf.color[0] = {{0.0, 0.5, 1.0}, {1.0, 0.1, 0.8}};
+  tf.color[1] = {{0.25, 0.55, 0.75}, {0.2, 1.0, 0.0}};
+  tf.color[2] = {{0.4, 0.65}, {0.9, 0.3}};
+  return tf;
+}
+
+double ext(const ExtendedValue& v) { return v.hi + v.lo; }
+
+}  // namespace
+
+TEST_CASE("cell reference: a linear scalar along the chord matches the 50-digit linear reference", "[cells][isoparametric]") {
+  // Rays along x at dyadic y, z through a unit tetra, a unit hexahedron, a unit voxel and a unit
+  // wedge with dyadic values: the scalar is exactly linear in t with exactly representable end
+  // values, so reference_ray (reference.cpp, a different code) computes the same integral.
+  const TransferFunctions tf = breakpoint_tf();
+  struct Case {
+    LinearCellType type;
+    double y, z, x0, x1;  // the chord in x
+  };
+  const Case cases[] = {{LinearCellType::tetra, 0.25, 0.25, 0.0, 0.5},
+                        {LinearCellType::hexahedron, 0.375, 0.625, 0.0, 1.0},
+                        {LinearCellType::voxel, 0.125, 0.75, 0.0, 1.0},
+                        {LinearCellType::wedge, 0.25, 0.5, 0.0, 0.75}};
+  for (const Case& k : cases) {
+    std::vector<Vec3> nodes = linear_reference_nodes(k.type);
+    std::vector<double> values;
+    for (std::size_t i = 0; i < nodes.size(); ++i) values.push_back(static_cast<double>((5 * i + 3) % 8) / 8.0);
+    const LinearCell cell = make_linear_cell(k.type, nodes, values);
+    const ViewRay ray{Vec3(-1.0, k.y, k.z), Vec3(1.0, 0.0, 0.0)};
+    const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, 1.0 + k.x0, 1.0 + k.x1));
+    // The same chord as a linear segment; the end values are exact in double (dyadic).
+    const double f_far = cell_scalar(cell, Vec3(k.x1, k.y, k.z)), f_near = cell_scalar(cell, Vec3(k.x0, k.y, k.z));
+    Ray lin;
+    lin.segments.push_back({k.x1 - k.x0, f_far, f_near});
+    const ReferenceRay lr = reference_ray(tf, lin);
+    INFO(linear_cell_name(k.type) << " pieces " << ref.pieces << " degree " << ref.max_degree);
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      CHECK(std::abs(ref.emission[c] - ext(lr.intensity[c])) <= 1e-15 * ext(lr.intensity[c]));  // both to ~30 digits, rounded to double
+      CHECK(std::abs(std::exp(-ref.optical_depth[c]) - ext(lr.transmittance[c])) <= 1e-15 * ext(lr.transmittance[c]));
+      CHECK(ref.emission_error[c] <= 1e-30 * ref.emission[c] + 1e-300);
+      CHECK(ref.emission_error[c] > 0.0);
+    }
+  }
+}
+
+TEST_CASE("cell reference: the double path on distorted cells of every type, both wedge orientations", "[cells][isoparametric]") {
+  // The sample of this test is small (the reference costs ~0.1 s a chord); the measured figures
+  // over 200 rays per family are in reports/cells/accuracy.md (tools/cell_accuracy.cpp).
+  const TransferFunctions tf = breakpoint_tf();
+  const CellIntegrator integrator(tf);
+  std::mt19937 rng(2029);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  int chords = 0;
+  for (LinearCellType type : kTypes)
+    for (bool mirror : {false, true})
+      for (int k = 0; k < 3; ++k) {
+        const LinearCell cell = random_cell(type, rng, 0.1 + 0.2 * u(rng), mirror);
+        const Vec3 target = cell_position(cell, random_inside(type, rng));
+        const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+        const ViewRay ray{target - 8.0 * dir, dir};
+        const Chord ch = chord(cell, ray);
+        REQUIRE_FALSE(ch.failed);
+        for (const ChordInterval& iv : ch.intervals) {
+          const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);
+          INFO(linear_cell_name(type) << " mirror " << mirror << ": " << d.failure);
+          REQUIRE(d.converged);
+          const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
+          for (std::size_t c = 0; c < kChannels; ++c) {
+            const double e = std::abs(d.emission[c] - ref.emission[c]), o = std::abs(d.optical_depth[c] - ref.optical_depth[c]);
+            worst = std::max({worst, e / ref.emission[c], o / ref.optical_depth[c]});
+            INFO(linear_cell_name(type) << " mirror " << mirror << " path " << cell_path_name(d.path) << " pieces "
+                                        << d.pieces << " degree " << d.max_degree << " estimate " << d.error_estimate);
+            INFO("errors " << e / ref.emission[c] << " " << o / ref.optical_depth[c]);
+            CHECK(e <= LinearCellTolerances::reference_rel * ref.emission[c]);
+            CHECK(o <= LinearCellTolerances::reference_rel * ref.optical_depth[c]);
+            CHECK(e + o <= d.error_estimate);
+          }
+          ++chords;
+        }
+      }
+  INFO("worst relative error " << worst << " over " << chords << " chords");
+  CHECK(chords >= 30);
+}
+
+TEST_CASE("vtk split: the recorded tables give VTK's own tetrahedra on distorted cells with random ids", "[cells][isoparametric]") {
+  std::ifstream in(RAYINT_SOURCE_DIR "/tests/fixtures/cells/vtk_split_check.json");
+  REQUIRE(in.good());
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  int checked = 0;
+  for (const auto& c : doc.at("cells")) {
+    LinearCellType type{};
+    REQUIRE(linear_cell_type_from_vtk(c.at("vtk_id").get<int>(), type));
+    std::vector<std::int64_t> ids;
+    for (const auto& v : c.at("ids")) ids.push_back(v.get<std::int64_t>());
+    std::vector<std::array<int, 4>> mine = vtk_split(type, ids.data());
+    for (auto& t : mine) std::sort(t.begin(), t.end());
+    std::sort(mine.begin(), mine.end());
+    std::vector<std::array<int, 4>> theirs;
+    for (const auto& t : c.at("tets")) theirs.push_back({t[0].get<int>(), t[1].get<int>(), t[2].get<int>(), t[3].get<int>()});
+    INFO(linear_cell_name(type));
+    CHECK(mine == theirs);
+    ++checked;
+  }
+  CHECK(checked == 200);
+  // The split tiles the cell: the tets' volumes add up to the cell's (undistorted reference cells).
+  for (LinearCellType type : kTypes) {
+    const std::vector<Vec3>& r = linear_reference_nodes(type);
+    const std::vector<std::int64_t> ids = {3, 0, 5, 1, 7, 2, 6, 4};
+    std::vector<std::int64_t> use(ids.begin(), ids.begin() + linear_node_count(type));
+    // ids must be a set of distinct values; the first n of the list are.
+    double volume = 0.0;
+    for (const auto& t : vtk_split(type, use.data()))
+      volume += std::abs((r[static_cast<std::size_t>(t[1])] - r[static_cast<std::size_t>(t[0])])
+                             .dot((r[static_cast<std::size_t>(t[2])] - r[static_cast<std::size_t>(t[0])])
+                                      .cross(r[static_cast<std::size_t>(t[3])] - r[static_cast<std::size_t>(t[0])]))) / 6.0;
+    const double expected = type == LinearCellType::tetra ? 1.0 / 6.0 : type == LinearCellType::wedge ? 0.5
+                            : type == LinearCellType::pyramid ? 1.0 / 3.0 : 1.0;
+    INFO(linear_cell_name(type));
+    CHECK(std::abs(volume - expected) <= 1e-15);
+  }
+  for (LinearCellType type : {LinearCellType::hexahedron, LinearCellType::voxel})
+    for (int parity : {0, 1}) CHECK(vtk_structured_split(type, parity).size() == 5);
+}
