@@ -11,6 +11,8 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "rayint/model/polynomial.hpp"
 
@@ -128,58 +130,73 @@ void TrilinearIntegrator::add_piece(const Cubic& g, double h, double f_mid, Tril
   hull(g, h, f_lo, f_hi);
   const auto& x = Rule::abscissa();  // nodes in [0, 1] of the symmetric rule on [-1, 1]
   const auto& w = Rule::weights();
+  // The quadrature nodes of the colour term and their weights w * rho(u) * exp(-(T - tau(u)))
+  // (times the panel's half width): they depend on the density only, so a grey medium (one
+  // density for all channels) computes them once for all three.
+  thread_local std::vector<std::pair<double, double>> nodes;
+  double T = 0.0, trans = 1.0;
+  bool have_nodes = false, transparent = false;
   for (int c = 0; c < kChannels; ++c) {
     const std::size_t ch = static_cast<std::size_t>(c);
-    const Line rho_line = line_at(tf_->density[ch], f_mid);
     const Line kappa_line = line_at(tf_->color[ch], f_mid);
-    const Cubic rho = compose(rho_line, g);
-    const double rho_max = std::max({rho_line.at(f_lo), rho_line.at(f_hi), 0.0});
-    if (rho_max == 0.0) continue;  // transparent here: nothing absorbed or emitted
-    if (emission_only != nullptr) {  // int_0^h kappa rho du, degree 6: 8 nodes are exact
-      const Cubic kappa_poly = compose(kappa_line, g);
-      double sum = 0.0;
-      for (std::size_t i = 0; i < x.size(); ++i)
-        for (int side = 0; side < (x[i] == 0.0 ? 1 : 2); ++side) {
-          const double u = 0.5 * h * (1.0 + (side == 0 ? x[i] : -x[i]));
-          sum += w[i] * horner(kappa_poly, u) * horner(rho, u);
+    const bool reuse = grey_ && c > 0;
+    Cubic rho{};
+    if (!reuse) {
+      const Line rho_line = line_at(tf_->density[ch], f_mid);
+      rho = compose(rho_line, g);
+      const double rho_max = std::max({rho_line.at(f_lo), rho_line.at(f_hi), 0.0});
+      transparent = rho_max == 0.0;
+      have_nodes = false;
+      if (!transparent) {
+        T = depth(rho, h);
+        trans = std::exp(-T);
+        nodes.clear();
+        if (emission_only == nullptr) {
+          // Start of the part that matters: depth to the exit below kTailDepth (tau monotone).
+          double u0 = 0.0;
+          if (T > kTailDepth) {
+            double a = 0.0, b = h;
+            for (int it = 0; it < 200 && b - a > 1e-16 * h; ++it) {
+              const double m = 0.5 * (a + b);
+              (T - depth(rho, m) > kTailDepth ? a : b) = m;
+            }
+            u0 = a;
+          }
+          const double span = h - u0;
+          const double panels = std::max(1.0, std::ceil(span * rho_max / kPanelDepth));
+          const long n = static_cast<long>(panels);
+          const double p = span / panels, half = 0.5 * p;
+          for (long j = 0; j < n; ++j) {
+            const double mid = u0 + (static_cast<double>(j) + 0.5) * p;
+            for (std::size_t i = 0; i < x.size(); ++i)
+              for (int side = 0; side < (x[i] == 0.0 ? 1 : 2); ++side) {
+                const double u = side == 0 ? mid + half * x[i] : mid - half * x[i];
+                nodes.emplace_back(u, half * w[i] * horner(rho, u) * std::exp(-(T - depth(rho, u))));
+              }
+          }
+        } else {  // int_0^h kappa rho du, degree 6: 8 nodes are exact
+          for (std::size_t i = 0; i < x.size(); ++i)
+            for (int side = 0; side < (x[i] == 0.0 ? 1 : 2); ++side) {
+              const double u = 0.5 * h * (1.0 + (side == 0 ? x[i] : -x[i]));
+              nodes.emplace_back(u, 0.5 * h * w[i] * horner(rho, u));
+            }
         }
-      (*emission_only)[ch] += 0.5 * h * sum;
+        have_nodes = true;
+      }
+    }
+    if (transparent) continue;  // nothing absorbed or emitted here
+    const Cubic kappa = compose(kappa_line, g);
+    if (emission_only != nullptr) {
+      double sum = 0.0;
+      for (const auto& [u, wt] : nodes) sum += wt * horner(kappa, u);
+      (*emission_only)[ch] += sum;
       continue;
     }
-    const double T = depth(rho, h);
-    const double trans = std::exp(-T);
-    const Cubic kappa = compose(kappa_line, g);
     const double kappa_exit = horner(kappa, h);
     double emission = kappa_exit * -std::expm1(-T);
-    if (kappa_line.beta != 0.0 && (g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0)) {
-      // Start of the part that matters: depth to the exit below kTailDepth (tau is monotone).
-      double u0 = 0.0;
-      if (T > kTailDepth) {
-        double a = 0.0, b = h;
-        for (int it = 0; it < 200 && b - a > 1e-16 * h; ++it) {
-          const double m = 0.5 * (a + b);
-          (T - depth(rho, m) > kTailDepth ? a : b) = m;
-        }
-        u0 = a;
-      }
-      const double span = h - u0;
-      const double panels = std::max(1.0, std::ceil(span * rho_max / kPanelDepth));
-      const long n = static_cast<long>(panels);
-      const double p = span / panels;
+    if (have_nodes && kappa_line.beta != 0.0 && (g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0)) {
       double q = 0.0;
-      for (long j = 0; j < n; ++j) {
-        const double mid = u0 + (static_cast<double>(j) + 0.5) * p, half = 0.5 * p;
-        double sum = 0.0;
-        for (std::size_t i = 0; i < x.size(); ++i) {
-          const int sides = x[i] == 0.0 ? 1 : 2;
-          for (int side = 0; side < sides; ++side) {
-            const double u = side == 0 ? mid + half * x[i] : mid - half * x[i];
-            sum += w[i] * (horner(kappa, u) - kappa_exit) * horner(rho, u) *
-                   std::exp(-(T - depth(rho, u)));
-          }
-        }
-        q += half * sum;
-      }
+      for (const auto& [u, wt] : nodes) q += wt * (horner(kappa, u) - kappa_exit);
       emission += q;
     }
     r.intensity[ch] = r.intensity[ch] * trans + emission;
