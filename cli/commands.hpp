@@ -35,6 +35,7 @@ void set_methods_command(CLI::App& app);  // methods_command.cpp
 void set_mesh_command(CLI::App& app);     // mesh_command.cpp
 void set_grad_command(CLI::App& app);     // grad_command.cpp
 void set_gradcheck_command(CLI::App& app);  // gradcheck_command.cpp
+void set_converge_command(CLI::App& app);  // converge_command.cpp
 
 // A --methods value: parse_method_list with the option named in the message, e.g.
 // "--methods riemann:n=0: n must be an integer >= 1" (MethodSpecError).

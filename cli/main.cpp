@@ -42,6 +42,7 @@ void build_app(CLI::App& app) {
   set_check_command(app);
   set_render_command(app);
   set_scene_sweep_command(app);
+  set_converge_command(app);
   set_generate_mesh_command(app);
   set_mesh_command(app);
   set_mesh_agreement_command(app);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -153,19 +154,32 @@ Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RaySpan& withi
   return out;
 }
 
-std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRay& ray) {
-  std::vector<TrilinearPiece> out;
+void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<TrilinearCubic>& out,
+                      std::vector<double>& t) {
+  out.clear();
+  t.clear();
   const RaySpan span = grid.clip(ray);
-  if (!span.hit) return out;
+  if (!span.hit || !(span.t_exit > span.t_enter)) return;
   const IndexRay r = to_index(grid, ray);
-  std::vector<double> t = breakpoints(r, span.t_enter, span.t_exit, false);
-  t.insert(t.begin(), span.t_enter);
+  // Per axis the crossings come out in increasing t when dx > 0, decreasing when dx < 0:
+  // reverse those, then merge the three sorted runs (the DDA order) and drop bit-equal repeats.
+  t.push_back(span.t_enter);
+  std::size_t run_begin[4] = {1, 0, 0, 0};
+  for (int i = 0; i < 3; ++i) {
+    plane_crossings(r.x0[i], r.dx[i], span.t_enter, span.t_exit, t);
+    if (r.dx[i] < 0.0) std::reverse(t.begin() + static_cast<std::ptrdiff_t>(run_begin[i]), t.end());
+    run_begin[i + 1] = t.size();
+  }
+  std::inplace_merge(t.begin() + 1, t.begin() + static_cast<std::ptrdiff_t>(run_begin[1]),
+                     t.begin() + static_cast<std::ptrdiff_t>(run_begin[2]));
+  std::inplace_merge(t.begin() + 1, t.begin() + static_cast<std::ptrdiff_t>(run_begin[2]), t.end());
   t.push_back(span.t_exit);
+  t.erase(std::unique(t.begin(), t.end()), t.end());
   const double speed = ray.direction.norm();
   const auto& dims = grid.dims();
   out.reserve(t.size() - 1);
   for (std::size_t m = t.size() - 1; m-- > 0;) {
-    TrilinearPiece piece;
+    TrilinearCubic piece;
     piece.t_far = t[m + 1];
     piece.t_near = t[m];
     const double t_mid = 0.5 * (piece.t_far + piece.t_near);
@@ -187,8 +201,25 @@ std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRa
                                    piece.cube[2] + ((c >> 2) & 1));
       for (int k = 0; k < 4; ++k) f[k] += fv * p[k];
     }
-    piece.segment.length = (piece.t_far - piece.t_near) * speed;
-    piece.segment.coeffs.assign(f.begin(), f.end());
+    piece.length = (piece.t_far - piece.t_near) * speed;
+    piece.coeffs = f;
+    out.push_back(piece);
+  }
+}
+
+std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRay& ray) {
+  std::vector<TrilinearCubic> cubics;
+  std::vector<double> scratch;
+  trilinear_cubics(grid, ray, cubics, scratch);
+  std::vector<TrilinearPiece> out;
+  out.reserve(cubics.size());
+  for (const TrilinearCubic& c : cubics) {
+    TrilinearPiece piece;
+    piece.cube = c.cube;
+    piece.t_far = c.t_far;
+    piece.t_near = c.t_near;
+    piece.segment.length = c.length;
+    piece.segment.coeffs.assign(c.coeffs.begin(), c.coeffs.end());
     out.push_back(std::move(piece));
   }
   return out;

@@ -106,6 +106,23 @@ struct TrilinearPiece {
 
 // The cubes the ray crosses inside the grid, far -> near, with the cubic of each.
 std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRay& ray);
+
+// The same in fixed storage, for loops over many rays: `out` is cleared and refilled, `scratch`
+// holds the crossings (both reused across calls, so a warmed-up caller allocates nothing).
+// The cube walk is the crossings of the planes x_i = k in index coordinates, each axis's
+// sequence in order and the three merged (a 3D DDA): consecutive pieces share their end t
+// exactly, from clip's t_enter to t_exit, so no length is dropped or counted twice; a ray
+// through an edge or vertex crosses two or three planes at one t, kept once (bit-equal t) or
+// as a piece of a few ulps (its share exact); a ray in a grid plane (direction component 0)
+// crosses none of that axis's planes and reads the cube chosen at each piece's midpoint.
+struct TrilinearCubic {
+  std::array<int, 3> cube{};
+  double t_far = 0.0, t_near = 0.0;
+  double length = 0.0;                 // world length
+  std::array<double, 4> coeffs{};      // scalar in s, distance from the far end
+};
+void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<TrilinearCubic>& out,
+                      std::vector<double>& scratch);
 // The same as a PolyRay for the polynomial reference (reference/poly_reference.hpp).
 PolyRay trilinear_ray(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background = Rgb{});
 

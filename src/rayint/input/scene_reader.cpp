@@ -112,18 +112,25 @@ std::shared_ptr<const DensityField> parse_cloud(const json& j, const JsonSchema&
 // grid points (Max's cloud as a voxel volume).
 std::shared_ptr<const DensityField> parse_grid(const json& j, const JsonSchema& s, const std::string& path,
                                                const std::string& base_dir) {
-  s.check_fields(j, path, {"type", "grid", "grid_file", "array", "sample", "dims"});
+  s.check_fields(j, path, {"type", "grid", "grid_file", "array", "sample", "dims", "interpolation"});
+  GridInterpolation interp = GridInterpolation::trilinear;
+  if (const json* ip = s.optional(j, "interpolation")) {
+    const std::string ipath = member_path(path, "interpolation");
+    const std::string name = s.non_empty_string(*ip, ipath);
+    if (name == "kuhn") interp = GridInterpolation::kuhn;
+    else if (name != "trilinear") s.fail(ipath, "must be \"trilinear\" or \"kuhn\", got " + json_source::quoted(name));
+  }
   const json* g = s.optional(j, "grid");
   const json* f = s.optional(j, "grid_file");
   const json* sm = s.optional(j, "sample");
   if ((g != nullptr) + (f != nullptr) + (sm != nullptr) != 1)
     s.fail(path, "give exactly one of grid, grid_file or sample");
-  if (g != nullptr) return std::make_shared<GridField>(parse_voxel_grid(*g, s, member_path(path, "grid"), base_dir));
+  if (g != nullptr) return std::make_shared<GridField>(parse_voxel_grid(*g, s, member_path(path, "grid"), base_dir), interp);
   if (f != nullptr) {
     const std::string file = resolve(base_dir, s.non_empty_string(*f, member_path(path, "grid_file")));
     const json* a = s.optional(j, "array");
     return std::make_shared<GridField>(
-        read_voxel_grid_file(file, a != nullptr ? s.non_empty_string(*a, member_path(path, "array")) : ""));
+        read_voxel_grid_file(file, a != nullptr ? s.non_empty_string(*a, member_path(path, "array")) : ""), interp);
   }
   if (s.optional(j, "array") != nullptr) s.fail(member_path(path, "array"), "only with \"grid_file\"");
   const json& dims = s.required(j, path, "dims");
@@ -144,7 +151,7 @@ std::shared_ptr<const DensityField> parse_grid(const json& j, const JsonSchema& 
     if (t.name == type && t.name != "grid") inner = t.parse(*sm, s, spath, base_dir);
   if (!inner) s.fail(member_path(spath, "type"), "must be a medium type other than grid, got " + json_source::quoted(type));
   if (!inner->bounds().finite()) s.fail(spath, "a sampled medium must be bounded (not a slab)");
-  return std::make_shared<GridField>(sample_to_grid(*inner, d));
+  return std::make_shared<GridField>(sample_to_grid(*inner, d), interp);
 }
 
 std::array<PiecewiseLinear, kChannels> albedo_channels(const json& j, const JsonSchema& s, const std::string& path) {
@@ -320,7 +327,7 @@ Scene parse_scene(const json& root, const std::string& source, const std::string
       const std::string text = s.non_empty_string(item.value(), p);
       try {
         const MethodSpec spec = parse_effect_method(*find_effect(item.key()), text);
-        if (spec.name == "exact" && !field->piecewise_linear())
+        if (spec.name == "exact" && !exact_along_rays(*field))
           throw std::invalid_argument("method exact needs a medium that is piecewise linear along rays "
                                       "(homogeneous or grid), not " + field->kind());
         if (spec.name == "two_pass" && !field->bounds().finite())

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "rayint/scene/grid_field.hpp"
+
 namespace rayint {
 
 namespace {
@@ -25,6 +27,9 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
   j["scene"] = scene.name;
   j["source"] = scene.source;
   j["medium"] = scene.medium.field().kind();
+  // A voxel grid's interpolant (scene/grid_field.hpp): "trilinear" (default) or "kuhn".
+  if (const auto* grid = dynamic_cast<const GridField*>(&scene.medium.field()))
+    j["interpolation"] = interpolation_name(grid->interpolation());
   j["effects_named"] = scene.effects;
   j["width"] = r.image.width;
   j["height"] = r.image.height;

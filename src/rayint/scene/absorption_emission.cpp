@@ -2,14 +2,22 @@
 
 #include <stdexcept>
 
+#include "rayint/grid/trilinear_integral.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/model/pieces.hpp"
+#include "rayint/reference/poly_reference.hpp"
 #include "rayint/reference/reference.hpp"
+#include "rayint/scene/grid_field.hpp"
 #include "rayint/scene/term_references.hpp"
 #include "rayint/media/riemann_march.hpp"
 
 namespace rayint {
 namespace {
+
+const VoxelGrid* trilinear_grid(const DensityField& field) {
+  const auto* g = dynamic_cast<const GridField*>(&field);
+  return g != nullptr && g->interpolation() == GridInterpolation::trilinear ? &g->grid() : nullptr;
+}
 
 // Shared by both terms: method exact (integrators/exact, refused unless the medium is piecewise
 // linear along rays) or riemann:n, on the emission-absorption transfer functions.
@@ -18,13 +26,15 @@ class ExactOrRiemannEffect : public Effect {
   ExactOrRiemannEffect(const EffectContext& ctx, const char* effect, bool emission)
       : scene_(ctx.scene), spec_(ctx.method), name_(effect),
         tf_(ctx.scene.medium.transfer().emission_absorption(emission)) {
-    if (ctx.method.name == "exact" && !ctx.scene.medium.field().piecewise_linear())
+    if (ctx.method.name == "exact" && !exact_along_rays(ctx.scene.medium.field()))
       throw std::invalid_argument(std::string(effect) +
                                   ": method exact needs a medium that is piecewise "
                                   "linear along rays (homogeneous or grid), not " +
                                   ctx.scene.medium.field().kind() + "; use riemann:n=N");
     exact_ = spec_.name == "exact";
-    if (exact_) integrator_ = std::make_unique<ExactIntegrator>(tf_);
+    trilinear_ = trilinear_grid(ctx.scene.medium.field());
+    if (exact_ && trilinear_ != nullptr) trilinear_integrator_ = std::make_unique<TrilinearIntegrator>(tf_);
+    else if (exact_) integrator_ = std::make_unique<ExactIntegrator>(tf_);
     else n_ = riemann_samples(spec_);
   }
   std::string name() const override { return name_; }
@@ -38,6 +48,9 @@ class ExactOrRiemannEffect : public Effect {
   bool exact_ = false;
   int n_ = 0;
   std::unique_ptr<ExactIntegrator> integrator_;
+  // A trilinear voxel grid: exact is grid/trilinear_integral, the reference reference_poly_ray.
+  const VoxelGrid* trilinear_ = nullptr;
+  std::unique_ptr<TrilinearIntegrator> trilinear_integrator_;
 };
 
 class AbsorptionEffect final : public ExactOrRiemannEffect {
@@ -48,7 +61,11 @@ class AbsorptionEffect final : public ExactOrRiemannEffect {
   Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
     ++work.rays;
     Rgb T;
-    if (exact_) {
+    if (exact_ && trilinear_ != nullptr) {
+      const TrilinearRayResult r = trilinear_integrator_->integrate(*trilinear_, pr.ray, Rgb{});
+      work.samples += r.pieces;
+      T = r.transmittance;
+    } else if (exact_) {
       const Ray ray = scene_.medium.field().linear_segments(pr.ray, Rgb{});
       work.samples += static_cast<long long>(ray.segments.size());
       T = integrator_->integrate(ray, nullptr).transmittance;
@@ -60,8 +77,10 @@ class AbsorptionEffect final : public ExactOrRiemannEffect {
 
   ReferenceValue reference(const PixelRay& pr) const override {
     ReferenceValue r;
-    if (scene_.medium.field().piecewise_linear()) {
-      const ReferenceRay ref = reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
+    if (trilinear_ != nullptr || scene_.medium.field().piecewise_linear()) {
+      const ReferenceRay ref = trilinear_ != nullptr
+                                   ? reference_poly_ray(tf_, trilinear_ray(*trilinear_, pr.ray, Rgb{}))
+                                   : reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
       for (int c = 0; c < kChannels; ++c) {
         r.value[c] = ref.transmittance[c].hi;
         r.error_estimate[c] = 1e-30;  // 50-digit arithmetic
@@ -85,6 +104,12 @@ class EmissionEffect final : public ExactOrRiemannEffect {
 
   Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
     ++work.rays;
+    if (exact_ && trilinear_ != nullptr) {
+      if (!absorption_) return trilinear_integrator_->emission_only(*trilinear_, pr.ray);
+      const TrilinearRayResult r = trilinear_integrator_->integrate(*trilinear_, pr.ray, Rgb{});
+      work.samples += r.pieces;
+      return r.intensity;
+    }
     if (exact_) {
       const Ray ray = scene_.medium.field().linear_segments(pr.ray, Rgb{});
       work.samples += static_cast<long long>(ray.segments.size());
@@ -98,9 +123,11 @@ class EmissionEffect final : public ExactOrRiemannEffect {
   }
 
   ReferenceValue reference(const PixelRay& pr) const override {
-    if (absorption_ && scene_.medium.field().piecewise_linear()) {
+    if (absorption_ && (trilinear_ != nullptr || scene_.medium.field().piecewise_linear())) {
       ReferenceValue r;
-      const ReferenceRay ref = reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
+      const ReferenceRay ref = trilinear_ != nullptr
+                                   ? reference_poly_ray(tf_, trilinear_ray(*trilinear_, pr.ray, Rgb{}))
+                                   : reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
       for (int c = 0; c < kChannels; ++c) {
         r.value[c] = ref.intensity[c].hi;
         r.error_estimate[c] = ref.error_bound[c];

@@ -5,16 +5,28 @@
 
 namespace rayint {
 
-GridField::GridField(VoxelGrid grid) : grid_(std::move(grid)) {
+const char* interpolation_name(GridInterpolation i) {
+  return i == GridInterpolation::trilinear ? "trilinear" : "kuhn";
+}
+
+GridField::GridField(VoxelGrid grid, GridInterpolation interpolation)
+    : grid_(std::move(grid)), interpolation_(interpolation) {
   for (double v : grid_.values()) max_ = std::max(max_, v);
 }
 
 double GridField::density(const Vec3& p) const {
-  return bounds().contains(p) ? grid_.kuhn_value(p) : 0.0;
+  if (!bounds().contains(p)) return 0.0;
+  return interpolation_ == GridInterpolation::trilinear ? grid_.sample(p) : grid_.kuhn_value(p);
 }
 
 Ray GridField::linear_segments(const ViewRay& ray, const Rgb& background) const {
+  if (interpolation_ != GridInterpolation::kuhn)
+    throw std::logic_error("GridField::linear_segments: the trilinear grid is not piecewise linear");
   return ray_segments(grid_, ray, background);
+}
+
+bool exact_along_rays(const DensityField& field) {
+  return field.piecewise_linear() || dynamic_cast<const GridField*>(&field) != nullptr;
 }
 
 VoxelGrid sample_to_grid(const DensityField& field, std::array<int, 3> dims) {

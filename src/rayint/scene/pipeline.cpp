@@ -8,6 +8,7 @@
 
 #include "rayint/core/cpu_clock.hpp"
 #include "rayint/core/parallel.hpp"
+#include "rayint/scene/grid_field.hpp"
 
 namespace rayint {
 namespace {
@@ -71,7 +72,7 @@ MethodSpec effective_method(const Scene& scene, const EffectInfo& effect) {
   const auto it = scene.methods.find(effect.name);
   if (it != scene.methods.end()) return it->second;
   if (effect.name == "absorption" || effect.name == "emission")
-    return parse_effect_method(effect, scene.medium.field().piecewise_linear() ? "exact" : "riemann:n=128");
+    return parse_effect_method(effect, exact_along_rays(scene.medium.field()) ? "exact" : "riemann:n=128");
   if (effect.name == "shadows") {
     MethodSpec s = parse_effect_method(effect, "shadow_rays");
     const auto ss = scene.methods.find("single_scattering");

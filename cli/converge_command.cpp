@@ -1,0 +1,198 @@
+// `rayint converge SCENE.json --steps 0.2,0.1,0.05 (--methods riemann | --command TEMPLATE)`:
+// a candidate renderer at a sequence of sample distances against the scene's exact image
+// (method exact: trilinear grids through grid/trilinear_integral.hpp), the per-pixel error
+// (median, p95, max over pixels of the largest channel error) against the step, the observed
+// order of convergence, and whether the image is invariant to the step (studies/convergence.hpp).
+// --expect-order P [--order-tolerance D]: exit 1 when the observed order is below P - D or any
+// step failed (the JSON is written first). A command's template: {step} and {out} (a .pfm path
+// rayint reads, or the extension given by --out-ext) are replaced; it must write a float image
+// of the scene's camera size.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+#include <sstream>
+
+#include "commands.hpp"
+#include "options.hpp"
+#include "rayint/core/error.hpp"
+#include "rayint/input/scene_reader.hpp"
+#include "rayint/render/float_image.hpp"
+#include "rayint/report/convergence_json.hpp"
+#include "rayint/scene/effect.hpp"
+#include "rayint/scene/grid_field.hpp"
+#include "rayint/scene/pipeline.hpp"
+#include "rayint/studies/convergence.hpp"
+
+namespace rayint::cli {
+
+namespace {
+
+Image render(const Scene& scene, unsigned threads) {
+  ScenePipeline pipeline(scene, threads);
+  SceneRenderOptions ro;
+  ro.threads = threads;
+  return pipeline.render(ro).image;
+}
+
+std::string replace_all(std::string s, const std::string& key, const std::string& value) {
+  for (std::size_t p = s.find(key); p != std::string::npos; p = s.find(key, p + value.size()))
+    s.replace(p, key.size(), value);
+  return s;
+}
+
+std::string step_text(double h) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", h);
+  return buf;
+}
+
+// Largest channel difference per pixel.
+std::vector<double> pixel_differences(const Image& a, const Image& b) {
+  std::vector<double> d;
+  d.reserve(a.pixels.size());
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    double m = 0.0;
+    for (int c = 0; c < kChannels; ++c) {
+      const double x = std::abs(a.pixels[i][static_cast<std::size_t>(c)] - b.pixels[i][static_cast<std::size_t>(c)]);
+      m = std::isnan(x) ? x : std::max(m, x);
+    }
+    d.push_back(m);
+  }
+  return d;
+}
+
+}  // namespace
+
+void set_converge_command(CLI::App& app) {
+  struct Options {
+    std::string input, output, methods, command, metric = "median", out_ext = ".pfm";
+    std::vector<double> steps;
+    double expect_order = std::nan(""), order_tolerance = 0.2, invariance_tolerance = 1e-6;
+    unsigned threads = 0;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("converge", "Error of a renderer against the exact image as its sample distance shrinks");
+  cmd->add_option("scene", opt->input, "scene JSON (its camera and medium)")->required();
+  cmd->add_option("--steps", opt->steps, "sample distances (world units), e.g. 0.4,0.2,0.1,0.05")
+      ->required()->delimiter(',');
+  cmd->add_option("--methods", opt->methods, "rayint's own method: riemann (n = ceil(box diagonal / step))");
+  cmd->add_option("--command", opt->command, "an external renderer: a shell command with {step} and {out}");
+  cmd->add_option("--out-ext", opt->out_ext, "extension of {out} (.pfm, .exr, .npy)");
+  cmd->add_option("--metric", opt->metric, "statistic the order is gated on: median, p95, max")
+      ->check(CLI::IsMember({"median", "p95", "max"}));
+  cmd->add_option("--expect-order", opt->expect_order, "exit 1 when the observed order is below this minus the tolerance");
+  cmd->add_option("--order-tolerance", opt->order_tolerance, "allowed shortfall of the order (default 0.2)");
+  cmd->add_option("--invariance-tolerance", opt->invariance_tolerance,
+                  "images within this fraction of the exact peak of the finest are 'invariant to the step'");
+  cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
+  cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
+  cmd->callback([opt] {
+    if (opt->methods.empty() == opt->command.empty())
+      throw InputError("--methods/--command: give exactly one candidate (--methods riemann or --command TEMPLATE)");
+    if (!opt->methods.empty() && opt->methods != "riemann")
+      throw InputError("--methods " + opt->methods + ": converge drives riemann (its step is the parameter)");
+    if (opt->steps.size() < 2) throw InputError("--steps: give at least 2 sample distances");
+    for (double h : opt->steps)
+      if (!(std::isfinite(h) && h > 0.0)) throw InputError("--steps: " + step_text(h) + " is not a distance > 0");
+    std::vector<double> steps = opt->steps;
+    std::sort(steps.begin(), steps.end(), std::greater<double>());
+    if (std::adjacent_find(steps.begin(), steps.end()) != steps.end()) throw InputError("--steps: repeated step");
+    if (!opt->command.empty() && opt->command.find("{out}") == std::string::npos)
+      throw InputError("--command: the template must contain {out} (where the image is written)");
+    if (std::isfinite(opt->expect_order) && !(opt->order_tolerance >= 0.0))
+      throw InputError("--order-tolerance: must be >= 0");
+
+    const Scene scene = read_scene_file(opt->input);
+    if (!exact_along_rays(scene.medium.field()))
+      throw InputError(opt->input + ": medium: converge needs the exact image (a grid or homogeneous medium), not " +
+                       scene.medium.field().kind());
+    Image exact;
+    try {
+      exact = render(scene, opt->threads);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(opt->input + ": (root): " + e.what());
+    }
+    ConvergenceResult result;
+    for (const Rgb& p : exact.pixels)
+      for (double v : p) result.peak = std::max(result.peak, std::abs(v));
+    // Below this the exact image's own rounding (~1e-15 relative, tests [trilinear]) and the
+    // float32 of a candidate file can dominate: not fitted.
+    result.floor = 1e-12 * result.peak;
+    result.metric = opt->metric;
+    result.invariance_tolerance = opt->invariance_tolerance;
+    if (std::isfinite(opt->expect_order)) {
+      result.has_expectation = true;
+      result.expected_order = opt->expect_order;
+      result.order_tolerance = opt->order_tolerance;
+    }
+    const double diagonal = (scene.medium.bounds().upper - scene.medium.bounds().lower).norm();
+    const std::filesystem::path tmp =
+        std::filesystem::temp_directory_path() / ("rayint-converge-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(tmp);
+    std::vector<Image> images;
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      ConvergenceRow row;
+      row.step = steps[i];
+      Image img;
+      if (!opt->methods.empty()) {
+        if (!std::isfinite(diagonal)) throw InputError(opt->input + ": medium: unbounded; riemann has no span to step");
+        const double n = std::ceil(diagonal / steps[i]);
+        if (n > 1e8) throw InputError("--steps: " + step_text(steps[i]) + " needs more than 1e8 samples per ray");
+        Scene s = scene;
+        const std::string spec = "riemann:n=" + std::to_string(static_cast<long long>(n));
+        for (const std::string& effect : {std::string("absorption"), std::string("emission")})
+          if (s.has(effect)) s.methods[effect] = parse_effect_method(*find_effect(effect), spec);
+        row.candidate = spec;
+        img = render(s, opt->threads);
+      } else {
+        const std::string out = (tmp / ("step-" + std::to_string(i) + opt->out_ext)).string();
+        const std::string command =
+            replace_all(replace_all(opt->command, "{step}", step_text(steps[i])), "{out}", out);
+        row.candidate = command;
+        const int status = std::system(command.c_str());
+        if (status != 0) {
+          row.failed = true;
+          row.failure = "command exited with status " + std::to_string(status);
+        } else {
+          try {
+            img = read_image(out);
+            if (img.width != exact.width || img.height != exact.height) {
+              row.failed = true;
+              row.failure = out + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                            " image, the scene's camera is " + std::to_string(exact.width) + "x" +
+                            std::to_string(exact.height);
+            }
+          } catch (const std::exception& e) {
+            row.failed = true;
+            row.failure = e.what();
+          }
+        }
+      }
+      if (!row.failed) {
+        row.error = pixel_error_stats(pixel_differences(img, exact));
+        if (!std::isfinite(row.error.max)) {
+          row.failed = true;
+          row.failure = "the image holds a NaN or infinite value";
+        }
+      }
+      images.push_back(row.failed ? Image{} : img);
+      result.rows.push_back(row);
+    }
+    std::filesystem::remove_all(tmp);
+    const Image& finest = images.back();
+    for (std::size_t i = 0; i < images.size(); ++i)
+      if (!result.rows[i].failed && !result.rows.back().failed) {
+        const std::vector<double> d = pixel_differences(images[i], finest);
+        result.rows[i].change_from_finest = d.empty() ? 0.0 : *std::max_element(d.begin(), d.end());
+      }
+    conclude(result);
+    emit(convergence_json(result).dump(2) + "\n", opt->output);
+    if (!result.passed) throw ChecksFailed{};
+  });
+}
+
+}  // namespace rayint::cli

@@ -1,0 +1,53 @@
+#include "rayint/report/convergence_json.hpp"
+
+#include <cmath>
+
+namespace rayint {
+
+namespace {
+
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json fit_json(const OrderFit& f, const ConvergenceResult& r) {
+  nlohmann::json j;
+  j["order"] = f.ok ? number(f.order) : nlohmann::json(nullptr);
+  if (!f.ok) j["reason"] = f.reason;
+  if (f.ok) j["steps_used"] = {r.rows[f.first].step, r.rows[f.last].step};
+  nlohmann::json local = nlohmann::json::array();
+  for (double x : f.local_orders) local.push_back(number(x));
+  j["local_orders"] = local;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json convergence_json(const ConvergenceResult& r) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ConvergenceRow& row : r.rows) {
+    nlohmann::json j{{"step", row.step}, {"candidate", row.candidate}, {"failed", row.failed}};
+    if (row.failed) {
+      j["failure"] = row.failure;
+      j["median"] = j["p95"] = j["max"] = j["change_from_finest"] = nullptr;
+    } else {
+      j["median"] = number(row.error.median);
+      j["p95"] = number(row.error.p95);
+      j["max"] = number(row.error.max);
+      j["change_from_finest"] = number(row.change_from_finest);
+    }
+    rows.push_back(j);
+  }
+  nlohmann::json out{{"rows", rows},
+                     {"exact_peak", number(r.peak)},
+                     {"error_floor", number(r.floor)},
+                     {"fits", {{"median", fit_json(r.median_fit, r)}, {"p95", fit_json(r.p95_fit, r)},
+                               {"max", fit_json(r.max_fit, r)}}},
+                     {"metric", r.metric},
+                     {"invariant_to_step", r.invariant},
+                     {"invariance_tolerance", r.invariance_tolerance},
+                     {"passed", r.passed}};
+  if (r.has_expectation)
+    out["expectation"] = {{"order", r.expected_order}, {"tolerance", r.order_tolerance}};
+  return out;
+}
+
+}  // namespace rayint
