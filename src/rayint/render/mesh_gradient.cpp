@@ -18,7 +18,8 @@ namespace {
 // Calls sink.scalar(index, Rgb) and sink.position(point, std::array<Rgb, 3>) for every
 // contribution of the ray's segment ends; returns how many ends lie on an edge or vertex.
 template <class Sink>
-long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const RayGradient& g, Sink& sink) {
+long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const RayGradient& g, Sink& sink,
+                 bool positions = true) {
   const TetMesh& mesh = traversal.mesh();
   const bool on_cells = !mesh.cell_scalars.empty();
   const std::size_t n = trace.crossings.size();
@@ -47,6 +48,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
           sink.scalar(tet[k], d);
         }
       }
+      if (!positions) continue;
       // Positions: the face the end lies on (the smallest lambda), or none (the eye inside).
       std::array<std::size_t, 4> order{0, 1, 2, 3};
       std::sort(order.begin(), order.end(),
@@ -163,7 +165,7 @@ PixelJacobian pixel_jacobian(const TetTraversal& mesh, const TransferFunctions& 
 }
 
 LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, const Image& target,
-                                 unsigned threads) {
+                                 unsigned threads, bool positions) {
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: required for an image loss");
   if (mc.shading.enabled)
     throw std::invalid_argument(mc.source + ": shading: a shaded render is not differentiated");
@@ -190,7 +192,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
   std::vector<Part> parts(workers);
   for (Part& p : parts) {
     p.d_scalar.assign(n_scalar, 0.0);
-    p.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
+    if (positions) p.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
   }
   parallel_for(cam.height, threads, [&](long long row, unsigned id) {
     Part& p = parts[id];
@@ -214,15 +216,15 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
       }
       sink.d_scalar = &p.d_scalar;
       sink.d_position = &p.d_position;
-      p.on_edges += chain_trace(mesh, p.trace, p.grad, sink);
+      p.on_edges += chain_trace(mesh, p.trace, p.grad, sink, positions);
     }
   });
   out.d_scalar.assign(n_scalar, 0.0);
-  out.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
+  if (positions) out.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
   // Summed in worker order; which rows a worker took varies, so the last bits may vary run to run.
   for (const Part& p : parts) {
     for (std::size_t i = 0; i < n_scalar; ++i) out.d_scalar[i] += p.d_scalar[i];
-    for (std::size_t i = 0; i < m.points.size(); ++i)
+    for (std::size_t i = 0; i < out.d_position.size(); ++i)
       for (std::size_t a = 0; a < 3; ++a) out.d_position[i][a] += p.d_position[i][a];
     out.loss += p.loss;
     out.ends_on_edges += p.on_edges;

@@ -72,13 +72,14 @@ struct LossGradient {
   double loss = 0.0;
   bool cell_scalars = false;
   std::vector<double> d_scalar;                // dloss / d scalar, per point (or per tet)
-  std::vector<std::array<double, 3>> d_position;  // dloss / d position, per point
-  long ends_on_edges = 0;                      // summed over pixels (positions undefined there)
+  std::vector<std::array<double, 3>> d_position;  // dloss / d position, per point (empty: not asked)
+  long ends_on_edges = 0;                      // summed over pixels (positions undefined there; 0
+                                               // when positions are not asked for)
   long pixels_failed = 0;                      // pixels whose intensity or gradient is not finite
 };
 // `target` must have the camera's size (std::invalid_argument otherwise); mesh_case.camera must be
-// set and its shading off.
+// set and its shading off. positions = false skips the position gradient (cheaper).
 LossGradient image_loss_gradient(const MeshCase& mesh_case, const TetTraversal& mesh,
-                                 const Image& target, unsigned threads = 0);
+                                 const Image& target, unsigned threads = 0, bool positions = true);
 
 }  // namespace rayint
