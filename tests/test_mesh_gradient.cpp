@@ -305,4 +305,10 @@ TEST_CASE("mesh gradient: image loss against differences of the 50-digit loss", 
        << ", pixels with an end on an edge: " << lg.ends_on_edges);
   CHECK(lg.ends_on_edges == 0);
   CHECK(worst <= kPositionTol);
+  // Without positions: the same scalar gradient (summation order aside), no position array.
+  const LossGradient scalars_only = image_loss_gradient(mc, t, target, 2, false);
+  REQUIRE(scalars_only.d_scalar.size() == lg.d_scalar.size());
+  CHECK(scalars_only.d_position.empty());
+  for (std::size_t i = 0; i < lg.d_scalar.size(); ++i)
+    CHECK(std::fabs(scalars_only.d_scalar[i] - lg.d_scalar[i]) <= 1e-14 * scale);
 }
