@@ -168,3 +168,23 @@ TEST_CASE("render --loss-target --grad-out: the loss gradient as NPY, zero at it
   CHECK(r.err.find("t.png: --loss-target: a float image is needed") != std::string::npos);
   CHECK(bad.entries() == std::set<std::string>{"t.png"});
 }
+
+TEST_CASE("grad: a transfer function from a ParaView preset names where its nodes come from", "[grad][grad_cli]") {
+  TempDir dir;
+  dir.write("preset.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));  // "Cool to Warm"
+  dir.write("case.json", R"({"name": "preset-grad", "transfer_function": {"paraview_preset": "preset.json",
+    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
+    {"length": 0.7, "scalar": [0.1, 0.9]}, {"length": 0.4, "scalar": [0.9, 0.3]}]}]})");
+  const auto r = run_cli(dir.path, "grad case.json --no-reference -o g.json");
+  REQUIRE(r.status == 0);
+  const json j = json::parse(slurp(dir.path / "g.json"));
+  const json& c = j["cases"][0];
+  REQUIRE(c.contains("transfer_function_nodes"));
+  CHECK(c["transfer_function_nodes"]["imported_from"] == "ParaView preset \"Cool to Warm\" of preset.json");
+  CHECK(c["rays"][0]["methods"]["exact"]["gradient"]["color"]["r"].size() >= 3);  // the imported nodes
+  // A case with its own nodes has no such entry.
+  dir.copy_case("paper-figure-2");
+  const auto r2 = run_cli(dir.path, "grad paper-figure-2.json --no-reference -o g2.json");
+  REQUIRE(r2.status == 0);
+  CHECK_FALSE(json::parse(slurp(dir.path / "g2.json"))["cases"][0].contains("transfer_function_nodes"));
+}
