@@ -97,15 +97,7 @@ Case read_case(const JsonSchema& s, const json& root, StreamedRays* streamed) {
   c.source = s.source();
   c.name = s.non_empty_string(s.required(root, path, "name"), "name");
   if (const json* d = s.optional(root, "description")) c.description = s.string_value(*d, "description");
-  const json& tf_json = s.required(root, path, "transfer_function");
-  c.transfer = s.transfer_functions(tf_json, "transfer_function");
-  if (tf_json.is_object() && tf_json.contains("paraview_preset")) {  // validated by transfer_functions
-    c.transfer_origin = "ParaView preset";
-    if (tf_json.contains("name")) c.transfer_origin += " \"" + tf_json["name"].template get<std::string>() + "\"";
-    if (tf_json.contains("index"))
-      c.transfer_origin += " #" + std::to_string(tf_json["index"].template get<long long>());
-    c.transfer_origin += " of " + tf_json["paraview_preset"].template get<std::string>();
-  }
+  c.transfer = s.transfer_functions(s.required(root, path, "transfer_function"), "transfer_function");
   const json& rays = s.required(root, path, "rays");
   s.non_empty_array(rays, "rays", "");
   c.rays.reserve(rays.size());

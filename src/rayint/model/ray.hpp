@@ -31,10 +31,6 @@ struct Case {
   std::string description;
   std::string source;  // file it was read from, for messages
   TransferFunctions transfer;
-  // Where the transfer function's nodes come from: "" when the case gives them, else a
-  // description such as `ParaView preset "Cool to Warm" of presets.json` (case_reader.cpp). Node
-  // k of a function is then node k of the imported function (`rayint tf import` lists them).
-  std::string transfer_origin;
   std::vector<Ray> rays;
 };
 

@@ -52,7 +52,6 @@ GradCaseResult grad_case(const Case& c, const GradStudyOptions& options) {
   GradCaseResult out;
   out.name = c.name;
   out.source = c.source;
-  out.transfer_origin = c.transfer_origin;
   std::vector<MethodSpec> methods = options.methods;
   if (methods.empty()) methods.push_back(parse_method_spec("exact"));
   for (const Ray& ray : c.rays) {
