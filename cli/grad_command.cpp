@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "rayint/input/case_reader.hpp"
+#include "rayint/input/json_source.hpp"
 #include "rayint/report/grad_json.hpp"
 #include "rayint/studies/grad_study.hpp"
 
@@ -41,6 +42,17 @@ void set_grad_command(CLI::App& app) {
     for (const std::string& f : opt->cases) cases.push_back(read_case_file(f));  // all read first
     std::vector<GradCaseResult> results;
     for (const Case& c : cases) results.push_back(grad_case(c, so));
+    // A transfer function imported from a ParaView preset (already validated by read_case_file):
+    // the node blocks are with respect to the imported nodes; the report names the preset.
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const nlohmann::json root = json_source::parse(json_source::read_text_file(opt->cases[i]), opt->cases[i]);
+      const auto tf = root.find("transfer_function");
+      if (tf == root.end() || !tf->is_object() || !tf->contains("paraview_preset")) continue;
+      std::string origin = "ParaView preset";
+      if (tf->contains("name")) origin += " \"" + (*tf)["name"].get<std::string>() + "\"";
+      if (tf->contains("index")) origin += " #" + std::to_string((*tf)["index"].get<long long>());
+      results[i].transfer_origin = origin + " of " + (*tf)["paraview_preset"].get<std::string>();
+    }
     emit(grad_report_json(results).dump(2), opt->output);
   });
 }

@@ -45,7 +45,20 @@ void set_render_command(CLI::App& app) {
   cmd->add_option("--errors", opts->error_grid,
                   "scenes: measure each term against its reference on K x K pixels (all explicit rays)")
       ->check(CLI::Range(0, 4096));
+  cmd->add_option("--loss-target", opts->loss_target,
+                  "mesh cases: float image (.npy, .pfm, .exr) for the loss sum (I - target)^2; "
+                  "with --grad-out");
+  cmd->add_option("--grad-out", opts->grad_out,
+                  "mesh cases: write d loss / d vertex scalar here (.npy float64, one per point; per tet "
+                  "for cell data); needs --loss-target");
+  cmd->add_option("--grad-positions-out", opts->grad_positions_out,
+                  "mesh cases: with --grad-out, also d loss / d vertex position (.npy, points x 3)");
   cmd->callback([opts] {
+    const bool gradient = !opts->grad_out.empty() || !opts->loss_target.empty() || !opts->grad_positions_out.empty();
+    if (gradient && (opts->grad_out.empty() || opts->loss_target.empty()))
+      throw std::invalid_argument("--grad-out and --loss-target go together (--grad-positions-out needs both)");
+    if (gradient && (!opts->compare.empty() || !opts->shard.empty() || !opts->stats_path.empty() || opts->fit))
+      throw std::invalid_argument("--grad-out: not with --compare, --shard, --stats or --fit");
     // --compare is one method spec, checked before anything is read or rendered.
     if (!opts->compare.empty() && parse_methods_option(opts->compare, "--compare").size() != 1)
       throw std::invalid_argument("--compare " + opts->compare + ": one method, not a list");
@@ -57,10 +70,12 @@ void set_render_command(CLI::App& app) {
       throw InputError(opts->input +
                        ": medium.type: \"slab\" is a plane-parallel slab with detectors, not an "
                        "image; solve it with `rayint slab --scene " + opts->input + "`");
+    if (gradient && root.is_object() && (root.contains("effects") || root.contains("medium")))
+      throw InputError(opts->input + ": --grad-out: gradients are for mesh cases, not scenes");
     if (root.is_object() && (root.contains("effects") || root.contains("medium")))
       render_scene_file(root, *opts);
     else if (root.is_object() && (root.contains("mesh") || root.contains("mesh_file")))
-      render_mesh_file(root, *opts);
+      gradient ? render_mesh_gradient_file(root, *opts) : render_mesh_file(root, *opts);
     else
       throw InputError(opts->input +
                        ": (root): not a renderable file (a scene has \"effects\", a mesh case has "

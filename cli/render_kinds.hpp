@@ -19,11 +19,16 @@ struct RenderOptions {
   int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
   std::string shard;                 // mesh cases: --shard I/N (rows)
   bool fit = false;                  // mesh cases: --fit, frame the mesh (geometry/camera_fit.hpp)
+  std::string loss_target;           // mesh cases: --loss-target, float image of the loss
+  std::string grad_out;              // mesh cases: --grad-out, d loss / d vertex scalar (.npy)
+  std::string grad_positions_out;    // mesh cases: --grad-positions-out, d loss / d position (.npy)
 };
 
 // A slab scene (medium.type "slab"): `rayint slab --scene`, not render or check --candidate-image.
 bool is_slab_scene(const nlohmann::json& root);  // render_command.cpp
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);   // render_mesh.cpp
+// --loss-target with --grad-out: render_mesh_gradient.cpp
+void render_mesh_gradient_file(const nlohmann::json& root, const RenderOptions& options);
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options);  // render_scene.cpp
 
 }  // namespace rayint::cli

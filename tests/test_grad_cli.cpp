@@ -1,9 +1,14 @@
 // `rayint grad` and `rayint gradcheck` (issue 28): the JSON layout, an exact candidate passes,
 // a wrong one fails naming its worst entry, bad input is one line and exit 2.
 #include <nlohmann/json.hpp>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
 
 #include "cli_harness.hpp"
 #include "rayint/input/grad_candidate_reader.hpp"
+#include "rayint/render/float_image.hpp"
 
 using rayint::test::run_cli;
 using rayint::test::slurp;
@@ -110,4 +115,76 @@ TEST_CASE("grad candidate reader: shape mismatches name the field", "[grad]") {
   c.transfer.color[1] = {{0.0, 1.0}, {1.0, 1.0}};
   CHECK_THROWS_WITH(rayint::require_grad_candidate_matches(cand, c),
                     Catch::Contains("c.json: rays[0].gradient.color.g: has 1 nodes"));
+}
+
+TEST_CASE("render --loss-target --grad-out: the loss gradient as NPY, zero at its own image, bad input", "[grad][grad_cli]") {
+  TempDir dir;
+  const std::string mesh_case = "'" RAYINT_SOURCE_DIR "/cases/mesh-linear-field.json'";
+  REQUIRE(run_cli(dir.path, "render " + mesh_case + " -o own.npy -q").status == 0);
+  // Against its own exact render (the batch path; the gradient's forward is exact:path=scalar, equal
+  // to rounding): residuals ~1e-16, so the loss ~1e-30 and the gradient ~1e-15 (against ~40 below).
+  auto r = run_cli(dir.path, "render " + mesh_case + " -o fit.npy --loss-target own.npy --grad-out g.npy "
+                   "--grad-positions-out gp.npy -q");
+  REQUIRE(r.status == 0);
+  const auto loss_of = [](const std::string& err) {
+    const std::string key = "rayint render: loss ";
+    const auto at = err.find(key);
+    return at == std::string::npos ? -1.0 : std::stod(err.substr(at + key.size()));
+  };
+  CHECK(r.err.find(" over 128 x 128 pixels; d loss / d vertex scalar -> g.npy (343 values)") != std::string::npos);
+  CHECK(loss_of(r.err) >= 0.0);
+  CHECK(loss_of(r.err) < 1e-25);
+  const auto values = [](const std::string& npy) {
+    const std::size_t header = 10 + static_cast<unsigned char>(npy[8]) + 256u * static_cast<unsigned char>(npy[9]);
+    std::vector<double> v((npy.size() - header) / 8);
+    std::memcpy(v.data(), npy.data() + header, v.size() * 8);
+    return std::make_pair(npy.substr(10, header - 10), v);
+  };
+  const std::string g = slurp(dir.path / "g.npy");
+  REQUIRE(g.size() > 128);
+  const auto [g_header, g_values] = values(g);
+  CHECK(g_header.find("'shape': (343,)") != std::string::npos);  // one per point
+  REQUIRE(g_values.size() == 343);
+  double g_max = 0.0;
+  for (double v : g_values) g_max = std::max(g_max, std::fabs(v));
+  CHECK(g_max < 1e-10);
+  CHECK(slurp(dir.path / "gp.npy").find("'shape': (343, 3)") != std::string::npos);
+  // A different target: a non-zero loss and gradient (the values are tested in [grad][mesh]).
+  dir.write("grey.npy", rayint::encode_npy(rayint::Image(128, 128, rayint::Rgb{0.5, 0.5, 0.5})));
+  r = run_cli(dir.path, "render " + mesh_case + " -o fit2.npy --loss-target grey.npy --grad-out g2.npy -q");
+  CHECK(r.status == 0);
+  CHECK(loss_of(r.err) > 1.0);
+  double g2_max = 0.0;
+  for (double v : values(slurp(dir.path / "g2.npy")).second) g2_max = std::max(g2_max, std::fabs(v));
+  CHECK(g2_max > 1.0);
+  // Bad input: one line, exit 2, nothing written.
+  TempDir bad;
+  r = run_cli(bad.path, "render " + mesh_case + " -o x.npy --grad-out g.npy");
+  CHECK(r.status == 2);
+  CHECK(r.err == "rayint: error: --grad-out and --loss-target go together (--grad-positions-out needs both)\n");
+  bad.write("t.png", "not read");
+  r = run_cli(bad.path, "render " + mesh_case + " -o x.npy --loss-target t.png --grad-out g.npy");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("t.png: --loss-target: a float image is needed") != std::string::npos);
+  CHECK(bad.entries() == std::set<std::string>{"t.png"});
+}
+
+TEST_CASE("grad: a transfer function from a ParaView preset names where its nodes come from", "[grad][grad_cli]") {
+  TempDir dir;
+  dir.write("preset.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));  // "Cool to Warm"
+  dir.write("case.json", R"({"name": "preset-grad", "transfer_function": {"paraview_preset": "preset.json",
+    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
+    {"length": 0.7, "scalar": [0.1, 0.9]}, {"length": 0.4, "scalar": [0.9, 0.3]}]}]})");
+  const auto r = run_cli(dir.path, "grad case.json --no-reference -o g.json");
+  REQUIRE(r.status == 0);
+  const json j = json::parse(slurp(dir.path / "g.json"));
+  const json& c = j["cases"][0];
+  REQUIRE(c.contains("transfer_function_nodes"));
+  CHECK(c["transfer_function_nodes"]["imported_from"] == "ParaView preset \"Cool to Warm\" of preset.json");
+  CHECK(c["rays"][0]["methods"]["exact"]["gradient"]["color"]["r"].size() >= 3);  // the imported nodes
+  // A case with its own nodes has no such entry.
+  dir.copy_case("paper-figure-2");
+  const auto r2 = run_cli(dir.path, "grad paper-figure-2.json --no-reference -o g2.json");
+  REQUIRE(r2.status == 0);
+  CHECK_FALSE(json::parse(slurp(dir.path / "g2.json"))["cases"][0].contains("transfer_function_nodes"));
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Gradient error of Riemann renderers vs step count, from `rayint grad` JSON.
+"""Gradient error of Riemann renderers vs step count and of psi_table vs table size, from `rayint grad` JSON.
 
 Usage (from the repository root; the commands that made the files in this folder are in
 reports/gradients/README.md):
@@ -41,7 +41,7 @@ def main(path, outdir):
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig, (ax, ax_t) = plt.subplots(1, 2, figsize=(12.0, 4.2))
     series = {}
     for c, r, label, g, i in rows:
         mm = re.match(r"riemann:n=(\d+)$", label)
@@ -60,6 +60,24 @@ def main(path, outdir):
     ax.set_title("What a Riemann renderer's gradient costs in accuracy")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6)
+
+    # psi_table (bilinear lookup): gradient error vs table size.
+    tables = {}
+    for c, r, label, g, i in rows:
+        mm = re.match(r"psi_table:size=(\d+)$", label)
+        if mm and g is not None:
+            tables.setdefault((c, r), []).append((int(mm.group(1)), g, i))
+    for (c, r), pts in sorted(tables.items()):
+        pts.sort()
+        ns = [p[0] for p in pts]
+        line, = ax_t.loglog(ns, [p[1] for p in pts], "o-", label=f"{c} ray {r}: gradient")
+        ax_t.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
+                    label=f"{c} ray {r}: intensity")
+    ax_t.set_xlabel("psi_table size (lookup=linear)")
+    ax_t.set_ylabel("max relative error vs 50-digit reference")
+    ax_t.set_title("... and a table's (derivative of the bilinear table)")
+    ax_t.grid(True, which="both", alpha=0.3)
+    ax_t.legend(fontsize=6)
     fig.tight_layout()
     fig.savefig(f"{outdir}/gradient_error_vs_n.png", dpi=120)
 

@@ -2,6 +2,7 @@
 //
 // Every function calls the library code the CLI calls, so the numbers are the CLI's bit for bit:
 //   _exact_pieces   integrators/exact_batch (exact_piece in a loop), GIL released;
+//   _exact_grad, _exact_ray_grad  integrators/exact_grad (a piece's / a ray's exact gradient);
 //   _evaluate       studies/evaluate_case + report/eval_report_json (`rayint eval`);
 //   _reference      studies/reference_rays + report/to_json(ReferenceRay);
 //   _check          studies/check_candidate + report/check_report_json (`rayint check`);
@@ -163,6 +164,76 @@ py::tuple exact_grad(const Array& rho_exit, const Array& rho_far, const Array& k
   py::tuple t(kOut);
   for (int k = 0; k < kOut; ++k) t[static_cast<std::size_t>(k)] = out[static_cast<std::size_t>(k)];
   return t;
+}
+
+// One ray's exact gradient (integrators/exact_grad.hpp, exact_ray_gradient): segments far ->
+// near as arrays, the background, and the six functions (density r, g, b, color r, g, b) as
+// (positions, values) pairs. Returns (intensity (3,), background (3,), length (n, 3),
+// scalar_far (n, 3), scalar_exit (n, 3), [six (k, 2) arrays of d/d position, d/d value]).
+py::tuple exact_ray_grad(const Array& length, const Array& scalar_far, const Array& scalar_exit,
+                         const Array& background, const std::vector<std::pair<Array, Array>>& functions) {
+  const std::size_t n = static_cast<std::size_t>(length.size());
+  if (static_cast<std::size_t>(scalar_far.size()) != n || static_cast<std::size_t>(scalar_exit.size()) != n)
+    throw std::invalid_argument("exact_ray_grad: length, scalar_far and scalar_exit must have the same size");
+  if (background.size() != 3) throw std::invalid_argument("exact_ray_grad: background must have 3 entries");
+  if (functions.size() != 6)
+    throw std::invalid_argument("exact_ray_grad: six functions (density r, g, b, color r, g, b)");
+  rayint::Ray ray;
+  for (int c = 0; c < 3; ++c) ray.background[static_cast<std::size_t>(c)] = background.data()[c];
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!(std::isfinite(length.data()[j]) && length.data()[j] >= 0.0))
+      bad_value("exact_ray_grad", "length", j, "must be finite and >= 0", length.data()[j]);
+    ray.segments.push_back({length.data()[j], scalar_far.data()[j], scalar_exit.data()[j]});
+  }
+  rayint::TransferFunctions tf;
+  const char* names[6] = {"density r", "density g", "density b", "color r", "color g", "color b"};
+  for (std::size_t f = 0; f < 6; ++f) {
+    const auto& [pos, val] = functions[f];
+    if (pos.size() != val.size() || pos.size() < 1)
+      throw std::invalid_argument(std::string("exact_ray_grad: ") + names[f] +
+                                  ": positions and values must have the same size, at least 1");
+    rayint::PiecewiseLinear pl;
+    for (py::ssize_t k = 0; k < pos.size(); ++k) {
+      const double p = pos.data()[k], v = val.data()[k];
+      if (!std::isfinite(p) || (k > 0 && !(p > pl.scalar.back())))
+        throw std::invalid_argument(std::string("exact_ray_grad: ") + names[f] +
+                                    ": positions must be finite and strictly increasing");
+      if (!(std::isfinite(v) && v >= 0.0))
+        throw std::invalid_argument(std::string("exact_ray_grad: ") + names[f] + ": values must be finite and >= 0");
+      pl.scalar.push_back(p);
+      pl.value.push_back(v);
+    }
+    (f < 3 ? tf.density : tf.color)[f % 3] = pl;
+  }
+  rayint::RayGradient g;
+  {
+    py::gil_scoped_release release;
+    rayint::exact_ray_gradient(tf, ray, g);
+  }
+  Array intensity(3), bg(3);
+  Array len_out({static_cast<py::ssize_t>(n), py::ssize_t{3}}), far_out({static_cast<py::ssize_t>(n), py::ssize_t{3}}),
+      exit_out({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  for (int c = 0; c < 3; ++c) {
+    intensity.mutable_data()[c] = g.intensity[static_cast<std::size_t>(c)];
+    bg.mutable_data()[c] = g.background[static_cast<std::size_t>(c)];
+  }
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t c = 0; c < 3; ++c) {
+      len_out.mutable_data()[3 * j + c] = g.length[j][c];
+      far_out.mutable_data()[3 * j + c] = g.scalar_far[j][c];
+      exit_out.mutable_data()[3 * j + c] = g.scalar_exit[j][c];
+    }
+  py::list nodes;
+  for (std::size_t f = 0; f < 6; ++f) {
+    const auto& d = (f < 3 ? g.density : g.color)[f % 3];
+    Array a({static_cast<py::ssize_t>(d.size()), py::ssize_t{2}});
+    for (std::size_t k = 0; k < d.size(); ++k) {
+      a.mutable_data()[2 * k] = d[k].position;
+      a.mutable_data()[2 * k + 1] = d[k].value;
+    }
+    nodes.append(a);
+  }
+  return py::make_tuple(intensity, bg, len_out, far_out, exit_out, nodes);
 }
 
 std::string evaluate(const std::vector<Document>& docs, const std::string& methods_csv,
@@ -354,6 +425,7 @@ PYBIND11_MODULE(_rayint, m) {
       }));
   m.def("_exact_pieces", &exact_pieces);
   m.def("_exact_grad", &exact_grad);
+  m.def("_exact_ray_grad", &exact_ray_grad);
   m.def("_evaluate", &evaluate);
   m.def("_reference", &reference);
   m.def("_check", &check);

@@ -21,7 +21,7 @@ import numpy as np
 from . import _rayint
 from ._rayint import InputError
 
-__all__ = ["InputError", "exact_pieces", "exact_grad", "evaluate", "reference", "check", "integrate",
+__all__ = ["InputError", "exact_pieces", "exact_grad", "exact_ray_grad", "evaluate", "reference", "check", "integrate",
            "method_names", "methods", "nerf_composite", "nerf_deltas", "pl_nerf_composite"]
 
 
@@ -85,6 +85,38 @@ def exact_grad(rho_exit, rho_far, kappa_exit, kappa_far, length):
         "d_transmittance": {"rho_exit": out[7], "rho_far": out[8], "kappa_exit": zeros,
                             "kappa_far": zeros.copy(), "length": out[9]},
     }
+
+
+def _six_functions(density, color):
+    """density, color: one (positions, values) pair for all channels, or a list of three."""
+    out = []
+    for name, f in (("density", density), ("color", color)):
+        if len(f) == 2:  # one (positions, values) pair for r, g and b
+            f = [f, f, f]
+        if len(f) != 3:
+            raise ValueError(f"exact_ray_grad: {name}: one (positions, values) pair or three")
+        for p, v in f:
+            out.append((np.ascontiguousarray(p, dtype=np.float64).reshape(-1),
+                        np.ascontiguousarray(v, dtype=np.float64).reshape(-1)))
+    return out
+
+
+def exact_ray_grad(length, scalar_far, scalar_exit, background, density, color):
+    """One ray's exact intensity and its exact gradient (issue 28; docs/gradients.md).
+
+    Segments far -> near as 1-D arrays (length, scalar_far, scalar_exit), background (3,), and the
+    transfer functions: density and color each one (positions, values) pair for all channels or a
+    list of three (r, g, b). Returns a dict in `rayint grad`'s layout: "intensity" (3,),
+    "background" (3,) = dI_c/dB_c, "length", "scalar_far", "scalar_exit" (n, 3) = dI_c/d(segment
+    input), "density" and "color": lists of three (k, 2) arrays [dI_c/d position, dI_c/d value]
+    for the nodes of channel c's function (a shared function: add the three for a loss of all
+    channels). The C++ exact_ray_gradient (integrators/exact_grad.hpp), GIL released.
+    """
+    arrays = [np.ascontiguousarray(a, dtype=np.float64).reshape(-1) for a in (length, scalar_far, scalar_exit)]
+    bg = np.ascontiguousarray(background, dtype=np.float64).reshape(-1)
+    intensity, d_bg, d_len, d_far, d_exit, nodes = _rayint._exact_ray_grad(*arrays, bg, _six_functions(density, color))
+    return {"intensity": intensity, "background": d_bg, "length": d_len, "scalar_far": d_far,
+            "scalar_exit": d_exit, "density": list(nodes[:3]), "color": list(nodes[3:])}
 
 
 def evaluate(case, methods=None, timing=True, threads=0):

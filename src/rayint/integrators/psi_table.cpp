@@ -142,6 +142,34 @@ PsiTable::Value PsiTable::lookup(double tau_exit_D, double tau_far_D,
           table::bilerp(one_minus_psi_.data(), size_, f, b)};
 }
 
+PsiTable::ValueGrad PsiTable::lookup_grad(double tau_exit_D, double tau_far_D,
+                                         table::Lookup lookup) const {
+  ValueGrad out;
+  out.value = this->lookup(tau_exit_D, tau_far_D, lookup);
+  if (lookup != table::Lookup::linear) return out;  // piecewise constant
+  const double xf = psi_gamma(tau_exit_D) * scale_, xb = psi_gamma(tau_far_D) * scale_;
+  const table::GridCoord f = table::locate(xf, size_, lookup);
+  const table::GridCoord b = table::locate(xb, size_, lookup);
+  const auto n = static_cast<std::size_t>(size_);
+  // d coordinate / d depth: scale / (1 + x)^2 inside the grid, 0 where locate() clamped.
+  const auto dcoord = [this](double x, double coord) {
+    if (!(coord < size_ - 1) || !std::isfinite(x)) return 0.0;
+    const double q = 1.0 + x;
+    return scale_ / (q * q);
+  };
+  const double cf = dcoord(tau_exit_D, xf), cb = dcoord(tau_far_D, xb);
+  for (int which = 0; which < 2; ++which) {
+    const std::vector<double>& v = which == 0 ? psi_ : one_minus_psi_;
+    const std::size_t i00 = static_cast<std::size_t>(f.i) * n + static_cast<std::size_t>(b.i);
+    const double v00 = v[i00], v01 = v[i00 + 1], v10 = v[i00 + n], v11 = v[i00 + n + 1];
+    const double d_row = (1.0 - b.w) * (v10 - v00) + b.w * (v11 - v01);  // per grid unit of gamma_exit
+    const double d_col = (1.0 - f.w) * (v01 - v00) + f.w * (v11 - v10);  // per grid unit of gamma_far
+    (which == 0 ? out.dpsi_dexit : out.domp_dexit) = d_row * cf;
+    (which == 0 ? out.dpsi_dfar : out.domp_dfar) = d_col * cb;
+  }
+  return out;
+}
+
 PsiTableIntegrator::PsiTableIntegrator(const TransferFunctions& tf, int size,
                                        table::Lookup lookup)
     : splitter_(tf),

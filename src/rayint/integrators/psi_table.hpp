@@ -35,6 +35,17 @@ class PsiTable {
   };
   // Interpolated (per `lookup`) at optical depths tau_front D, tau_back D >= 0.
   Value lookup(double tau_exit_D, double tau_far_D, table::Lookup lookup) const;
+  // The lookup and its derivatives with respect to the two depths: what automatic
+  // differentiation through lookup() computes (psi_table_grad.hpp). linear: the bilinear
+  // interpolant's slopes in the cell read (at a grid line, the cell above it), times
+  // d gamma/dx = 1/(1 + x)^2; a coordinate clamped to the table's edge (x = inf) has slope 0;
+  // nearest and floor are piecewise constant: slopes 0.
+  struct ValueGrad {
+    Value value;
+    double dpsi_dexit = 0.0, dpsi_dfar = 0.0;    // d Psi / d x_exit, d x_far
+    double domp_dexit = 0.0, domp_dfar = 0.0;    // d (1 - Psi) / d x_exit, d x_far
+  };
+  ValueGrad lookup_grad(double tau_exit_D, double tau_far_D, table::Lookup lookup) const;
 
  private:
   int size_;

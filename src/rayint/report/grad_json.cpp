@@ -69,7 +69,16 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
       ray["methods"] = methods;
       rays.push_back(ray);
     }
-    out_cases.push_back({{"case", c.name}, {"file", c.source}, {"rays", rays}});
+    ojson entry = {{"case", c.name}, {"file", c.source}};
+    // A transfer function imported from a ParaView preset: the node blocks are with respect to
+    // the imported nodes, and say so.
+    if (!c.transfer_origin.empty())
+      entry["transfer_function_nodes"] = {
+          {"imported_from", c.transfer_origin},
+          {"meaning", "density and color node k are node k of the imported piecewise-linear functions "
+                      "(as `rayint tf import` lists them), not the preset's RGBPoints/Points"}};
+    entry["rays"] = rays;
+    out_cases.push_back(entry);
   }
   return {{"tool", "rayint"},
           {"report", "grad"},

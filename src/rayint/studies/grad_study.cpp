@@ -4,12 +4,14 @@
 #include <stdexcept>
 
 #include "rayint/integrators/exact_grad.hpp"
+#include "rayint/integrators/psi_table_grad.hpp"
 #include "rayint/integrators/riemann_grad.hpp"
 
 namespace rayint {
 
 bool has_gradient(const MethodSpec& spec) {
-  return spec.name == "exact" || spec.name == "riemann" || spec.name == "nerf" || spec.name == "pl_nerf";
+  return spec.name == "exact" || spec.name == "riemann" || spec.name == "nerf" || spec.name == "pl_nerf" ||
+         spec.name == "psi_table";
 }
 
 RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray) {
@@ -22,8 +24,10 @@ RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf,
   if (spec.name == "riemann") return riemann_ray_gradient(tf, ray, riemann_options(spec));
   if (spec.name == "nerf") return nerf_ray_gradient(tf, ray, nerf_options(spec), false);
   if (spec.name == "pl_nerf") return nerf_ray_gradient(tf, ray, pl_nerf_options(spec), true);
+  if (spec.name == "psi_table")
+    return psi_table_ray_gradient(tf, ray, spec.integer("size"), table::parse_lookup(spec));
   throw std::invalid_argument("method " + spec.label() +
-                              ": no gradient (gradients exist for exact, riemann, nerf and pl_nerf)");
+                              ": no gradient (gradients exist for exact, riemann, nerf, pl_nerf and psi_table)");
 }
 
 double gradient_relative_error(const RayGradient& got, const RayGradient& want, int c) {

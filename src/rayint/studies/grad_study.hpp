@@ -46,6 +46,7 @@ struct GradRayResult {
 struct GradCaseResult {
   std::string name;
   std::string source;
+  std::string transfer_origin;  // "" or the ParaView preset the nodes were imported from (set by the CLI)
   std::vector<GradRayResult> rays;
 };
 

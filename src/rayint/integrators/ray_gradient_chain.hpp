@@ -1,0 +1,212 @@
+#pragma once
+// ray_gradient_chain.hpp -- private helper of the ray gradients whose per-piece optics have the
+// form of exact.cpp's (emission and transmittance of a piece on which rho and kappa are linear):
+// exact_grad.cpp (the exact piece) and psi_table_grad.cpp (Psi read from a table). It splits the
+// segments into append_pieces' pieces, composites far -> near and differentiates in reverse,
+// carrying each piece's derivatives (PieceOpticsGrad) to the lengths, end scalars, background and
+// transfer-function nodes. The mathematics and the kink convention: docs/gradients.md, "Through
+// the splitting and the compositing".
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rayint/integrators/exact_grad.hpp"
+#include "rayint/model/ray_gradient.hpp"
+
+namespace rayint::detail {
+
+// A piece of a segment, as append_pieces makes it, with what the chain rule needs.
+struct PieceRecord {
+  std::size_t segment = 0;
+  double s_far = 0.0, s_exit = 0.0;  // scalar at its ends
+  double length = 0.0;
+  double fraction = 1.0;             // length / segment length
+  // Where its ends lie along the segment, 0 at the far end to 1 at the exit: the end scalars
+  // are s_far + phi (s_exit - s_far), so d s/d s_far = 1 - phi, d s/d s_exit = phi.
+  double phi_far = 0.0, phi_exit = 1.0;
+  // Whether each end is the segment's own end (else a breakpoint strictly inside the segment),
+  // and the segment's scalar span s_exit - s_far (0 for a constant segment).
+  bool far_is_end = true, exit_is_end = true;
+  double span = 0.0;
+};
+
+// How the end scalars of the pieces are differentiated.
+enum class PieceEnds {
+  // Points fixed along the segment, piece lengths held fixed (exact): the same first derivative
+  // as moving ends for the exact integral, without that form's cancellation (docs/gradients.md).
+  fixed_along_segment,
+  // As the renderer computes them (what autodiff through a split renderer returns, for an
+  // approximation whose value depends on where a piece is split, e.g. psi_table): a piece end at
+  // a breakpoint moves with the node that put it there, a piece's length is
+  // L (e_exit - e_far) / (s_exit - s_far). A breakpoint is owned by the first node at its
+  // position among density[c] then color[c] of the channel differentiated; a breakpoint of
+  // another channel's function moves that function's node, an entry the per-channel layout of
+  // RayGradient has no place for: that derivative is left out (documented in psi_table_grad.hpp).
+  moving,
+};
+
+// piece_grad(const ChannelPiece&, double kappa_far_minus_exit) -> PieceOpticsGrad: the optics of
+// one channel of one piece and their derivatives. Throws std::invalid_argument for a non-finite
+// length, scalar or background.
+template <class PieceGrad>
+void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grad,
+                        PieceEnds ends_mode = PieceEnds::fixed_along_segment) {
+  for (int c = 0; c < kChannels; ++c)
+    if (!std::isfinite(ray.background[c]))
+      throw std::invalid_argument("gradient: background must be finite");
+  // Per-thread scratch: no allocation per ray once warm (timing loops, images).
+  struct Scratch {
+    std::vector<double> breakpoints, ends, incoming;
+    std::vector<PieceRecord> pieces;
+    std::vector<PieceOpticsGrad> optics;
+  };
+  thread_local Scratch scratch;
+  std::vector<double>& breakpoints = scratch.breakpoints;
+  breakpoints.clear();
+  for (const auto* group : {&tf.density, &tf.color})
+    for (const PiecewiseLinear& f : *group) breakpoints.insert(breakpoints.end(), f.scalar.begin(), f.scalar.end());
+  std::sort(breakpoints.begin(), breakpoints.end());
+  breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
+  std::vector<PieceRecord>& pieces = scratch.pieces;
+  pieces.clear();
+  std::vector<double>& ends = scratch.ends;
+  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
+    const Segment& seg = ray.segments[j];
+    if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
+      throw std::invalid_argument("gradient: segment " + std::to_string(j) +
+                                  ": length and scalars must be finite");
+    if (!(seg.length > 0.0)) continue;
+    const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
+    if (s0 == s1) {
+      pieces.push_back({j, s0, s1, seg.length, 1.0, 0.0, 1.0, true, true, 0.0});
+      continue;
+    }
+    // append_pieces' ends: s0, the breakpoints strictly inside, s1, in the direction of travel.
+    const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+    auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), lo);
+    auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), hi);
+    ends.assign(1, s0);
+    if (s0 < s1)
+      ends.insert(ends.end(), first, last);
+    else
+      ends.insert(ends.end(), std::make_reverse_iterator(last), std::make_reverse_iterator(first));
+    ends.push_back(s1);
+    const double span = s1 - s0;
+    const std::size_t n_ends = ends.size();
+    for (std::size_t k = 0; k + 1 < n_ends; ++k) {
+      const double fraction = (ends[k + 1] - ends[k]) / span;
+      const double len = seg.length * fraction;
+      if (len > 0.0)
+        pieces.push_back({j, ends[k], ends[k + 1], len, n_ends == 2 ? 1.0 : fraction,
+                          k == 0 ? 0.0 : (ends[k] - s0) / span, k + 2 == n_ends ? 1.0 : (ends[k + 1] - s0) / span,
+                          k == 0, k + 2 == n_ends, span});
+    }
+  }
+
+  grad.reset(tf, ray);
+  const std::size_t n = pieces.size();
+  // Forward: the optics of every piece-channel and the light entering it.
+  std::vector<PieceOpticsGrad>& optics = scratch.optics;
+  std::vector<double>& incoming = scratch.incoming;
+  if (optics.size() < n * kChannels) {
+    optics.resize(n * kChannels);
+    incoming.resize(n * kChannels);
+  }
+  Rgb intensity = ray.background;
+  for (std::size_t k = 0; k < n; ++k) {
+    const PieceRecord& pr = pieces[k];
+    for (int c = 0; c < kChannels; ++c) {
+      const ChannelPiece cp{pr.length, tf.density[c](pr.s_far), tf.density[c](pr.s_exit),
+                            tf.color[c](pr.s_far), tf.color[c](pr.s_exit)};
+      const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
+      // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
+      // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
+      // multiplied by a density slope of 3e23 in dI/ds).
+      const double lo = std::min(pr.s_far, pr.s_exit);
+      const NodeWeights nk = node_weights(tf.color[c], lo, lo);
+      const double dkappa = nk.count == 2 ? nk.slope * (pr.s_far - pr.s_exit) : 0.0;
+      optics[i] = piece_grad(cp, dkappa);
+      incoming[i] = intensity[c];
+      intensity[c] = intensity[c] * optics[i].optics.transmittance + optics[i].optics.emission;
+    }
+  }
+  grad.intensity = intensity;
+
+  // Reverse: adjoint = transmittance of everything nearer than the piece.
+  Rgb adjoint{1.0, 1.0, 1.0};
+  for (std::size_t k = n; k-- > 0;) {
+    const PieceRecord& pr = pieces[k];
+    const double lo = std::min(pr.s_far, pr.s_exit);
+    for (int c = 0; c < kChannels; ++c) {
+      const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
+      const PieceOpticsGrad& g = optics[i];
+      const double e_bar = adjoint[c];
+      const double t_bar = adjoint[c] * incoming[i];
+      const double len_bar = e_bar * g.de_length + t_bar * g.dt_length;
+      const double rho_far_bar = e_bar * g.de_rho_far + t_bar * g.dt_rho_far;
+      const double rho_exit_bar = e_bar * g.de_rho_exit + t_bar * g.dt_rho_exit;
+      const double kappa_far_bar = e_bar * g.de_kappa_far;
+      const double kappa_exit_bar = e_bar * g.de_kappa_exit;
+      // Length: len = L * (fraction of the segment); the fraction does not depend on L.
+      grad.length[pr.segment][c] += len_bar * pr.fraction;
+      // Moving ends: s_bar at an end goes to the segment's end scalar or the breakpoint's node.
+      const auto route = [&](bool far_side, double e, double s_bar) {
+        if (far_side ? pr.far_is_end : pr.exit_is_end) {
+          (far_side ? grad.scalar_far : grad.scalar_exit)[pr.segment][c] += s_bar;
+          return;
+        }
+        for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
+          const PiecewiseLinear& f = nodes == &grad.density[c] ? tf.density[c] : tf.color[c];
+          const auto it = std::lower_bound(f.scalar.begin(), f.scalar.end(), e);
+          if (it != f.scalar.end() && *it == e) {
+            (*nodes)[static_cast<std::size_t>(it - f.scalar.begin())].position += s_bar;
+            return;
+          }
+        }
+      };
+      if (ends_mode == PieceEnds::moving && pr.span != 0.0 && pr.fraction != 1.0) {
+        // len = L (e_exit - e_far) / (s_exit - s_far): through both ends and through the span.
+        const double per_end = len_bar * ray.segments[pr.segment].length / pr.span;
+        route(false, pr.s_exit, per_end);
+        route(true, pr.s_far, -per_end);
+        const double per_span = len_bar * pr.length / pr.span;
+        grad.scalar_far[pr.segment][c] += per_span;
+        grad.scalar_exit[pr.segment][c] -= per_span;
+      }
+      // End values through the transfer functions. The end scalars are differentiated as points
+      // fixed along the segment (s = s_far + phi (s_exit - s_far)) with fixed piece lengths: the
+      // same first derivative as moving the piece ends with the breakpoints (a kink moved by
+      // delta inside a piece changes I by O(delta^2)), without the factor L/(s_exit - s_far)
+      // and the cancellation between the two pieces at a breakpoint that the latter carries
+      // (it cost 1e-6 of the channel's largest entry on a 7e-13-wide segment of narrow_pulse).
+      const auto through = [&](const PiecewiseLinear& f, std::vector<NodeDerivative>& nodes,
+                               double s, double bar, double phi) {
+        if (bar == 0.0) return;
+        const NodeWeights nw = node_weights(f, lo, s);
+        for (int q = 0; q < nw.count; ++q) {
+          nodes[nw.node[q]].value += bar * nw.w[q];
+          nodes[nw.node[q]].position += bar * nw.dp[q];
+        }
+        const double s_bar = bar * nw.slope;
+        if (s_bar == 0.0) return;
+        if (ends_mode == PieceEnds::moving) {
+          route(s == pr.s_far && phi == pr.phi_far, s, s_bar);
+          return;
+        }
+        grad.scalar_far[pr.segment][c] += s_bar * (1.0 - phi);
+        grad.scalar_exit[pr.segment][c] += s_bar * phi;
+      };
+      through(tf.density[c], grad.density[c], pr.s_far, rho_far_bar, pr.phi_far);
+      through(tf.density[c], grad.density[c], pr.s_exit, rho_exit_bar, pr.phi_exit);
+      through(tf.color[c], grad.color[c], pr.s_far, kappa_far_bar, pr.phi_far);
+      through(tf.color[c], grad.color[c], pr.s_exit, kappa_exit_bar, pr.phi_exit);
+      adjoint[c] *= g.optics.transmittance;
+    }
+  }
+  grad.background = adjoint;
+}
+
+}  // namespace rayint::detail
