@@ -64,7 +64,7 @@ inline void check_cells(const CellMesh& mesh, const std::string& source) {
   require(mesh.cell_scalars.empty() ? mesh.scalars.size() == mesh.points.size()
                                     : mesh.cell_scalars.size() == mesh.cell_count());
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    require(mesh.nodes_of(c) == static_cast<std::size_t>(linear_cell_nodes(static_cast<int>(mesh.types[c]))));
+    require(mesh.nodes_of(c) == static_cast<std::size_t>(mesh_cell_nodes(static_cast<int>(mesh.types[c]))));
     for (std::size_t k = 0; k < mesh.nodes_of(c); ++k)
       require(mesh.cell(c)[k] >= 0 && static_cast<std::size_t>(mesh.cell(c)[k]) < mesh.points.size());
   }

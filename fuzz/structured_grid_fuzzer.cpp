@@ -34,7 +34,7 @@ void check_mesh(const rayint::CellMesh& m) {
   for (double s : m.scalars) require(std::isfinite(s));
   for (double s : m.cell_scalars) require(std::isfinite(s));
   for (std::size_t c = 0; c < m.cell_count(); ++c) {
-    require(m.nodes_of(c) == static_cast<std::size_t>(rayint::linear_cell_nodes(static_cast<int>(m.types[c]))));
+    require(m.nodes_of(c) == static_cast<std::size_t>(rayint::mesh_cell_nodes(static_cast<int>(m.types[c]))));
     for (std::size_t k = 0; k < m.nodes_of(c); ++k)
       require(m.cell(c)[k] >= 0 && static_cast<std::size_t>(m.cell(c)[k]) < m.points.size());
   }

@@ -41,7 +41,7 @@ nlohmann::json expected() {
 
 std::map<std::string, long> counts_by_id(const CellMesh& m) {
   std::map<std::string, long> n;
-  for (LinearCell t : m.types) ++n[std::to_string(static_cast<int>(t))];
+  for (MeshCellType t : m.types) ++n[std::to_string(static_cast<int>(t))];
   return n;
 }
 
@@ -98,8 +98,8 @@ TEST_CASE("gmsh's prisms and VTK's documented wedges have opposite corner Jacobi
   for (std::size_t c = 0; c < meshio.cell_count(); ++c) CHECK(cell_orientation(meshio, c) == -1);
   const CellMesh vtk_all = read_cell_mesh_file(kDir + "cells-all-types.vtu");
   for (std::size_t c = 0; c < vtk_all.cell_count(); ++c) {
-    INFO(linear_cell_name(vtk_all.types[c]));
-    CHECK(cell_orientation(vtk_all, c) == (vtk_all.types[c] == LinearCell::wedge ? -1 : 1));
+    INFO(mesh_cell_name(vtk_all.types[c]));
+    CHECK(cell_orientation(vtk_all, c) == (vtk_all.types[c] == MeshCellType::wedge ? -1 : 1));
   }
   // gmsh's hexahedra (both blocks, the twisted one too) and pyramids are positive in VTK's sense.
   for (const std::string f : {"cells-hex-41.msh", "cells-mixed-22.msh"}) {
@@ -214,12 +214,12 @@ TEST_CASE("split meshes are conforming and rays through shared faces, edges and 
     // The boundary triangles of the split are the split boundary faces of the cells: a quad face
     // used by one cell gives 2, a triangle face 1. Counted from the cells' own faces by node sets.
     std::map<std::vector<std::int32_t>, int> cell_faces;
-    static const std::map<LinearCell, std::vector<std::vector<int>>> faces = {
-        {LinearCell::tetra, {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}}},
-        {LinearCell::hexahedron, {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}},
-        {LinearCell::voxel, {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {1, 3, 7, 5}, {3, 2, 6, 7}, {2, 0, 4, 6}}},
-        {LinearCell::wedge, {{0, 1, 2}, {3, 4, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}},
-        {LinearCell::pyramid, {{0, 1, 2, 3}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}}};
+    static const std::map<MeshCellType, std::vector<std::vector<int>>> faces = {
+        {MeshCellType::tetra, {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}}},
+        {MeshCellType::hexahedron, {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}},
+        {MeshCellType::voxel, {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {1, 3, 7, 5}, {3, 2, 6, 7}, {2, 0, 4, 6}}},
+        {MeshCellType::wedge, {{0, 1, 2}, {3, 4, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}},
+        {MeshCellType::pyramid, {{0, 1, 2, 3}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}}};
     for (std::size_t c = 0; c < cells.cell_count(); ++c)
       for (const auto& fl : faces.at(cells.types[c])) {
         std::vector<std::int32_t> key;

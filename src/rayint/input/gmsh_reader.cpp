@@ -528,7 +528,7 @@ class MshReader {
       const std::string where = "$Elements (element " + std::to_string(rc.tag) + ")";
       for (int k = 0; k < rc.row->nodes; ++k)
         m.connectivity.push_back(node(rc.nodes[static_cast<std::size_t>(rc.row->gmsh_to_vtk[static_cast<std::size_t>(k)])], where));
-      m.types.push_back(static_cast<LinearCell>(rc.row->vtk_id));
+      m.types.push_back(static_cast<MeshCellType>(rc.row->vtk_id));
       m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
       m.info.cell_ids.push_back(rc.tag);
     }

@@ -273,7 +273,7 @@ CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const Assemb
                     "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n_points) + ")");
       mesh.connectivity.push_back(point_map[static_cast<std::size_t>(p)]);
     }
-    mesh.types.push_back(static_cast<LinearCell>(row->vtk_id));
+    mesh.types.push_back(static_cast<MeshCellType>(row->vtk_id));
     mesh.offsets.push_back(static_cast<std::uint32_t>(mesh.connectivity.size()));
     kept.push_back(i);
     info.cell_ids.push_back(static_cast<long long>(i));

@@ -32,7 +32,7 @@ template <CellMesh (*Read)(const std::string&, const std::string&, bool)>
 TetMesh read_structured_as_tets(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
   CellMesh m = Read(path, scalar_name, cell_to_point);
   for (std::size_t c = 0; c < m.cell_count(); ++c)
-    if (m.types[c] != LinearCell::tetra)
+    if (m.types[c] != MeshCellType::tetra)
       throw InputError(path + ": cells[" + std::to_string(c) + "]: " + unsupported_cell_message(static_cast<int>(m.types[c])));
   return take_tets(std::move(m));
 }
@@ -177,7 +177,7 @@ CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_
   m.info = std::move(t.info);
   for (const auto& tet : t.tets) {
     m.connectivity.insert(m.connectivity.end(), tet.begin(), tet.end());
-    m.types.push_back(LinearCell::tetra);
+    m.types.push_back(MeshCellType::tetra);
     m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
   }
   return m;

@@ -52,7 +52,7 @@ int corner_signs(const CellMesh& m, const std::int32_t* c, const Corner (&corner
 
 }  // namespace
 
-int linear_cell_nodes(long long vtk_id) {
+int mesh_cell_nodes(long long vtk_id) {
   switch (vtk_id) {
     case 10: return 4;
     case 11: return 8;
@@ -63,28 +63,28 @@ int linear_cell_nodes(long long vtk_id) {
   }
 }
 
-const char* linear_cell_name(LinearCell type) {
+const char* mesh_cell_name(MeshCellType type) {
   switch (type) {
-    case LinearCell::tetra: return "tetra";
-    case LinearCell::voxel: return "voxel";
-    case LinearCell::hexahedron: return "hexahedron";
-    case LinearCell::wedge: return "wedge";
-    case LinearCell::pyramid: return "pyramid";
+    case MeshCellType::tetra: return "tetra";
+    case MeshCellType::voxel: return "voxel";
+    case MeshCellType::hexahedron: return "hexahedron";
+    case MeshCellType::wedge: return "wedge";
+    case MeshCellType::pyramid: return "pyramid";
   }
   return "?";
 }
 
 bool CellMesh::only_tets() const {
-  for (LinearCell t : types)
-    if (t != LinearCell::tetra) return false;
+  for (MeshCellType t : types)
+    if (t != MeshCellType::tetra) return false;
   return true;
 }
 
 std::vector<std::pair<std::string, long>> cell_counts(const CellMesh& mesh) {
   std::map<int, long> n;
-  for (LinearCell t : mesh.types) ++n[static_cast<int>(t)];
+  for (MeshCellType t : mesh.types) ++n[static_cast<int>(t)];
   std::vector<std::pair<std::string, long>> out;
-  for (const auto& [id, count] : n) out.emplace_back(linear_cell_name(static_cast<LinearCell>(id)), count);
+  for (const auto& [id, count] : n) out.emplace_back(mesh_cell_name(static_cast<MeshCellType>(id)), count);
   return out;
 }
 
@@ -116,10 +116,10 @@ void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& sourc
       field::fail(source, at(names.scalars, i), "must be finite, got " + format_number(mesh.scalars[i]));
   const auto n = static_cast<long long>(mesh.points.size());
   for (std::size_t c = 0; c < mesh.types.size(); ++c) {
-    const int want = linear_cell_nodes(static_cast<int>(mesh.types[c]));
+    const int want = mesh_cell_nodes(static_cast<int>(mesh.types[c]));
     if (want == 0 || static_cast<std::size_t>(want) != mesh.nodes_of(c))
       field::fail(source, at(names.tets, c),
-                  std::string("a ") + linear_cell_name(mesh.types[c]) + " needs " + std::to_string(want) +
+                  std::string("a ") + mesh_cell_name(mesh.types[c]) + " needs " + std::to_string(want) +
                       " points, got " + std::to_string(mesh.nodes_of(c)));
     const std::int32_t* p = mesh.cell(c);
     for (std::size_t k = 0; k < mesh.nodes_of(c); ++k)
@@ -146,11 +146,11 @@ TetMesh take_tets(CellMesh&& mesh) {
 int cell_orientation(const CellMesh& mesh, std::size_t c) {
   const std::int32_t* p = mesh.cell(c);
   switch (mesh.types[c]) {
-    case LinearCell::tetra: return corner_signs(mesh, p, kTetCorners);
-    case LinearCell::voxel: return corner_signs(mesh, p, kVoxelCorners);
-    case LinearCell::hexahedron: return corner_signs(mesh, p, kHexCorners);
-    case LinearCell::wedge: return corner_signs(mesh, p, kWedgeCorners);
-    case LinearCell::pyramid: return corner_signs(mesh, p, kPyramidCorners);
+    case MeshCellType::tetra: return corner_signs(mesh, p, kTetCorners);
+    case MeshCellType::voxel: return corner_signs(mesh, p, kVoxelCorners);
+    case MeshCellType::hexahedron: return corner_signs(mesh, p, kHexCorners);
+    case MeshCellType::wedge: return corner_signs(mesh, p, kWedgeCorners);
+    case MeshCellType::pyramid: return corner_signs(mesh, p, kPyramidCorners);
   }
   return 0;
 }

@@ -24,18 +24,18 @@
 namespace rayint {
 
 // VTK type ids of the cells a CellMesh holds (vtkCellType.h).
-enum class LinearCell : std::uint8_t { tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14 };
+enum class MeshCellType : std::uint8_t { tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14 };
 
 // Nodes of a linear cell type (4, 8, 8, 6, 5); 0 for an id that is not one.
-int linear_cell_nodes(long long vtk_id);
+int mesh_cell_nodes(long long vtk_id);
 // "tetra", "voxel", "hexahedron", "wedge", "pyramid" (the table's names).
-const char* linear_cell_name(LinearCell type);
+const char* mesh_cell_name(MeshCellType type);
 
 struct CellMesh {
   std::vector<Vec3> points;
   std::vector<double> scalars;        // one per point (empty when cell_scalars is used)
   std::vector<double> cell_scalars;   // one per cell, constant over it (empty for point data)
-  std::vector<LinearCell> types;      // per cell
+  std::vector<MeshCellType> types;      // per cell
   std::vector<std::uint32_t> offsets{0};        // cell c: connectivity[offsets[c], offsets[c + 1])
   std::vector<std::int32_t> connectivity;       // point indices, VTK node order
   // Point dimensions (nx, ny, nz) of a structured grid (.vts: hexahedra, .vtr: voxels), i fastest;

@@ -23,7 +23,7 @@ constexpr Tet kVoxelOdd[5] = {{0, 1, 2, 4}, {1, 4, 5, 7}, {1, 4, 7, 2}, {1, 2, 7
 // vtkPyramid; the pyramid's apex at (1/2, 1/2, 1): the apex placement does not change the
 // triangulation of the base, and this one gave VTK's on all 120 orders).
 using P3 = std::array<double, 3>;
-const std::vector<P3>& parametric(LinearCell type) {
+const std::vector<P3>& parametric(MeshCellType type) {
   static const std::vector<P3> voxel = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {2, 2, 0},
                                         {0, 0, 2}, {2, 0, 2}, {0, 2, 2}, {2, 2, 2}};
   static const std::vector<P3> hex = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0},
@@ -31,9 +31,9 @@ const std::vector<P3>& parametric(LinearCell type) {
   static const std::vector<P3> wedge = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {0, 2, 2}};
   static const std::vector<P3> pyramid = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, 2}};
   switch (type) {
-    case LinearCell::voxel: return voxel;
-    case LinearCell::hexahedron: return hex;
-    case LinearCell::wedge: return wedge;
+    case MeshCellType::voxel: return voxel;
+    case MeshCellType::hexahedron: return hex;
+    case MeshCellType::wedge: return wedge;
     default: return pyramid;
   }
 }
@@ -100,7 +100,7 @@ std::vector<Tet> placing(const std::vector<P3>& x, const std::vector<int>& order
 }
 
 // Templates by (type, order of the local nodes by global id), as vtkOrderedTriangulator caches them.
-const std::vector<Tet>& ordered_template(LinearCell type, const std::vector<int>& order) {
+const std::vector<Tet>& ordered_template(MeshCellType type, const std::vector<int>& order) {
   static thread_local std::map<std::pair<int, std::vector<int>>, std::vector<Tet>> cache;
   const auto key = std::make_pair(static_cast<int>(type), order);
   auto it = cache.find(key);
@@ -127,14 +127,14 @@ TetMesh split_cells(const CellMesh& mesh, CellSplitCounts* counts) {
     out.tets.push_back({p[t[0]], p[t[1]], p[t[2]], p[t[3]]});
     out.info.cell_ids.push_back(file_id(c));
     if (cell_data) out.cell_scalars.push_back(mesh.cell_scalars[c]);
-    ++n.tets[linear_cell_name(mesh.types[c])];
+    ++n.tets[mesh_cell_name(mesh.types[c])];
   };
   std::vector<int> order;
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    const LinearCell type = mesh.types[c];
+    const MeshCellType type = mesh.types[c];
     const std::int32_t* p = mesh.cell(c);
-    ++n.cells[linear_cell_name(type)];
-    if (type == LinearCell::tetra) {
+    ++n.cells[mesh_cell_name(type)];
+    if (type == MeshCellType::tetra) {
       emit(c, p, {0, 1, 2, 3});
       continue;
     }
@@ -143,7 +143,7 @@ TetMesh split_cells(const CellMesh& mesh, CellSplitCounts* counts) {
       const std::size_t cx = static_cast<std::size_t>(d[0] - 1), cy = static_cast<std::size_t>(d[1] - 1);
       const std::size_t i = c % cx, j = (c / cx) % cy, k = c / (cx * cy);
       const bool even = (i + j + k) % 2 == 0;
-      const Tet* table = type == LinearCell::voxel ? (even ? kVoxelEven : kVoxelOdd) : (even ? kHexEven : kHexOdd);
+      const Tet* table = type == MeshCellType::voxel ? (even ? kVoxelEven : kVoxelOdd) : (even ? kHexEven : kHexOdd);
       for (int t = 0; t < 5; ++t) emit(c, p, table[t]);
       continue;
     }

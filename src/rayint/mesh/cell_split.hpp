@@ -19,7 +19,7 @@
 //     of the current hull it sees strictly. Measured with VTK 9.1's filter on one cell of each
 //     type for every order of its point ids (pyramid 120, wedge 720, hexahedron and voxel 40,320
 //     orders): the placing triangulation gave VTK's tetrahedra in every case (tests/fixtures/
-//     cells/vtk_split_check.py). A quad face is split along the diagonal that avoids its largest
+//     readers/vtk_split_orders.py). A quad face is split along the diagonal that avoids its largest
 //     point id, so neighbours agree. Hexahedra and voxels give 5 or 6 tetrahedra, wedges 3,
 //     pyramids 2.
 // Cell data: every tetrahedron takes its cell's value. Point data and points are kept as they are.

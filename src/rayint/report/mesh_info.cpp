@@ -35,7 +35,7 @@ std::pair<Vec3, Vec3> bounds(const std::vector<Vec3>& points) {
 std::map<std::string, CellOrientationCounts> orientation_by_type(const CellMesh& m) {
   std::map<std::string, CellOrientationCounts> out;
   for (std::size_t c = 0; c < m.cell_count(); ++c) {
-    CellOrientationCounts& o = out[linear_cell_name(m.types[c])];
+    CellOrientationCounts& o = out[mesh_cell_name(m.types[c])];
     const int s = cell_orientation(m, c);
     (s > 0 ? o.positive : s < 0 ? o.negative : o.mixed) += 1;
   }
