@@ -118,7 +118,7 @@ TEST_CASE("gmsh's interface and boundary quadrangles are skipped and counted, ne
   CHECK(split.tets.size() >= 5 * 54);
 }
 
-TEST_CASE("--cells split gives VTK's vtkDataSetTriangleFilter tetrahedra, one for one", "[cellmesh]") {
+TEST_CASE("split_cells gives the tetrahedra of VTK 9.1's vtkDataSetTriangleFilter one for one", "[cellmesh]") {
   const nlohmann::json want = expected();
   for (const std::string f : {"cells-all-types.vtu", "cells-twisted.vts", "cells-odd.vtr", "cells-mixed-41.msh"}) {
     INFO(f);
