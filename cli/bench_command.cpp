@@ -95,6 +95,7 @@ void set_bench_command(CLI::App& app) {
   add_threads_option(cmd, opt->sweep.timing.threads, "Threads for the reference (0 = all cores)");
   add_quiet_flag(cmd, opt->quiet);
   add_strict_mesh_flag(cmd, opt->mesh.strict);
+  add_cells_option(cmd, opt->mesh.split_cells);
   add_shard_option(cmd, opt->shard);
   cmd->callback([opt, output_option] {
     const std::vector<SweepAxis> axes = select_sweep_axes(split_names(opt->methods));

@@ -54,6 +54,7 @@ void set_eval_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   add_strict_mesh_flag(cmd, opt->mesh.strict);
+  add_cells_option(cmd, opt->mesh.split_cells);
   cmd->callback([opt] {
     const std::vector<MethodSpec> methods =
         opt->methods.empty() ? default_methods() : parse_methods_option(opt->methods);

@@ -23,7 +23,7 @@ void set_mesh_command(CLI::App& app) {
   CLI::App* mesh = app.add_subcommand("mesh", "Mesh files as rayint reads them");
   mesh->require_subcommand(1);
   CLI::App* cmd = mesh->add_subcommand("info", "Bounds, cells by type, arrays, the scalar, orientation (--check: overlaps)");
-  cmd->add_option("file", opt->file, "A mesh file: .vtk, .vtu, .pvtu, .msh, .ele")->required();
+  cmd->add_option("file", opt->file, "A mesh file: .vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr")->required();
   cmd->add_option("--array", opt->array, "The array to take as the scalar (default: the rule of docs/meshes.md)");
   cmd->add_flag("--point-average", opt->point_average, "A cell field becomes point data as ParaView's Cell Data to Point Data");
   cmd->add_flag("--check", opt->check, "Look for overlapping tetrahedra, every candidate pair (exit 1 naming two when found)");
@@ -31,9 +31,17 @@ void set_mesh_command(CLI::App& app) {
   cmd->add_option("--format", opt->format, "text or json")->check(CLI::IsMember({"text", "json"}));
   cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
   cmd->callback([opt] {
-    const TetMesh m = read_mesh_file(opt->file, opt->array, opt->point_average);
+    // Read as cells: a file of tetrahedra only continues as before; one with hexahedra, wedges,
+    // pyramids or voxels is reported by type (it has no tetrahedra to check for overlaps).
+    CellMesh cells = read_cell_mesh_file(opt->file, opt->array, opt->point_average);
     MeshInfo info;
     info.file = opt->file;
+    if (!cells.only_tets()) {
+      info.cells = &cells;
+      emit(opt->format == "json" ? to_json(info).dump(2) + "\n" : to_text(info), opt->output);
+      return;
+    }
+    const TetMesh m = take_tets(std::move(cells));
     info.mesh = &m;
     info.orientation = orientation_counts(m);
     if (opt->check || opt->quick) {

@@ -27,6 +27,19 @@ inline CLI::Option* add_strict_mesh_flag(CLI::App* cmd, bool& strict) {
                        "reorient inverted ones, drop degenerate ones, and count both)");
 }
 
+// --cells split: a mesh file with hexahedra, wedges, pyramids or voxels is tetrahedralised as
+// VTK's vtkDataSetTriangleFilter does (mesh/cell_split.hpp) -- an approximation, said in the JSON
+// ("mesh_repairs": {"cells": {"mode": "split", ...}}) and on stderr. Without it such a file is
+// refused with one line (exit 2).
+inline CLI::Option* add_cells_option(CLI::App* cmd, bool& split) {
+  auto* o = cmd->add_option_function<std::string>(
+      "--cells", [&split](const std::string& v) { split = v == "split"; },
+      "Mesh files with hexahedra, wedges, pyramids, voxels: 'split' integrates them after VTK's "
+      "tetrahedralisation (vtkDataSetTriangleFilter), an approximation of their own interpolation");
+  o->check(CLI::IsMember({"split"}));
+  return o;
+}
+
 }  // namespace rayint::cli
 
 namespace rayint::cli {

@@ -33,6 +33,7 @@ void set_render_command(CLI::App& app) {
   add_threads_option(cmd, opts->threads, "worker threads (0: all cores)");
   add_quiet_flag(cmd, opts->quiet);
   add_strict_mesh_flag(cmd, opts->strict_mesh);
+  add_cells_option(cmd, opts->split_cells);
   cmd->add_option("--method", opts->methods,
                   "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "
                   "shadows=two_pass:grid=64");

@@ -15,6 +15,7 @@ struct RenderOptions {
   unsigned threads = 0;
   bool quiet = false;
   bool strict_mesh = false;          // mesh cases: --strict-mesh
+  bool split_cells = false;          // mesh cases: --cells split (mesh/cell_split.hpp)
   std::vector<std::string> methods;  // scenes: EFFECT=SPEC overrides of the scene's "methods"
   int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
   std::string shard;                 // mesh cases: --shard I/N (rows)

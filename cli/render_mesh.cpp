@@ -76,8 +76,15 @@ void fit_camera_to_mesh(MeshCase& mc) {
 void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) {
   const json_source::InputFileLog read;  // the mesh files the case names: shard inputs
   SlowStage reading("rayint render: reading the mesh of " + options.input, options.quiet);
-  MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
+  MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh, options.split_cells});
   reading.done(std::to_string(mc.mesh.tets.size()) + " tets, " + std::to_string(mc.mesh.points.size()) + " points");
+  if (mc.split && !options.quiet) {
+    long cells = 0;
+    for (const auto& [type, n] : mc.split->cells) cells += type == "tetra" ? 0 : n;
+    std::fprintf(stderr, "rayint render: --cells split: %ld cells tetrahedralised into %zu tetrahedra as VTK's "
+                 "vtkDataSetTriangleFilter does (an approximation of the cells' own interpolation)\n",
+                 cells, mc.mesh.tets.size());
+  }
   if (options.fit) fit_camera_to_mesh(mc);
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   // Validate the methods before the (long) render.

@@ -22,7 +22,7 @@ void render_mesh_gradient_file(const nlohmann::json& root, const RenderOptions& 
   const std::string& target_path = options.loss_target;
   if (image_format_of(target_path) == ImageFormat::png)
     throw InputError(target_path + ": --loss-target: a float image is needed (.npy, .pfm, .exr), not 8-bit PNG");
-  MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh});
+  MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh, options.split_cells});
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   if (mc.shading.enabled)
     throw InputError(options.input + ": shading: --grad-out differentiates the unshaded render only");

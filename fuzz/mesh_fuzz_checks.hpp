@@ -8,6 +8,8 @@
 #include <string>
 
 #include "rayint/core/error.hpp"
+#include "rayint/mesh/cell_mesh.hpp"
+#include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 
@@ -51,6 +53,25 @@ inline void check_mesh(TetMesh mesh, const std::string& source) {
     }
   } catch (const InputError& e) {
     check_message(e.what(), source);  // every tet degenerate; a face in 3 tets; overlapping tets
+  }
+}
+
+// A CellMesh (the readers' *_cells entry points): its structure as promised, then `--cells
+// split` (mesh/cell_split.hpp) and the tetrahedral checks above on the result.
+inline void check_cells(const CellMesh& mesh, const std::string& source) {
+  require(mesh.cell_count() > 0 && mesh.offsets.size() == mesh.cell_count() + 1 &&
+          mesh.offsets.back() == mesh.connectivity.size());
+  require(mesh.cell_scalars.empty() ? mesh.scalars.size() == mesh.points.size()
+                                    : mesh.cell_scalars.size() == mesh.cell_count());
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    require(mesh.nodes_of(c) == static_cast<std::size_t>(mesh_cell_nodes(static_cast<int>(mesh.types[c]))));
+    for (std::size_t k = 0; k < mesh.nodes_of(c); ++k)
+      require(mesh.cell(c)[k] >= 0 && static_cast<std::size_t>(mesh.cell(c)[k]) < mesh.points.size());
+  }
+  try {
+    check_mesh(split_cells(mesh), source);
+  } catch (const InputError& e) {
+    check_message(e.what(), source);  // e.g. every split tetrahedron degenerate
   }
 }
 

@@ -1,4 +1,5 @@
-// libFuzzer target for the VTK legacy reader (rayint::parse_vtk_legacy and parse_vtk_legacy_image,
+// libFuzzer target for the VTK legacy reader (rayint::parse_vtk_legacy, parse_vtk_legacy_cells and
+// parse_vtk_legacy_image,
 // input/vtk_legacy_reader.hpp: unstructured grids and STRUCTURED_POINTS images) on arbitrary
 // bytes; an accepted mesh is repaired and traversed (mesh_fuzz_checks.hpp), an accepted image
 // must hold one finite value per point. Run it
@@ -18,6 +19,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string source = "fuzz.vtk";
   try {
     rayint::fuzz::check_mesh(rayint::parse_vtk_legacy(bytes, source), source);
+  } catch (const rayint::InputError& e) {
+    rayint::fuzz::check_message(e.what(), source);
+  }
+  try {  // every linear cell kept (parse_vtk_legacy_cells), then split
+    rayint::fuzz::check_cells(rayint::parse_vtk_legacy_cells(bytes, source), source);
   } catch (const rayint::InputError& e) {
     rayint::fuzz::check_message(e.what(), source);
   }

@@ -40,6 +40,7 @@ case "$target" in
   grad_candidate_parser) seed_files=("$root"/fuzz/seeds/grad_candidate/*.json); what="rayint::parse_grad_candidate_text" ;;
   vtu_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vtu "$root"/tests/fixtures/readers/*.vtu); what="rayint::parse_vtu" ;;
   vti_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vti "$root"/tests/fixtures/readers/*.vti); what="rayint::parse_vti" ;;
+  structured_grid) seed_files=("$root"/tests/fixtures/readers/*.vts "$root"/tests/fixtures/readers/*.vtr); what="rayint::parse_vts / parse_vtr" ;;
   scene_parser) seed_files=("$root"/cases/scenes/*.json); what="rayint::parse_scene_text" ;;
   slab_scene_parser) seed_files=("$root"/cases/scenes/slab-*.json "$root"/fuzz/seeds/slab_scene/*.json); what="rayint::parse_slab_scene" ;;
   vtk_legacy) seed_files=("$root"/fuzz/seeds/vtk_legacy/* "$root"/cases/meshes/linear-box.vtk
@@ -52,7 +53,7 @@ case "$target" in
   shard_reader) seed_files=("$root"/fuzz/seeds/shard/*.json); what="rayint shard data readers (rayint merge)" ;;
   pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
     fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, grad_candidate_parser, vtu_reader, vti_reader, scene_parser, slab_scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, method_spec, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, grad_candidate_parser, vtu_reader, vti_reader, structured_grid, scene_parser, slab_scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, method_spec, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

@@ -101,7 +101,7 @@ TEST_CASE("VTK legacy reader: every problem is one line naming the file and sect
   const Bad bad[] = {
       {replace(base, "# vtk DataFile", "# vtx DataFile"), "m.vtk: header: not a VTK legacy file"},
       {replace(base, "UNSTRUCTURED_GRID", "STRUCTURED_POINTS"), "m.vtk: DATASET: STRUCTURED_POINTS is image data, not a mesh"},
-      {replace(base, "CELL_TYPES 1\n10", "CELL_TYPES 1\n12"), "m.vtk: CELL_TYPES[0]: cell type hexahedron (VTK id 12) is not supported yet; only tetrahedra (VTK id 10) are integrated"},
+      {replace(base, "CELL_TYPES 1\n10", "CELL_TYPES 1\n12"), "m.vtk: CELL_TYPES[0]: cell type hexahedron (VTK id 12): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split (VTK's tetrahedralisation, an approximation of the cell's own interpolation)"},
       {replace(base, "0 0 0  1 0 0", "0 0 nan  1 0 0"), "m.vtk: POINTS[0][2]: coordinate must be finite, got nan"},
       {replace(base, "4 0 1 2 3", "4 0 1 2 9"), "m.vtk: CELLS[0][3]: point index 9 out of range [0, 4)"},
       {replace(base, "POINT_DATA 4", "POINT_DATA 3"), "m.vtk: POINT_DATA: 3 scalars for 4 points"},

@@ -48,10 +48,18 @@ const std::vector<CellTypeInfo>& table() {
       row(kVtkTetra, "tetra", 4, 3, 4, identity(4), S::Traversed),
       row(kVtkQuadraticTetra, "quadratic tetra", 10, 3, 11, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, S::NotYet,
           CellType::tet10),
-      row(11, "voxel", 8, 3, 0, {}, S::NotYet),
-      row(12, "hexahedron", 8, 3, 5, identity(8), S::NotYet, CellType::hex8),
-      row(13, "wedge", 6, 3, 6, identity(6), S::NotYet),
-      row(14, "pyramid", 5, 3, 7, identity(5), S::NotYet),
+      // Linear cells other than the tetrahedron. gmsh's node numbering of the 8-node hexahedron,
+      // 6-node prism and 5-node pyramid lists the nodes as VTK does (bottom face, then top face /
+      // apex), so the permutations are the identity; checked on files gmsh 4.8 writes
+      // (tests/test_cell_mesh.cpp, "[cellmesh]": every cell's faces are planar or bilinear quads
+      // through its own nodes, and every interior face is shared by exactly two cells). gmsh's
+      // prism (0, 1, 2) is counter-clockwise seen from (3, 4, 5), VTK's wedge (vtkWedge.h) is
+      // clockwise: same nodes, opposite Jacobian sign. Both are accepted as written (the
+      // interpolant does not depend on the sign, and a node is never separated from its scalar).
+      row(kVtkVoxel, "voxel", 8, 3, 0, {}, S::CellPath),
+      row(kVtkHexahedron, "hexahedron", 8, 3, 5, identity(8), S::CellPath, CellType::hex8),
+      row(kVtkWedge, "wedge", 6, 3, 6, identity(6), S::CellPath),
+      row(kVtkPyramid, "pyramid", 5, 3, 7, identity(5), S::CellPath),
       row(15, "pentagonal prism", 10, 3, 0, {}, S::NotYet),
       row(16, "hexagonal prism", 12, 3, 0, {}, S::NotYet),
       // gmsh 20-node hexahedron: edge nodes (0,1) (0,3) (0,4) (1,2) (1,5) (2,3) (2,6) (3,7) (4,5)
@@ -91,6 +99,10 @@ std::string cell_type_label(long long vtk_id) {
 std::string unsupported_cell_message(long long vtk_id) {
   const CellTypeInfo* r = cell_type_from_vtk(vtk_id);
   if (r == nullptr) return "cell type " + std::to_string(vtk_id) + " is not a VTK cell type rayint knows";
+  if (r->support == CellSupport::CellPath)
+    return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
+           "): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split "
+           "(VTK's tetrahedralisation, an approximation of the cell's own interpolation)";
   return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
          ") is not supported yet; only tetrahedra (VTK id 10) are integrated";
 }

@@ -9,8 +9,12 @@
 //   Skipped     a cell of dimension 0-2 (vertex, line, triangle, quad, ...): boundary and
 //               annotation cells gmsh writes beside the volume; they hold no volume, so a ray
 //               integral never sees them. Readers drop them and count them by type;
-//   NotYet      a volume cell the next issue integrates (hexahedron, wedge, pyramid, voxel,
-//               quadratic hexahedron and wedge): refused with unsupported_message().
+//   CellPath    a linear volume cell other than the tetrahedron (voxel, hexahedron, wedge,
+//               pyramid): read into a CellMesh (mesh/cell_mesh.hpp) and integrated after
+//               `--cells split` (mesh/cell_split.hpp, VTK's tetrahedralisation: an approximation);
+//               the tetrahedral path refuses it with unsupported_cell_message(), which says so;
+//   NotYet      a volume cell rayint does not integrate yet (quadratic cells, polyhedra):
+//               refused with unsupported_cell_message().
 // Node order is always VTK's once read: a reader permutes gmsh's order with gmsh_to_vtk
 // (vtk node i = gmsh node gmsh_to_vtk[i]). The permutations are gmsh's documented node numbering
 // ("Node ordering") against VTK's cell documentation (vtkQuadraticTetra.h: edge nodes on
@@ -27,7 +31,7 @@
 
 namespace rayint {
 
-enum class CellSupport { Traversed, Skipped, NotYet };
+enum class CellSupport { Traversed, Skipped, CellPath, NotYet };
 
 struct CellTypeInfo {
   int vtk_id = 0;
@@ -42,15 +46,18 @@ struct CellTypeInfo {
 
 // VTK type ids used by name in readers.
 inline constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkTriangle = 5, kVtkQuad = 9, kVtkTetra = 10,
+                     kVtkVoxel = 11, kVtkHexahedron = 12, kVtkWedge = 13, kVtkPyramid = 14,
                      kVtkQuadraticTetra = 24;
 
 // The row of a VTK type id / gmsh element type id, or nullptr for an id rayint does not know.
 const CellTypeInfo* cell_type_from_vtk(long long vtk_id);
 const CellTypeInfo* cell_type_from_gmsh(long long gmsh_id);
 
-// "cell type hexahedron (VTK id 12) is not supported yet (next: the hexahedral, wedge and pyramid
-// cells); only tetrahedra (VTK 10, 24) are integrated" for a NotYet row, or for an unknown id
-// "cell type N is not a cell type rayint knows".
+// For a CellPath row: "cell type hexahedron (VTK id 12): the tetrahedral path integrates only
+// tetrahedra; integrate this file with --cells split (VTK's tetrahedralisation, an approximation
+// of the cell's own interpolation)"; for a NotYet row "cell type X (VTK id N) is not supported
+// yet; only tetrahedra (VTK id 10) are integrated"; for an unknown id "cell type N is not a VTK
+// cell type rayint knows".
 std::string unsupported_cell_message(long long vtk_id);
 
 // "triangle" etc. for a VTK id, "VTK id N" for an unknown one.

@@ -63,10 +63,29 @@ struct DataBlock {
 
 class MshReader {
  public:
-  MshReader(std::string_view bytes, const std::string& source, const std::string& scalar_name, bool cell_to_point)
-      : c_(bytes, source, '\0'), scalar_name_(scalar_name), cell_to_point_(cell_to_point) {}
+  MshReader(std::string_view bytes, const std::string& source, const std::string& scalar_name, bool cell_to_point,
+            bool keep_cells = false)
+      : c_(bytes, source, '\0'), scalar_name_(scalar_name), cell_to_point_(cell_to_point), keep_cells_(keep_cells) {}
 
   TetMesh read() {
+    parse();
+    if (tet_nodes_.empty())
+      fail_whole("$Elements", "no 4-node tetrahedra (type 4); " + std::to_string(mesh_.info.skipped_cells) +
+                                  " elements of dimension 0-2 skipped");
+    return finish();
+  }
+
+  // keep_cells: every linear volume element (tetrahedra, hexahedra, prisms, pyramids).
+  CellMesh read_cells() {
+    parse();
+    if (cells_.empty())
+      fail_whole("$Elements", "no volume elements; " + std::to_string(mesh_.info.skipped_cells) +
+                                  " elements of dimension 0-2 skipped");
+    return finish_cells();
+  }
+
+ private:
+  void parse() {
     bool have_format = false, have_nodes = false, have_elements = false;
     for (;;) {
       const auto w = c_.words();
@@ -98,13 +117,8 @@ class MshReader {
     if (!have_format) fail_whole("$MeshFormat", "missing (not a gmsh .msh file)");
     if (!have_nodes) fail_whole("$Nodes", "missing");
     if (!have_elements) fail_whole("$Elements", "missing");
-    if (tet_nodes_.empty())
-      fail_whole("$Elements", "no 4-node tetrahedra (type 4); " + std::to_string(mesh_.info.skipped_cells) +
-                                  " elements of dimension 0-2 skipped");
-    return finish();
   }
 
- private:
   // A problem with the file as a whole (found after reading it): no line number.
   [[noreturn]] void fail_whole(const std::string& section, const std::string& what) const {
     field::fail(c_.source(), section, what);
@@ -260,6 +274,11 @@ class MshReader {
     }
     if (row == nullptr)
       c_.fail(f, "element type " + std::to_string(type) + " (" + et->name + ") is not supported yet; only 4-node tetrahedra (type 4) are integrated");
+    if (keep_cells_ && (row->support == CellSupport::Traversed || row->support == CellSupport::CellPath)) {
+      cells_.push_back({t, row, {}});
+      for (int k = 0; k < row->nodes; ++k) cells_.back().nodes.push_back(nodes[static_cast<std::size_t>(k)]);
+      return;
+    }
     if (row->support != CellSupport::Traversed)
       c_.fail(f, unsupported_cell_message(row->vtk_id) + " (gmsh element type " + std::to_string(type) + ")");
     tet_tags_.push_back(t);
@@ -498,9 +517,107 @@ class MshReader {
     return std::move(mesh_);
   }
 
+  // The CellMesh of keep_cells mode. Node tags are permuted to VTK's order here, and
+  // $ElementNodeData values (given in gmsh's node order) with the same permutation, so a node is
+  // never separated from its value.
+  CellMesh finish_cells() {
+    CellMesh m;
+    m.points = std::move(mesh_.points);
+    m.info = std::move(mesh_.info);
+    for (const RawCell& rc : cells_) {
+      const std::string where = "$Elements (element " + std::to_string(rc.tag) + ")";
+      for (int k = 0; k < rc.row->nodes; ++k)
+        m.connectivity.push_back(node(rc.nodes[static_cast<std::size_t>(rc.row->gmsh_to_vtk[static_cast<std::size_t>(k)])], where));
+      m.types.push_back(static_cast<MeshCellType>(rc.row->vtk_id));
+      m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
+      m.info.cell_ids.push_back(rc.tag);
+    }
+    const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
+                                                  : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
+                                                        field::quoted(scalar_name_);
+    std::vector<double> value(m.points.size(), 0.0);
+    std::vector<char> have(m.points.size(), 0);
+    std::string data_field = "$NodeData";
+    if (node_data_.present) {
+      for (const auto& [t, v] : node_data_.node_values) {
+        const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
+        value[i] = v;
+        have[i] = 1;
+      }
+      m.info.scalar = node_data_.name;
+    } else if (element_data_.present) {
+      data_field = "$ElementNodeData";
+      std::unordered_map<long long, std::size_t> cell_of;
+      for (std::size_t i = 0; i < cells_.size(); ++i) cell_of.emplace(cells_[i].tag, i);
+      for (const auto& [t, vs] : element_data_.element_values) {
+        const auto it = cell_of.find(t);
+        if (it == cell_of.end()) continue;  // data on a point, line or surface element
+        const RawCell& rc = cells_[it->second];
+        if (vs.size() != static_cast<std::size_t>(rc.row->nodes))
+          fail_whole("$ElementNodeData", "element " + std::to_string(t) + " (a " + rc.row->name + ") has " +
+                                             std::to_string(vs.size()) + " values, expected " + std::to_string(rc.row->nodes));
+        const std::int32_t* p = m.connectivity.data() + m.offsets[it->second];
+        for (std::size_t k = 0; k < vs.size(); ++k) {
+          const auto i = static_cast<std::size_t>(p[k]);
+          const double v = vs[static_cast<std::size_t>(rc.row->gmsh_to_vtk[k])];
+          if (have[i] && value[i] != v)
+            fail_whole("$ElementNodeData", "point " + std::to_string(i) + " has two values (" + format_number(value[i]) +
+                                               " and " + format_number(v) + "): the field is not continuous");
+          value[i] = v;
+          have[i] = 1;
+        }
+      }
+      m.info.scalar = element_data_.name;
+    } else if (cell_data_.present) {
+      std::unordered_map<long long, double> by_tag;
+      for (const auto& [t, v] : cell_data_.node_values) by_tag[t] = v;
+      for (const RawCell& rc : cells_) {
+        const auto it = by_tag.find(rc.tag);
+        if (it == by_tag.end())
+          fail_whole("$ElementData", "no value for element " + std::to_string(rc.tag) + " (a " + rc.row->name + ")");
+        m.cell_scalars.push_back(it->second);
+      }
+      m.info.scalar = cell_data_.name;
+      m.info.scalar_association = "cell";
+      if (cell_to_point_) {
+        // vtkCellDataToPointData over the volume cells: plain average at each point.
+        std::vector<long> count(m.points.size(), 0);
+        for (std::size_t c = 0; c < m.cell_count(); ++c)
+          for (std::size_t k = 0; k < m.nodes_of(c); ++k) {
+            const auto i = static_cast<std::size_t>(m.cell(c)[k]);
+            value[i] += m.cell_scalars[c];
+            ++count[i];
+          }
+        for (std::size_t i = 0; i < value.size(); ++i)
+          if (count[i] > 0) value[i] /= static_cast<double>(count[i]);
+        m.scalars = std::move(value);
+        m.cell_scalars.clear();
+        m.info.scalar_association = "cell averaged to points";
+      }
+      validate_cell_mesh_structure(m, c_.source(), MeshFieldNames{"$Nodes", "$ElementData", "$Elements"});
+      return m;
+    } else {
+      fail_whole("$NodeData", what + " (one scalar per node is required; arrays: " + list_arrays(m.info.arrays) + ")");
+    }
+    for (const std::int32_t i : m.connectivity)
+      if (!have[static_cast<std::size_t>(i)])
+        fail_whole(data_field, "no value for a node of a volume element (point " + std::to_string(i) + ")");
+    m.scalars = std::move(value);
+    validate_cell_mesh_structure(m, c_.source(), MeshFieldNames{"$Nodes", data_field, "$Elements"});
+    return m;
+  }
+
+  struct RawCell {
+    long long tag;
+    const CellTypeInfo* row;
+    std::vector<long long> nodes;  // node tags, gmsh's order
+  };
+
   LineCursor c_;
   std::string scalar_name_;
   bool cell_to_point_ = false;
+  bool keep_cells_ = false;
+  std::vector<RawCell> cells_;
   bool version4_ = false, binary_ = false;
   TetMesh mesh_;
   std::unordered_map<long long, std::int32_t> node_index_;
@@ -518,6 +635,15 @@ TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std:
 
 TetMesh read_gmsh(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
   return parse_gmsh(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+}
+
+CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                          bool cell_to_point) {
+  return MshReader(bytes, source, scalar_name, cell_to_point, true).read_cells();
+}
+
+CellMesh read_gmsh_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_gmsh_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
 }
 
 }  // namespace rayint

@@ -6,8 +6,9 @@
 // ($PhysicalNames, $Entities, $Periodic, ...) is skipped. Element types go through the cell-type
 // table (cells/cell_types.hpp): elements of dimension 0-2 (points, lines, triangles,
 // quadrangles: the boundary gmsh writes beside the volume) are skipped and counted by type
-// (TetMesh::info); 4-node tetrahedra (type 4) are the cells; any other 3-D element (hexahedra,
-// prisms, pyramids, 10-node tetrahedra, ...) is refused with "cell type X (VTK id N) is not
+// (TetMesh::info); 4-node tetrahedra (type 4) are the cells; hexahedra, prisms and pyramids are
+// refused by read_gmsh with a line pointing to --cells split and read by read_gmsh_cells; other
+// 3-D elements (10-node tetrahedra, ...) are refused with "cell type X (VTK id N) is not
 // supported yet". Physical and elementary tags are labels, never the scalar.
 // Scalars: the first one-component $NodeData (meshio writes point data so), else the first
 // one-component $ElementNodeData (what gmsh's own "Save View" writes for a MathEval view), else
@@ -22,6 +23,7 @@
 #include <string>
 #include <string_view>
 
+#include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
@@ -32,5 +34,14 @@ namespace rayint {
 TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
                    bool cell_to_point = false);
 TetMesh read_gmsh(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
+// The same file as a CellMesh: every linear volume element kept (4-node tetrahedra, 8-node
+// hexahedra, 6-node prisms, 5-node pyramids), nodes permuted to VTK's order through the cell-type
+// table, $ElementNodeData values with them; interface points, lines, triangles and quadrangles
+// gmsh writes between its volumes are skipped and counted like boundary ones (they are never
+// boundaries: a CellMesh's boundary comes from its volume cells only).
+CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                          bool cell_to_point = false);
+CellMesh read_gmsh_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 }  // namespace rayint

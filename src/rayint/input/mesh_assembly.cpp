@@ -31,6 +31,38 @@ std::uint64_t bits(double v) {
   return b;
 }
 
+// The array taken as the scalar (the rule of mesh_assembly.hpp), or one line naming what exists.
+const RawArray& choose_scalar(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+                              const RawMeshFields& fields, const MeshFileInfo& info) {
+  const RawArray* chosen = nullptr;
+  if (!options.scalar_name.empty()) {
+    for (int pass = 0; pass < 2 && chosen == nullptr; ++pass)
+      for (const RawArray& a : raw.arrays)
+        if (a.cell == (pass == 1) && a.name == options.scalar_name) {
+          chosen = &a;
+          break;
+        }
+    if (chosen == nullptr)
+      field::fail(source, fields.point_data,
+                  "no array named " + field::quoted(options.scalar_name) + " (arrays: " + list_arrays(info.arrays) + ")");
+    if (chosen->components != 1)
+      field::fail(source, fields.point_data,
+                  "array " + field::quoted(chosen->name) + " has " + std::to_string(chosen->components) +
+                      " components; the scalar needs 1");
+  } else {
+    for (const RawArray& a : raw.arrays)
+      if (!a.cell && a.active && a.components == 1 && !is_marker_array(a.name)) { chosen = &a; break; }
+    for (int pass = 0; pass < 2 && chosen == nullptr; ++pass)
+      for (const RawArray& a : raw.arrays)
+        if (a.cell == (pass == 1) && a.components == 1 && !is_marker_array(a.name)) { chosen = &a; break; }
+    if (chosen == nullptr)
+      field::fail(source, fields.point_data,
+                  "no field to integrate: no one-component point or cell array that is not a region marker (arrays: " +
+                      list_arrays(info.arrays) + ")");
+  }
+  return *chosen;
+}
+
 }  // namespace
 
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
@@ -97,7 +129,7 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
       ++info.skipped_by_type[row->name];
       continue;
     }
-    if (row->support == CellSupport::NotYet) field::fail(source, at, unsupported_cell_message(type));
+    if (row->support != CellSupport::Traversed) field::fail(source, at, unsupported_cell_message(type));
     const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
     if (e < b || e > raw.connectivity.size())
       field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
@@ -123,32 +155,7 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
                     " of dimension 0-2 skipped, " + std::to_string(info.ghost_cells) + " ghost)");
 
   // The scalar.
-  const RawArray* chosen = nullptr;
-  if (!options.scalar_name.empty()) {
-    for (int pass = 0; pass < 2 && chosen == nullptr; ++pass)
-      for (const RawArray& a : raw.arrays)
-        if (a.cell == (pass == 1) && a.name == options.scalar_name) {
-          chosen = &a;
-          break;
-        }
-    if (chosen == nullptr)
-      field::fail(source, fields.point_data,
-                  "no array named " + field::quoted(options.scalar_name) + " (arrays: " + list_arrays(info.arrays) + ")");
-    if (chosen->components != 1)
-      field::fail(source, fields.point_data,
-                  "array " + field::quoted(chosen->name) + " has " + std::to_string(chosen->components) +
-                      " components; the scalar needs 1");
-  } else {
-    for (const RawArray& a : raw.arrays)
-      if (!a.cell && a.active && a.components == 1 && !is_marker_array(a.name)) { chosen = &a; break; }
-    for (int pass = 0; pass < 2 && chosen == nullptr; ++pass)
-      for (const RawArray& a : raw.arrays)
-        if (a.cell == (pass == 1) && a.components == 1 && !is_marker_array(a.name)) { chosen = &a; break; }
-    if (chosen == nullptr)
-      field::fail(source, fields.point_data,
-                  "no field to integrate: no one-component point or cell array that is not a region marker (arrays: " +
-                      list_arrays(info.arrays) + ")");
-  }
+  const RawArray* chosen = &choose_scalar(raw, source, options, fields, info);
   const std::string where = chosen->cell ? fields.cell_data : fields.point_data;
   const std::size_t expected = chosen->cell ? n_cells : raw.points.size();
   if (chosen->values.size() != expected)
@@ -194,6 +201,129 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
     info.scalar_association = "cell averaged to points";
   }
   validate_tet_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
+  return mesh;
+}
+
+}  // namespace rayint
+
+namespace rayint {
+
+CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
+                            const RawMeshFields& fields) {
+  const std::size_t n_cells = raw.types.size();
+  if (raw.offsets.size() != n_cells + 1)
+    field::fail(source, fields.cells, std::to_string(raw.offsets.size() - 1) + " cells for " +
+                                          std::to_string(n_cells) + " cell types");
+  CellMesh mesh;
+  MeshFileInfo& info = mesh.info;
+  for (const RawArray& a : raw.arrays)
+    info.arrays.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), is_marker_array(a.name)});
+  std::vector<char> ghost(n_cells, 0);
+  for (const RawArray& a : raw.arrays)
+    if (a.cell && a.name == "vtkGhostType" && a.components == 1 && a.values.size() == n_cells)
+      for (std::size_t i = 0; i < n_cells; ++i)
+        if (static_cast<unsigned>(a.values[i]) & kDuplicateCell) ghost[i] = 1;
+
+  std::vector<std::int32_t> point_map(raw.points.size());
+  if (options.merge_points) {
+    std::unordered_map<PointKey, std::int32_t, PointKeyHash> seen;
+    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+      const Vec3& p = raw.points[i];
+      const auto [it, fresh] = seen.emplace(PointKey{bits(p[0]), bits(p[1]), bits(p[2])},
+                                            static_cast<std::int32_t>(mesh.points.size()));
+      if (fresh) mesh.points.push_back(p);
+      else ++info.merged_points;
+      point_map[i] = it->second;
+    }
+  } else {
+    mesh.points = raw.points;
+    for (std::size_t i = 0; i < point_map.size(); ++i) point_map[i] = static_cast<std::int32_t>(i);
+  }
+
+  // Cells through the table: linear volume cells kept, dimensions 0-2 skipped and counted.
+  std::vector<std::size_t> kept;
+  const auto n_points = static_cast<long long>(raw.points.size());
+  for (std::size_t i = 0; i < n_cells; ++i) {
+    const long long type = raw.types[i];
+    const CellTypeInfo* row = cell_type_from_vtk(type);
+    const std::string at = fields.types + "[" + std::to_string(i) + "]";
+    if (row == nullptr) field::fail(source, at, unsupported_cell_message(type));
+    ++info.cells_by_type[row->name];
+    if (ghost[i]) {
+      ++info.ghost_cells;
+      continue;
+    }
+    if (row->support == CellSupport::Skipped) {
+      ++info.skipped_cells;
+      ++info.skipped_by_type[row->name];
+      continue;
+    }
+    if (row->support == CellSupport::NotYet) field::fail(source, at, unsupported_cell_message(type));
+    const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
+    if (e < b || e > raw.connectivity.size())
+      field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
+    if (e - b != static_cast<std::size_t>(row->nodes))
+      field::fail(source, fields.cells + "[" + std::to_string(i) + "]",
+                  std::string("a ") + row->name + " needs " + std::to_string(row->nodes) + " points, got " +
+                      std::to_string(e - b));
+    for (std::size_t k = b; k < e; ++k) {
+      const long long p = raw.connectivity[k];
+      if (p < 0 || p >= n_points)
+        field::fail(source, fields.cells + "[" + std::to_string(i) + "][" + std::to_string(k - b) + "]",
+                    "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n_points) + ")");
+      mesh.connectivity.push_back(point_map[static_cast<std::size_t>(p)]);
+    }
+    mesh.types.push_back(static_cast<MeshCellType>(row->vtk_id));
+    mesh.offsets.push_back(static_cast<std::uint32_t>(mesh.connectivity.size()));
+    kept.push_back(i);
+    info.cell_ids.push_back(static_cast<long long>(i));
+  }
+  if (mesh.types.empty())
+    field::fail(source, fields.cells,
+                "no volume cells (" + std::to_string(n_cells) + " cells, " + std::to_string(info.skipped_cells) +
+                    " of dimension 0-2 skipped, " + std::to_string(info.ghost_cells) + " ghost)");
+
+  const RawArray& chosen = choose_scalar(raw, source, options, fields, info);
+  const std::string where = chosen.cell ? fields.cell_data : fields.point_data;
+  const std::size_t expected = chosen.cell ? n_cells : raw.points.size();
+  if (chosen.values.size() != expected)
+    field::fail(source, where, "array " + field::quoted(chosen.name) + " has " + std::to_string(chosen.values.size()) +
+                                   " values for " + std::to_string(expected) + (chosen.cell ? " cells" : " points"));
+  info.scalar = chosen.name;
+  info.scalar_association = chosen.cell ? "cell" : "point";
+  if (chosen.cell && !options.cell_to_point) {
+    for (std::size_t c : kept) mesh.cell_scalars.push_back(chosen.values[c]);
+  } else if (chosen.cell) {
+    // vtkCellDataToPointData: plain average over every cell of the dataset that uses the point.
+    std::vector<double> sum(mesh.points.size(), 0.0);
+    std::vector<long> count(mesh.points.size(), 0);
+    for (std::size_t c = 0; c < n_cells; ++c)
+      for (std::size_t k = raw.offsets[c]; k < raw.offsets[c + 1] && k < raw.connectivity.size(); ++k) {
+        const long long p = raw.connectivity[k];
+        if (p < 0 || p >= n_points) continue;
+        const auto j = static_cast<std::size_t>(point_map[static_cast<std::size_t>(p)]);
+        sum[j] += chosen.values[c];
+        ++count[j];
+      }
+    for (std::size_t j = 0; j < sum.size(); ++j)
+      if (count[j] > 0) sum[j] /= static_cast<double>(count[j]);
+    mesh.scalars = std::move(sum);
+    info.scalar_association = "cell averaged to points";
+  } else {
+    mesh.scalars.assign(mesh.points.size(), 0.0);
+    std::vector<char> set(mesh.points.size(), 0);
+    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+      const auto j = static_cast<std::size_t>(point_map[i]);
+      const double v = chosen.values[i];
+      if (set[j] && !(mesh.scalars[j] == v))
+        field::fail(source, where, "array " + field::quoted(chosen.name) + ": point " + std::to_string(i) +
+                                       " repeats another piece's point with a different value (" +
+                                       format_number(mesh.scalars[j]) + " and " + format_number(v) + ")");
+      mesh.scalars[j] = v;
+      set[j] = 1;
+    }
+  }
+  validate_cell_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
   return mesh;
 }
 

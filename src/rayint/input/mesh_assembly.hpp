@@ -6,7 +6,7 @@
 //
 // Cells (cells/cell_types.hpp): tetrahedra are kept; cells of dimension 0-2 are skipped and
 // counted by type (TetMesh::info); other volume cells are refused with
-// unsupported_cell_message ("cell type hexahedron (VTK id 12) is not supported yet; ..."); an
+// unsupported_cell_message ("cell type hexahedron (VTK id 12): ... --cells split ..."); an
 // unknown type id is refused. Ghost cells: a cell array named vtkGhostType marks duplicated cells
 // (bit 1, vtkDataSetAttributes::DUPLICATECELL: the copy of a cell another piece owns); they are
 // dropped and counted once (TetMesh::info.ghost_cells). Ghost points need nothing: a ghost point
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "rayint/geometry/vec3.hpp"
+#include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
@@ -61,6 +62,12 @@ struct AssemblyOptions {
 // Throws InputError "<source>: <field>: <what>". The result passes validate_tet_mesh_structure.
 TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                           const RawMeshFields& fields = {});
+
+// The same dataset as a CellMesh (mesh/cell_mesh.hpp): every linear volume cell kept (tetrahedra,
+// voxels, hexahedra, wedges, pyramids), dimensions 0-2 skipped and counted, ghost cells dropped,
+// the scalar chosen by the same rule. Quadratic cells and polyhedra are refused naming their type.
+CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
+                            const RawMeshFields& fields = {});
 
 // `"name" (point, 1 component), ...` for messages.
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays);

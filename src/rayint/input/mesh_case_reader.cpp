@@ -8,6 +8,8 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/json_schema.hpp"
+#include "rayint/cells/cell_types.hpp"
+#include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/mesh_check.hpp"
 #include "rayint/input/gmsh_reader.hpp"
 #include "rayint/input/json_source.hpp"
@@ -24,6 +26,17 @@ using BuiltinReader = TetMesh (*)(const std::string& path, const std::string& sc
 TetMesh read_tetgen_mesh(const std::string& path, const std::string& scalar_name, bool) {
   return read_tetgen(path, scalar_name);  // TetGen point attributes are point data only
 }
+// Structured grids hold hexahedra (.vts) or voxels (.vtr): the tetrahedral path refuses them
+// the way it refuses any non-tetrahedral cell (unsupported_cell_message: use --cells split).
+template <CellMesh (*Read)(const std::string&, const std::string&, bool)>
+TetMesh read_structured_as_tets(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  CellMesh m = Read(path, scalar_name, cell_to_point);
+  for (std::size_t c = 0; c < m.cell_count(); ++c)
+    if (m.types[c] != MeshCellType::tetra)
+      throw InputError(path + ": cells[" + std::to_string(c) + "]: " + unsupported_cell_message(static_cast<int>(m.types[c])));
+  return take_tets(std::move(m));
+}
+
 const std::map<std::string, BuiltinReader>& builtin_mesh_readers() {
   static const std::map<std::string, BuiltinReader> readers = {
       {".vtk", &read_vtk_legacy},   // VTK legacy (vtk_legacy_reader.hpp)
@@ -31,6 +44,8 @@ const std::map<std::string, BuiltinReader>& builtin_mesh_readers() {
       {".msh", &read_gmsh},         // gmsh MSH 2.2 / 4.1 (gmsh_reader.hpp)
       {".vtu", &read_vtu},          // VTK XML, without VTK (vtk_xml_reader.hpp)
       {".pvtu", &read_pvtu},        // its parallel pieces (vtk_xml_reader.hpp)
+      {".vts", &read_structured_as_tets<&read_vts>},  // structured grids: refused without --cells split
+      {".vtr", &read_structured_as_tets<&read_vtr>},
   };
   return readers;
 }
@@ -144,6 +159,30 @@ TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name, 
   throw InputError(path + ": (file): unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
 }
 
+CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  using CellReader = CellMesh (*)(const std::string&, const std::string&, bool);
+  static const std::map<std::string, CellReader> readers = {
+      {".vtk", &read_vtk_legacy_cells}, {".vtu", &read_vtu_cells}, {".pvtu", &read_pvtu_cells},
+      {".msh", &read_gmsh_cells},       {".vts", &read_vts},       {".vtr", &read_vtr},
+  };
+  const std::string ext = std::filesystem::path(path).extension().string();
+  const auto it = readers.find(ext);
+  if (it != readers.end() && extra_mesh_readers().count(ext) == 0) return it->second(path, scalar_name, cell_to_point);
+  // Formats of tetrahedra only (TetGen, registered readers): their TetMesh as cells.
+  TetMesh t = read_mesh_file(path, scalar_name, cell_to_point);
+  CellMesh m;
+  m.points = std::move(t.points);
+  m.scalars = std::move(t.scalars);
+  m.cell_scalars = std::move(t.cell_scalars);
+  m.info = std::move(t.info);
+  for (const auto& tet : t.tets) {
+    m.connectivity.insert(m.connectivity.end(), tet.begin(), tet.end());
+    m.types.push_back(MeshCellType::tetra);
+    m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
+  }
+  return m;
+}
+
 bool is_mesh_case(const json& root) {
   return root.is_object() && (root.contains("mesh") || root.contains("mesh_file"));
 }
@@ -187,13 +226,20 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     const std::string ext = p.extension().string();
     if (extra_mesh_readers().count(ext) == 0 && builtin_mesh_readers().count(ext) == 0)
       s.fail("mesh_file", "unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
-    mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
+    if (options.split_cells) {
+      CellSplitCounts counts;
+      mc.mesh = split_cells(read_cell_mesh_file(mc.mesh_source, name, cell_to_point), &counts);
+      mc.split = counts;
+    } else {
+      mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
+    }
     names = file_field_names(p.extension().string());
   }
   if (options.strict)
     validate_tet_mesh(mc.mesh, mc.mesh_source, names);
   else
     mc.repairs = repair_tet_mesh(mc.mesh, mc.mesh_source, names);
+  if (mc.split) mc.repairs.split_cells = mc.split->cells;
   refuse_overlapping_tets(mc.mesh, mc.mesh_source, names.tets);
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");

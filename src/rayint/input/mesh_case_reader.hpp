@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/mesh_case.hpp"
 
 namespace rayint {
@@ -19,13 +20,22 @@ bool is_mesh_case(const nlohmann::json& root);
 // (`--strict-mesh`): refused with one line naming the tet, as validate_tet_mesh does.
 // Either way a mesh with overlapping tetrahedra is refused naming two of them
 // (mesh/mesh_check.hpp; measured cost in docs/meshes.md).
+// split_cells (`--cells split`): a mesh file of hexahedra, wedges, pyramids, voxels (and
+// tetrahedra) is tetrahedralised as VTK's vtkDataSetTriangleFilter does (mesh/cell_split.hpp), an
+// approximation that MeshCase::split records; without it such a file is refused with one line
+// (exit 2) saying so.
 struct MeshReadOptions {
   bool strict = false;
+  bool split_cells = false;
 };
 
-// A mesh file alone, by extension (.vtk, .vtu, .pvtu, .msh, .ele, or a registered one), as a
+// A mesh file alone, by extension (.vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, or a registered one), as a
 // mesh case's "mesh_file" reads it, before repair and checks (for `rayint mesh info`).
 TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
+// Any mesh file as a CellMesh (mesh/cell_mesh.hpp): .vtk, .vtu, .pvtu, .msh, .vts, .vtr keep every
+// linear volume cell; formats of tetrahedra only (.ele, registered readers) give their tetrahedra.
+CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source,
                          const MeshReadOptions& options = {});

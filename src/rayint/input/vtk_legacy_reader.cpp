@@ -405,6 +405,20 @@ TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
   return assemble_tet_mesh(std::move(d.raw), source, o);
 }
 
+CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                                bool cell_to_point) {
+  VtkCursor c(bytes, source);
+  LegacyDataset d = parse_legacy(c, "UNSTRUCTURED_GRID");
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  return assemble_cell_mesh(std::move(d.raw), source, o);
+}
+
+CellMesh read_vtk_legacy_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vtk_legacy_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+}
+
 VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& source,
                                  const std::string& scalar_name) {
   VtkCursor c(bytes, source);

@@ -22,6 +22,7 @@
 #include <string_view>
 
 #include "rayint/grid/voxel_grid.hpp"
+#include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
@@ -31,6 +32,11 @@ namespace rayint {
 TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
                          const std::string& scalar_name = "", bool cell_to_point = false);
 TetMesh read_vtk_legacy(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
+// The same file as a CellMesh: every linear volume cell kept (mesh_assembly.hpp, assemble_cell_mesh).
+CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& source,
+                                const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh read_vtk_legacy_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& source,
                                  const std::string& scalar_name = "");

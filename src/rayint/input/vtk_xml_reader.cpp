@@ -2,11 +2,13 @@
 // DataArray bytes go through the one decoder of vtk_xml_data_array.hpp.
 #include "rayint/input/vtk_xml_reader.hpp"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <cstdint>
 #include <cstring>
 
+#include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/voxel_grid_reader.hpp"
@@ -166,8 +168,12 @@ RawMeshFields vtu_fields(const std::string& piece_field) {
 
 }  // namespace
 
-TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                  bool cell_to_point) {
+namespace {
+
+// A .vtu's pieces as one RawMesh, handed to `assemble` (assemble_tet_mesh or assemble_cell_mesh).
+template <class Assemble>
+auto assemble_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                  bool cell_to_point, Assemble assemble) {
   const Document d(bytes, source, "UnstructuredGrid");
   const std::string piece_field = "UnstructuredGrid/Piece";
   RawMesh raw;
@@ -181,7 +187,23 @@ TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::
   o.scalar_name = scalar_name;
   o.cell_to_point = cell_to_point;
   o.merge_points = pieces > 1;
-  return assemble_tet_mesh(std::move(raw), source, o, vtu_fields(piece_field));
+  return assemble(std::move(raw), source, o, vtu_fields(piece_field));
+}
+
+}  // namespace
+
+TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                  bool cell_to_point) {
+  return assemble_vtu(bytes, source, scalar_name, cell_to_point, &assemble_tet_mesh);
+}
+
+CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                         bool cell_to_point) {
+  return assemble_vtu(bytes, source, scalar_name, cell_to_point, &assemble_cell_mesh);
+}
+
+CellMesh read_vtu_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vtu_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
 }
 
 TetMesh read_vtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
@@ -207,7 +229,10 @@ std::vector<std::string> piece_sources(const Document& d, pugi::xml_node dataset
 
 }  // namespace
 
-TetMesh read_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+namespace {
+
+template <class Assemble>
+auto assemble_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point, Assemble assemble) {
   const std::string text = json_source::read_text_file(path);
   const Document d(text, path, "PUnstructuredGrid");
   RawMesh raw;
@@ -229,7 +254,17 @@ TetMesh read_pvtu(const std::string& path, const std::string& scalar_name, bool 
   o.cell_to_point = cell_to_point;
   o.merge_points = true;
   RawMeshFields f = vtu_fields(last_field);
-  return assemble_tet_mesh(std::move(raw), path + " (" + std::to_string(pieces) + " pieces)", o, f);
+  return assemble(std::move(raw), path + " (" + std::to_string(pieces) + " pieces)", o, f);
+}
+
+}  // namespace
+
+TetMesh read_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return assemble_pvtu(path, scalar_name, cell_to_point, &assemble_tet_mesh);
+}
+
+CellMesh read_pvtu_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return assemble_pvtu(path, scalar_name, cell_to_point, &assemble_cell_mesh);
 }
 
 namespace {
@@ -351,6 +386,150 @@ VoxelGrid read_pvti(const std::string& path, const std::string& scalar_name) {
 
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name) {
   return parse_vti(json_source::read_text_file(path), path, scalar_name);
+}
+
+}  // namespace rayint
+
+namespace rayint {
+namespace {
+
+// The point dimensions of a structured dataset's single Piece, whose Extent must be its
+// WholeExtent (what vtkXMLStructuredGridWriter / vtkXMLRectilinearGridWriter write for one
+// dataset). A grid flat on some axis (one point) has no volume cells and is refused.
+std::array<int, 3> structured_dims(const Document& d, const std::string& type, pugi::xml_node& piece) {
+  const std::string piece_field = type + "/Piece";
+  const std::vector<double> whole = d.numbers_attribute(d.dataset(), "WholeExtent", type, 6);
+  piece = d.only_child(d.dataset(), "Piece", type);
+  const std::vector<double> extent = d.numbers_attribute(piece, "Extent", piece_field, 6, whole);
+  if (extent != whole)
+    d.fail(piece_field, "Extent differs from the WholeExtent (a piece of a larger grid: read the .pvts/.pvtr is not supported)");
+  std::array<int, 3> dims{};
+  double total = 1;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double lo = extent[2 * a], hi = extent[2 * a + 1];
+    if (lo != std::floor(lo) || hi != std::floor(hi) || !(hi >= lo) || hi - lo > 1e7)
+      d.fail(piece_field, "Extent is not an integer range on axis " + std::to_string(a));
+    if (hi == lo)
+      d.fail(piece_field, std::string("Extent is flat on axis ") + "xyz"[a] +
+                              " (a 2-D grid has no volume cells; rayint integrates volumes)");
+    dims[a] = static_cast<int>(hi - lo) + 1;
+    total *= dims[a];
+  }
+  if (total > static_cast<double>(kMaxIndex) / 8) d.fail(piece_field, "more points than rayint's meshes hold (2^31 / 8)");
+  return dims;
+}
+
+// The cells of the (nx, ny, nz) grid in VTK's order: vtkStructuredGrid::GetCell gives hexahedra
+// (i,j,k) (i+1,j,k) (i+1,j+1,k) (i,j+1,k) then the same at k+1; vtkRectilinearGrid::GetCell
+// voxels (i,j,k) (i+1,j,k) (i,j+1,k) (i+1,j+1,k) then k+1. Cell (i, j, k) is number
+// i + (nx-1) (j + (ny-1) k), the order of the file's CellData.
+void structured_cells(const std::array<int, 3>& n, bool voxels, RawMesh& raw) {
+  const long long nx = n[0], ny = n[1], nz = n[2], sx = 1, sy = nx, sz = nx * ny;
+  for (long long k = 0; k + 1 < nz; ++k)
+    for (long long j = 0; j + 1 < ny; ++j)
+      for (long long i = 0; i + 1 < nx; ++i) {
+        const long long p = i * sx + j * sy + k * sz;
+        const long long q[4] = {p, p + sx, voxels ? p + sy : p + sx + sy, voxels ? p + sx + sy : p + sy};
+        for (long long z : {0LL, sz})
+          for (long long v : q) raw.connectivity.push_back(v + z);
+        raw.types.push_back(voxels ? kVtkVoxel : kVtkHexahedron);
+        raw.offsets.push_back(raw.connectivity.size());
+      }
+}
+
+RawMeshFields structured_fields(const std::string& type) {
+  RawMeshFields f;
+  f.points = type + (type == "RectilinearGrid" ? "/Piece/Coordinates" : "/Piece/Points");
+  f.point_data = type + "/Piece/PointData";
+  f.cell_data = type + "/Piece/CellData";
+  f.cells = type + "/Piece (cells)";
+  f.types = type + "/Piece (cell types)";
+  return f;
+}
+
+void structured_arrays(const Document& d, pugi::xml_node piece, const std::string& type, std::size_t points,
+                       std::size_t cells, RawMesh& raw) {
+  if (const pugi::xml_node pd = piece.child("PointData")) data_arrays(d, pd, false, points, type + "/Piece/PointData", raw.arrays);
+  if (const pugi::xml_node cd = piece.child("CellData")) data_arrays(d, cd, true, cells, type + "/Piece/CellData", raw.arrays);
+}
+
+std::size_t cell_total(const std::array<int, 3>& n) {
+  return static_cast<std::size_t>(n[0] - 1) * static_cast<std::size_t>(n[1] - 1) * static_cast<std::size_t>(n[2] - 1);
+}
+
+}  // namespace
+
+CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                   bool cell_to_point) {
+  const std::string type = "StructuredGrid";
+  const Document d(bytes, source, type);
+  pugi::xml_node piece;
+  const std::array<int, 3> n = structured_dims(d, type, piece);
+  const std::size_t points = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  const std::string points_field = type + "/Piece/Points/DataArray";
+  const pugi::xml_node pts = d.only_child(d.only_child(piece, "Points", type + "/Piece"), "DataArray", type + "/Piece/Points");
+  if (d.components(pts, points_field) != 3)
+    d.fail(points_field, "NumberOfComponents must be 3, got " + std::to_string(d.components(pts, points_field)));
+  const std::vector<double> xyz = finite_values(d, pts, points_field, 3 * points);
+  RawMesh raw;
+  raw.points.reserve(points);
+  for (std::size_t i = 0; i < points; ++i) raw.points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  structured_cells(n, false, raw);
+  structured_arrays(d, piece, type, points, cell_total(n), raw);
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, structured_fields(type));
+  mesh.structured = n;
+  return mesh;
+}
+
+CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                   bool cell_to_point) {
+  const std::string type = "RectilinearGrid";
+  const Document d(bytes, source, type);
+  pugi::xml_node piece;
+  const std::array<int, 3> n = structured_dims(d, type, piece);
+  // Coordinates: three DataArrays, x, y, z in that order, whatever their names (VTK's writer
+  // calls them after the input's arrays; ParaView writes "Array 0x..." or "x_coordinates").
+  const std::string coords_field = type + "/Piece/Coordinates";
+  const pugi::xml_node coords = d.only_child(piece, "Coordinates", type + "/Piece");
+  std::array<std::vector<double>, 3> axis;
+  std::size_t a = 0;
+  for (pugi::xml_node arr = coords.child("DataArray"); arr; arr = arr.next_sibling("DataArray"), ++a) {
+    const std::string f = coords_field + "/DataArray[" + std::to_string(a) + "]";
+    if (a >= 3) d.fail(f, "more than three coordinate arrays (x, y, z)");
+    if (d.components(arr, f) != 1) d.fail(f, "a coordinate array has one component");
+    axis[a] = finite_values(d, arr, f, static_cast<std::size_t>(n[a]));
+    for (std::size_t i = 1; i < axis[a].size(); ++i)
+      if (!(axis[a][i] > axis[a][i - 1]))
+        d.fail(f, "coordinates must increase (value " + std::to_string(i) + " is not above the one before)");
+  }
+  if (a != 3) d.fail(coords_field, "needs three DataArrays (x, y, z), got " + std::to_string(a));
+  RawMesh raw;
+  const std::size_t points = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  raw.points.reserve(points);
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        raw.points.emplace_back(axis[0][static_cast<std::size_t>(i)], axis[1][static_cast<std::size_t>(j)],
+                                axis[2][static_cast<std::size_t>(k)]);
+  structured_cells(n, true, raw);
+  structured_arrays(d, piece, type, points, cell_total(n), raw);
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, structured_fields(type));
+  mesh.structured = n;
+  return mesh;
+}
+
+CellMesh read_vts(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vts(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+}
+
+CellMesh read_vtr(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vtr(json_source::read_text_file(path), path, scalar_name, cell_to_point);
 }
 
 }  // namespace rayint

@@ -26,6 +26,7 @@
 #include <string_view>
 
 #include "rayint/grid/voxel_grid.hpp"
+#include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
@@ -39,6 +40,26 @@ TetMesh read_vtu(const std::string& path, const std::string& scalar_name = "", b
 // relative to its folder, joined: points with bitwise-equal coordinates merged (the pieces of
 // one dataset repeat the points on their shared faces), ghost cells dropped (mesh_assembly.hpp).
 TetMesh read_pvtu(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
+// The same files as CellMeshes (mesh/cell_mesh.hpp): every linear volume cell kept (tetrahedra,
+// voxels, hexahedra, wedges, pyramids), for `--cells split` and `rayint mesh info`.
+CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                         bool cell_to_point = false);
+CellMesh read_vtu_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh read_pvtu_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
+// Structured grids (one Piece whose Extent is the WholeExtent; a grid flat on an axis is refused):
+// .vts (VTKFile type="StructuredGrid": Points, PointData, CellData): hexahedral cells, VTK's
+// vtkStructuredGrid order; .vtr (type="RectilinearGrid": Coordinates, three one-component
+// DataArrays x, y, z in that order, strictly increasing, under any names): voxel cells, VTK's
+// vtkRectilinearGrid order. The scalar by the rule of input/mesh_assembly.hpp. The result keeps
+// its point dimensions (CellMesh::structured), which --cells split needs (mesh/cell_split.hpp).
+CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                   bool cell_to_point = false);
+CellMesh read_vts(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                   bool cell_to_point = false);
+CellMesh read_vtr(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name = "");

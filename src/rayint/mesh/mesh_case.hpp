@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rayint/geometry/vec3.hpp"
+#include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/surface_shading.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
@@ -27,6 +28,9 @@ struct MeshCase {
   TransferFunctions transfer;
   TetMesh mesh;
   TetRepairs repairs;             // what reading reoriented or dropped (all 0 under --strict-mesh)
+  // `--cells split`: the file's cells were tetrahedralised as vtkDataSetTriangleFilter does (an
+  // approximation of their own interpolation; mesh/cell_split.hpp). Every output says so.
+  std::optional<CellSplitCounts> split;
   std::vector<MeshViewRay> rays;  // "rays" (may be empty when a camera is given)
   std::optional<Camera> camera;   // "camera"
   Rgb background{0.0, 0.0, 0.0};  // "background": behind every camera pixel

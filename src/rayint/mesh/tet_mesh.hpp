@@ -107,6 +107,9 @@ struct TetRepairs {
   long reoriented = 0;   // inverted, reordered (points 2 and 3 swapped)
   long zero_volume = 0;  // dropped: repeated point index or 6V == 0 exactly
   long slivers = 0;      // dropped: 0 < |6V| <= kDegenerateTetRatio l^3
+  // `--cells split` (mesh/cell_split.hpp): the file's cells by type that were tetrahedralised as
+  // VTK's vtkDataSetTriangleFilter does, an approximation; empty when the file was not split.
+  std::map<std::string, long> split_cells;
 };
 // The shape of tet i (its indices must be in range).
 TetShape classify_tet(const TetMesh& mesh, std::size_t tet);

@@ -64,13 +64,22 @@ nlohmann::json to_json(const MethodOutcome& o, bool with_reference) {
 nlohmann::json to_json(const TetRepairs& r) {
   nlohmann::json skipped = nlohmann::json::object();
   for (const auto& [type, n] : r.skipped_by_type) skipped[type] = n;
-  return {{"tets_read", r.tets_read},
-          {"reoriented", r.reoriented},
-          {"dropped_zero_volume", r.zero_volume},
-          {"dropped_slivers", r.slivers},
-          {"skipped_cells", r.skipped_cells},  // dimension 0-2 cells of the file (not volume)
-          {"skipped_by_type", skipped},
-          {"ghost_cells_dropped", r.ghost_cells}};
+  nlohmann::json j = {{"tets_read", r.tets_read},
+                      {"reoriented", r.reoriented},
+                      {"dropped_zero_volume", r.zero_volume},
+                      {"dropped_slivers", r.slivers},
+                      {"skipped_cells", r.skipped_cells},  // dimension 0-2 cells of the file (not volume)
+                      {"skipped_by_type", skipped},
+                      {"ghost_cells_dropped", r.ghost_cells}};
+  if (!r.split_cells.empty()) {
+    nlohmann::json split = nlohmann::json::object();
+    for (const auto& [type, n] : r.split_cells) split[type] = n;
+    j["cells"] = {{"mode", "split"},
+                  {"approximation", "--cells split: the file's cells tetrahedralised as VTK's vtkDataSetTriangleFilter "
+                                    "does; the field is linear per tetrahedron, not the cells' own interpolation"},
+                  {"cells_split_by_type", split}};
+  }
+  return j;
 }
 
 nlohmann::json to_json(const CaseEvaluation& c) {

@@ -2,6 +2,7 @@
 #include "rayint/report/mesh_info.hpp"
 
 #include <cstdio>
+#include <map>
 
 #include "rayint/core/format.hpp"
 
@@ -21,9 +22,96 @@ std::string cell_label(const TetMesh& m, std::size_t t) {
   return m.info.cell_ids.size() == m.tets.size() ? std::to_string(m.info.cell_ids[t]) : std::to_string(t);
 }
 
+std::pair<Vec3, Vec3> bounds(const std::vector<Vec3>& points) {
+  Vec3 lo = points.front(), hi = points.front();
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
+// Per kept cell type: count and corner-Jacobian orientation.
+std::map<std::string, CellOrientationCounts> orientation_by_type(const CellMesh& m) {
+  std::map<std::string, CellOrientationCounts> out;
+  for (std::size_t c = 0; c < m.cell_count(); ++c) {
+    CellOrientationCounts& o = out[mesh_cell_name(m.types[c])];
+    const int s = cell_orientation(m, c);
+    (s > 0 ? o.positive : s < 0 ? o.negative : o.mixed) += 1;
+  }
+  return out;
+}
+
+constexpr const char* kCellsIntegrated =
+    "with --cells split (VTK's vtkDataSetTriangleFilter tetrahedralisation, an approximation of the cells' own "
+    "interpolation); without it refused";
+
+nlohmann::json cells_json(const MeshInfo& in) {
+  const CellMesh& m = *in.cells;
+  const auto [lo, hi] = bounds(m.points);
+  nlohmann::json cells = nlohmann::json::object();
+  for (const auto& [type, n] : m.info.cells_by_type) {
+    const auto s = m.info.skipped_by_type.find(type);
+    cells[type] = {{"read", n}, {"skipped", s == m.info.skipped_by_type.end() ? 0 : s->second}};
+  }
+  nlohmann::json orient = nlohmann::json::object();
+  for (const auto& [type, o] : orientation_by_type(m))
+    orient[type] = {{"positive", o.positive}, {"negative", o.negative}, {"mixed", o.mixed}};
+  nlohmann::json arrays = nlohmann::json::array();
+  for (const MeshArrayInfo& a : m.info.arrays)
+    arrays.push_back({{"name", a.name}, {"association", a.association}, {"components", a.components},
+                      {"marker", a.marker}, {"scalar", a.name == m.info.scalar}});
+  nlohmann::json j = {{"file", in.file},
+                      {"points", m.points.size()},
+                      {"cells", m.cell_count()},
+                      {"tets", nullptr},
+                      {"bounds", {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}}},
+                      {"cells_by_type", cells},
+                      {"skipped_cells", m.info.skipped_cells},
+                      {"ghost_cells", m.info.ghost_cells},
+                      {"merged_points", m.info.merged_points},
+                      {"arrays", arrays},
+                      {"scalar", {{"name", m.info.scalar}, {"association", m.info.scalar_association}}},
+                      {"cell_orientation", orient},
+                      {"integrated", kCellsIntegrated},
+                      {"check", "not run (--check covers tetrahedral meshes)"}};
+  if (m.structured) j["structured_dimensions"] = {(*m.structured)[0], (*m.structured)[1], (*m.structured)[2]};
+  return j;
+}
+
+std::string cells_text(const MeshInfo& in) {
+  const CellMesh& m = *in.cells;
+  const auto [lo, hi] = bounds(m.points);
+  std::string out = in.file + "\n";
+  out += "  points " + std::to_string(m.points.size()) + ", volume cells " + std::to_string(m.cell_count());
+  if (m.structured)
+    out += " (structured " + std::to_string((*m.structured)[0]) + " x " + std::to_string((*m.structured)[1]) + " x " +
+           std::to_string((*m.structured)[2]) + " points)";
+  out += "\n  bounds [" + format_number(lo[0]) + ", " + format_number(hi[0]) + "] x [" + format_number(lo[1]) + ", " +
+         format_number(hi[1]) + "] x [" + format_number(lo[2]) + ", " + format_number(hi[2]) + "]\n";
+  out += "  cells:";
+  for (const auto& [type, n] : m.info.cells_by_type) {
+    const auto s = m.info.skipped_by_type.find(type);
+    out += " " + type + " " + std::to_string(n) + (s != m.info.skipped_by_type.end() ? " (skipped)" : "") + ";";
+  }
+  if (m.info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(m.info.ghost_cells) + ";";
+  out += "\n  arrays:";
+  if (m.info.arrays.empty()) out += " none";
+  for (const MeshArrayInfo& a : m.info.arrays)
+    out += " \"" + a.name + "\" (" + a.association + ", " + std::to_string(a.components) +
+           (a.marker ? ", marker" : "") + (a.name == m.info.scalar ? ", the scalar" : "") + ");";
+  out += "\n  orientation (corner Jacobians):";
+  for (const auto& [type, o] : orientation_by_type(m))
+    out += " " + type + " positive " + std::to_string(o.positive) + ", negative " + std::to_string(o.negative) +
+           ", mixed " + std::to_string(o.mixed) + ";";
+  out += std::string("\n  integrated: ") + kCellsIntegrated + "\n";
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json to_json(const MeshInfo& in) {
+  if (in.cells != nullptr) return cells_json(in);
   const TetMesh& m = *in.mesh;
   const auto [lo, hi] = bounds(m);
   nlohmann::json cells = nlohmann::json::object();
@@ -59,6 +147,7 @@ nlohmann::json to_json(const MeshInfo& in) {
 }
 
 std::string to_text(const MeshInfo& in) {
+  if (in.cells != nullptr) return cells_text(in);
   const TetMesh& m = *in.mesh;
   const auto [lo, hi] = bounds(m);
   std::string out = in.file + "\n";

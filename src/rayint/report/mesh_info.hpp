@@ -2,12 +2,15 @@
 // `rayint mesh info FILE [--check]`: what a mesh file holds as rayint reads it, as JSON or as a
 // few lines of text: bounds, cells by type (kept / skipped / ghost), the arrays with their
 // association and components, which one is the scalar, orientation counts and, with --check, the
-// overlap check (mesh/mesh_check.hpp).
+// overlap check (mesh/mesh_check.hpp). A file with hexahedra, wedges, pyramids or voxels is
+// reported by cell type, with each type's orientation counts (cell_mesh.hpp) and the line
+// "integrated: with --cells split (VTK's tetrahedralisation, an approximation)".
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 
+#include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/mesh_check.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
@@ -16,6 +19,9 @@ namespace rayint {
 struct MeshInfo {
   std::string file;
   const TetMesh* mesh = nullptr;
+  // A file with cells other than tetrahedra (mesh/cell_mesh.hpp): reported instead of `mesh`,
+  // with per type the corner-Jacobian orientation (cell_orientation) and how it is integrated.
+  const CellMesh* cells = nullptr;
   OrientationCounts orientation;
   bool checked = false;                                        // --check ran
   std::optional<std::pair<std::size_t, std::size_t>> overlap;  // its finding

@@ -1,0 +1,158 @@
+// Meshes of linear cells (see cell_mesh.hpp).
+#include "rayint/mesh/cell_mesh.hpp"
+
+#include <cmath>
+#include <map>
+
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
+
+namespace rayint {
+namespace {
+
+std::string at(const std::string& path, std::size_t i) { return field::index_path(path, i); }
+
+double det3(const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)); }
+
+// Corner frames in VTK's parametric coordinates (r, s, t): per corner its node and the nodes one
+// step along r, s, t, with the sign of that step (+1 towards larger parameter). The Jacobian
+// det(dx/dr, dx/ds, dx/dt) at the corner has the sign of sr ss st det(x_r - x, x_s - x, x_t - x).
+struct Corner {
+  int node, r, s, t, sign;
+};
+// vtkHexahedron: 0 (0,0,0) 1 (1,0,0) 2 (1,1,0) 3 (0,1,0), 4-7 the same at t = 1.
+constexpr Corner kHexCorners[8] = {{0, 1, 3, 4, +1}, {1, 0, 2, 5, -1}, {2, 3, 1, 6, +1}, {3, 2, 0, 7, -1},
+                                   {4, 5, 7, 0, -1}, {5, 4, 6, 1, +1}, {6, 7, 5, 2, -1}, {7, 6, 4, 3, +1}};
+// vtkVoxel: 0 (0,0,0) 1 (1,0,0) 2 (0,1,0) 3 (1,1,0), 4-7 the same at t = 1.
+constexpr Corner kVoxelCorners[8] = {{0, 1, 2, 4, +1}, {1, 0, 3, 5, -1}, {3, 2, 1, 7, +1}, {2, 3, 0, 6, -1},
+                                     {4, 5, 6, 0, -1}, {5, 4, 7, 1, +1}, {7, 6, 5, 3, -1}, {6, 7, 4, 2, +1}};
+// vtkWedge: 0 (0,0,0) 1 (1,0,0) 2 (0,1,0), 3-5 the same at t = 1. At a triangle corner the frame
+// (next - x, previous - x) has the orientation of (x1 - x0, x2 - x0) for every corner.
+constexpr Corner kWedgeCorners[6] = {{0, 1, 2, 3, +1}, {1, 2, 0, 4, +1}, {2, 0, 1, 5, +1},
+                                     {3, 4, 5, 0, -1}, {4, 5, 3, 1, -1}, {5, 3, 4, 2, -1}};
+// vtkPyramid: base 0 (0,0,0) 1 (1,0,0) 2 (1,1,0) 3 (0,1,0), apex 4 (t = 1; the apex is singular).
+constexpr Corner kPyramidCorners[4] = {{0, 1, 3, 4, +1}, {1, 0, 2, 4, -1}, {2, 3, 1, 4, +1}, {3, 2, 0, 4, -1}};
+constexpr Corner kTetCorners[1] = {{0, 1, 2, 3, +1}};
+
+template <std::size_t N>
+int corner_signs(const CellMesh& m, const std::int32_t* c, const Corner (&corners)[N]) {
+  int pos = 0, neg = 0;
+  for (const Corner& k : corners) {
+    const Vec3& x = m.points[static_cast<std::size_t>(c[k.node])];
+    const double d = k.sign * det3(m.points[static_cast<std::size_t>(c[k.r])] - x,
+                                   m.points[static_cast<std::size_t>(c[k.s])] - x,
+                                   m.points[static_cast<std::size_t>(c[k.t])] - x);
+    if (d > 0) ++pos;
+    else if (d < 0) ++neg;
+  }
+  if (pos == static_cast<int>(N)) return 1;
+  if (neg == static_cast<int>(N)) return -1;
+  return 0;
+}
+
+}  // namespace
+
+int mesh_cell_nodes(long long vtk_id) {
+  switch (vtk_id) {
+    case 10: return 4;
+    case 11: return 8;
+    case 12: return 8;
+    case 13: return 6;
+    case 14: return 5;
+    default: return 0;
+  }
+}
+
+const char* mesh_cell_name(MeshCellType type) {
+  switch (type) {
+    case MeshCellType::tetra: return "tetra";
+    case MeshCellType::voxel: return "voxel";
+    case MeshCellType::hexahedron: return "hexahedron";
+    case MeshCellType::wedge: return "wedge";
+    case MeshCellType::pyramid: return "pyramid";
+  }
+  return "?";
+}
+
+bool CellMesh::only_tets() const {
+  for (MeshCellType t : types)
+    if (t != MeshCellType::tetra) return false;
+  return true;
+}
+
+std::vector<std::pair<std::string, long>> cell_counts(const CellMesh& mesh) {
+  std::map<int, long> n;
+  for (MeshCellType t : mesh.types) ++n[static_cast<int>(t)];
+  std::vector<std::pair<std::string, long>> out;
+  for (const auto& [id, count] : n) out.emplace_back(mesh_cell_name(static_cast<MeshCellType>(id)), count);
+  return out;
+}
+
+void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& source, const MeshFieldNames& names) {
+  if (mesh.points.empty()) field::fail(source, names.points, "no points");
+  if (mesh.types.empty()) field::fail(source, names.tets, "no volume cells");
+  if (mesh.offsets.size() != mesh.types.size() + 1 || mesh.offsets.back() != mesh.connectivity.size())
+    field::fail(source, names.tets, "cell offsets do not match the connectivity");
+  if (!mesh.cell_scalars.empty()) {
+    if (mesh.cell_scalars.size() != mesh.types.size())
+      field::fail(source, names.scalars,
+                  std::to_string(mesh.cell_scalars.size()) + " cell scalars for " + std::to_string(mesh.types.size()) +
+                      " cells (need one per cell)");
+    for (std::size_t i = 0; i < mesh.cell_scalars.size(); ++i)
+      if (!std::isfinite(mesh.cell_scalars[i]))
+        field::fail(source, at(names.scalars, i), "must be finite, got " + format_number(mesh.cell_scalars[i]));
+  } else if (mesh.scalars.size() != mesh.points.size()) {
+    field::fail(source, names.scalars,
+                std::to_string(mesh.scalars.size()) + " scalars for " + std::to_string(mesh.points.size()) +
+                    " points (need one per point)");
+  }
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(mesh.points[i][k]))
+        field::fail(source, at(at(names.points, i), static_cast<std::size_t>(k)),
+                    "coordinate must be finite, got " + format_number(mesh.points[i][k]));
+  for (std::size_t i = 0; i < mesh.scalars.size(); ++i)
+    if (!std::isfinite(mesh.scalars[i]))
+      field::fail(source, at(names.scalars, i), "must be finite, got " + format_number(mesh.scalars[i]));
+  const auto n = static_cast<long long>(mesh.points.size());
+  for (std::size_t c = 0; c < mesh.types.size(); ++c) {
+    const int want = mesh_cell_nodes(static_cast<int>(mesh.types[c]));
+    if (want == 0 || static_cast<std::size_t>(want) != mesh.nodes_of(c))
+      field::fail(source, at(names.tets, c),
+                  std::string("a ") + mesh_cell_name(mesh.types[c]) + " needs " + std::to_string(want) +
+                      " points, got " + std::to_string(mesh.nodes_of(c)));
+    const std::int32_t* p = mesh.cell(c);
+    for (std::size_t k = 0; k < mesh.nodes_of(c); ++k)
+      if (p[k] < 0 || p[k] >= n)
+        field::fail(source, at(at(names.tets, c), k),
+                    "point index " + std::to_string(p[k]) + " out of range [0, " + std::to_string(n) + ")");
+  }
+}
+
+TetMesh take_tets(CellMesh&& mesh) {
+  TetMesh t;
+  t.points = std::move(mesh.points);
+  t.scalars = std::move(mesh.scalars);
+  t.cell_scalars = std::move(mesh.cell_scalars);
+  t.info = std::move(mesh.info);
+  t.tets.reserve(mesh.types.size());
+  for (std::size_t c = 0; c < mesh.types.size(); ++c) {
+    const std::int32_t* p = mesh.cell(c);
+    t.tets.push_back({p[0], p[1], p[2], p[3]});
+  }
+  return t;
+}
+
+int cell_orientation(const CellMesh& mesh, std::size_t c) {
+  const std::int32_t* p = mesh.cell(c);
+  switch (mesh.types[c]) {
+    case MeshCellType::tetra: return corner_signs(mesh, p, kTetCorners);
+    case MeshCellType::voxel: return corner_signs(mesh, p, kVoxelCorners);
+    case MeshCellType::hexahedron: return corner_signs(mesh, p, kHexCorners);
+    case MeshCellType::wedge: return corner_signs(mesh, p, kWedgeCorners);
+    case MeshCellType::pyramid: return corner_signs(mesh, p, kPyramidCorners);
+  }
+  return 0;
+}
+
+}  // namespace rayint

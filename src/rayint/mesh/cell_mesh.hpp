@@ -1,0 +1,73 @@
+#pragma once
+// A mesh of linear volume cells of any VTK type rayint reads (tetrahedron 10, voxel 11,
+// hexahedron 12, wedge 13, pyramid 14; cells/cell_types.hpp, support Traversed or CellPath), with
+// one scalar per point or per cell: what the readers give for a file that holds cells other than
+// tetrahedra (input/cell_mesh_reader.hpp), `rayint mesh info` reports, and `--cells split`
+// (mesh/cell_split.hpp) turns into a TetMesh. Node order is VTK's (vtkVoxel.h, vtkHexahedron.h,
+// vtkWedge.h, vtkPyramid.h); readers of other orders (gmsh) permute through the cell-type table.
+//
+// The tetrahedral path (TetMesh) is separate and unchanged: a file of tetrahedra only is read
+// straight into a TetMesh; a CellMesh of tetrahedra only converts with take_tets().
+//
+// Structured grids (.vts, .vtr) keep their point dimensions: their cells are the grid's
+// (i, j, k) cells in VTK's order (i fastest), and vtkDataSetTriangleFilter splits them with a
+// different rule than unstructured cells (cell_split.hpp), so `structured` says which.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayint/geometry/vec3.hpp"
+#include "rayint/mesh/tet_mesh.hpp"
+
+namespace rayint {
+
+// VTK type ids of the cells a CellMesh holds (vtkCellType.h).
+enum class MeshCellType : std::uint8_t { tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14 };
+
+// Nodes of a linear cell type (4, 8, 8, 6, 5); 0 for an id that is not one.
+int mesh_cell_nodes(long long vtk_id);
+// "tetra", "voxel", "hexahedron", "wedge", "pyramid" (the table's names).
+const char* mesh_cell_name(MeshCellType type);
+
+struct CellMesh {
+  std::vector<Vec3> points;
+  std::vector<double> scalars;        // one per point (empty when cell_scalars is used)
+  std::vector<double> cell_scalars;   // one per cell, constant over it (empty for point data)
+  std::vector<MeshCellType> types;      // per cell
+  std::vector<std::uint32_t> offsets{0};        // cell c: connectivity[offsets[c], offsets[c + 1])
+  std::vector<std::int32_t> connectivity;       // point indices, VTK node order
+  // Point dimensions (nx, ny, nz) of a structured grid (.vts: hexahedra, .vtr: voxels), i fastest;
+  // cell (i, j, k) is cell i + (nx - 1) (j + (ny - 1) k).
+  std::optional<std::array<int, 3>> structured;
+  MeshFileInfo info;  // cells_by_type, skipped, arrays, scalar; cell_ids: per cell its index in the file
+
+  std::size_t cell_count() const { return types.size(); }
+  std::size_t nodes_of(std::size_t c) const { return offsets[c + 1] - offsets[c]; }
+  const std::int32_t* cell(std::size_t c) const { return connectivity.data() + offsets[c]; }
+  bool only_tets() const;
+};
+
+// Kept cells by type name ("hexahedron" -> 120, ...).
+std::vector<std::pair<std::string, long>> cell_counts(const CellMesh& mesh);
+
+// Structure only: at least one cell, node counts per type, indices in range, finite points and
+// scalars, one scalar per point (or per cell). Throws InputError "<source>: <field>: <what>".
+void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& source,
+                                  const MeshFieldNames& names = {});
+
+// The TetMesh of a CellMesh that holds only tetrahedra (moves the arrays). Precondition: only_tets().
+TetMesh take_tets(CellMesh&& mesh);
+
+// Signed Jacobian determinants at the corners of a cell are what orientation means for a
+// non-simplex; mesh info reports, per type, how many cells have all corner Jacobians positive in
+// VTK's sense, all negative (gmsh's prisms: the same nodes in the mirrored order), or mixed signs
+// (a twisted or degenerate cell).
+struct CellOrientationCounts {
+  long positive = 0, negative = 0, mixed = 0;
+};
+// For cell c: +1 all corners positive, -1 all negative, 0 mixed or zero.
+int cell_orientation(const CellMesh& mesh, std::size_t c);
+
+}  // namespace rayint
