@@ -27,7 +27,7 @@ TEST_CASE("A request above a named limit is refused with the value, the limit an
   CHECK(limits::value(limits::kPhotons) == 10'000'000'000ull);
   CHECK_NOTHROW(limits::check(limits::kPhotons, 1e10, "--photons"));
   CHECK_THROWS_WITH(limits::check(limits::kPhotons, 1e15, "--photons"),
-                    "--photons: 1e+15 photons is above the limit of 10000000000 (RAYINT_MAX_PHOTONS=N raises "
+                    "--photons: 1e+15 photons is above the limit of 1e+10 (RAYINT_MAX_PHOTONS=N raises "
                     "it; docs/limits.md)");
   // NaN is above every limit (it must not pass a comparison that is false both ways).
   CHECK_THROWS_AS(limits::check(limits::kPhotons, std::nan(""), "--photons"), rayint::InputError);
