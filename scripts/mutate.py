@@ -101,6 +101,7 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default=os.path.join(SRC, "reports", "reliability"))
     a = ap.parse_args()
+    a.rayint = os.path.abspath(a.rayint)
     rng = random.Random(a.seed)
     work = tempfile.mkdtemp()
     shutil.copytree(os.path.join(SRC, "cases", "meshes"), os.path.join(work, "meshes"))
