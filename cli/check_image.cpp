@@ -249,6 +249,7 @@ void run_image_check(const ImageCheckOptions& o) {
                      "or a scene (per-ray cases are checked with --candidate)");
   const MeshCase mc = parse_mesh_case(root, o.case_file);
   if (!mc.camera) throw InputError(o.case_file + ": camera: --candidate-image needs the case's \"camera\"");
+  check_camera_reaches_mesh(mc, o.case_file);
   const Image candidate = read_candidate(o, mc.camera->width, mc.camera->height, "the camera of " + o.case_file,
                                          &mc.background);
   const Image variance = read_variance(o, candidate);

@@ -3,15 +3,18 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <new>
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "shard.hpp"
 #ifdef RAYINT_WITH_VTK
 #include "rayint/vtk/vtk_integrators.hpp"
 #include "rayint/vtk/vtk_mesh_reader.hpp"
 #endif
 #include "rayint/core/atomic_file.hpp"
+#include "rayint/core/error.hpp"
 #include "rayint/effects/standard_effects.hpp"
 
 namespace rayint::cli {
@@ -86,6 +89,7 @@ int main(int argc, char** argv) {
              "marked); 2 bad input or usage (docs/exit-codes.md).");
   rayint::cli::build_app(app);
   rayint::cli::accept_integer_float_forms(app);  // --photons 1e6 (cli/options.hpp)
+  rayint::cli::check_number_options(app);         // --exposure nan, -1 (cli/options.hpp)
   for (int i = 2; i < argc; ++i) rayint::cli::shard_context().args.push_back(argv[i]);
   // A command's outputs (-o, --stats, --junit, artifacts, ...) land together or not at all:
   // each is staged beside its target and renamed when the command has finished.
@@ -104,9 +108,15 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const std::bad_alloc&) {  // a limit of the machine (ulimit -v), not of rayint's own
+    std::cout.flush();
+    if (rayint::cli::progress_line_open()) std::cerr << '\n';
+    std::cerr << "rayint: error: out of memory (std::bad_alloc); docs/limits.md lists the sizes rayint checks\n";
+    return rayint::cli::kExitBadInput;
   } catch (const std::exception& e) {  // CLI::ParseError, InputError, std::invalid_argument, ...
     std::cout.flush();
-    std::cerr << "rayint: error: " << e.what() << "\n";
+    if (rayint::cli::progress_line_open()) std::cerr << '\n';  // the error on a line of its own
+    std::cerr << "rayint: error: " << rayint::field::one_line(e.what()) << "\n";
     return rayint::cli::kExitBadInput;
   }
   if (app.get_subcommands().empty()) {  // `rayint` alone: what it can do, on stderr

@@ -2,6 +2,7 @@
 // Options several subcommands register the same way.
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <string>
 
@@ -77,6 +78,53 @@ inline void accept_integer_float_forms(CLI::App& app) {
           "", "integer float forms"));
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) accept_integer_float_forms(*sub);
+}
+
+// Every FLOAT option of every subcommand refuses NaN and infinities ("--exposure nan", "--tau
+// inf"): no rayint option has a meaning for them, and a NaN passes every `x > 0`-style check of
+// a command's own (it compares false both ways). Applied by main next to accept_integer_float_forms;
+// each option's own range (CLI::Range, a command's check) still applies.
+inline std::string finite_number_error(const std::string& s) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);  // 1e400 overflows to inf (ERANGE): refused too
+  if (end == s.c_str() || *end != '\0') return std::string();  // not a number: the conversion says so
+  if (!std::isfinite(v)) return "must be a finite number, got " + s;
+  return std::string();
+}
+
+// CLI11's PositiveNumber and NonNegativeNumber print their bounds with std::to_string: "Value -1
+// not in range 0.000000 to 1797693134862315708145...(309 digits).000000". The same checks with
+// a short message: "must be > 0, got -1" ("must be >= 0, got -1").
+inline std::string sign_error(const std::string& s, bool zero_allowed) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end == s.c_str() || *end != '\0') return std::string();  // not a number: the conversion says so
+  if (zero_allowed ? v >= 0.0 : v > 0.0) return std::string();
+  return std::string(zero_allowed ? "must be >= 0" : "must be > 0") + ", got " + s;
+}
+
+// Every option of every subcommand: FLOAT options refuse NaN and infinities; CLI11's
+// PositiveNumber / NonNegativeNumber checks are replaced by the same checks with short messages.
+inline void check_number_options(CLI::App& app) {
+  for (CLI::Option* o : app.get_options()) {
+    // CLI11's two validators have no name; their description is "POSITIVE" / "NONNEGATIVE".
+    for (int i = 0;; ++i) {
+      CLI::Validator* v = nullptr;
+      try {
+        v = o->get_validator(i);
+      } catch (const CLI::OptionNotFound&) {
+        break;
+      }
+      const std::string d = v->get_description();
+      if (!v->get_active() || !v->get_name().empty() || (d != "POSITIVE" && d != "NONNEGATIVE")) continue;
+      const bool zero_allowed = d == "NONNEGATIVE";
+      v->active(false);
+      o->check(CLI::Validator([zero_allowed](std::string& s) { return sign_error(s, zero_allowed); }, d,
+                              zero_allowed ? "non-negative" : "positive"));  // named: not replaced again
+    }
+    if (o->get_type_name().rfind("FLOAT", 0) == 0) o->check(CLI::Validator(finite_number_error, "", "finite"));
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) check_number_options(*sub);
 }
 
 }  // namespace rayint::cli

@@ -14,6 +14,13 @@
 
 namespace rayint::cli {
 
+// Whether a terminal progress line is open (written without its newline): main ends it before an
+// error message, so the error is a line of its own.
+inline bool& progress_line_open() {
+  static bool open = false;
+  return open;
+}
+
 inline bool stderr_is_terminal() {
   static const bool tty = ::isatty(STDERR_FILENO) != 0;
   return tty;
@@ -27,6 +34,7 @@ class ProgressLine {
     if (stderr_is_terminal()) {
       std::fprintf(stderr, "\r%s", text.c_str());
       open_ = true;
+      progress_line_open() = true;
     } else {
       const int tenth = static_cast<int>(fraction * 10.0);
       if (tenth == last_tenth_) return;
@@ -40,6 +48,7 @@ class ProgressLine {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (open_) std::fputc('\n', stderr);
     open_ = false;
+    progress_line_open() = false;
     std::fflush(stderr);
   }
 

@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "rayint/geometry/camera.hpp"
+#include "rayint/mesh/mesh_case.hpp"
+
 namespace rayint::cli {
 
 struct RenderOptions {
@@ -31,5 +34,12 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);
 // --loss-target with --grad-out: render_mesh_gradient.cpp
 void render_mesh_gradient_file(const nlohmann::json& root, const RenderOptions& options);
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options);  // render_scene.cpp
+
+// Refuses (InputError naming `where`) a render whose pixel memory exceeds core/limits.hpp
+// kImageBytes: `images` RGB images of doubles, plus a double per pixel with `per_pixel_error`.
+void check_camera_memory(const Camera& camera, int images, bool per_pixel_error, const std::string& where);
+// Refuses a mesh case whose camera is so far from the mesh that a double's step along its rays
+// exceeds the mesh's extent (every ray would silently miss).
+void check_camera_reaches_mesh(const MeshCase& mesh_case, const std::string& where);
 
 }  // namespace rayint::cli

@@ -45,6 +45,7 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
   if (!options.compare.empty())
     throw InputError(options.input + ": --compare applies to mesh cases; for scenes use --errors K");
   Scene scene = parse_scene(root, options.input, dir_of(options.input));
+  if (scene.camera) check_camera_memory(*scene.camera, 1, false, options.input + ": camera");
   apply_overrides(scene, options.methods);
   std::unique_ptr<ScenePipeline> pipeline;
   try {

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/core/error.hpp"
+#include "rayint/core/limits.hpp"
 #include "rayint/input/json_source.hpp"
 
 namespace rayint::cli {
@@ -75,6 +76,7 @@ ShardFile read_shard_file(const std::string& path) {
   f.shard.count = (*s)["count"];
   if (f.shard.count < 1 || f.shard.index < 0 || f.shard.index >= f.shard.count)
     field::fail(path, "shard", "needs 0 <= index < count");
+  limits::check(limits::kShards, static_cast<double>(f.shard.count), path + ": shard.count");
   if (!j.contains("data")) field::fail(path, "data", "missing");
   f.data = j["data"];
   return f;
@@ -103,6 +105,7 @@ ShardSpec begin_shard(const std::string& text, const std::string& output) {
   if (text.empty()) return {};
   if (merging()) throw std::invalid_argument("--shard: not in a merge");
   const ShardSpec s = parse_shard(text);
+  limits::check(limits::kShards, static_cast<double>(s.count), "--shard " + text);
   require_shard_file(output);
   shard_context().mode = ShardContext::Mode::shard;
   return s;
@@ -117,7 +120,8 @@ std::vector<std::string> run_inputs(std::vector<std::string> named, const json_s
 }
 
 std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files) {
-  std::vector<std::string> parts{"rayint-run", command};
+  // The version too: shards of two rayint builds are not one run, even where the figures agree.
+  std::vector<std::string> parts{"rayint-run", std::string("rayint ") + RAYINT_VERSION, command};
   for (const auto& a : canonical_args(shard_context().args, false)) parts.push_back(a);
   parts.push_back("inputs");
   for (const auto& f : input_files) parts.push_back(file_bytes(f));
@@ -201,9 +205,6 @@ void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build) {
       c.files[static_cast<std::size_t>(i)] = f->path;
     }
     c.args = first.args;
-    if (!missing.empty())
-      std::cerr << "rayint merge: partial: " << by_index.size() << " of " << count
-                << " shards (missing " << missing << "); the report covers only their part of the run\n";
     // Replay the run: the same subcommand and arguments, its output to merge's -o.
     CLI::App replay{"rayint"};
     replay.require_subcommand(1);
@@ -214,7 +215,19 @@ void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build) {
     argv.push_back(opt->output);
     argv.push_back("--quiet");
     std::reverse(argv.begin(), argv.end());  // CLI11 parses a reversed vector
-    replay.parse(argv);
+    // The note after the replay: a merge that fails prints its error alone, not after this note.
+    const auto note_partial = [&] {
+      if (!missing.empty())
+        std::cerr << "rayint merge: partial: " << by_index.size() << " of " << count
+                  << " shards (missing " << missing << "); the report covers only their part of the run\n";
+    };
+    try {
+      replay.parse(argv);
+    } catch (const ChecksFailed&) {  // the report is written (exit 1): the note applies
+      note_partial();
+      throw;
+    }
+    note_partial();
   });
 }
 

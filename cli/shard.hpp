@@ -5,7 +5,8 @@
 // file (-o) instead of its report: {"rayint_shard": 1, "command", "args", "fingerprint",
 // "shard": {"index", "count"}, "data"}. `args` are the run's arguments without --shard,
 // -o/--output, --threads and -q/--quiet (those do not change a figure); the fingerprint hashes
-// the command, those arguments and the bytes of the run's input files.
+// the rayint version, the command, those arguments and the bytes of the run's input files (every
+// file the readers opened: the case or scene and the mesh, grid and preset files it names).
 // `rayint merge` checks the shards belong together, then runs the recorded command again in
 // merge mode: the subcommand takes its figures from the shards' data instead of computing
 // them, and writes its report (to merge's -o) through the same code as a single run.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "rayint/core/limits.hpp"
 #include "options.hpp"
 #include "shard.hpp"
 #include "rayint/core/error.hpp"
@@ -230,6 +231,7 @@ void set_slab_command(CLI::App& app) {
     if (methods.pn && s->max_order != 0)
       throw std::invalid_argument("--max-order: P_N solves every order; give it without pn");
     if (s->run.mc_options.photons < 1) throw std::invalid_argument("--photons: must be >= 1");
+    limits::check(limits::kPhotons, static_cast<double>(s->run.mc_options.photons), "--photons");
     if (s->run.doubling_options.streams < 2 || s->run.doubling_options.streams > 1024) throw std::invalid_argument("--streams: must be in [2, 1024]");
     if (!(s->run.doubling_options.start_thickness > 0 && s->run.doubling_options.start_thickness <= 1e-3))
       throw std::invalid_argument("--start-thickness: must be in (0, 1e-3]");

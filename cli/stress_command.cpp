@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "shard.hpp"
+#include "rayint/core/limits.hpp"
 #include "rayint/core/output_dir.hpp"
 #include "rayint/input/shard_reader.hpp"
 #include "rayint/report/shard_json.hpp"
@@ -70,6 +71,7 @@ void set_stress_command(CLI::App& app) {
   cmd->callback([opt] {
     StressOptions so;
     so.count = opt->count;
+    limits::check(limits::kStressSamples, static_cast<double>(so.count), "--count");
     so.seed = opt->seed;
     so.methods = parse_methods_option(opt->methods);
     so.threads = opt->threads;

@@ -99,7 +99,7 @@ case $kind in
       "$rayint" merge "$work"/s.0.json "$work/gap.s.1.json" "$work"/s.{2,3}.json -o "$work/out.json"
     # a shard without -o is refused before the work (a run of hours here would hit the timeout)
     expect_fail "needs -o FILE" timeout 60 "$rayint" slab --tau 1 --albedo 0.9 --phase isotropic --mu-up 0.5 \
-      --method monte_carlo --photons 100000000000 --seed 1 --shard 0/4
+      --method monte_carlo --photons 10000000000 --seed 1 --shard 0/4
     expect_fail "needs -o FILE" timeout 60 "$rayint" stress --count 100000000 --seed 1 --shard 0/4
     # The files a case names are inputs too: a render of a TetGen mesh case (case JSON -> .ele,
     # which names its .node) refuses to merge once the .node file has changed after the shards ran.

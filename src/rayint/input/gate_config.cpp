@@ -3,6 +3,7 @@
 // line), then walked strictly with the one schema walker (input/json_schema.hpp): known fields
 // only, required fields present, limits finite and >= 0, methods that parse and can be built,
 // regimes that exist, case patterns that match files, and case names that are in the corpus.
+#include "rayint/core/limits.hpp"
 #include "rayint/input/gate_config.hpp"
 
 #include <algorithm>
@@ -184,6 +185,8 @@ class GateConfigReader {
     s_.check_fields(j, path, {"count", "seed", "regimes", "methods"});
     cfg.stress = true;
     cfg.stress_count = positive_integer(s_.required(j, path, "count"), member_path(path, "count"));
+    limits::check(limits::kStressSamples, static_cast<double>(cfg.stress_count),
+                  s_.source() + ": " + member_path(path, "count"));
     const json& seed = s_.required(j, path, "seed");
     if (!seed.is_number_unsigned())
       s_.fail(member_path(path, "seed"), "must be an integer >= 0, got " + seed.dump());

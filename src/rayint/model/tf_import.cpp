@@ -21,6 +21,8 @@
 
 #include <boost/math/tools/minima.hpp>
 
+#include "rayint/core/limits.hpp"
+
 namespace rayint {
 namespace {
 
@@ -30,7 +32,6 @@ constexpr int kProbes = 16;
 constexpr int kBrentBits = 30;
 constexpr std::uintmax_t kBrentIterations = 64;
 constexpr int kMaxDepth = 48;
-constexpr std::size_t kMaxNodes = 10'000'000;  // a memory budget: ~240 MB of nodes
 
 using Values = std::array<double, 3>;
 using Curve = std::function<Values(double)>;
@@ -38,11 +39,16 @@ using Curve = std::function<Values(double)>;
 // Points of n (1 or 3) piecewise-linear functions on one strictly increasing set of scalars.
 class Builder {
  public:
-  Builder(int n, double tolerance) : n_(n) { report_.tolerance = tolerance; }
+  // The node budget (core/limits.hpp kTransferNodes) is read once, before any node is made.
+  Builder(int n, double tolerance) : n_(n), max_nodes_(limits::value(limits::kTransferNodes)) {
+    report_.tolerance = tolerance;
+  }
 
   void push(double x, const Values& v) {
     if (!x_.empty() && !(x > x_.back())) return;  // a node repeated (a step at an interval's end)
-    if (x_.size() >= kMaxNodes) throw std::length_error("the linearisation needs more than 10^7 nodes");
+    if (x_.size() >= max_nodes_)
+      throw std::length_error("the linearisation needs more than " + std::to_string(max_nodes_) +
+                              " nodes (RAYINT_MAX_TF_NODES=N raises the limit; docs/limits.md)");
     x_.push_back(x);
     v_.push_back(v);
   }
@@ -112,6 +118,7 @@ class Builder {
   }
 
   int n_;
+  std::size_t max_nodes_;
   std::vector<double> x_;
   std::vector<Values> v_;
   LinearisationReport report_;

@@ -67,7 +67,8 @@ struct TfImport {
 };
 
 // Throws std::invalid_argument for an empty function or a sample_distance opacity >= 1, and
-// std::length_error when a function would need more than 10^7 nodes (a tolerance too small).
+// std::length_error when a function would need more nodes than core/limits.hpp kTransferNodes
+// allows (10^6 unless RAYINT_MAX_TF_NODES says otherwise; a tolerance too small).
 TfImport import_vtk_transfer_function(const VtkColorTransferFunction& color,
                                       const VtkPiecewiseFunction& opacity,
                                       const TfImportOptions& options);

@@ -9,6 +9,7 @@
 
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/core/error.hpp"
+#include "rayint/core/limits.hpp"
 
 namespace rayint {
 
@@ -80,6 +81,13 @@ Image read_png(const std::string& path, bool srgb) {
   if (png.width > 16384 || png.height > 16384) {
     png_image_free(&png);
     throw InputError(path + ": PNG larger than 16384 x 16384");
+  }
+  try {  // a decompression bomb (a small file of a huge image) is refused before decoding
+    limits::check(limits::kImageBytes, static_cast<double>(png.width) * png.height * (3.0 + sizeof(Rgb)),
+                  path + ": (image): " + std::to_string(png.width) + " x " + std::to_string(png.height) + " pixels");
+  } catch (...) {
+    png_image_free(&png);
+    throw;
   }
   std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(png));
   if (!png_image_finish_read(&png, nullptr, rgb.data(), 0, nullptr))

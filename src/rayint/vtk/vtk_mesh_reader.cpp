@@ -19,6 +19,7 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include "rayint/input/case_reader.hpp"
+#include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
 
 namespace rayint {
@@ -30,6 +31,7 @@ vtkSmartPointer<vtkUnstructuredGrid> read_grid(const std::string& path, const ch
   vtkNew<Reader> reader;
   if (!reader->CanReadFile(path.c_str()))
     throw InputError(path + ": file: not readable by " + reader_name);
+  json_source::InputFileLog::note(path);  // the shard fingerprint hashes the files a run read
   reader->SetFileName(path.c_str());
   reader->Update();
   vtkUnstructuredGrid* grid = reader->GetOutput();
