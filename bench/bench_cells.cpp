@@ -1,5 +1,5 @@
 // Cost of one cell of a ray in the linear cells' own interpolation (cells/linear_cells.hpp,
-// cells/cell_integral.hpp), single-threaded, per cell (chord() + CellIntegrator::integrate), over
+// cells/cell_integral.hpp), single-threaded, per cell (chord() + LinearCellIntegrator::integrate), over
 // 256 random distorted cells each with one ray through a random interior point (the families
 // and transfer functions of tools/cell_accuracy.cpp, edge 1, 10-30 % perturbation):
 //   BM_cell/hexahedron     a distorted hexahedron, isoparametric path (Newton + Chebyshev + GK);
@@ -81,7 +81,7 @@ std::vector<Sample> make_samples(LinearCellType type, bool affine, bool split) {
 
 void run(benchmark::State& state, LinearCellType type, bool affine, bool split) {
   const TransferFunctions tf = bench_tf();
-  const CellIntegrator integrator(tf);
+  const LinearCellIntegrator integrator(tf);
   const std::vector<Sample> samples = make_samples(type, affine, split);
   long chords = 0, failed = 0;
   for (auto _ : state) {

@@ -292,7 +292,7 @@ TEST_CASE("linear cells: the curved paths agree with the exact ones where both a
     tf.density[static_cast<std::size_t>(c)] = {{0.0, 0.3, 0.55, 1.0}, {0.2, 1.5 + c, 0.4, 2.0}};
     tf.color[static_cast<std::size_t>(c)] = {{0.1, 0.6, 0.9}, {1.0, 0.2 * c, 0.7}};
   }
-  const CellIntegrator integrator(tf);
+  const LinearCellIntegrator integrator(tf);
   int compared = 0;
   for (LinearCellType type : {LinearCellType::tetra, LinearCellType::hexahedron, LinearCellType::wedge}) {
     for (int k = 0; k < 30; ++k) {
@@ -336,7 +336,7 @@ TEST_CASE("linear cells: the curved paths agree with the exact ones where both a
 TEST_CASE("linear cells: compositing two halves of a chord gives the whole", "[cells][isoparametric]") {
   std::mt19937 rng(17);
   const TransferFunctions tf = test::uniform_tf(test::line(0.0, 0.1, 1.0, 3.0), test::line(0.0, 1.0, 1.0, 0.2));
-  const CellIntegrator integrator(tf);
+  const LinearCellIntegrator integrator(tf);
   for (LinearCellType type : kTypes) {
     const LinearCell cell = random_cell(type, rng, 0.15);
     const Vec3 target = cell_position(cell, linear_reference_centre(type));
@@ -357,7 +357,7 @@ TEST_CASE("linear cells: compositing two halves of a chord gives the whole", "[c
 
 TEST_CASE("linear cells: bad input and failures are reported, never a number", "[cells][isoparametric]") {
   const TransferFunctions tf = test::uniform_tf(test::constant(1.0), test::constant(1.0));
-  const CellIntegrator integrator(tf);
+  const LinearCellIntegrator integrator(tf);
   std::vector<Vec3> nodes(8, Vec3::Zero());
   CHECK_THROWS_AS(make_linear_cell(LinearCellType::hexahedron, nodes, std::vector<double>(8, 0.0)), std::invalid_argument);
   CHECK_THROWS_AS(make_linear_cell(LinearCellType::wedge, nodes, std::vector<double>(8, 0.0)), std::invalid_argument);
@@ -442,7 +442,7 @@ TEST_CASE("cell reference: the double path on distorted cells of every type, bot
   // The sample of this test is small (the reference costs ~0.1 s a chord); the measured figures
   // over 200 rays per family are in reports/cells/accuracy.md (tools/cell_accuracy.cpp).
   const TransferFunctions tf = breakpoint_tf();
-  const CellIntegrator integrator(tf);
+  const LinearCellIntegrator integrator(tf);
   std::mt19937 rng(2029);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   double worst = 0.0;

@@ -106,7 +106,7 @@ TransferFunctions make_tf() {
 
 // The same ray through VTK's split of the cell (random distinct global ids, as an unstructured
 // grid), each tetra's chord integrated by the exact path and composited front to back.
-bool split_integral(const CellIntegrator& integrator, const LinearCell& cell, const ViewRay& ray, std::mt19937& rng,
+bool split_integral(const LinearCellIntegrator& integrator, const LinearCell& cell, const ViewRay& ray, std::mt19937& rng,
                     CellPieceIntegral& out) {
   const int n = linear_node_count(cell.type);
   std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const TransferFunctions tf = make_tf();
-  const CellIntegrator integrator(tf);
+  const LinearCellIntegrator integrator(tf);
   std::vector<Stats> all;
   for (const Family& fam : kFamilies) {
     const unsigned family_index = static_cast<unsigned>(&fam - kFamilies);
@@ -294,7 +294,7 @@ int main(int argc, char** argv) {
        << "` (tools/cell_accuracy.cpp; families and transfer functions described there). One random ray "
           "through each of `rays` random cells per family; error = max over channels of |double - ref| / ref "
           "for emission and optical depth; `worst abs`: max over channels of |dE| + |dD| (emissions and depths are O(0.01-1) here). `est<err`: chords whose error exceeded the double path's own "
-          "error_estimate. Time: the double path's `CellIntegrator::integrate` per chord on this machine "
+          "error_estimate. Time: the double path's `LinearCellIntegrator::integrate` per chord on this machine "
           "(shared, 2 cores; indicative only). `split`: the same ray through VTK's tetrahedralisation of the "
           "cell (cells/vtk_split.hpp, random global ids, tets by the exact path) against the 50-digit "
           "own-interpolation reference: max over channels of |E_split - E_ref| / (largest channel's E_ref), rays whose "

@@ -280,10 +280,10 @@ CellPieceIntegral composite(const CellPieceIntegral& near, const CellPieceIntegr
   return out;
 }
 
-CellIntegrator::CellIntegrator(const TransferFunctions& tf)
+LinearCellIntegrator::LinearCellIntegrator(const TransferFunctions& tf)
     : tf_(&tf), breakpoints_(tf.breakpoints()), splitter_(tf) {}
 
-CellPieceIntegral CellIntegrator::integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
+CellPieceIntegral LinearCellIntegrator::integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
                                             double t_far) const {
   if (cell.type != LinearCellType::tetra) return integrate_curved(cell, ray, t_near, t_far, !cell.affine);
   CellPieceIntegral out;
@@ -314,12 +314,12 @@ CellPieceIntegral CellIntegrator::integrate(const LinearCell& cell, const ViewRa
   return out;
 }
 
-CellPieceIntegral CellIntegrator::integrate_isoparametric(const LinearCell& cell, const ViewRay& ray,
+CellPieceIntegral LinearCellIntegrator::integrate_isoparametric(const LinearCell& cell, const ViewRay& ray,
                                                           double t_near, double t_far) const {
   return integrate_curved(cell, ray, t_near, t_far, true);
 }
 
-CellPieceIntegral CellIntegrator::integrate_curved(const LinearCell& cell, const ViewRay& ray,
+CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell, const ViewRay& ray,
                                                    double t_near, double t_far, bool use_newton) const {
   CellPieceIntegral out;
   out.path = use_newton ? CellPath::isoparametric : CellPath::polynomial;

@@ -90,9 +90,9 @@ struct CellPieceIntegral {
 // D = D_near + D_far); the error estimates add, a failure of either is a failure.
 CellPieceIntegral composite(const CellPieceIntegral& near, const CellPieceIntegral& far);
 
-class CellIntegrator {
+class LinearCellIntegrator {
  public:
-  explicit CellIntegrator(const TransferFunctions& tf);
+  explicit LinearCellIntegrator(const TransferFunctions& tf);
   // The chord [t_near, t_far] (t_near <= t_far, both inside the cell, e.g. from chord()) of
   // ray.origin + t ray.direction; lengths are world lengths (|direction| need not be 1).
   CellPieceIntegral integrate(const LinearCell& cell, const ViewRay& ray, double t_near,

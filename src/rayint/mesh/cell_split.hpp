@@ -6,22 +6,10 @@
 // trilinearly (isoparametrically), the tetrahedra linearly; the difference is what the issue-29
 // report measures (reports/cells/).
 //
-// The decompositions:
-//   - structured grids (.vts hexahedra, .vtr voxels; StructuredExecute): every cell into 5
-//     tetrahedra by a fixed table, alternating with the parity of i + j + k (vtkHexahedron /
-//     vtkVoxel::Triangulate(index): index 0 when i + j + k is even). Neighbours agree on their
-//     shared faces because the parities alternate.
-//   - unstructured cells (UnstructuredExecute): tetrahedra pass unchanged; every other linear
-//     cell goes through vtkOrderedTriangulator::TemplateTriangulate, which inserts the cell's
-//     points in ascending global point id into a Delaunay triangulation of the cell's parametric
-//     coordinates. Those points are cospherical (degenerate for Delaunay), and the result is the
-//     placing (beneath-beyond) triangulation in that order: each new point is joined to the faces
-//     of the current hull it sees strictly. Measured with VTK 9.1's filter on one cell of each
-//     type for every order of its point ids (pyramid 120, wedge 720, hexahedron and voxel 40,320
-//     orders): the placing triangulation gave VTK's tetrahedra in every case (tests/fixtures/
-//     readers/vtk_split_orders.py). A quad face is split along the diagonal that avoids its largest
-//     point id, so neighbours agree. Hexahedra and voxels give 5 or 6 tetrahedra, wedges 3,
-//     pyramids 2.
+// The decompositions are the cells area's (cells/vtk_split.hpp, where they are documented and
+// checked against VTK 9.1): structured grids by VTK's fixed 5-tetrahedra tables alternating with
+// the parity of i + j + k; unstructured cells by the placing triangulation in global point id
+// order that vtkOrderedTriangulator produces. Tetrahedra pass unchanged.
 // Cell data: every tetrahedron takes its cell's value. Point data and points are kept as they are.
 #include <map>
 #include <string>
