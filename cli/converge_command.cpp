@@ -73,6 +73,7 @@ void set_converge_command(CLI::App& app) {
     std::vector<double> steps;
     double expect_order = std::nan(""), order_tolerance = 0.2, invariance_tolerance = 1e-6;
     unsigned threads = 0;
+    bool quiet = false;  // converge prints no progress; -q is accepted like every subcommand's
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("converge", "Error of a renderer against the exact image as its sample distance shrinks");
@@ -90,6 +91,7 @@ void set_converge_command(CLI::App& app) {
                   "images within this fraction of the exact peak of the finest are 'invariant to the step'");
   cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
   cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
+  add_quiet_flag(cmd, opt->quiet);
   cmd->callback([opt] {
     if (opt->methods.empty() == opt->command.empty())
       throw InputError("--methods/--command: give exactly one candidate (--methods riemann or --command TEMPLATE)");
