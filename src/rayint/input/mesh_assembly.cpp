@@ -63,6 +63,76 @@ const RawArray& choose_scalar(const RawMesh& raw, const std::string& source, con
   return *chosen;
 }
 
+
+// What both assemblies share: the offsets check, the array list, the ghost flags and the points
+// (merged across pieces when asked). `points` and `info` are the mesh's.
+struct Shared {
+  std::vector<char> ghost;                 // per cell: a duplicate cell of another piece
+  std::vector<std::int32_t> point_map;     // file point index -> mesh point index
+};
+Shared assemble_shared(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+                       const RawMeshFields& fields, std::vector<Vec3>& points, MeshFileInfo& info) {
+  const std::size_t n_cells = raw.types.size();
+  if (raw.offsets.size() != n_cells + 1)
+    field::fail(source, fields.cells, std::to_string(raw.offsets.size() - 1) + " cells for " +
+                                          std::to_string(n_cells) + " cell types");
+  for (const RawArray& a : raw.arrays)
+    info.arrays.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), is_marker_array(a.name)});
+  Shared out;
+  out.ghost.assign(n_cells, 0);
+  for (const RawArray& a : raw.arrays)
+    if (a.cell && a.name == "vtkGhostType" && a.components == 1 && a.values.size() == n_cells)
+      for (std::size_t i = 0; i < n_cells; ++i)
+        if (static_cast<unsigned>(a.values[i]) & kDuplicateCell) out.ghost[i] = 1;
+  out.point_map.resize(raw.points.size());
+  if (options.merge_points) {
+    std::unordered_map<PointKey, std::int32_t, PointKeyHash> seen;
+    seen.reserve(raw.points.size());
+    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+      const Vec3& p = raw.points[i];
+      const auto [it, fresh] = seen.emplace(PointKey{bits(p[0]), bits(p[1]), bits(p[2])},
+                                            static_cast<std::int32_t>(points.size()));
+      if (fresh) points.push_back(p);
+      else ++info.merged_points;
+      out.point_map[i] = it->second;
+    }
+  } else {
+    points = raw.points;
+    for (std::size_t i = 0; i < out.point_map.size(); ++i) out.point_map[i] = static_cast<std::int32_t>(i);
+  }
+  return out;
+}
+
+// Cell i through the table: counted by type; nullptr for a ghost or a skipped (dimension 0-2)
+// cell, refused with one line when `accepted` says the assembly cannot take it; otherwise its row,
+// after checking that its offsets fit the connectivity and give the type's node count.
+const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& shared, const std::string& source,
+                               const RawMeshFields& fields, MeshFileInfo& info, bool (*accepted)(CellSupport)) {
+  const long long type = raw.types[i];
+  const CellTypeInfo* row = cell_type_from_vtk(type);
+  const std::string at = fields.types + "[" + std::to_string(i) + "]";
+  if (row == nullptr) field::fail(source, at, unsupported_cell_message(type));
+  ++info.cells_by_type[row->name];
+  if (shared.ghost[i]) {
+    ++info.ghost_cells;
+    return nullptr;
+  }
+  if (row->support == CellSupport::Skipped) {
+    ++info.skipped_cells;
+    ++info.skipped_by_type[row->name];
+    return nullptr;
+  }
+  if (!accepted(row->support)) field::fail(source, at, unsupported_cell_message(type));
+  const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
+  if (e < b || e > raw.connectivity.size())
+    field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
+  if (e - b != static_cast<std::size_t>(row->nodes))
+    field::fail(source, fields.cells + "[" + std::to_string(i) + "]",
+                std::string("a ") + row->name + " needs " + std::to_string(row->nodes) + " points, got " +
+                    std::to_string(e - b));
+  return row;
+}
+
 }  // namespace
 
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
@@ -78,65 +148,19 @@ std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
 TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                           const RawMeshFields& fields) {
   const std::size_t n_cells = raw.types.size();
-  if (raw.offsets.size() != n_cells + 1)
-    field::fail(source, fields.cells, std::to_string(raw.offsets.size() - 1) + " cells for " +
-                                          std::to_string(n_cells) + " cell types");
   TetMesh mesh;
   MeshFileInfo& info = mesh.info;
-  for (const RawArray& a : raw.arrays)
-    info.arrays.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), is_marker_array(a.name)});
-
-  // Ghost cells.
-  std::vector<char> ghost(n_cells, 0);
-  for (const RawArray& a : raw.arrays)
-    if (a.cell && a.name == "vtkGhostType" && a.components == 1 && a.values.size() == n_cells)
-      for (std::size_t i = 0; i < n_cells; ++i)
-        if (static_cast<unsigned>(a.values[i]) & kDuplicateCell) ghost[i] = 1;
-
-  // Points (merged across pieces when asked).
-  std::vector<std::int32_t> point_map(raw.points.size());
-  if (options.merge_points) {
-    std::unordered_map<PointKey, std::int32_t, PointKeyHash> seen;
-    seen.reserve(raw.points.size());
-    for (std::size_t i = 0; i < raw.points.size(); ++i) {
-      const Vec3& p = raw.points[i];
-      const auto [it, fresh] = seen.emplace(PointKey{bits(p[0]), bits(p[1]), bits(p[2])},
-                                            static_cast<std::int32_t>(mesh.points.size()));
-      if (fresh) mesh.points.push_back(p);
-      else ++info.merged_points;
-      point_map[i] = it->second;
-    }
-  } else {
-    mesh.points = raw.points;
-    for (std::size_t i = 0; i < point_map.size(); ++i) point_map[i] = static_cast<std::int32_t>(i);
-  }
+  const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
+  const std::vector<std::int32_t>& point_map = shared.point_map;
 
   // Cells through the table.
   std::vector<std::size_t> kept;
   const auto n_points = static_cast<long long>(raw.points.size());
   for (std::size_t i = 0; i < n_cells; ++i) {
-    const long long type = raw.types[i];
-    const CellTypeInfo* row = cell_type_from_vtk(type);
-    const std::string at = fields.types + "[" + std::to_string(i) + "]";
-    if (row == nullptr) field::fail(source, at, unsupported_cell_message(type));
-    ++info.cells_by_type[row->name];
-    if (ghost[i]) {
-      ++info.ghost_cells;
-      continue;
-    }
-    if (row->support == CellSupport::Skipped) {
-      ++info.skipped_cells;
-      ++info.skipped_by_type[row->name];
-      continue;
-    }
-    if (row->support != CellSupport::Traversed) field::fail(source, at, unsupported_cell_message(type));
-    const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
-    if (e < b || e > raw.connectivity.size())
-      field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
-    if (e - b != static_cast<std::size_t>(row->nodes))
-      field::fail(source, fields.cells + "[" + std::to_string(i) + "]",
-                  std::string("a ") + row->name + " needs " + std::to_string(row->nodes) + " points, got " +
-                      std::to_string(e - b));
+    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
+                                         [](CellSupport support) { return support == CellSupport::Traversed; });
+    if (row == nullptr) continue;
+    const std::size_t b = raw.offsets[i];
     std::array<std::int32_t, 4> t{};
     for (std::size_t k = 0; k < 4; ++k) {
       const long long p = raw.connectivity[b + k];
@@ -211,61 +235,19 @@ namespace rayint {
 CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                             const RawMeshFields& fields) {
   const std::size_t n_cells = raw.types.size();
-  if (raw.offsets.size() != n_cells + 1)
-    field::fail(source, fields.cells, std::to_string(raw.offsets.size() - 1) + " cells for " +
-                                          std::to_string(n_cells) + " cell types");
   CellMesh mesh;
   MeshFileInfo& info = mesh.info;
-  for (const RawArray& a : raw.arrays)
-    info.arrays.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), is_marker_array(a.name)});
-  std::vector<char> ghost(n_cells, 0);
-  for (const RawArray& a : raw.arrays)
-    if (a.cell && a.name == "vtkGhostType" && a.components == 1 && a.values.size() == n_cells)
-      for (std::size_t i = 0; i < n_cells; ++i)
-        if (static_cast<unsigned>(a.values[i]) & kDuplicateCell) ghost[i] = 1;
-
-  std::vector<std::int32_t> point_map(raw.points.size());
-  if (options.merge_points) {
-    std::unordered_map<PointKey, std::int32_t, PointKeyHash> seen;
-    for (std::size_t i = 0; i < raw.points.size(); ++i) {
-      const Vec3& p = raw.points[i];
-      const auto [it, fresh] = seen.emplace(PointKey{bits(p[0]), bits(p[1]), bits(p[2])},
-                                            static_cast<std::int32_t>(mesh.points.size()));
-      if (fresh) mesh.points.push_back(p);
-      else ++info.merged_points;
-      point_map[i] = it->second;
-    }
-  } else {
-    mesh.points = raw.points;
-    for (std::size_t i = 0; i < point_map.size(); ++i) point_map[i] = static_cast<std::int32_t>(i);
-  }
+  const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
+  const std::vector<std::int32_t>& point_map = shared.point_map;
 
   // Cells through the table: linear volume cells kept, dimensions 0-2 skipped and counted.
   std::vector<std::size_t> kept;
   const auto n_points = static_cast<long long>(raw.points.size());
   for (std::size_t i = 0; i < n_cells; ++i) {
-    const long long type = raw.types[i];
-    const CellTypeInfo* row = cell_type_from_vtk(type);
-    const std::string at = fields.types + "[" + std::to_string(i) + "]";
-    if (row == nullptr) field::fail(source, at, unsupported_cell_message(type));
-    ++info.cells_by_type[row->name];
-    if (ghost[i]) {
-      ++info.ghost_cells;
-      continue;
-    }
-    if (row->support == CellSupport::Skipped) {
-      ++info.skipped_cells;
-      ++info.skipped_by_type[row->name];
-      continue;
-    }
-    if (row->support == CellSupport::NotYet) field::fail(source, at, unsupported_cell_message(type));
+    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
+                                         [](CellSupport support) { return support != CellSupport::NotYet; });
+    if (row == nullptr) continue;
     const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
-    if (e < b || e > raw.connectivity.size())
-      field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
-    if (e - b != static_cast<std::size_t>(row->nodes))
-      field::fail(source, fields.cells + "[" + std::to_string(i) + "]",
-                  std::string("a ") + row->name + " needs " + std::to_string(row->nodes) + " points, got " +
-                      std::to_string(e - b));
     for (std::size_t k = b; k < e; ++k) {
       const long long p = raw.connectivity[k];
       if (p < 0 || p >= n_points)
