@@ -133,6 +133,73 @@ const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& 
   return row;
 }
 
+
+// File point index connectivity[k] of cell i (its local node `local`) as a mesh point index; one
+// line naming the field when it is out of range.
+std::int32_t mesh_point(const RawMesh& raw, std::size_t k, std::size_t i, std::size_t local, const Shared& shared,
+                        const std::string& source, const RawMeshFields& fields) {
+  const long long p = raw.connectivity[k];
+  const auto n_points = static_cast<long long>(raw.points.size());
+  if (p < 0 || p >= n_points)
+    field::fail(source, fields.cells + "[" + std::to_string(i) + "][" + std::to_string(local) + "]",
+                "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n_points) + ")");
+  return shared.point_map[static_cast<std::size_t>(p)];
+}
+
+// The scalar of both assemblies: the chosen array (choose_scalar) as cell values of the kept
+// cells, as point values (pieces' shared points must agree), or a cell array averaged to points
+// as vtkCellDataToPointData does (every cell of the dataset that uses the point, boundary cells
+// too, plain average). Returns the field name the values came from, for later messages.
+std::string assign_scalar(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+                          const RawMeshFields& fields, const Shared& shared, const std::vector<std::size_t>& kept,
+                          std::size_t mesh_points, MeshFileInfo& info, std::vector<double>& scalars,
+                          std::vector<double>& cell_scalars) {
+  const std::size_t n_cells = raw.types.size();
+  const RawArray& chosen = choose_scalar(raw, source, options, fields, info);
+  const std::string where = chosen.cell ? fields.cell_data : fields.point_data;
+  const std::size_t expected = chosen.cell ? n_cells : raw.points.size();
+  if (chosen.values.size() != expected)
+    field::fail(source, where, "array " + field::quoted(chosen.name) + " has " + std::to_string(chosen.values.size()) +
+                                   " values for " + std::to_string(expected) + (chosen.cell ? " cells" : " points"));
+  info.scalar = chosen.name;
+  info.scalar_association = chosen.cell ? "cell" : "point";
+  if (chosen.cell && !options.cell_to_point) {
+    for (std::size_t c : kept) cell_scalars.push_back(chosen.values[c]);
+  } else if (chosen.cell) {
+    std::vector<double> sum(mesh_points, 0.0);
+    std::vector<long> count(mesh_points, 0);
+    const auto n_points = static_cast<long long>(raw.points.size());
+    for (std::size_t c = 0; c < n_cells; ++c)
+      for (std::size_t k = raw.offsets[c]; k < raw.offsets[c + 1] && k < raw.connectivity.size(); ++k) {
+        const long long p = raw.connectivity[k];
+        if (p < 0 || p >= n_points) continue;
+        const auto j = static_cast<std::size_t>(shared.point_map[static_cast<std::size_t>(p)]);
+        sum[j] += chosen.values[c];
+        ++count[j];
+      }
+    for (std::size_t j = 0; j < sum.size(); ++j)
+      if (count[j] > 0) sum[j] /= static_cast<double>(count[j]);
+    scalars = std::move(sum);
+    info.scalar_association = "cell averaged to points";
+  } else if (options.merge_points) {
+    scalars.assign(mesh_points, 0.0);
+    std::vector<char> set(mesh_points, 0);
+    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+      const auto j = static_cast<std::size_t>(shared.point_map[i]);
+      const double v = chosen.values[i];
+      if (set[j] && !(scalars[j] == v))
+        field::fail(source, where, "array " + field::quoted(chosen.name) + ": point " + std::to_string(i) +
+                                       " repeats another piece's point with a different value (" +
+                                       format_number(scalars[j]) + " and " + format_number(v) + ")");
+      scalars[j] = v;
+      set[j] = 1;
+    }
+  } else {
+    scalars = chosen.values;
+  }
+  return where;
+}
+
 }  // namespace
 
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
@@ -151,24 +218,15 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
   TetMesh mesh;
   MeshFileInfo& info = mesh.info;
   const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
-  const std::vector<std::int32_t>& point_map = shared.point_map;
 
   // Cells through the table.
   std::vector<std::size_t> kept;
-  const auto n_points = static_cast<long long>(raw.points.size());
   for (std::size_t i = 0; i < n_cells; ++i) {
     const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
                                          [](CellSupport support) { return support == CellSupport::Traversed; });
     if (row == nullptr) continue;
-    const std::size_t b = raw.offsets[i];
     std::array<std::int32_t, 4> t{};
-    for (std::size_t k = 0; k < 4; ++k) {
-      const long long p = raw.connectivity[b + k];
-      if (p < 0 || p >= n_points)
-        field::fail(source, fields.cells + "[" + std::to_string(i) + "][" + std::to_string(k) + "]",
-                    "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n_points) + ")");
-      t[k] = point_map[static_cast<std::size_t>(p)];
-    }
+    for (std::size_t k = 0; k < 4; ++k) t[k] = mesh_point(raw, raw.offsets[i] + k, i, k, shared, source, fields);
     mesh.tets.push_back(t);
     kept.push_back(i);
     info.cell_ids.push_back(static_cast<long long>(i));
@@ -177,60 +235,11 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
     field::fail(source, fields.cells,
                 "no tetrahedra (" + std::to_string(n_cells) + " cells, " + std::to_string(info.skipped_cells) +
                     " of dimension 0-2 skipped, " + std::to_string(info.ghost_cells) + " ghost)");
-
-  // The scalar.
-  const RawArray* chosen = &choose_scalar(raw, source, options, fields, info);
-  const std::string where = chosen->cell ? fields.cell_data : fields.point_data;
-  const std::size_t expected = chosen->cell ? n_cells : raw.points.size();
-  if (chosen->values.size() != expected)
-    field::fail(source, where, "array " + field::quoted(chosen->name) + " has " + std::to_string(chosen->values.size()) +
-                                   " values for " + std::to_string(expected) + (chosen->cell ? " cells" : " points"));
-  info.scalar = chosen->name;
-  info.scalar_association = chosen->cell ? "cell" : "point";
-  if (chosen->cell) {
-    for (std::size_t c : kept) mesh.cell_scalars.push_back(chosen->values[c]);
-  } else if (options.merge_points) {
-    mesh.scalars.assign(mesh.points.size(), 0.0);
-    std::vector<char> set(mesh.points.size(), 0);
-    for (std::size_t i = 0; i < raw.points.size(); ++i) {
-      const auto j = static_cast<std::size_t>(point_map[i]);
-      const double v = chosen->values[i];
-      if (set[j] && !(mesh.scalars[j] == v))
-        field::fail(source, where, "array " + field::quoted(chosen->name) + ": point " + std::to_string(i) +
-                                       " repeats another piece's point with a different value (" +
-                                       format_number(mesh.scalars[j]) + " and " + format_number(v) + ")");
-      mesh.scalars[j] = v;
-      set[j] = 1;
-    }
-  } else {
-    mesh.scalars = chosen->values;
-  }
-  if (chosen->cell && options.cell_to_point) {
-    // vtkCellDataToPointData: every cell of the dataset that uses the point (boundary cells too),
-    // plain average.
-    std::vector<double> sum(mesh.points.size(), 0.0);
-    std::vector<long> count(mesh.points.size(), 0);
-    for (std::size_t c = 0; c < n_cells; ++c)
-      for (std::size_t k = raw.offsets[c]; k < raw.offsets[c + 1] && k < raw.connectivity.size(); ++k) {
-        const long long p = raw.connectivity[k];
-        if (p < 0 || p >= n_points) continue;
-        const auto j = static_cast<std::size_t>(point_map[static_cast<std::size_t>(p)]);
-        sum[j] += chosen->values[c];
-        ++count[j];
-      }
-    for (std::size_t j = 0; j < sum.size(); ++j)
-      if (count[j] > 0) sum[j] /= static_cast<double>(count[j]);
-    mesh.scalars = std::move(sum);
-    mesh.cell_scalars.clear();
-    info.scalar_association = "cell averaged to points";
-  }
+  const std::string where = assign_scalar(raw, source, options, fields, shared, kept, mesh.points.size(), info,
+                                          mesh.scalars, mesh.cell_scalars);
   validate_tet_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
   return mesh;
 }
-
-}  // namespace rayint
-
-namespace rayint {
 
 CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                             const RawMeshFields& fields) {
@@ -238,23 +247,15 @@ CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const Assemb
   CellMesh mesh;
   MeshFileInfo& info = mesh.info;
   const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
-  const std::vector<std::int32_t>& point_map = shared.point_map;
 
   // Cells through the table: linear volume cells kept, dimensions 0-2 skipped and counted.
   std::vector<std::size_t> kept;
-  const auto n_points = static_cast<long long>(raw.points.size());
   for (std::size_t i = 0; i < n_cells; ++i) {
     const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
                                          [](CellSupport support) { return support != CellSupport::NotYet; });
     if (row == nullptr) continue;
-    const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
-    for (std::size_t k = b; k < e; ++k) {
-      const long long p = raw.connectivity[k];
-      if (p < 0 || p >= n_points)
-        field::fail(source, fields.cells + "[" + std::to_string(i) + "][" + std::to_string(k - b) + "]",
-                    "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n_points) + ")");
-      mesh.connectivity.push_back(point_map[static_cast<std::size_t>(p)]);
-    }
+    for (std::size_t k = raw.offsets[i]; k < raw.offsets[i + 1]; ++k)
+      mesh.connectivity.push_back(mesh_point(raw, k, i, k - raw.offsets[i], shared, source, fields));
     mesh.types.push_back(static_cast<MeshCellType>(row->vtk_id));
     mesh.offsets.push_back(static_cast<std::uint32_t>(mesh.connectivity.size()));
     kept.push_back(i);
@@ -264,47 +265,8 @@ CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const Assemb
     field::fail(source, fields.cells,
                 "no volume cells (" + std::to_string(n_cells) + " cells, " + std::to_string(info.skipped_cells) +
                     " of dimension 0-2 skipped, " + std::to_string(info.ghost_cells) + " ghost)");
-
-  const RawArray& chosen = choose_scalar(raw, source, options, fields, info);
-  const std::string where = chosen.cell ? fields.cell_data : fields.point_data;
-  const std::size_t expected = chosen.cell ? n_cells : raw.points.size();
-  if (chosen.values.size() != expected)
-    field::fail(source, where, "array " + field::quoted(chosen.name) + " has " + std::to_string(chosen.values.size()) +
-                                   " values for " + std::to_string(expected) + (chosen.cell ? " cells" : " points"));
-  info.scalar = chosen.name;
-  info.scalar_association = chosen.cell ? "cell" : "point";
-  if (chosen.cell && !options.cell_to_point) {
-    for (std::size_t c : kept) mesh.cell_scalars.push_back(chosen.values[c]);
-  } else if (chosen.cell) {
-    // vtkCellDataToPointData: plain average over every cell of the dataset that uses the point.
-    std::vector<double> sum(mesh.points.size(), 0.0);
-    std::vector<long> count(mesh.points.size(), 0);
-    for (std::size_t c = 0; c < n_cells; ++c)
-      for (std::size_t k = raw.offsets[c]; k < raw.offsets[c + 1] && k < raw.connectivity.size(); ++k) {
-        const long long p = raw.connectivity[k];
-        if (p < 0 || p >= n_points) continue;
-        const auto j = static_cast<std::size_t>(point_map[static_cast<std::size_t>(p)]);
-        sum[j] += chosen.values[c];
-        ++count[j];
-      }
-    for (std::size_t j = 0; j < sum.size(); ++j)
-      if (count[j] > 0) sum[j] /= static_cast<double>(count[j]);
-    mesh.scalars = std::move(sum);
-    info.scalar_association = "cell averaged to points";
-  } else {
-    mesh.scalars.assign(mesh.points.size(), 0.0);
-    std::vector<char> set(mesh.points.size(), 0);
-    for (std::size_t i = 0; i < raw.points.size(); ++i) {
-      const auto j = static_cast<std::size_t>(point_map[i]);
-      const double v = chosen.values[i];
-      if (set[j] && !(mesh.scalars[j] == v))
-        field::fail(source, where, "array " + field::quoted(chosen.name) + ": point " + std::to_string(i) +
-                                       " repeats another piece's point with a different value (" +
-                                       format_number(mesh.scalars[j]) + " and " + format_number(v) + ")");
-      mesh.scalars[j] = v;
-      set[j] = 1;
-    }
-  }
+  const std::string where = assign_scalar(raw, source, options, fields, shared, kept, mesh.points.size(), info,
+                                          mesh.scalars, mesh.cell_scalars);
   validate_cell_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
   return mesh;
 }

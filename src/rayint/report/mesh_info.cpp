@@ -9,15 +9,6 @@
 namespace rayint {
 namespace {
 
-std::pair<Vec3, Vec3> bounds(const TetMesh& m) {
-  Vec3 lo = m.points.front(), hi = m.points.front();
-  for (const Vec3& p : m.points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return {lo, hi};
-}
-
 std::string cell_label(const TetMesh& m, std::size_t t) {
   return m.info.cell_ids.size() == m.tets.size() ? std::to_string(m.info.cell_ids[t]) : std::to_string(t);
 }
@@ -29,6 +20,47 @@ std::pair<Vec3, Vec3> bounds(const std::vector<Vec3>& points) {
     hi = hi.cwiseMax(p);
   }
   return {lo, hi};
+}
+
+// What both mesh kinds report alike: bounds, cells read by type, arrays, the scalar.
+nlohmann::json file_json(const MeshFileInfo& info, const std::vector<Vec3>& points) {
+  const auto [lo, hi] = bounds(points);
+  nlohmann::json cells = nlohmann::json::object();
+  for (const auto& [type, n] : info.cells_by_type) {
+    const auto s = info.skipped_by_type.find(type);
+    cells[type] = {{"read", n}, {"skipped", s == info.skipped_by_type.end() ? 0 : s->second}};
+  }
+  nlohmann::json arrays = nlohmann::json::array();
+  for (const MeshArrayInfo& a : info.arrays)
+    arrays.push_back({{"name", a.name}, {"association", a.association}, {"components", a.components},
+                      {"marker", a.marker}, {"scalar", a.name == info.scalar}});
+  return {{"bounds", {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}}},
+          {"cells_by_type", cells},
+          {"skipped_cells", info.skipped_cells},
+          {"ghost_cells", info.ghost_cells},
+          {"merged_points", info.merged_points},
+          {"arrays", arrays},
+          {"scalar", {{"name", info.scalar}, {"association", info.scalar_association}}}};
+}
+
+// The bounds, cells and arrays lines of the text form.
+std::string file_text(const MeshFileInfo& info, const std::vector<Vec3>& points) {
+  const auto [lo, hi] = bounds(points);
+  std::string out = "  bounds [" + format_number(lo[0]) + ", " + format_number(hi[0]) + "] x [" +
+                    format_number(lo[1]) + ", " + format_number(hi[1]) + "] x [" + format_number(lo[2]) + ", " +
+                    format_number(hi[2]) + "]\n";
+  out += "  cells:";
+  for (const auto& [type, n] : info.cells_by_type) {
+    const auto s = info.skipped_by_type.find(type);
+    out += " " + type + " " + std::to_string(n) + (s != info.skipped_by_type.end() ? " (skipped)" : "") + ";";
+  }
+  if (info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(info.ghost_cells) + ";";
+  out += "\n  arrays:";
+  if (info.arrays.empty()) out += " none";
+  for (const MeshArrayInfo& a : info.arrays)
+    out += " \"" + a.name + "\" (" + a.association + ", " + std::to_string(a.components) +
+           (a.marker ? ", marker" : "") + (a.name == info.scalar ? ", the scalar" : "") + ");";
+  return out + "\n";
 }
 
 // Per kept cell type: count and corner-Jacobian orientation.
@@ -48,59 +80,27 @@ constexpr const char* kCellsIntegrated =
 
 nlohmann::json cells_json(const MeshInfo& in) {
   const CellMesh& m = *in.cells;
-  const auto [lo, hi] = bounds(m.points);
-  nlohmann::json cells = nlohmann::json::object();
-  for (const auto& [type, n] : m.info.cells_by_type) {
-    const auto s = m.info.skipped_by_type.find(type);
-    cells[type] = {{"read", n}, {"skipped", s == m.info.skipped_by_type.end() ? 0 : s->second}};
-  }
   nlohmann::json orient = nlohmann::json::object();
   for (const auto& [type, o] : orientation_by_type(m))
     orient[type] = {{"positive", o.positive}, {"negative", o.negative}, {"mixed", o.mixed}};
-  nlohmann::json arrays = nlohmann::json::array();
-  for (const MeshArrayInfo& a : m.info.arrays)
-    arrays.push_back({{"name", a.name}, {"association", a.association}, {"components", a.components},
-                      {"marker", a.marker}, {"scalar", a.name == m.info.scalar}});
-  nlohmann::json j = {{"file", in.file},
-                      {"points", m.points.size()},
-                      {"cells", m.cell_count()},
-                      {"tets", nullptr},
-                      {"bounds", {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}}},
-                      {"cells_by_type", cells},
-                      {"skipped_cells", m.info.skipped_cells},
-                      {"ghost_cells", m.info.ghost_cells},
-                      {"merged_points", m.info.merged_points},
-                      {"arrays", arrays},
-                      {"scalar", {{"name", m.info.scalar}, {"association", m.info.scalar_association}}},
-                      {"cell_orientation", orient},
-                      {"integrated", kCellsIntegrated},
-                      {"check", "not run (--check covers tetrahedral meshes)"}};
+  nlohmann::json j = {{"file", in.file}, {"points", m.points.size()}, {"cells", m.cell_count()}, {"tets", nullptr}};
+  j.update(file_json(m.info, m.points));
+  j["cell_orientation"] = orient;
+  j["integrated"] = kCellsIntegrated;
+  j["check"] = "not run (--check covers tetrahedral meshes)";
   if (m.structured) j["structured_dimensions"] = {(*m.structured)[0], (*m.structured)[1], (*m.structured)[2]};
   return j;
 }
 
 std::string cells_text(const MeshInfo& in) {
   const CellMesh& m = *in.cells;
-  const auto [lo, hi] = bounds(m.points);
   std::string out = in.file + "\n";
   out += "  points " + std::to_string(m.points.size()) + ", volume cells " + std::to_string(m.cell_count());
   if (m.structured)
     out += " (structured " + std::to_string((*m.structured)[0]) + " x " + std::to_string((*m.structured)[1]) + " x " +
            std::to_string((*m.structured)[2]) + " points)";
-  out += "\n  bounds [" + format_number(lo[0]) + ", " + format_number(hi[0]) + "] x [" + format_number(lo[1]) + ", " +
-         format_number(hi[1]) + "] x [" + format_number(lo[2]) + ", " + format_number(hi[2]) + "]\n";
-  out += "  cells:";
-  for (const auto& [type, n] : m.info.cells_by_type) {
-    const auto s = m.info.skipped_by_type.find(type);
-    out += " " + type + " " + std::to_string(n) + (s != m.info.skipped_by_type.end() ? " (skipped)" : "") + ";";
-  }
-  if (m.info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(m.info.ghost_cells) + ";";
-  out += "\n  arrays:";
-  if (m.info.arrays.empty()) out += " none";
-  for (const MeshArrayInfo& a : m.info.arrays)
-    out += " \"" + a.name + "\" (" + a.association + ", " + std::to_string(a.components) +
-           (a.marker ? ", marker" : "") + (a.name == m.info.scalar ? ", the scalar" : "") + ");";
-  out += "\n  orientation (corner Jacobians):";
+  out += "\n" + file_text(m.info, m.points);
+  out += "  orientation (corner Jacobians):";
   for (const auto& [type, o] : orientation_by_type(m))
     out += " " + type + " positive " + std::to_string(o.positive) + ", negative " + std::to_string(o.negative) +
            ", mixed " + std::to_string(o.mixed) + ";";
@@ -113,29 +113,10 @@ std::string cells_text(const MeshInfo& in) {
 nlohmann::json to_json(const MeshInfo& in) {
   if (in.cells != nullptr) return cells_json(in);
   const TetMesh& m = *in.mesh;
-  const auto [lo, hi] = bounds(m);
-  nlohmann::json cells = nlohmann::json::object();
-  for (const auto& [type, n] : m.info.cells_by_type) {
-    const auto s = m.info.skipped_by_type.find(type);
-    const long skipped = s == m.info.skipped_by_type.end() ? 0 : s->second;
-    cells[type] = {{"read", n}, {"skipped", skipped}};
-  }
-  nlohmann::json arrays = nlohmann::json::array();
-  for (const MeshArrayInfo& a : m.info.arrays)
-    arrays.push_back({{"name", a.name}, {"association", a.association}, {"components", a.components},
-                      {"marker", a.marker}, {"scalar", a.name == m.info.scalar}});
-  nlohmann::json j = {{"file", in.file},
-                      {"points", m.points.size()},
-                      {"tets", m.tets.size()},
-                      {"bounds", {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}}},
-                      {"cells_by_type", cells},
-                      {"skipped_cells", m.info.skipped_cells},
-                      {"ghost_cells", m.info.ghost_cells},
-                      {"merged_points", m.info.merged_points},
-                      {"arrays", arrays},
-                      {"scalar", {{"name", m.info.scalar}, {"association", m.info.scalar_association}}},
-                      {"orientation", {{"positive", in.orientation.positive}, {"inverted", in.orientation.inverted},
-                                       {"zero_volume", in.orientation.zero_volume}, {"slivers", in.orientation.slivers}}}};
+  nlohmann::json j = {{"file", in.file}, {"points", m.points.size()}, {"tets", m.tets.size()}};
+  j.update(file_json(m.info, m.points));
+  j["orientation"] = {{"positive", in.orientation.positive}, {"inverted", in.orientation.inverted},
+                      {"zero_volume", in.orientation.zero_volume}, {"slivers", in.orientation.slivers}};
   if (in.checked) {
     j["check"] = {{"overlap", in.overlap.has_value()}, {"seconds", in.check_seconds}};
     if (in.overlap)
@@ -149,23 +130,10 @@ nlohmann::json to_json(const MeshInfo& in) {
 std::string to_text(const MeshInfo& in) {
   if (in.cells != nullptr) return cells_text(in);
   const TetMesh& m = *in.mesh;
-  const auto [lo, hi] = bounds(m);
   std::string out = in.file + "\n";
   out += "  points " + std::to_string(m.points.size()) + ", tetrahedra " + std::to_string(m.tets.size()) + "\n";
-  out += "  bounds [" + format_number(lo[0]) + ", " + format_number(hi[0]) + "] x [" + format_number(lo[1]) + ", " +
-         format_number(hi[1]) + "] x [" + format_number(lo[2]) + ", " + format_number(hi[2]) + "]\n";
-  out += "  cells:";
-  for (const auto& [type, n] : m.info.cells_by_type) {
-    const auto s = m.info.skipped_by_type.find(type);
-    out += " " + type + " " + std::to_string(n) + (s != m.info.skipped_by_type.end() ? " (skipped)" : "") + ";";
-  }
-  if (m.info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(m.info.ghost_cells) + ";";
-  out += "\n  arrays:";
-  if (m.info.arrays.empty()) out += " none";
-  for (const MeshArrayInfo& a : m.info.arrays)
-    out += " \"" + a.name + "\" (" + a.association + ", " + std::to_string(a.components) +
-           (a.marker ? ", marker" : "") + (a.name == m.info.scalar ? ", the scalar" : "") + ");";
-  out += "\n  orientation: positive " + std::to_string(in.orientation.positive) + ", inverted " +
+  out += file_text(m.info, m.points);
+  out += "  orientation: positive " + std::to_string(in.orientation.positive) + ", inverted " +
          std::to_string(in.orientation.inverted) + ", zero volume " + std::to_string(in.orientation.zero_volume) +
          ", slivers " + std::to_string(in.orientation.slivers) + "\n";
   if (in.checked) {
