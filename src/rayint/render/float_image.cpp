@@ -1,6 +1,8 @@
 // PFM, OpenEXR and NumPy images in and out (see float_image.hpp for the conventions).
 #include "rayint/render/float_image.hpp"
 
+#include "rayint/render/npy_array.hpp"
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -363,20 +365,9 @@ ImageWithAlpha decode_exr_with_alpha(std::string_view bytes, const std::string& 
 
 std::string encode_npy(const Image& image) {
   if (image.width < 1 || image.height < 1) throw std::runtime_error("encode_npy: empty image");
-  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" +
-                       std::to_string(image.height) + ", " + std::to_string(image.width) + ", 3), }";
-  // Version 1.0: magic (6) + version (2) + header length (2) + header, padded with spaces and
-  // ending in '\n' to a multiple of 64 bytes.
-  const std::size_t total = 10 + header.size() + 1;
-  header.append((64 - total % 64) % 64, ' ');
-  header.push_back('\n');
-  std::string out("\x93NUMPY\x01\x00", 8);
-  store<std::uint16_t>(out, static_cast<std::uint16_t>(header.size()));
-  out += header;
-  out.reserve(out.size() + image.pixels.size() * 24);
-  for (const Rgb& px : image.pixels)
-    for (int c = 0; c < 3; ++c) store<double>(out, px[c]);
-  return out;
+  static_assert(sizeof(Rgb) == 3 * sizeof(double), "Rgb pixels are three packed doubles");
+  return encode_npy_array(image.pixels.front().data(), image.pixels.size() * 3,
+                          {static_cast<std::size_t>(image.height), static_cast<std::size_t>(image.width), 3});
 }
 
 Image decode_exr(std::string_view bytes, const std::string& source) {

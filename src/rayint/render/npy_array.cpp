@@ -6,10 +6,10 @@
 
 namespace rayint {
 
-std::string encode_npy_array(const std::vector<double>& data, const std::vector<std::size_t>& shape) {
-  std::size_t count = 1;
-  for (std::size_t n : shape) count *= n;
-  if (shape.empty() || count != data.size())
+std::string encode_npy_array(const double* data, std::size_t count, const std::vector<std::size_t>& shape) {
+  std::size_t expected = 1;
+  for (std::size_t n : shape) expected *= n;
+  if (shape.empty() || expected != count)
     throw std::invalid_argument("encode_npy_array: data size does not match the shape");
   std::string dims;
   for (std::size_t n : shape) dims += std::to_string(n) + ", ";
@@ -23,13 +23,17 @@ std::string encode_npy_array(const std::vector<double>& data, const std::vector<
   out.push_back(static_cast<char>(header.size() & 0xff));
   out.push_back(static_cast<char>(header.size() >> 8));
   out += header;
-  out.reserve(out.size() + data.size() * 8);
-  for (double v : data) {  // little-endian whatever the host
+  out.reserve(out.size() + count * 8);
+  for (std::size_t i = 0; i < count; ++i) {  // little-endian whatever the host
     std::uint64_t bits = 0;
-    std::memcpy(&bits, &v, sizeof bits);
+    std::memcpy(&bits, &data[i], sizeof bits);
     for (int b = 0; b < 8; ++b) out.push_back(static_cast<char>((bits >> (8 * b)) & 0xff));
   }
   return out;
+}
+
+std::string encode_npy_array(const std::vector<double>& data, const std::vector<std::size_t>& shape) {
+  return encode_npy_array(data.data(), data.size(), shape);
 }
 
 }  // namespace rayint
