@@ -9,6 +9,7 @@ cells by VTK type id, ghost cells (vtkGhostType bit 1), the arrays, and the rang
 manifest's field, else the active scalars); of an image: dimensions, origin, spacing, direction,
 arrays, range. count.py compares rayint's reading with it.
 """
+import hashlib
 import json
 import os
 import sys
@@ -47,13 +48,27 @@ def arrays_of(attrs, assoc):
     return out
 
 
+def digest(values):
+    """sha1 of the values as float64: two files of a family with equal digests hold the same data."""
+    return hashlib.sha1(np.ascontiguousarray(np.asarray(values, dtype=np.float64)).tobytes()).hexdigest()[:16]
+
+
+def linear_residual(points, values):
+    """max |value - s(point)| for the corpus's linear field s = 0.5 + 0.3x - 0.2y + 0.4z."""
+    p = np.asarray(points, dtype=float).reshape(-1, 3)
+    v = np.asarray(values, dtype=float).reshape(-1)
+    if len(p) != len(v) or not len(v):
+        return None
+    return float(np.max(np.abs(v - (0.5 + 0.3 * p[:, 0] - 0.2 * p[:, 1] + 0.4 * p[:, 2]))))
+
+
 def field_range(ds, field):
     for attrs in [ds.GetPointData(), ds.GetCellData()]:
         a = attrs.GetArray(field) if field else attrs.GetScalars()
         if a is not None and a.GetNumberOfComponents() == 1:
             v = ns.vtk_to_numpy(a).astype(float)
-            return [float(v.min()), float(v.max())], a.GetName()
-    return None, None
+            return [float(v.min()), float(v.max())], a.GetName(), digest(v)
+    return None, None, None
 
 
 def vtk_read(path):
@@ -85,12 +100,16 @@ def mesh_oracle(path, field):
         arrays = [{"name": k, "association": "point", "components": 1 if np.ndim(v) == 1 else int(np.shape(v)[1])}
                   for k, v in m.point_data.items()]
         arrays += [{"name": k, "association": "cell", "components": 1} for k in m.cell_data]
-        rng = None
+        rng = fd = lin = None
+        if field and ext == ".ele" and "tetgen:attr1" in m.point_data:
+            field = "tetgen:attr1"  # meshio's name of TetGen's first point attribute (TetGen names none)
         if field and field in m.point_data:
             v = np.asarray(m.point_data[field], dtype=float)
-            rng = [float(v.min()), float(v.max())]
+            rng, fd = [float(v.min()), float(v.max())], digest(v)
+            lin = linear_residual(m.points, v)
         return {"reader": "meshio %s" % meshio.__version__, "points": int(len(m.points)), "cells": cells, "ghost_cells": 0,
-                "arrays": arrays, "field": field if rng else None, "range": rng,
+                "arrays": arrays, "field": field if rng else None, "range": rng, "field_digest": fd, "linear_residual": lin,
+                "points_digest": digest(m.points),
                 "bounds": [float(x) for x in np.ravel(list(zip(m.points.min(0), m.points.max(0))))]}
     reader, ds = vtk_read(path)
     cells = {}
@@ -101,15 +120,18 @@ def mesh_oracle(path, field):
     g = ds.GetCellData().GetArray("vtkGhostType")
     if g is not None:
         ghosts = int(np.count_nonzero(ns.vtk_to_numpy(g) & 1))
-    rng, name = field_range(ds, field)
+    rng, name, fd = field_range(ds, field)
+    pts = ns.vtk_to_numpy(ds.GetPoints().GetData()) if hasattr(ds, "GetPoints") and ds.GetPoints() is not None else []
+    pa = ds.GetPointData().GetArray(name) if name else None
+    lin = linear_residual(pts, ns.vtk_to_numpy(pa)) if pa is not None and len(pts) else None
     return {"reader": reader, "points": ds.GetNumberOfPoints(), "cells": cells, "ghost_cells": ghosts,
             "arrays": arrays_of(ds.GetPointData(), "point") + arrays_of(ds.GetCellData(), "cell"),
-            "field": name, "range": rng, "bounds": list(ds.GetBounds())}
+            "field": name, "range": rng, "field_digest": fd, "points_digest": digest(pts), "linear_residual": lin, "bounds": list(ds.GetBounds())}
 
 
 def image_oracle(path, field):
     reader, ds = vtk_read(path)
-    rng, name = field_range(ds, field)
+    rng, name, fd = field_range(ds, field)
     ext = ds.GetExtent()
     direction = [ds.GetDirectionMatrix().GetElement(i, j) for i in range(3) for j in range(3)] \
         if hasattr(ds, "GetDirectionMatrix") else None
@@ -117,7 +139,7 @@ def image_oracle(path, field):
     return {"reader": reader, "dimensions": list(ds.GetDimensions()), "origin": list(ds.GetOrigin()), "extent": list(ext),
             "corner": origin, "spacing": list(ds.GetSpacing()), "direction": direction, "bounds": list(ds.GetBounds()),
             "arrays": arrays_of(ds.GetPointData(), "point") + arrays_of(ds.GetCellData(), "cell"), "field": name,
-            "range": rng}
+            "range": rng, "field_digest": fd}
 
 
 def main():
