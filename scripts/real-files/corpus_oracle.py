@@ -19,7 +19,7 @@ import numpy as np
 import vtk
 from vtk.util import numpy_support as ns
 
-OUT = os.path.abspath(sys.argv[1])
+OUT = None  # the corpus folder (main's argument)
 MESHIO_VTK = {"vertex": 1, "line": 3, "triangle": 5, "quad": 9, "tetra": 10, "hexahedron": 12, "wedge": 13,
               "pyramid": 14, "line3": 21, "triangle6": 22, "quad8": 23, "tetra10": 24, "hexahedron20": 25,
               "hexahedron27": 29, "quad9": 28, "wedge15": 26, "pyramid13": 27, "wedge18": 32}
@@ -143,6 +143,8 @@ def image_oracle(path, field):
 
 
 def main():
+    global OUT
+    OUT = os.path.abspath(sys.argv[1])
     files = entries()
     for e in files:
         path = os.path.join(OUT, e["file"])

@@ -104,6 +104,7 @@ def count_mesh(rayint, corpus, entry, tmp, timeout):
     case = {"name": "corpus", "mesh_file": path, "background": [0, 0, 0], "rays": rays,
             "transfer_function": {"density": [[a, 0.2 * k], [b, 1.5 * k]],
                                   "color": {"r": [[a, 1.0], [b, 0.2]], "g": [[a, 0.3], [b, 1.0]], "b": [[a, 0.1], [b, 0.9]]}}}
+    res["rays"], res["tf"] = rays, case["transfer_function"]
     case_path = os.path.join(tmp, "case.json")
     with open(case_path, "w") as f:
         json.dump(case, f)
@@ -156,6 +157,8 @@ def count_image(rayint, corpus, entry, tmp, timeout):
              "transfer": {"extinction": [[a, 0.2 * k], [z, 1.5 * k]], "emission": [[a, 0.2], [z, 1.0]]},
              "background": {"color": [0, 0, 0]}, "effects": ["absorption", "emission"], "rays": rays,
              "methods": {"absorption": "exact", "emission": "exact"}}
+    res["rays"], res["tf"] = rays, {"density": scene["transfer"]["extinction"],
+                                    "color": {c: scene["transfer"]["emission"] for c in "rgb"}}
     scene_path = os.path.join(tmp, "scene.json")
     with open(scene_path, "w") as f:
         json.dump(scene, f)
