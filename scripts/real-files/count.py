@@ -326,13 +326,20 @@ def summary(entries, results, spread, rayint):
     groups = collections.defaultdict(list)
     for e, r in zip(entries, results):
         if r["outcome"] == "refused":
-            line = r["detail"].replace(os.path.join(r.get("_corpus", ""), e["file"]), "FILE")
-            key = normalise(line, e)
+            key = normalise(r["detail"], e)
             groups[(e["kind"], key)].append(e["file"])
-    lines.append("| kind | files | reason | e.g. |")
-    lines.append("|---|---|---|---|")
+    by_class = collections.Counter()
+    for (kind, key), fs in groups.items():
+        by_class[(kind, refusal_class(key))] += len(fs)
+    lines.append("| kind | refused | why |")
+    lines.append("|---|---|---|")
+    for (kind, cls), n in sorted(by_class.items(), key=lambda kv: (kv[0][0], -kv[1])):
+        lines.append("| %s | %d | %s |" % (kind, n, cls))
+    lines.append("")
+    lines.append("| kind | files | reason | class | e.g. |")
+    lines.append("|---|---|---|---|---|")
     for (kind, key), fs in sorted(groups.items(), key=lambda kv: (kv[0][0], -len(kv[1]))):
-        lines.append("| %s | %d | %s | `%s` |" % (kind, len(fs), key.replace("|", "\\|"), fs[0]))
+        lines.append("| %s | %d | %s | %s | `%s` |" % (kind, len(fs), key.replace("|", "\\|"), refusal_class(key), fs[0]))
     lines.append("\n### Unclear outcomes (crashes, time-outs, several lines, suspicious answers)\n")
     unclear = [(e, r) for e, r in zip(entries, results) if r["outcome"] == "unclear"]
     lines += ["- `%s` (%s): %s" % (e["file"], r.get("stage"), r.get("detail")) for e, r in unclear] or ["none"]
@@ -371,10 +378,31 @@ def summary(entries, results, spread, rayint):
     return "\n".join(lines)
 
 
+REFUSAL_CLASSES = [  # (words in the line, class): whether refusing is right or a gap, for the summary
+    (("no field", "no one-component", "no point attributes"), "right: the file holds no field (markers only)"),
+    (("overlap",), "right: overlapping meshes (a ray would count the volume twice)"),
+    (("categorical",), "right: a categorical map has no continuous transfer function"),
+    (("not in $Nodes", "out of range [N, N]"), "the file contradicts itself (gmsh: $NodeData for a node not in $Nodes)"),
+    (("not supported yet", "Direction is not the identity", "cell data only"), "gap: not supported yet"),
+]
+
+
+def refusal_class(reason):
+    for words, cls in REFUSAL_CLASSES:
+        if any(w in reason for w in words):
+            return cls
+    return "other"
+
+
 def normalise(line, entry):
     import re
-    s = line.split(": ", 2)[-1] if line.startswith("rayint: error:") else line
-    s = s.replace(os.path.basename(entry["file"]), "FILE")
+    s = line[len("rayint: error: "):] if line.startswith("rayint: error: ") else line
+    stem = os.path.splitext(entry["file"])[0]
+    for name in (entry["file"], stem + ".node"):  # the path as given, or a TetGen .ele's .node
+        i = s.find(name)
+        if i >= 0:
+            s = "FILE" + s[i + len(name):]
+            break
     s = re.sub(r'"[^"]*"', '"…"', s)
     s = re.sub(r"\b\d+(\.\d+)?(e[-+]?\d+)?\b", "N", s)
     return s[:220]
