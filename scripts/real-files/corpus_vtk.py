@@ -13,8 +13,8 @@ import os
 import sys
 
 import meshio
+import numpy as np
 import vtk
-from vtk.util import numpy_support as ns
 
 OUT = os.path.abspath(sys.argv[1])
 VTK_TOOL = "VTK %s (python3-vtk9)" % vtk.vtkVersion.GetVTKVersion()
@@ -79,7 +79,6 @@ for src in MESHIO_SOURCES:
         continue
     # meshio 5.0's writers fail on the cell_sets its gmsh reader makes of physical groups (index
     # out of bounds): they are dropped, the cells, point data and gmsh's tags are kept
-    import numpy as np
     tags = {k: v for k, v in m.cell_data.items() if k in ("gmsh:physical", "gmsh:geometrical")}
     if len(tags) < 2:
         tags = {"gmsh:physical": [np.zeros(len(b.data), dtype=int) for b in m.cells],

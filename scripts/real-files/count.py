@@ -415,6 +415,7 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=60)
     ap.add_argument("-o", "--output")
+    ap.add_argument("--fail-on-unclear", action="store_true", help="exit 1 if any file's outcome is unclear (a crash, ...)")
     args = ap.parse_args()
     rayint = os.path.abspath(args.rayint)
     corpus = os.path.abspath(args.corpus)
@@ -439,6 +440,10 @@ def main():
                                         how=e["how"]) for e, r in zip(entries, results)]}, f, indent=1)
     print("## rayint on the real-files corpus (%s, %s)\n" % (version, corpus))
     print(summary(entries, results, spread, rayint))
+    unclear = sum(1 for r in results if r["outcome"] == "unclear")
+    if args.fail_on_unclear and unclear:
+        print("count.py: %d unclear outcomes (listed above)" % unclear, file=sys.stderr)
+        return 1
     return 0
 
 

@@ -191,6 +191,8 @@ def main():
     ap.add_argument("--per-family", type=int, default=3)
     ap.add_argument("--samples", type=int, default=20000, help="probe samples per ray (images, other cells)")
     ap.add_argument("--flag", type=float, default=1e-6)
+    ap.add_argument("--gate-tets", action="store_true",
+                    help="exit 1 if a tetrahedral mesh differs by more than --flag (images are reported, not gated)")
     args = ap.parse_args()
     vtk.vtkObject.GlobalWarningDisplayOff()
     data = json.load(open(args.results))
@@ -276,6 +278,11 @@ def main():
     print("\n%d files compared; %d above %.0e on tetrahedra or images%s" % (
         sum(1 for row in rows if row[1] is not None), len(flagged), args.flag,
         (": " + ", ".join(flagged)) if flagged else ""))
+    failed = [r["file"] for r, worst, _, route in rows
+              if worst is not None and worst > args.flag and route.startswith("tetrahedra clipped")]
+    if args.gate_tets and failed:
+        print("crosscheck_vtk.py: tetrahedral meshes above %.0e: %s" % (args.flag, ", ".join(failed)), file=sys.stderr)
+        return 1
     return 0
 
 
