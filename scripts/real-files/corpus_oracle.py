@@ -121,7 +121,7 @@ def mesh_oracle(path, field):
     if g is not None:
         ghosts = int(np.count_nonzero(ns.vtk_to_numpy(g) & 1))
     rng, name, fd = field_range(ds, field)
-    pts = ns.vtk_to_numpy(ds.GetPoints().GetData()) if hasattr(ds, "GetPoints") and ds.GetPoints() is not None else []
+    pts = ns.vtk_to_numpy(ds.GetPoints().GetData()) if isinstance(ds, vtk.vtkPointSet) and ds.GetPoints() is not None else []
     pa = ds.GetPointData().GetArray(name) if name else None
     lin = linear_residual(pts, ns.vtk_to_numpy(pa)) if pa is not None and len(pts) else None
     return {"reader": reader, "points": ds.GetNumberOfPoints(), "cells": cells, "ghost_cells": ghosts,

@@ -364,6 +364,83 @@ xml_write(vtk.vtkXMLUnstructuredGridWriter, app2.GetOutput(), p, "appended", "zl
 record(p, "mesh", VTK_TOOL, "vtu two overlapping meshes", "vtk-overlap", "RTData",
        "vtkAppendFilter of a tetrahedralised 4^3 wavelet and its copy moved by (0.5, 0.3, 0.2): overlapping (must be refused)")
 
+# more of what VTK writes: several <Piece>s in one .vtu, a legacy file with two SCALARS and FIELD
+# data, an empty output (a clip that removed everything), polyhedra, Lagrange tetrahedra
+# SetNumberOfPieces on the writer of a data set given directly: the pipeline cannot split it, so
+# every <Piece> holds the whole mesh (VTK's reader reads it three times over): must be refused
+w = vtk.vtkXMLUnstructuredGridWriter()
+w.SetInputData(ug)
+w.SetFileName(os.path.join(V, "tets-3pieces-whole.vtu"))
+w.SetNumberOfPieces(3)
+assert w.Write() == 1
+record(os.path.join(V, "tets-3pieces-whole.vtu"), "mesh", VTK_TOOL, "vtu 3 <Piece>s, each the whole mesh", "vtk-triplicate",
+       "RTData", "vtkXMLUnstructuredGridWriter SetInputData(tets) + SetNumberOfPieces(3): each Piece is the whole mesh (must be refused)")
+# through vtkExtractUnstructuredGridPiece, which answers piece requests: 3 distinct Pieces in one file
+split3 = vtk.vtkExtractUnstructuredGridPiece()
+split3.SetInputData(ug)
+w = vtk.vtkXMLUnstructuredGridWriter()
+w.SetInputConnection(split3.GetOutputPort())
+w.SetFileName(os.path.join(V, "tets-3pieces.vtu"))
+w.SetNumberOfPieces(3)
+assert w.Write() == 1
+record(os.path.join(V, "tets-3pieces.vtu"), "mesh", VTK_TOOL, "vtu 3 <Piece>s in one file", "vtk-wavelet-tets", "RTData",
+       "vtkExtractUnstructuredGridPiece -> vtkXMLUnstructuredGridWriter SetNumberOfPieces(3) (one file, 3 Pieces)")
+fd = vtk.vtkUnstructuredGrid()
+fd.DeepCopy(ug)
+fld = vtk.vtkDoubleArray()
+fld.SetName("TimeValue")
+fld.InsertNextValue(1.5)
+fd.GetFieldData().AddArray(fld)
+fd.GetPointData().SetActiveScalars("RTData")
+p = os.path.join(V, "tets-fielddata.vtk")
+legacy_write(fd, p, False)
+record(p, "mesh", VTK_TOOL, "vtk legacy ascii, two point SCALARS, a cell array, FIELD data", "vtk-wavelet-tets-fielddata", "RTData",
+       "the wavelet tets with a FIELD TimeValue; vtkUnstructuredGridWriter ascii")
+empty_clip = vtk.vtkClipDataSet()
+empty_clip.SetInputData(ug)
+eplane = vtk.vtkPlane()
+eplane.SetOrigin(100, 0, 0)
+eplane.SetNormal(1, 0, 0)
+empty_clip.SetClipFunction(eplane)
+empty_clip.Update()
+for name, fn in [("empty.vtu", lambda d, pth: xml_write(vtk.vtkXMLUnstructuredGridWriter, d, pth, "appended", "zlib")),
+                 ("empty.vtk", lambda d, pth: legacy_write(d, pth, False))]:
+    fn(empty_clip.GetOutput(), os.path.join(V, name))
+    record(os.path.join(V, name), "mesh", VTK_TOOL, name.split(".")[1] + " empty (0 cells)", "vtk-empty", "RTData",
+           "vtkClipDataSet of the wavelet tets by a plane beyond it: an empty output, written as it is")
+# one polyhedron (a cube given by its 6 faces) and its neighbour tetrahedron
+poly_ug = vtk.vtkUnstructuredGrid()
+pp = vtk.vtkPoints()
+for xyz in [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (2, 0.5, 0.5)]:
+    pp.InsertNextPoint(xyz)
+poly_ug.SetPoints(pp)
+faces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
+fl = vtk.vtkIdList()
+fl.InsertNextId(len(faces))
+for f in faces:
+    fl.InsertNextId(len(f))
+    for i in f:
+        fl.InsertNextId(i)
+poly_ug.InsertNextCell(vtk.VTK_POLYHEDRON, fl)  # the face stream: nfaces, (n, ids...) per face
+poly_ug.InsertNextCell(vtk.VTK_TETRA, 4, [1, 2, 5, 8])
+add_point_array(poly_ug, "s", s_of)
+for name, fn in [("polyhedron.vtu", lambda d, pth: xml_write(vtk.vtkXMLUnstructuredGridWriter, d, pth, "appended", "zlib")),
+                 ("polyhedron.vtk", lambda d, pth: legacy_write(d, pth, False))]:
+    fn(poly_ug, os.path.join(V, name))
+    record(os.path.join(V, name), "mesh", VTK_TOOL, name.split(".")[1] + " polyhedron (VTK 42) + tetra", "vtk-polyhedron", "s",
+           "a cube as one vtkPolyhedron (6 faces) and a tetrahedron beside it")
+lag = vtk.vtkUnstructuredGrid()
+lp = vtk.vtkPoints()
+for xyz in [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0, 0), (0.5, 0.5, 0), (0, 0.5, 0), (0, 0, 0.5), (0.5, 0, 0.5), (0, 0.5, 0.5)]:
+    lp.InsertNextPoint(xyz)
+lag.SetPoints(lp)
+lag.InsertNextCell(vtk.VTK_LAGRANGE_TETRAHEDRON, 10, list(range(10)))
+add_point_array(lag, "s", s_of)
+p = os.path.join(V, "lagrange-tet.vtu")
+xml_write(vtk.vtkXMLUnstructuredGridWriter, lag, p, "appended", "zlib")
+record(p, "mesh", VTK_TOOL, "vtu Lagrange tetrahedron (VTK 71), order 2", "vtk-lagrange", "s",
+       "one vtkLagrangeTetra of order 2 (10 nodes), s exact at its nodes")
+
 # ------------------------------------------------------------------ images
 img = wavelet((-4, 4, -2, 4, 1, 5), (0.25, 0.3, 0.5))
 img.SetOrigin(0.5, -1, 2)
@@ -380,7 +457,7 @@ img.GetCellData().AddArray(cell)
 def img_xml(name, data, family, note, **kw):
     path = os.path.join(V, name)
     opts = xml_write(vtk.vtkXMLImageDataWriter, data, path, **kw)
-    record(path, "image", VTK_TOOL, "vti " + opts + note, family, "RTData" if family == "vtk-wavelet-image" else None,
+    record(path, "image", VTK_TOOL, "vti " + opts + note, family, {"vtk-wavelet-image": "RTData", "vtk-wavelet-s": "s"}.get(family),
            "vtkRTAnalyticSource extent (-4,4,-2,4,1,5) spacing (0.25,0.3,0.5) origin (0.5,-1,2), + point s, cell cell_s; "
            "vtkXMLImageDataWriter " + opts + note)
 
@@ -401,6 +478,26 @@ conly.DeepCopy(img)
 for k in range(conly.GetPointData().GetNumberOfArrays() - 1, -1, -1):
     conly.GetPointData().RemoveArray(k)
 img_xml("wavelet-celldata.vti", conly, "vtk-wavelet-celldata", " cell data only", mode="appended", comp="zlib")
+# images as scanners and simulations store them: unsigned 8-bit and signed 16-bit values, the
+# active array not the first one, big-endian
+for name, vtk_type, tname in [("ct-uint8.vti", vtk.VTK_UNSIGNED_CHAR, "UInt8"), ("ct-int16.vti", vtk.VTK_SHORT, "Int16")]:
+    ct = vtk.vtkImageData()
+    ct.SetExtent(0, 9, 0, 7, 0, 5)
+    ct.SetSpacing(0.5, 0.5, 1.0)
+    ct.AllocateScalars(vtk_type, 1)
+    sc = ct.GetPointData().GetScalars()
+    sc.SetName("density")
+    for i in range(ct.GetNumberOfPoints()):
+        x, y, z = ct.GetPoint(i)
+        sc.SetTuple1(i, int(40 + 20 * x + 10 * y - 5 * z))
+    xml_write(vtk.vtkXMLImageDataWriter, ct, os.path.join(V, name), "appended", "zlib")
+    record(os.path.join(V, name), "image", VTK_TOOL, "vti %s values" % tname, "vtk-ct-" + tname, "density",
+           "vtkImageData 10x8x6, %s scalars 40 + 20x + 10y - 5z; vtkXMLImageDataWriter appended zlib" % tname)
+two = vtk.vtkImageData()
+two.DeepCopy(img)
+two.GetPointData().SetActiveScalars("s")
+img_xml("wavelet-active-second.vti", two, "vtk-wavelet-s", " active scalars s (second array)", mode="appended", comp="zlib")
+img_xml("wavelet-bigendian.vti", img, "vtk-wavelet-image", " big-endian", mode="appended", comp="zlib", big=True)
 for pieces in [2, 4]:
     pw = vtk.vtkXMLPImageDataWriter()
     pw.SetInputData(img)
