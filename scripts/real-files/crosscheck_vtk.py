@@ -223,6 +223,16 @@ def main():
         volume = types & {vtk.VTK_TETRA, vtk.VTK_VOXEL, vtk.VTK_HEXAHEDRON, vtk.VTK_WEDGE, vtk.VTK_PYRAMID}
         worst = 0.0
         if r["kind"] == "image":
+            src = ds.GetPointData().GetArray(field)
+            if src.GetDataType() != vtk.VTK_DOUBLE:  # the probe interpolates into the array's own type:
+                dbl = vtk.vtkDoubleArray()          # integer images would come back rounded
+                dbl.DeepCopy(src)
+                dbl.SetName(field)
+                copy = vtk.vtkImageData()
+                copy.ShallowCopy(ds)
+                copy.GetPointData().RemoveArray(field)
+                copy.GetPointData().AddArray(dbl)
+                ds = copy
             route = "image box + VTK probe (trilinear), h = box diagonal / %d" % args.samples
             hidden = [a for a in (ds.GetPointData().GetArray("vtkGhostType"), ds.GetCellData().GetArray("vtkGhostType"))
                       if a is not None and ns.vtk_to_numpy(a).astype(int).any()]
