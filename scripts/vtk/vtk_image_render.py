@@ -458,6 +458,8 @@ def render(scene_path, mapper, step):
         rgb = rgba[:, :, :3] + (1.0 - rgba[:, :, 3:]) * bg
         info["alpha_max"] = float(rgba[:, :, 3].max())
     info["seconds"] = time.time() - t0
+    # the mapper's SampleDistance after the render (Smart's echoes the request; whether its internal
+    # GPU mapper uses it shows in converge's invariance, see the report)
     info["sample_distance_used"] = m.GetSampleDistance()
     if mapper == "smart":
         info["last_used_render_mode"] = {0: "default", 1: "ray cast", 2: "GPU", 4: "OSPRay"}.get(
@@ -646,9 +648,6 @@ def translation_check(d, step=0.05):
         print(line)
         if mapper == "fixedpoint-display":
             continue  # its own ray-cast image resampled by the display helper: reported, not bounded
-        if mapper == "smart" and abs(info["sample_distance_used"] - step) > 1e-12:
-            print("translation smart: SampleDistance %g requested, %g used" % (step, info["sample_distance_used"]))
-            continue
         if not worst <= bound:
             failures.append("%s: constant volume error %.3g above the bound %.3g" % (mapper, worst, bound))
     print("translation:", "PASS" if not failures else "FAIL: " + "; ".join(failures))
