@@ -189,11 +189,11 @@ def scenes(out_dir):
     head = {"description": "CT-like head: 3-D Shepp-Logan phantom, 48 x 48 x 40 points, spacing 0.5, one [1 2 1]/4 "
                            "blur; bone-like transfer function; written by scripts/vtk/vtk_image_render.py, do not edit",
             "medium": {"type": "grid", "grid_file": "head.vti", "array": "scalar"},
-            "transfer": {"extinction": [[0.0, 0.0], [0.1, 0.0], [0.2, 0.08], [0.35, 0.12], [0.6, 0.4], [0.9, 2.5], [1.0, 3.0]],
+            "transfer": {"extinction": [[0.0, 0.0], [0.1, 0.0], [0.15, 0.05], [0.25, 0.1], [0.4, 1.0], [0.6, 2.0], [1.0, 3.0]],
                          "emission": {"r": [[0.0, 0.6], [0.25, 0.85], [0.6, 0.9], [1.0, 1.0]],
                                       "g": [[0.0, 0.2], [0.25, 0.35], [0.6, 0.8], [1.0, 0.95]],
                                       "b": [[0.0, 0.1], [0.25, 0.25], [0.6, 0.6], [1.0, 0.9]]}},
-            "background": bg, "camera": camera_for([0, 0, 0], 48.0), "effects": effects}
+            "background": bg, "camera": camera_for([0, 0, 0], 34.0), "effects": effects}
     made["head"] = head
 
     cdims = (13, 11, 9)
@@ -510,7 +510,10 @@ def run(args):
     rayint = os.path.abspath(args.rayint)
     me = os.path.abspath(__file__)
     results = {"vtk": None, "self_check": figs, "self_check_failures": failures, "scenes": {}, "steps": STEPS,
-               "tolerance": {"abs": args.abs_tol, "rel": args.rel_tol}}
+               "tolerance": {"abs": args.abs_tol, "rel": args.rel_tol}, "gate_size": args.gate_size}
+    if args.merge and os.path.exists(os.path.join(out, "results.json")):
+        with open(os.path.join(out, "results.json")) as f:
+            results["scenes"] = json.load(f)["scenes"]  # the other scenes of an earlier run
     import vtk
     results["vtk"] = vtk.vtkVersion.GetVTKVersion()
     mappers = args.mappers.split(",")
@@ -677,6 +680,7 @@ def main():
     u.add_argument("--rel-tol", type=float, default=1e-2)
     u.add_argument("--error-maps", action="store_true", help="keep converge's per-step error maps (.npy)")
     u.add_argument("--gate-size", type=int, default=24, help="camera size of the rayint check gate")
+    u.add_argument("--merge", action="store_true", help="keep the other scenes of an existing results.json")
     a = ap.parse_args()
     if a.cmd == "self-check":
         import tempfile
