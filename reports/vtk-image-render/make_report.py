@@ -37,6 +37,17 @@ def main(d):
         for m in res["scenes"][s]["mappers"]:
             if m not in mappers:
                 mappers.append(m)
+    # The gate's worst pixels are one-ray scenes with absolute grid_file paths (rayint check makes
+    # them absolute); relative ones keep them replayable from a checkout.
+    import glob
+    for wp in glob.glob(os.path.join(d, "*", "*", "check", "worst_pixel_*.json")):
+        j = json.load(open(wp))
+        g = j.get("medium", {}).get("grid_file")
+        if g and os.path.isabs(g):
+            j["medium"]["grid_file"] = os.path.relpath(g, os.path.dirname(os.path.abspath(wp)))
+            with open(wp, "w") as f:
+                json.dump(j, f, indent=2)
+                f.write("\n")
     conv = {}
     for s in scenes:
         for m in mappers:
