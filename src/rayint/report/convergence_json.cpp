@@ -33,6 +33,16 @@ nlohmann::json convergence_json(const ConvergenceResult& r) {
       j["p95"] = number(row.error.p95);
       j["max"] = number(row.error.max);
       j["change_from_finest"] = number(row.change_from_finest);
+      if (!row.worst.empty()) {
+        nlohmann::json w = nlohmann::json::array();
+        for (const WorstPixel& p : row.worst)
+          w.push_back({{"x", p.x}, {"y", p.y}, {"error", number(p.error)},
+                       {"candidate", {number(p.candidate[0]), number(p.candidate[1]), number(p.candidate[2])}},
+                       {"exact", {p.exact[0], p.exact[1], p.exact[2]}},
+                       {"ray", {{"origin", p.origin}, {"direction", p.direction}}}});
+        j["worst"] = w;
+      }
+      if (!row.error_map.empty()) j["error_map"] = row.error_map;
     }
     rows.push_back(j);
   }

@@ -33,12 +33,14 @@ std::vector<EffectInfo>& registry() {
        "every other term",
        "exact on piecewise-linear media, else riemann:n=128",
        {{"exact", {}, "integrators/exact on the ray's linear segments"},
-        {"riemann", {"n"}, "n midpoint samples"}},
+        {"riemann", {"n"}, "n midpoint samples"},
+        {"nerf", {"n", "at"}, "NeRF quadrature: n intervals, one sample each at=mid|near"}},
        make_absorption_effect},
       {"emission", Role::term, "glow g = kappa*sigma_t along the viewing ray",
        "exact on piecewise-linear media, else riemann:n=128",
        {{"exact", {}, "integrators/exact (with absorption) or exact piece integrals (without)"},
-        {"riemann", {"n"}, "n midpoint samples"}},
+        {"riemann", {"n"}, "n midpoint samples"},
+        {"nerf", {"n", "at"}, "NeRF quadrature sum T_i alpha_i kappa_i: n intervals, one sample each at=mid|near"}},
        make_emission_effect},
       {"single_scattering", Role::term,
        "external light scattered once toward the eye: sigma_s * phase * E * T_light",
@@ -126,6 +128,11 @@ void check_effect_method(const EffectInfo& effect, const MethodSpec& spec) {
       bool known = false;
       for (const std::string& k : m.keys) known = known || k == kv.first;
       if (!known) throw std::invalid_argument("method " + m.name + " has no parameter " + kv.first);
+      if (kv.first == "at") {  // nerf's sample position: a word, not a count
+        if (kv.second != "mid" && kv.second != "near")
+          throw std::invalid_argument(m.name + ": at must be mid or near, not " + kv.second);
+        continue;
+      }
       const double v = spec.number(kv.first, 0.0);
       if (!(v >= 1 && v <= 1e8 && v == std::floor(v)))
         throw std::invalid_argument(m.name + ": " + kv.first + " must be an integer in [1, 1e8]");

@@ -3,6 +3,7 @@
 // statistics against the exact image, and the observed order of convergence (Etiene et al.,
 // verification of volume rendering: a renderer whose observed order is below the expected one
 // has a bug). Pure numerics on numbers the caller measured; see convergence.cpp.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -36,6 +37,14 @@ OrderFit observed_order(const std::vector<double>& steps, const std::vector<doub
 
 namespace rayint {
 
+// One of a step's worst pixels: where, how far off, and the ray that replays it.
+struct WorstPixel {
+  int x = 0, y = 0;                  // pixel, y down from the top (rayint's row order)
+  double error = 0.0;                // largest channel difference
+  std::array<double, 3> candidate{}, exact{};
+  std::array<double, 3> origin{}, direction{};  // the pixel centre's ray (camera scenes)
+};
+
 // One candidate image at one step.
 struct ConvergenceRow {
   double step = 0.0;
@@ -44,6 +53,8 @@ struct ConvergenceRow {
   std::string failure;     // why (one line)
   PixelErrorStats error;   // per-pixel error against the exact image (max over channels)
   double change_from_finest = 0.0;  // max per-pixel difference to the finest step's image
+  std::vector<WorstPixel> worst;     // --worst N: the N largest errors, largest first
+  std::string error_map;             // --error-map-dir: the .npy written for this step
 };
 
 struct ConvergenceResult {
