@@ -20,21 +20,11 @@
 
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
+#include "cell_samples.hpp"  // tests/: the transfer functions shared with the tests and tools
 
 namespace {
 
 using namespace rayint;
-
-TransferFunctions bench_tf() {
-  TransferFunctions tf;
-  tf.density[0] = {{0.1, 0.3, 0.45, 0.7, 0.9}, {0.5, 4.0, 1.0, 6.0, 2.0}};
-  tf.density[1] = {{0.2, 0.5, 0.8}, {0.0, 3.0, 0.5}};
-  tf.density[2] = {{0.0, 0.35, 0.6, 1.0}, {1.0, 0.2, 5.0, 1.5}};
-  tf.color[0] = {{0.0, 0.5, 1.0}, {1.0, 0.1, 0.8}};
-  tf.color[1] = {{0.25, 0.55, 0.75}, {0.2, 1.0, 0.0}};
-  tf.color[2] = {{0.4, 0.65}, {0.9, 0.3}};
-  return tf;
-}
 
 struct Sample {
   std::vector<LinearCell> cells;  // the cell, or its 5 tetrahedra
@@ -80,7 +70,7 @@ std::vector<Sample> make_samples(LinearCellType type, bool affine, bool split) {
 }
 
 void run(benchmark::State& state, LinearCellType type, bool affine, bool split) {
-  const TransferFunctions tf = bench_tf();
+  const TransferFunctions tf = test::breakpoint_tf();
   const LinearCellIntegrator integrator(tf);
   const std::vector<Sample> samples = make_samples(type, affine, split);
   long chords = 0, failed = 0;

@@ -55,6 +55,14 @@ Image read_candidate(const ImageCheckOptions& o, int width, int height, const st
   if (alpha_mode != AlphaMode::ignore && background == nullptr)
     throw InputError(o.case_file + ": background: --candidate-alpha " + o.alpha_mode +
                      " needs a mesh case (one background colour to composite over)");
+  const auto wrong_size = [&](int w, int h) {
+    return InputError(o.candidate_image + ": (image): " + std::to_string(w) + " x " + std::to_string(h) +
+                      " pixels, " + what + " has " + std::to_string(width) + " x " + std::to_string(height));
+  };
+  // The size from the header first: a candidate of another size (a 16384 x 16384 PNG against a
+  // 64 x 64 camera) is refused before its pixels are read or decoded.
+  const ImageSize declared = read_image_size(o.candidate_image);
+  if (declared.width != width || declared.height != height) throw wrong_size(declared.width, declared.height);
   const ImageWithAlpha raw = read_image_with_alpha(o.candidate_image);
   Image composited;
   try {
@@ -64,10 +72,7 @@ Image read_candidate(const ImageCheckOptions& o, int width, int height, const st
     throw InputError(o.candidate_image + ": --candidate-alpha " + o.alpha_mode + ": " + e.what());
   }
   const Image candidate = flipped(composited, o.flip_x, o.flip_y);
-  if (candidate.width != width || candidate.height != height)
-    throw InputError(o.candidate_image + ": (image): " + std::to_string(candidate.width) + " x " +
-                     std::to_string(candidate.height) + " pixels, " + what + " has " +
-                     std::to_string(width) + " x " + std::to_string(height));
+  if (candidate.width != width || candidate.height != height) throw wrong_size(candidate.width, candidate.height);
   return candidate;
 }
 
@@ -75,6 +80,11 @@ Image read_candidate(const ImageCheckOptions& o, int width, int height, const st
 Image read_variance(const ImageCheckOptions& o, const Image& candidate) {
   Image variance;
   if (!o.candidate_variance.empty()) {
+    const ImageSize declared = read_image_size(o.candidate_variance);  // before reading the pixels
+    if (declared.width != candidate.width || declared.height != candidate.height)
+      throw InputError(o.candidate_variance + ": (image): " + std::to_string(declared.width) + " x " +
+                       std::to_string(declared.height) + " pixels, the candidate has " +
+                       std::to_string(candidate.width) + " x " + std::to_string(candidate.height));
     variance = flipped(read_image(o.candidate_variance), o.flip_x, o.flip_y);
     if (variance.width != candidate.width || variance.height != candidate.height)
       throw InputError(o.candidate_variance + ": (image): " + std::to_string(variance.width) + " x " +

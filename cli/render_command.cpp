@@ -38,8 +38,8 @@ void set_render_command(CLI::App& app) {
                   "scenes: EFFECT=METHOD, overrides the scene's methods (repeatable), e.g. "
                   "shadows=two_pass:grid=64");
   cmd->add_option("--shard", opts->shard,
-                  "mesh cases: I/N, render band I of N of the rows and write a shard file to -o; "
-                  "`rayint merge` joins the bands into the image and statistics");
+                  "I/N: render band I of N of the rows (a scene of explicit rays: of the rays) and "
+                  "write a shard file to -o; `rayint merge` joins the bands into the image and statistics");
   cmd->add_flag("--fit", opts->fit,
                 "mesh cases: frame the whole mesh, keeping the camera's direction, up, projection and "
                 "size (without a camera: 256 x 256, looking down -z); the camera used is printed on stderr");

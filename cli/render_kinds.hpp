@@ -21,7 +21,7 @@ struct RenderOptions {
   bool split_cells = false;          // mesh cases: --cells split (mesh/cell_split.hpp)
   std::vector<std::string> methods;  // scenes: EFFECT=SPEC overrides of the scene's "methods"
   int error_grid = 0;                // scenes: reference errors on K x K pixels (0: none)
-  std::string shard;                 // mesh cases: --shard I/N (rows)
+  std::string shard;                 // --shard I/N (rows; a scene of explicit rays: rays)
   bool fit = false;                  // mesh cases: --fit, frame the mesh (geometry/camera_fit.hpp)
   std::string loss_target;           // mesh cases: --loss-target, float image of the loss
   std::string grad_out;              // mesh cases: --grad-out, d loss / d vertex scalar (.npy)

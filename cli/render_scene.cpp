@@ -6,6 +6,9 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "render_kinds.hpp"
+#include "shard.hpp"
+#include "rayint/input/shard_reader.hpp"
+#include "rayint/report/shard_json.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/scene_reader.hpp"
@@ -40,10 +43,12 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& overrides) {
 }  // namespace
 
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options) {
-  if (!options.shard.empty())
-    throw InputError(options.input + ": --shard applies to mesh cases (rows); scenes are not sharded yet");
   if (!options.compare.empty())
     throw InputError(options.input + ": --compare applies to mesh cases; for scenes use --errors K");
+  if (!options.shard.empty() && options.error_grid > 0)
+    throw InputError("--errors: not with --shard (the reference comparison samples the whole image; "
+                     "run --errors K unsharded)");
+  const json_source::InputFileLog read;  // the grid and preset files the scene names: shard inputs
   Scene scene = parse_scene(root, options.input, dir_of(options.input));
   if (scene.camera) check_camera_memory(*scene.camera, 1, false, options.input + ": camera");
   apply_overrides(scene, options.methods);
@@ -67,7 +72,36 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
       progress_line.finish();  // the rendering line is complete when the error phase starts
       error_line.update("errors against the references " + std::to_string(static_cast<int>(f * 100.0)) + "%", f);
     };
-  const SceneRenderResult result = pipeline->render(ro);
+  // --shard I/N: render the shard's lines (rows, or explicit rays) and write them as a shard
+  // file (-o); merging: the image and figures assembled from the shards' lines, as a single run.
+  const bool in_shard = !options.shard.empty();
+  const ShardSpec shard = begin_shard(options.shard, options.output);
+  const std::vector<std::string> inputs = run_inputs({options.input}, read);
+  if (in_shard) {
+    const SceneRenderPart part = pipeline->render_part(ro, shard);
+    if (!options.quiet) progress_line.finish();
+    write_shard(options.output, "render", shard, inputs, to_json(part));
+    return;
+  }
+  SceneRenderResult result;
+  if (merging()) {
+    check_merge_inputs("render", inputs);
+    const ShardContext& c = shard_context();
+    std::vector<SceneRenderPart> parts;
+    for (std::size_t i = 0; i < c.data.size(); ++i) {
+      if (c.data[i].is_null()) continue;
+      parts.push_back(scene_render_part_from_json(c.data[i], c.files[i], "data"));
+      check_shard_band(i, static_cast<std::size_t>(parts.back().lines), parts.back().line_begin,
+                       parts.back().line_end, "data.line_begin");
+    }
+    try {
+      result = pipeline->assemble(parts);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("merge: " + options.input + ": " + e.what());
+    }
+  } else {
+    result = pipeline->render(ro);
+  }
   if (!options.quiet) {
     progress_line.finish();
     error_line.finish();

@@ -49,7 +49,7 @@ void set_scatter_command(CLI::App& app) {
   cmd->add_option("--bins", s->comparison.do_bins, "bins per cube-face edge, 6 b^2 bins (default 1,2,3,4)")->delimiter(',');
   cmd->add_option("--zonal-grids", s->comparison.zonal_grids, "zonal cells per axis (default 6,8,10; isotropic only)")->delimiter(',');
   cmd->add_option("--images", s->images, "write PNGs of every image into this folder");
-  cmd->add_option("--exposure", s->exposure, "PNG exposure (default 1)");
+  cmd->add_option("--exposure", s->exposure, "PNG exposure (default 1)")->check(CLI::PositiveNumber);
   cmd->add_option("-o,--output", s->output, "JSON report here (atomically) instead of stdout");
   add_quiet_flag(cmd, s->quiet);
   add_shard_option(cmd, s->shard);

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -45,7 +47,7 @@ std::string file_bytes(const std::string& path) {
 }
 
 struct ShardFile {
-  std::string path, command, fingerprint;
+  std::string path, command, fingerprint, build;
   std::vector<std::string> args;
   ShardSpec shard;
   nlohmann::json data;
@@ -63,6 +65,8 @@ ShardFile read_shard_file(const std::string& path) {
     if (!j.contains(key) || !j[key].is_string()) field::fail(path, key, "must be a string");
   f.command = j["command"];
   f.fingerprint = j["fingerprint"];
+  if (!j.contains("build") || !j["build"].is_string()) field::fail(path, "build", "must be a string (the build id of the rayint that wrote it)");
+  f.build = j["build"];
   if (!j.contains("args") || !j["args"].is_array()) field::fail(path, "args", "must be an array of strings");
   for (std::size_t i = 0; i < j["args"].size(); ++i) {
     if (!j["args"][i].is_string()) field::fail(path, field::index_path("args", i), "must be a string");
@@ -119,9 +123,25 @@ std::vector<std::string> run_inputs(std::vector<std::string> named, const json_s
   return named;
 }
 
+const std::string& build_id() {
+  // The executable's own bytes, hashed once (a 20-30 MB file: ~0.1 s, once per shard or merge).
+  // Two builds of one version -- another commit, a local change, another compiler or flags --
+  // are different files; the same build copied or installed elsewhere is the same file. A
+  // hash of the sources at configure time would miss a change made after configuring, and git
+  // describe a change not committed; the executable is what computed the figures.
+  static const std::string id = [] {
+    std::ifstream in("/proc/self/exe", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) throw std::runtime_error("cannot read /proc/self/exe for the build id");
+    return fingerprint({"rayint-build", std::string("rayint ") + RAYINT_VERSION, bytes});
+  }();
+  return id;
+}
+
 std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files) {
-  // The version too: shards of two rayint builds are not one run, even where the figures agree.
-  std::vector<std::string> parts{"rayint-run", std::string("rayint ") + RAYINT_VERSION, command};
+  // The version and the build too: shards of two rayint builds are not one run, even where the
+  // figures agree.
+  std::vector<std::string> parts{"rayint-run", std::string("rayint ") + RAYINT_VERSION, build_id(), command};
   for (const auto& a : canonical_args(shard_context().args, false)) parts.push_back(a);
   parts.push_back("inputs");
   for (const auto& f : input_files) parts.push_back(file_bytes(f));
@@ -136,6 +156,7 @@ void write_shard(const std::string& path, const std::string& command, const Shar
   j["command"] = command;
   j["args"] = canonical_args(shard_context().args, true);
   j["fingerprint"] = run_fingerprint(command, input_files);
+  j["build"] = build_id();
   j["shard"] = {{"index", shard.index}, {"count", shard.count}};
   j["data"] = std::move(data);
   write_file_atomically(path, j.dump() + "\n");
@@ -149,15 +170,28 @@ void check_merge_inputs(const std::string& command, const std::vector<std::strin
 }
 
 void check_shard_band(std::size_t index, std::size_t total, long begin, long end, const std::string& field) {
+  const IndexRange want = shard_range(total, ShardSpec{static_cast<long>(index), static_cast<long>(shard_context().data.size())});
+  check_shard_cover(index, want.begin, want.end, begin, end, field, " of " + std::to_string(total));
+}
+
+void check_shard_cover(std::size_t index, std::size_t want_begin, std::size_t want_end, long begin, long end,
+                       const std::string& field, const std::string& of) {
   const ShardContext& c = shard_context();
   const ShardSpec spec{static_cast<long>(index), static_cast<long>(c.data.size())};
-  const IndexRange want = shard_range(total, spec);
-  if (want.size() == 0 && begin == end) return;  // an empty band (more shards than items)
-  if (begin != static_cast<long>(want.begin) || end != static_cast<long>(want.end))
-    throw InputError(c.files[index] + ": " + field + ": shard " + spec.label() + " of " +
-                     std::to_string(total) + " must cover [" + std::to_string(want.begin) + ", " +
-                     std::to_string(want.end) + "), but covers [" + std::to_string(begin) + ", " +
-                     std::to_string(end) + ")");
+  if (want_begin == want_end && begin == end) return;  // an empty band (more shards than items)
+  if (begin != static_cast<long>(want_begin) || end != static_cast<long>(want_end))
+    throw InputError(c.files[index] + ": " + field + ": shard " + spec.label() + of + " must cover [" +
+                     std::to_string(want_begin) + ", " + std::to_string(want_end) + "), but covers [" +
+                     std::to_string(begin) + ", " + std::to_string(end) + ")");
+}
+
+void check_shard_count(std::size_t index, std::size_t expected, std::size_t got, const std::string& field) {
+  if (expected == got) return;
+  const ShardContext& c = shard_context();
+  const ShardSpec spec{static_cast<long>(index), static_cast<long>(c.data.size())};
+  throw InputError(c.files[index] + ": " + field + ": shard " + spec.label() + " of this run covers " +
+                   std::to_string(expected) + ", but its data hold " + std::to_string(got) +
+                   " (a gap or an overlap: a shard of another run, or edited)");
 }
 
 void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build) {
@@ -179,6 +213,9 @@ void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build) {
     const ShardFile& first = files.front();
     std::map<long, const ShardFile*> by_index;
     for (const ShardFile& f : files) {
+      if (f.build != build_id())
+        throw InputError(f.path + ": build: written by another rayint build (" + f.build + "; this rayint " +
+                         RAYINT_VERSION + " is build " + build_id() + "): shards and merge run one build");
       if (f.fingerprint != first.fingerprint || f.command != first.command || f.shard.count != first.shard.count)
         throw InputError(f.path + ": fingerprint: a shard of a different run (" + f.fingerprint + " " +
                          f.command + " " + f.shard.label() + ", but " + first.path + " is " +

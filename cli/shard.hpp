@@ -2,10 +2,10 @@
 // `--shard I/N` and `rayint merge` in the CLI (README, "Shards and merge"; core/shard.hpp).
 //
 // A sharded subcommand, given --shard I/N, does shard I's part of the run and writes a shard
-// file (-o) instead of its report: {"rayint_shard": 1, "command", "args", "fingerprint",
+// file (-o) instead of its report: {"rayint_shard": 1, "command", "args", "fingerprint", "build",
 // "shard": {"index", "count"}, "data"}. `args` are the run's arguments without --shard,
 // -o/--output, --threads and -q/--quiet (those do not change a figure); the fingerprint hashes
-// the rayint version, the command, those arguments and the bytes of the run's input files (every
+// the rayint version and build id (build_id), the command, those arguments and the bytes of the run's input files (every
 // file the readers opened: the case or scene and the mesh, grid and preset files it names).
 // `rayint merge` checks the shards belong together, then runs the recorded command again in
 // merge mode: the subcommand takes its figures from the shards' data instead of computing
@@ -43,7 +43,11 @@ bool merging();
 // under `log` (the meshes, grids and data files the named ones refer to), each once.
 std::vector<std::string> run_inputs(std::vector<std::string> named, const json_source::InputFileLog& log);
 
-// The run's fingerprint: the command, its canonical arguments and the bytes of `input_files`.
+// This executable's build id: a version-5 UUID of the version and the bytes of the running
+// executable (/proc/self/exe), so two builds of one version are told apart.
+const std::string& build_id();
+
+// The run's fingerprint: the build id, the command, its canonical arguments and the bytes of `input_files`.
 std::string run_fingerprint(const std::string& command, const std::vector<std::string>& input_files);
 
 // Shard mode: writes the shard file atomically to `path` (required: -o).
@@ -58,6 +62,14 @@ void check_merge_inputs(const std::string& command, const std::vector<std::strin
 // foreign shard that leaves a row out or repeats one is refused with one line naming its file
 // and `field` (e.g. "data.row_begin").
 void check_shard_band(std::size_t index, std::size_t total, long begin, long end, const std::string& field);
+
+// Merge mode: likewise, where the band [want_begin, want_end) is computed by the caller.
+void check_shard_cover(std::size_t index, std::size_t want_begin, std::size_t want_end, long begin, long end,
+                       const std::string& field, const std::string& of = "");
+
+// Merge mode: shard `index` of the run must hold exactly `expected` items (samples, rays) where
+// its data hold `got`: refused with one line naming its file and `field` otherwise.
+void check_shard_count(std::size_t index, std::size_t expected, std::size_t got, const std::string& field);
 
 // `rayint merge`; `build` registers every subcommand on a fresh app (to replay the run).
 void set_merge_command(CLI::App& app, std::function<void(CLI::App&)> build);

@@ -14,20 +14,14 @@
 #include <string_view>
 
 #include "rayint/input/candidate_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
+using rayint::fuzz::check_message;
+using rayint::fuzz::require;
+
 constexpr const char* kSource = "fuzz-candidate.json";
-
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
-
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
 
 rayint::Case three_rays() {
   rayint::Case c;
@@ -50,7 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     rayint::require_candidate_matches(c, kCase);
     require(c.case_name == kCase.name && c.intensity.size() == kCase.rays.size());
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   }
   return 0;
 }

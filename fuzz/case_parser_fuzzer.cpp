@@ -19,14 +19,14 @@
 #include <string_view>
 
 #include "rayint/input/case_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-input.json";
+using rayint::fuzz::check_message;
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-input.json";
 
 bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 
@@ -55,12 +55,6 @@ void check_case(const rayint::Case& c) {
   }
 }
 
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
-
 void check_same_rays(const rayint::Case& a, const rayint::Case& b) {
   require(a.rays.size() == b.rays.size());
   for (std::size_t i = 0; i < a.rays.size(); ++i) {
@@ -82,7 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check_case(streamed);
   } catch (const rayint::InputError& e) {
     streamed_error = e.what();
-    check_message(streamed_error);
+    check_message(streamed_error, kSource);
   }
   try {
     tree = rayint::detail::parse_case_text_tree(text, kSource);

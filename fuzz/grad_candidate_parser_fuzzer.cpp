@@ -17,20 +17,14 @@
 #include <string_view>
 
 #include "rayint/input/grad_candidate_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
+using rayint::fuzz::check_message;
+using rayint::fuzz::require;
+
 constexpr const char* kSource = "fuzz-grad-candidate.json";
-
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
-
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
 
 rayint::Case fig2_shape() {
   rayint::Case c;
@@ -68,7 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         require(c.rays[i].density[ch].size() == 2 && c.rays[i].color[ch].size() == 2);
     }
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   }
   return 0;
 }

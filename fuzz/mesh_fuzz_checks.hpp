@@ -12,18 +12,9 @@
 #include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
+#include "fuzz_checks.hpp"
 
 namespace rayint::fuzz {
-
-inline void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
-
-inline void check_message(const std::string& what, const std::string& source) {
-  const std::string prefix = source + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
 
 // The accepted mesh: structure as promised, then the mesh-case path.
 inline void check_mesh(TetMesh mesh, const std::string& source) {

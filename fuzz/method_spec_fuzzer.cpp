@@ -15,12 +15,11 @@
 #include <string>
 
 #include "rayint/integrators/integrator.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+using rayint::fuzz::require;
 
 }  // namespace
 

@@ -15,14 +15,13 @@
 #include <string_view>
 
 #include "rayint/input/paraview_preset.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-preset.json";
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-preset.json";
 
 void check_message(const std::string& what) {
   require(what.compare(0, 18, "fuzz-preset.json: ") == 0 || what.compare(0, 6, "fuzz: ") == 0);

@@ -11,14 +11,13 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/scene_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-scene.json";
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-scene.json";
 
 }  // namespace
 

@@ -15,20 +15,14 @@
 
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/shard_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
+using rayint::fuzz::check_message;
+using rayint::fuzz::require;
+
 constexpr const char* kSource = "fuzz-shard.json";
-
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
-
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
 
 }  // namespace
 
@@ -38,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     j = rayint::json_source::parse(text, kSource);
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
     return 0;
   }
   try {
@@ -50,30 +44,30 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       (void)tree.total(p.scores);
     }
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   }
   try {
     (void)rayint::stress_partial_from_json(j, kSource, "data");
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   }
   try {
     const rayint::MeshRenderPart p = rayint::mesh_render_part_from_json(j, kSource, "data");
     (void)rayint::assemble_mesh_render({p});
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   } catch (const std::invalid_argument&) {
   }
   try {
     (void)rayint::sweep_part_from_json(j, kSource, "data");
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   }
   try {
     const rayint::VolumeComparisonPart p = rayint::volume_comparison_part_from_json(j, kSource, "data");
     if (static_cast<long long>(p.width) * p.height <= (1 << 16)) (void)rayint::finish_volume_comparison({p});
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   } catch (const std::invalid_argument&) {
   }
   try {
@@ -83,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.voxel_sizes = {4};
     (void)rayint::finish_cells_study(o, {p});
   } catch (const rayint::InputError& e) {
-    check_message(e.what());
+    check_message(e.what(), kSource);
   } catch (const std::invalid_argument&) {
   }
   return 0;

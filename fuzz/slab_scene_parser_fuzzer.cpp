@@ -13,20 +13,19 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/slab_scene_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-slab-scene.json";
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-slab-scene.json";
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  try {
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
     const rayint::SlabScene s = rayint::parse_slab_scene(text, kSource);
     const rayint::SlabProblem& p = s.problem;
     require(std::isfinite(p.tau) && p.tau > 0);
@@ -36,11 +35,5 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (std::size_t l = 1; l < s.legendre.size(); ++l) require(std::fabs(s.legendre[l]) < 1 || s.phase_name == "tabulated");
       for (double c : s.legendre) require(std::isfinite(c));
     }
-  } catch (const rayint::InputError& e) {
-    const std::string what = e.what();
-    const std::string prefix = std::string(kSource) + ": ";
-    require(what.compare(0, prefix.size(), prefix) == 0);
-    require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-  }
-  return 0;
+  });
 }

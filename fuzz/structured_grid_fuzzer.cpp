@@ -18,14 +18,13 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-input.vts";
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-input.vts";
 
 void check_mesh(const rayint::CellMesh& m) {
   require(m.cell_count() > 0 && m.offsets.size() == m.cell_count() + 1);
@@ -43,25 +42,14 @@ void check_mesh(const rayint::CellMesh& m) {
   require(static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]) == m.points.size());
 }
 
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  try {
+  rayint::fuzz::refusals_are_one_line(kSource, [&] {
     check_mesh(rayint::parse_vts(bytes, kSource));
-  } catch (const rayint::InputError& e) {
-    check_message(e.what());
-  }
-  try {
+  });
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
     check_mesh(rayint::parse_vtr(bytes, kSource));
-  } catch (const rayint::InputError& e) {
-    check_message(e.what());
-  }
-  return 0;
+  });
 }

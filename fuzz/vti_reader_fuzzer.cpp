@@ -17,14 +17,13 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-input.vti";
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-input.vti";
 
 void check_grid(const rayint::VoxelGrid& g) {
   std::size_t n = 1;
@@ -37,20 +36,11 @@ void check_grid(const rayint::VoxelGrid& g) {
   for (double v : g.values()) require(std::isfinite(v));
 }
 
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  try {
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
     check_grid(rayint::parse_vti(bytes, kSource));
-  } catch (const rayint::InputError& e) {
-    check_message(e.what());
-  }
-  return 0;
+  });
 }

@@ -16,14 +16,13 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
+#include "fuzz_checks.hpp"
 
 namespace {
 
-constexpr const char* kSource = "fuzz-input.vtu";
+using rayint::fuzz::require;
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+constexpr const char* kSource = "fuzz-input.vtu";
 
 void check_mesh(const rayint::TetMesh& m) {
   require(!m.tets.empty() && m.scalars.size() == m.points.size());
@@ -33,20 +32,11 @@ void check_mesh(const rayint::TetMesh& m) {
     for (std::int32_t i : t) require(i >= 0 && static_cast<std::size_t>(i) < m.points.size());
 }
 
-void check_message(const std::string& what) {
-  const std::string prefix = std::string(kSource) + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
-  require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  try {
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
     check_mesh(rayint::parse_vtu(bytes, kSource));
-  } catch (const rayint::InputError& e) {
-    check_message(e.what());
-  }
-  return 0;
+  });
 }

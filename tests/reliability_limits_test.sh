@@ -100,5 +100,123 @@ json.dump(c, open('big.json', 'w'))"
 [ "$(wc -l <err)" = 1 ] || { fail "ulimit -v: not one line"; cat err; }
 echo "ok ulimit_v: $(cat err)"
 
+# Shard coverage: every kind's merge proves its shards cover the work exactly once. A shard
+# whose data were edited to leave items out (a gap) or hold another shard's (an overlap) is one
+# line naming the file and field. Scenes shard like mesh renders (rows; explicit rays: rays).
+/usr/bin/python3 - "$src/cases/scenes/cloud-emission.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["camera"]["width"], s["camera"]["height"] = 9, 8
+json.dump(s, open("scene.json", "w"))
+PY
+"$rayint" render scene.json --shard 0/2 -o sc0.json -q || fail "scene shard 0/2"
+"$rayint" render scene.json --shard 1/2 -o sc1.json -q || fail "scene shard 1/2"
+"$rayint" merge sc0.json sc1.json -o merged.npy 2>err || fail "scene merge: $(cat err)"
+"$rayint" render scene.json -o one.npy -q || fail "scene render"
+cmp -s one.npy merged.npy && echo "ok scene_shards: 2-shard merge == one run" || fail "scene merge differs from one run"
+/usr/bin/python3 -c "
+import json; j = json.load(open('sc1.json')); d = j['data']; w = d['width']
+d['line_begin'] += 1; d['pixels'] = d['pixels'][3 * w:]; d['line_sums'] = d['line_sums'][3 * (d['terms'] + 1):]
+json.dump(j, open('sc1gap.json', 'w'))"
+refuse scene_row_gap "sc1gap.json: data.line_begin: shard 1/2 of 8 must cover \[4, 8), but covers \[5, 8)" \
+  "$rayint" merge sc0.json sc1gap.json -o out.npy
+refuse scene_shard_errors "--errors: not with --shard" "$rayint" render scene.json --errors 2 --shard 0/2 -o out.json -q
+/usr/bin/python3 -c "
+import json; j = json.load(open('s1.json')); j['data']['regimes'][0]['samples'] += 1
+json.dump(j, open('s1over.json', 'w'))"
+refuse stress_overlap "s1over.json: data.regimes\[0\].samples: shard 1/2 of this run covers" \
+  "$rayint" merge s0.json s1over.json -o out.json
+"$rayint" cells --count 3 --voxel-rays 5 --shard 0/2 -o c0.json -q || fail "cells shard 0/2"
+"$rayint" cells --count 3 --voxel-rays 5 --shard 1/2 -o c1.json -q || fail "cells shard 1/2"
+/usr/bin/python3 -c "
+import json; j = json.load(open('c1.json')); j['data']['voxels'][0].pop()
+json.dump(j, open('c1gap.json', 'w'))"
+refuse cells_gap "c1gap.json: data.voxels\[0\] (rays): shard 1/2 of this run covers 3, but its data hold 2" \
+  "$rayint" merge c0.json c1gap.json -o out.json
+bench=("$src/cases/paper-figure-2.json" "$src/cases/narrow-pulse.json" --methods paper --batches 1 --batch-seconds 1e-5)
+"$rayint" bench "${bench[@]}" --shard 0/2 -o b0.json -q >/dev/null || fail "bench shard 0/2"
+"$rayint" bench "${bench[@]}" --shard 1/2 -o b1.json -q >/dev/null || fail "bench shard 1/2"
+/usr/bin/python3 -c "
+import json; j = json.load(open('b1.json'))
+for axis in j['data']['methods']:
+    for setting in axis:
+        for c in setting['cases']:
+            if c['covered'] > 1: c['first_ray'] -= 1; break
+json.dump(j, open('b1over.json', 'w'))"
+refuse bench_overlap "b1over.json: data.methods\[0\]\[0\].cases\[[0-9]\].first_ray: shard 1/2 must cover" \
+  "$rayint" merge b0.json b1over.json -o out.json
+
+# A candidate's size is read from its header and compared with the camera before any pixel is
+# read: a 16384 x 16384 PNG (only its first rows' data present) and a .npy header of that shape
+# (no data) are refused with the size message -- decoding would fail otherwise ("cannot decode",
+# "bytes of data") or take 6.75 GiB.
+/usr/bin/python3 - <<'PY'
+import struct, zlib
+w = h = 16384
+def chunk(t, d): return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+rows = zlib.compress(b"".join(b"\0" + b"\0" * (3 * w) for _ in range(4)))[:-4]  # a stream cut short
+open("huge.png", "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                              + chunk(b"IDAT", rows) + chunk(b"IEND", b""))
+header = "{'descr': '<f8', 'fortran_order': False, 'shape': (16384, 16384, 3), }"
+header += " " * (63 - (len(header) + 10) % 64) + "\n"
+open("huge.npy", "wb").write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode())
+PY
+refuse png_candidate_header "huge.png: (image): 16384 x 16384 pixels, the camera of small.json has 16 x 16" \
+  bash -c "ulimit -v 2000000; exec \"$rayint\" check small.json --candidate-image huge.png -o out.json"
+refuse npy_candidate_header "huge.npy: (image): 16384 x 16384 pixels, the camera of small.json has 16 x 16" \
+  "$rayint" check small.json --candidate-image huge.npy -o out.json
+
+# Far ray origins in a mesh case (eval): an error naming the case and the ray, not a miss.
+/usr/bin/python3 - <<'PY'
+import json
+c = json.load(open("small.json"))
+del c["camera"]
+c["rays"] = [{"origin": [0, 0, 3], "direction": [0, 0, -1]}, {"origin": [0, 0, 4e16], "direction": [0, 0, -1]}]
+json.dump(c, open("far_rays.json", "w"))
+PY
+refuse eval_far_origin "far_rays.json: rays\[1\].origin: 4e+16 from the mesh" "$rayint" eval far_rays.json -o out.json -q
+
+# Numbers: a domain per option (docs/limits.md, "Domains"); a sample of them, out of domain.
+S=$src/cases/scenes/cloud-multiple-scattering.json
+refuse scatter_exposure "--exposure: must be > 0, got -1" "$rayint" scatter "$S" --exposure -1 -o out.json -q
+refuse scatter_width "--width/--height: must be in \[1, 4096\]" "$rayint" scatter "$S" --width 0 -o out.json -q
+refuse slab_albedo "albedo must be in \[0, 1\]" "$rayint" slab --tau 1 --albedo 2 --mu-up 0.5 -o out.json -q
+refuse slab_streams "--streams: must be in \[2, 1024\]" "$rayint" slab --tau 1 --albedo 0.5 --mu-up 0.5 --streams 1 -o out.json -q
+refuse cells_count "--count" "$rayint" cells --count 0 -o out.json -q
+refuse check_alpha "--alpha" "$rayint" check small.json --candidate-image huge.npy --alpha 0.9 -o out.json
+
+# HSV colour maps: colours outside [0, 1] (the cause of the 456 MB import) are refused at the
+# field; extreme scalars, log scales and ranges in HSV import at once.
+echo '{"Name": "h", "ColorSpace": "HSV", "RGBPoints": [0, 1e300, 0, 0, 1, 0, 0, 1]}' >hsv_huge.json
+refuse hsv_huge_colour "hsv_huge.json: RGBPoints\[1\]: colour components must be in \[0, 1\]" \
+  "$rayint" tf import hsv_huge.json -o out.json -q
+echo '{"Name": "h", "ColorSpace": "HSV", "UseLogScale": true, "RGBPoints": [1e-300, 1, 0, 0, 1e300, 0, 0, 1]}' >hsv_wide.json
+if timeout 30 bash -c "ulimit -v 1000000; exec \"$rayint\" tf import hsv_wide.json --range 1e-300 1e300 -o hsv_wide.out.json -q"; then
+  echo "ok hsv_wide: an HSV log-scale preset over [1e-300, 1e300] imports within 30 s and 1 GB"
+else
+  fail "hsv_wide: HSV import over [1e-300, 1e300] failed or took > 30 s / 1 GB"
+fi
+
+# Two builds of one version: a shard written by another executable is refused by name.
+cp "$rayint" other-rayint && printf 'x' >>other-rayint
+./other-rayint stress --count 20 --seed 3 --shard 1/2 -o s1other.json -q || fail "other build shard"
+refuse other_build "s1other.json: build: written by another rayint build" "$rayint" merge s0.json s1other.json -o out.json
+
+# A .pvtu's piece files are inputs: a piece edited after the shards ran refuses the merge.
+mkdir pv && cp "$src"/tests/fixtures/readers/ghost.pvtu "$src"/tests/fixtures/readers/ghost_[01].vtu pv/
+/usr/bin/python3 - <<'PY'
+import json
+c = json.load(open("small.json"))
+c["mesh_file"] = "pv/ghost.pvtu"
+c.pop("scalar_field", None)
+json.dump(c, open("pvtu.json", "w"))
+PY
+if "$rayint" render pvtu.json --shard 0/2 -o p0.json -q 2>err && "$rayint" render pvtu.json --shard 1/2 -o p1.json -q 2>>err; then
+  echo " " >>pv/ghost_1.vtu
+  refuse pvtu_piece_changed "input files changed" "$rayint" merge p0.json p1.json -o out.png
+else
+  fail "pvtu shards: $(cat err)"
+fi
+
 [ "$failures" = 0 ] || { echo "$failures failures"; exit 1; }
 echo "all reliability limit cases pass"

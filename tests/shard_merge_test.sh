@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # CTest shard_merge_<kind>: a 4-shard run merged with `rayint merge` equals the single run.
 #   shard_merge_test.sh RAYINT SOURCE_DIR KIND
-#   KIND: stress | slab | slab_benchmark | render | refusals | rerun | bench | scatter | cells
+#   KIND: stress | slab | slab_benchmark | render | scene | refusals | rerun | bench | scatter | cells
 # Reports are compared by tests/compare_reports.py: identical except wall-time fields (keys
 # ending in seconds / per_second / _share; bench also its timing-derived fields, see there);
 # the stress report and every image byte for byte.
@@ -74,6 +74,32 @@ case $kind in
     cmp "$work/one.img.error.png" "$work/img.error.png"
     cmp_reports "$work/one.stats.json" "$work/stats.json"
     echo "render: 4-shard merge == one run (image and heat map byte for byte; stats except wall-time fields)"
+    ;;
+  scene)
+    # A scene with a camera (rows) and one of explicit rays (rays): the merged image and stats
+    # equal the single run's (image byte for byte as .npy float64; stats except wall-time fields).
+    cp "$src/cases/scenes/ground.png" "$work/"  # the scene's background image, beside it
+    /usr/bin/python3 - "$src/cases/scenes/cloud-single-scattering-shadows.json" "$work" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["camera"]["width"], s["camera"]["height"] = 13, 11
+json.dump(s, open(sys.argv[2] + "/cam.json", "w"))
+del s["camera"]
+s["rays"] = [{"origin": [0.1 * i - 0.3, 0.15, 4.2], "direction": [0, 0, -1]} for i in range(7)]
+json.dump(s, open(sys.argv[2] + "/rays.json", "w"))
+PY
+    for sc in cam rays; do
+      args=(render "$work/$sc.json" --stats "$work/stats.json")
+      "$rayint" "${args[@]}" -o "$work/img.npy" --quiet
+      for f in img.npy stats.json; do mv "$work/$f" "$work/one.$f"; done
+      shards "$work/s" "${args[@]}"
+      [ ! -e "$work/stats.json" ] || { echo "a shard wrote the stats"; exit 1; }
+      "$rayint" merge "$work"/s.{2,0,3,1}.json -o "$work/img.npy"
+      cmp "$work/one.img.npy" "$work/img.npy"
+      cmp_reports "$work/one.stats.json" "$work/stats.json"
+      rm -f "$work"/s.*.json "$work"/one.* "$work/img.npy" "$work/stats.json"
+    done
+    echo "scene: 4-shard merge == one run for a camera scene (rows) and a scene of 7 explicit rays (image byte for byte, stats except wall-time fields)"
     ;;
   refusals)
     args=(slab --tau 1 --albedo 0.9 --phase isotropic --mu-up 0.5 --method monte_carlo --photons 50000)

@@ -17,6 +17,7 @@
 #include "rayint/cells/vtk_split.hpp"
 #include "rayint/reference/cell_reference.hpp"
 #include "rayint/reference/reference.hpp"
+#include "cell_samples.hpp"
 #include "transfer_builders.hpp"
 
 using namespace rayint;
@@ -373,31 +374,8 @@ TEST_CASE("linear cells: bad input and failures are reported, never a number", "
 
 namespace {
 
-CellReferenceInput reference_input(const LinearCell& cell, const ViewRay& ray, double t_near, double t_far) {
-  CellReferenceInput in;
-  in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < linear_node_count(cell.type); ++i) {
-    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-  }
-  in.origin = {ray.origin[0], ray.origin[1], ray.origin[2]};
-  in.direction = {ray.direction[0], ray.direction[1], ray.direction[2]};
-  in.t_near = t_near;
-  in.t_far = t_far;
-  return in;
-}
-
-TransferFunctions breakpoint_tf() {
-  TransferFunctions tf;
-  tf.density[0] = {{0.1, 0.3, 0.45, 0.7, 0.9}, {0.5, 4.0, 1.0, 6.0, 2.0}};
-  tf.density[1] = {{0.2, 0.5, 0.8}, {0.0, 3.0, 0.5}};
-  tf.density[2] = {{0.0, 0.35, 0.6, 1.0}, {1.0, 0.2, 5.0, 1.5}};
-  tf.color[0] = {{0.0, 0.5, 1.0}, {1.0, 0.1, 0.8}};
-  tf.color[1] = {{0.25, 0.55, 0.75}, {0.2, 1.0, 0.0}};
-  tf.color[2] = {{0.4, 0.65}, {0.9, 0.3}};
-  return tf;
-}
+using test::breakpoint_tf;
+using test::reference_input;
 
 double ext(const ExtendedValue& v) { return v.hi + v.lo; }
 

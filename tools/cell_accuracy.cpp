@@ -34,6 +34,7 @@
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/cells/vtk_split.hpp"
 #include "rayint/reference/cell_reference.hpp"
+#include "cell_samples.hpp"  // tests/: the transfer functions and reference input shared with the tests
 
 using namespace rayint;
 
@@ -91,17 +92,6 @@ LinearCell make_family_cell(const std::string& family, LinearCellType type, std:
   std::vector<double> values;
   for (std::size_t i = 0; i < nodes.size(); ++i) values.push_back(u(rng));
   return make_linear_cell(type, nodes, values);
-}
-
-TransferFunctions make_tf() {
-  TransferFunctions tf;
-  tf.density[0] = {{0.1, 0.3, 0.45, 0.7, 0.9}, {0.5, 4.0, 1.0, 6.0, 2.0}};
-  tf.density[1] = {{0.2, 0.5, 0.8}, {0.0, 3.0, 0.5}};
-  tf.density[2] = {{0.0, 0.35, 0.6, 1.0}, {1.0, 0.2, 5.0, 1.5}};
-  tf.color[0] = {{0.0, 0.5, 1.0}, {1.0, 0.1, 0.8}};
-  tf.color[1] = {{0.25, 0.55, 0.75}, {0.2, 1.0, 0.0}};
-  tf.color[2] = {{0.4, 0.65}, {0.9, 0.3}};
-  return tf;
 }
 
 // The same ray through VTK's split of the cell (random distinct global ids, as an unstructured
@@ -171,7 +161,7 @@ int main(int argc, char** argv) {
     std::cerr << "rayint_cell_accuracy: --rays must be >= 1\n";
     return 2;
   }
-  const TransferFunctions tf = make_tf();
+  const TransferFunctions tf = test::breakpoint_tf();
   const LinearCellIntegrator integrator(tf);
   std::vector<Stats> all;
   for (const Family& fam : kFamilies) {
@@ -204,17 +194,7 @@ int main(int argc, char** argv) {
           ++st.failed_double;
           continue;
         }
-        CellReferenceInput in;
-        in.vtk_id = static_cast<int>(fam.type);
-        for (int i = 0; i < linear_node_count(fam.type); ++i) {
-          const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-          in.nodes.push_back({x[0], x[1], x[2]});
-          in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-        }
-        in.origin = {ray.origin[0], ray.origin[1], ray.origin[2]};
-        in.direction = {ray.direction[0], ray.direction[1], ray.direction[2]};
-        in.t_near = iv.t_near;
-        in.t_far = iv.t_far;
+        const CellReferenceInput in = test::reference_input(cell, ray, iv.t_near, iv.t_far);
         CellReference ref;
         try {
           ref = reference_cell_chord(tf, in);

@@ -9,25 +9,14 @@ Usage: /usr/bin/python3 reports/scattering/pn_p1_isotropic_report.py [BUILD_DIR]
 """
 import json
 import os
-import subprocess
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from report_env import ROOT, plt, slab  # noqa: E402
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BUILD = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-RAYINT = os.path.join(BUILD, "rayint")
 OUT = os.path.join(ROOT, "reports", "scattering")
 TAUS = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
 ALBEDOS = [0.2, 0.5, 0.8, 0.9, 0.95, 0.99, 1.0]
-
-
-def slab(args, method):
-    cmd = [RAYINT, "slab", "--method", method, "--no-integral-equation"] + args
-    return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
 
 
 def rel(a, b):

@@ -13,24 +13,13 @@ import os
 import subprocess
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from report_env import BUILD, ROOT, plt, slab  # noqa: E402
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BUILD = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-RAYINT = os.path.join(BUILD, "rayint")
 BENCH = os.path.join(BUILD, "bench", "rayint_bench")
 OUT = os.path.join(ROOT, "reports", "scattering")
 ORDERS = [1, 3, 5, 7, 15, 31, 63, 127]
 BENCH_REPEATS = 5
-
-
-def slab(args, method):
-    cmd = [RAYINT, "slab", "--method", method, "--no-integral-equation"] + args
-    r = subprocess.run(cmd, check=True, capture_output=True, text=True)
-    return json.loads(r.stdout)
 
 
 def problem_args(p, phase):

@@ -3,10 +3,12 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
 #include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
 #include "rayint/input/json_schema.hpp"
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/mesh/cell_split.hpp"
@@ -259,9 +261,32 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
       if (const json* b = s.optional(r, "background")) v.background = s.rgb(*b, member_path(rp, "background"));
       mc.rays.push_back(v);
     }
+    refuse_far_origins(mc, source);
   }
   if (const json* sh = s.optional(root, "shading")) mc.shading = shading(s, *sh, "shading");
   return mc;
+}
+
+void refuse_far_origins(const MeshCase& mc, const std::string& source) {
+  if (mc.mesh.points.empty()) return;
+  Vec3 lo = mc.mesh.points.front(), hi = lo;
+  for (const Vec3& p : mc.mesh.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  // A ray parameter t at distance D is represented to D * 2^-52 (one ulp, within a factor 2):
+  // once that step exceeds the mesh's extent every crossing is lost and the ray returns its
+  // background -- a silent miss (issue 30). The rule of the camera check (cli/render_mesh.cpp).
+  const double extent = (hi - lo).norm();
+  const Vec3 centre = (lo + hi) / 2;
+  for (std::size_t i = 0; i < mc.rays.size(); ++i) {
+    const double distance = (mc.rays[i].ray.origin - centre).norm();
+    const double step = distance * std::numeric_limits<double>::epsilon();
+    if (!(step < extent))
+      throw InputError(source + ": " + index_path("rays", i) + ".origin: " + format_number(distance) +
+                       " from the mesh (extent " + format_number(extent) + "): a double's step there (" +
+                       format_number(step) + ") exceeds the mesh, the ray would miss it; move the origin closer");
+  }
 }
 
 MeshCase read_mesh_case_file(const std::string& path, const MeshReadOptions& options) {

@@ -39,6 +39,10 @@ CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_
 
 MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source,
                          const MeshReadOptions& options = {});
+// Refuses (InputError "<source>: rays[i].origin: ...") a ray whose origin is so far from the
+// mesh that a double's step along it exceeds the mesh's extent (it would miss silently).
+// parse_mesh_case applies it to every ray of a case.
+void refuse_far_origins(const MeshCase& mesh_case, const std::string& source);
 MeshCase read_mesh_case_file(const std::string& path, const MeshReadOptions& options = {});
 
 // Readers validate the structure only (validate_tet_mesh_structure); orientation and degenerate

@@ -157,6 +157,7 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
     const std::string ip = field::index_path(rp, i);
     const nlohmann::json& g = regimes[i];
     StressRegimePartial out;
+    out.samples = static_cast<long>(r.nonneg(g, ip, "samples"));
     out.max_reference_rel_bound = r.number(g, ip, "max_reference_rel_bound");
     out.reference_failures = static_cast<long>(r.nonneg(g, ip, "reference_failures"));
     out.first_reference_failure = static_cast<long>(r.integer(g, ip, "first_reference_failure"));
@@ -221,6 +222,58 @@ MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::st
                     &cost.traversal.zero_length_steps, &cost.traversal.star_searches,
                     &cost.traversal.first_hit_queries, &cost.traversal.budget_exhausted};
   for (std::size_t i = 0; i < 7; ++i) *fields[i] = static_cast<long>(r.integer(t[i], field::index_path(tp, i)));
+  return p;
+}
+
+SceneRenderPart scene_render_part_from_json(const nlohmann::json& j, const std::string& source,
+                                            const std::string& path) {
+  const Reader r{source};
+  SceneRenderPart p;
+  p.width = static_cast<int>(r.nonneg(j, path, "width"));
+  p.height = static_cast<int>(r.nonneg(j, path, "height"));
+  p.lines = r.nonneg(j, path, "lines");
+  p.line_begin = r.nonneg(j, path, "line_begin");
+  p.line_end = r.nonneg(j, path, "line_end");
+  const long long terms = r.nonneg(j, path, "terms");
+  const long long pixels = static_cast<long long>(p.width) * p.height;
+  if (p.width > (1 << 26) || p.height > 65536 || pixels > (1LL << 26) || terms > 64 ||
+      (p.lines != p.height && p.lines != pixels) || p.line_end > p.lines || p.line_begin > p.line_end)
+    r.fail(path, "needs at most 2^26 pixels, 64 terms, lines = height (rows) or width (rays) and "
+                 "0 <= line_begin <= line_end <= lines");
+  const std::size_t n_lines = static_cast<std::size_t>(p.line_end - p.line_begin);
+  // A line is a row (lines = height) or an explicit ray (lines = width, height 1).
+  const std::size_t per_line = p.lines == p.height ? static_cast<std::size_t>(p.width) : 1;
+  const std::size_t n = n_lines * per_line;
+  const auto nt = static_cast<std::size_t>(terms);
+  p.pixels = r.pixels(j, path, "pixels", n);
+  const nlohmann::json& rt = r.array(j, path, "ray_terms");
+  if (!rt.empty()) {
+    const std::vector<Rgb> flat = r.pixels(j, path, "ray_terms", n * nt);
+    for (std::size_t i = 0; i < n; ++i) p.ray_terms.emplace_back(flat.begin() + static_cast<long>(i * nt),
+                                                                 flat.begin() + static_cast<long>((i + 1) * nt));
+  }
+  const std::vector<Rgb> sums = r.pixels(j, path, "line_sums", n_lines * (nt + 1));
+  for (std::size_t i = 0; i < n_lines; ++i)
+    p.line_sums.emplace_back(sums.begin() + static_cast<long>(i * (nt + 1)),
+                             sums.begin() + static_cast<long>((i + 1) * (nt + 1)));
+  const nlohmann::json& w = r.array(j, path, "work");
+  const std::string wp = field::member_path(path, "work");
+  if (w.size() != nt + 1) r.fail(wp, "must hold terms + 1 entries");
+  for (std::size_t e = 0; e < w.size(); ++e) {
+    const std::string ep = field::index_path(wp, e);
+    if (!w[e].is_array() || w[e].size() != 9) r.fail(ep, "must hold 4 times and 5 counts");
+    EffectWork ew;
+    double* times[] = {&ew.seconds, &ew.cpu_seconds, &ew.setup_seconds, &ew.setup_cpu_seconds};
+    for (std::size_t k = 0; k < 4; ++k) *times[k] = r.number(w[e][k], field::index_path(ep, k));
+    long long* counts[] = {&ew.rays, &ew.samples, &ew.shadow_rays, &ew.shadow_samples, &ew.lookups};
+    for (std::size_t k = 0; k < 5; ++k) *counts[k] = r.integer(w[e][4 + k], field::index_path(ep, 4 + k));
+    p.work.push_back(ew);
+  }
+  p.render_seconds = r.number(j, path, "render_seconds");
+  p.render_cpu_seconds = r.number(j, path, "render_cpu_seconds");
+  p.setup_seconds = r.number(j, path, "setup_seconds");
+  p.setup_cpu_seconds = r.number(j, path, "setup_cpu_seconds");
+  p.threads = static_cast<unsigned>(r.nonneg(j, path, "threads"));
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/volume_comparison.hpp"
+#include "rayint/scene/pipeline.hpp"
 #include "rayint/studies/cells_study.hpp"
 #include "rayint/studies/stress.hpp"
 #include "rayint/studies/sweep.hpp"
@@ -19,6 +20,8 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
                                        const std::string& path);
 MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
                                           const std::string& path);
+SceneRenderPart scene_render_part_from_json(const nlohmann::json& j, const std::string& source,
+                                            const std::string& path);
 SweepPart sweep_part_from_json(const nlohmann::json& j, const std::string& source,
                                const std::string& path);
 VolumeComparisonPart volume_comparison_part_from_json(const nlohmann::json& j, const std::string& source,

@@ -259,6 +259,12 @@ auto assemble_pvtu(const std::string& path, const std::string& scalar_name, bool
 
 }  // namespace
 
+std::vector<std::string> pvtu_piece_files(const std::string& path) {
+  const std::string text = json_source::read_text_file(path);
+  const Document d(text, path, "PUnstructuredGrid");
+  return piece_sources(d, d.dataset(), "PUnstructuredGrid", path);
+}
+
 TetMesh read_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
   return assemble_pvtu(path, scalar_name, cell_to_point, &assemble_tet_mesh);
 }

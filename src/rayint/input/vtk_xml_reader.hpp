@@ -24,6 +24,7 @@
 //   "mesh.vtu: UnstructuredGrid/Piece/Points/DataArray: header says 96 bytes, expected 1536 (...)".
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rayint/grid/voxel_grid.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
@@ -39,6 +40,9 @@ TetMesh read_vtu(const std::string& path, const std::string& scalar_name = "", b
 // A .pvtu (VTKFile type="PUnstructuredGrid"): the .vtu pieces its <Piece Source="..."> name,
 // relative to its folder, joined: points with bitwise-equal coordinates merged (the pieces of
 // one dataset repeat the points on their shared faces), ghost cells dropped (mesh_assembly.hpp).
+// The piece files a .pvtu names (its Piece Source attributes, resolved against its folder), for
+// a reader that reads them itself (VTK's): each is an input of the run (shard fingerprints).
+std::vector<std::string> pvtu_piece_files(const std::string& path);
 TetMesh read_pvtu(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 // The same files as CellMeshes (mesh/cell_mesh.hpp): every linear volume cell kept (tetrahedra,

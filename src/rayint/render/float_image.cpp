@@ -182,7 +182,18 @@ std::string encode_pfm(const Image& image) {
   return out;
 }
 
-Image decode_pfm(std::string_view bytes, const std::string& source) {
+namespace {
+
+// The PFM header ("PF"/"Pf", width, height, scale, one whitespace): what decode_pfm and
+// read_image_size need, from the file's first bytes.
+struct PfmHeader {
+  long long w = 0, h = 0;
+  int channels = 3;
+  double scale = 0.0;
+  std::size_t data = 0;  // offset of the first pixel
+};
+
+PfmHeader pfm_header(std::string_view bytes, const std::string& source) {
   std::size_t p = 0;
   auto skip_space = [&] {
     while (p < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[p]))) ++p;
@@ -216,6 +227,17 @@ Image decode_pfm(std::string_view bytes, const std::string& source) {
   if (p >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[p])))
     fail(source, "pfm: no whitespace after the header");
   ++p;  // exactly one whitespace character before the data
+  return {w, h, channels, scale, p};
+}
+
+}  // namespace
+
+Image decode_pfm(std::string_view bytes, const std::string& source) {
+  const PfmHeader hd = pfm_header(bytes, source);
+  const long long w = hd.w, h = hd.h;
+  const int channels = hd.channels;
+  const double scale = hd.scale;
+  const std::size_t p = hd.data;
   const bool little = scale < 0.0;
   const std::size_t need = static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * channels * 4;
   if (bytes.size() - p < need)
@@ -374,7 +396,19 @@ Image decode_exr(std::string_view bytes, const std::string& source) {
   return decode_exr_with_alpha(bytes, source).rgb;
 }
 
-ImageWithAlpha decode_npy_with_alpha(std::string_view bytes, const std::string& source) {
+namespace {
+
+// The .npy header (magic, version, the dict with descr, fortran_order, shape): what
+// decode_npy_with_alpha and read_image_size need, from the file's first bytes.
+struct NpyHeader {
+  std::vector<long long> shape;
+  long long channels = 1;
+  int item = 8;
+  bool little = true;
+  std::size_t data = 0;  // offset of the first value
+};
+
+NpyHeader npy_header(std::string_view bytes, const std::string& source) {
   if (bytes.size() < 10 || bytes.substr(0, 6) != std::string_view("\x93NUMPY", 6))
     fail(source, "npy: not a NumPy .npy file (bad magic)");
   const int major = static_cast<unsigned char>(bytes[6]);
@@ -407,9 +441,20 @@ ImageWithAlpha decode_npy_with_alpha(std::string_view bytes, const std::string& 
   if (channels != 1 && channels != 3 && channels != 4)
     fail(source, "npy: " + std::to_string(channels) + " channels (1, 3 or 4 expected)");
   check_size(shape[1], shape[0], source, "npy");
+  return {shape, channels, item, little, start + header_len};
+}
+
+}  // namespace
+
+ImageWithAlpha decode_npy_with_alpha(std::string_view bytes, const std::string& source) {
+  const NpyHeader hd = npy_header(bytes, source);
+  const std::vector<long long>& shape = hd.shape;
+  const long long channels = hd.channels;
+  const int item = hd.item;
+  const bool little = hd.little;
   const std::size_t n = static_cast<std::size_t>(shape[0]) * static_cast<std::size_t>(shape[1]);
   const std::size_t need = n * static_cast<std::size_t>(channels) * static_cast<std::size_t>(item);
-  const std::size_t data = start + header_len;
+  const std::size_t data = hd.data;
   if (bytes.size() - data < need)
     fail(source, "npy: " + std::to_string(bytes.size() - data) + " bytes of data, " +
                      std::to_string(need) + " needed");
@@ -458,5 +503,48 @@ ImageWithAlpha read_image_with_alpha(const std::string& path) {
 }
 
 Image read_image(const std::string& path) { return read_image_with_alpha(path).rgb; }
+
+ImageSize read_image_size(const std::string& path) {
+  const ImageFormat format = image_format_of(path);
+  if (format == ImageFormat::png) return read_png_size(path);
+  if (format == ImageFormat::exr) {
+    try {
+      const Imf::InputFile file(path.c_str());  // reads the header only
+      const Imath::Box2i dw = file.header().dataWindow();
+      const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+      const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+      check_size(w, h, path, "exr");
+      return {static_cast<int>(w), static_cast<int>(h)};
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      fail(path, std::string("exr: ") + e.what());
+    }
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open file");
+  // The header is at the start: PFM's within a few hundred bytes; .npy's length is in its first
+  // 12 bytes (a version-1 header is at most 65,535 bytes; larger ones are refused here).
+  const auto prefix = [&](std::size_t n) {
+    std::string bytes(n, '\0');
+    in.read(bytes.data(), static_cast<std::streamsize>(n));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
+    return bytes;
+  };
+  if (format == ImageFormat::pfm) {
+    const PfmHeader hd = pfm_header(prefix(4096), path);
+    return {static_cast<int>(hd.w), static_cast<int>(hd.h)};
+  }
+  std::string bytes = prefix(12);
+  if (bytes.size() >= 12 && bytes.substr(0, 6) == std::string("\x93NUMPY", 6)) {
+    const int major = static_cast<unsigned char>(bytes[6]);
+    const std::size_t len = major == 1 ? load<std::uint16_t>(bytes.data() + 8, true) + 10u
+                                       : load<std::uint32_t>(bytes.data() + 8, true) + 12u;
+    if (len > (1u << 20)) fail(path, "npy: header of " + std::to_string(len) + " bytes (at most 1 MiB)");
+    bytes += prefix(len - bytes.size());
+  }
+  const NpyHeader hd = npy_header(bytes, path);
+  return {static_cast<int>(hd.shape[1]), static_cast<int>(hd.shape[0])};
+}
 
 }  // namespace rayint

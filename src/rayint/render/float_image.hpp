@@ -53,6 +53,11 @@ void write_image(const std::string& path, const Image& image, const PngOptions& 
 // Reads by extension (png: sRGB-decoded to linear). Throws InputError.
 Image read_image(const std::string& path);
 
+// The width and height a file declares, from its header alone (PNG's IHDR, the .npy and .pfm
+// headers, the .exr data window): a candidate of the wrong size, or one too large to hold, is
+// refused before its pixels are read or decoded. Throws InputError as the readers do.
+ImageSize read_image_size(const std::string& path);
+
 // An image with the alpha channel its file carries: .npy of shape (H, W, 4) (the 4th channel) or
 // .exr with an "A" channel; `alpha` is empty for every other file (PFM and RGB files have none,
 // PNG's alpha is folded into RGB by read_png). `rgb` is what read_image returns.

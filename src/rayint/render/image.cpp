@@ -72,6 +72,17 @@ void write_png(const std::string& path, const Image& image, const PngOptions& op
   write_file_atomically(path, encode_png(image, options));
 }
 
+ImageSize read_png_size(const std::string& path) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, path.c_str()))  // the signature and IHDR only
+    throw InputError(path + ": cannot read PNG (" + png.message + ")");
+  const ImageSize size{static_cast<int>(std::min<png_uint_32>(png.width, 1u << 30)),
+                       static_cast<int>(std::min<png_uint_32>(png.height, 1u << 30))};
+  png_image_free(&png);
+  return size;
+}
+
 Image read_png(const std::string& path, bool srgb) {
   png_image png{};
   png.version = PNG_IMAGE_VERSION;

@@ -34,6 +34,11 @@ void write_png(const std::string& path, const Image& image, const PngOptions& op
 // Reads any PNG libpng reads (grey, palette, alpha are converted to RGB); linear values in
 // [0, 1]. Throws InputError "<path>: ..." on an unreadable or malformed file.
 Image read_png(const std::string& path, bool srgb = true);
+// A PNG's width and height from its header (IHDR), without decoding it.
+struct ImageSize {
+  int width = 0, height = 0;
+};
+ImageSize read_png_size(const std::string& path);
 
 double srgb_encode(double linear);  // [0,1] -> [0,1]
 double srgb_decode(double encoded); // [0,1] -> [0,1]

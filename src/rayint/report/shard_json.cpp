@@ -73,7 +73,8 @@ nlohmann::json to_json(const StressPartial& partial) {
                          {"worst_finite", worst_json(m.worst_finite)},
                          {"rel", numbers(m.rel)},
                          {"ulp", numbers(m.ulp)}});
-    regimes.push_back({{"max_reference_rel_bound", exact_json(r.max_reference_rel_bound)},
+    regimes.push_back({{"samples", r.samples},
+                       {"max_reference_rel_bound", exact_json(r.max_reference_rel_bound)},
                        {"reference_failures", r.reference_failures},
                        {"first_reference_failure", r.first_reference_failure},
                        {"reference_failure", r.reference_failure},
@@ -144,6 +145,32 @@ nlohmann::json to_json(const SweepPart& part) {
             {"reference_seconds", exact_json(part.reference_seconds)},
             {"measure_seconds", exact_json(part.measure_seconds)}}},
           {"methods", methods}};
+}
+
+nlohmann::json to_json(const SceneRenderPart& part) {
+  const std::size_t terms = part.work.empty() ? 0 : part.work.size() - 1;
+  std::vector<Rgb> ray_terms, line_sums;
+  for (const auto& t : part.ray_terms) ray_terms.insert(ray_terms.end(), t.begin(), t.end());
+  for (const auto& t : part.line_sums) line_sums.insert(line_sums.end(), t.begin(), t.end());
+  nlohmann::json work = nlohmann::json::array();
+  for (const EffectWork& w : part.work)
+    work.push_back({exact_json(w.seconds), exact_json(w.cpu_seconds), exact_json(w.setup_seconds),
+                    exact_json(w.setup_cpu_seconds), w.rays, w.samples, w.shadow_rays, w.shadow_samples, w.lookups});
+  return {{"width", part.width},
+          {"height", part.height},
+          {"lines", part.lines},
+          {"line_begin", part.line_begin},
+          {"line_end", part.line_end},
+          {"terms", terms},
+          {"pixels", pixels(part.pixels)},
+          {"ray_terms", pixels(ray_terms)},
+          {"line_sums", pixels(line_sums)},
+          {"work", work},
+          {"render_seconds", exact_json(part.render_seconds)},
+          {"render_cpu_seconds", exact_json(part.render_cpu_seconds)},
+          {"setup_seconds", exact_json(part.setup_seconds)},
+          {"setup_cpu_seconds", exact_json(part.setup_cpu_seconds)},
+          {"threads", part.threads}};
 }
 
 nlohmann::json to_json(const VolumeComparisonPart& part) {

@@ -8,6 +8,7 @@
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/volume_comparison.hpp"
+#include "rayint/scene/pipeline.hpp"
 #include "rayint/studies/cells_study.hpp"
 #include "rayint/studies/stress.hpp"
 #include "rayint/studies/sweep.hpp"
@@ -20,6 +21,11 @@ nlohmann::json exact_json(double x);
 nlohmann::json to_json(const MonteCarloPart& part);
 nlohmann::json to_json(const StressPartial& partial);
 nlohmann::json to_json(const MeshRenderPart& part);
+// {"width", "height", "lines", "line_begin", "line_end", "terms", "pixels", "ray_terms",
+// "line_sums" (flat RGB triples), "work": [[seconds, cpu_seconds, setup_seconds,
+// setup_cpu_seconds, rays, samples, shadow_rays, shadow_samples, lookups] per term, then
+// shadows], "render_seconds", "render_cpu_seconds", "setup_seconds", "setup_cpu_seconds", "threads"}
+nlohmann::json to_json(const SceneRenderPart& part);
 // {"cells": [[sample...] per type], "voxels": [[sample...] per grid], "seconds"}; a cell sample is
 // {"level_error", "level_segments", "level_decompose_s", "level_exact_s", "ode": [error, s, steps],
 // "reference": [s, pieces, bound_rel]}, a voxel sample [error, segments, exact_s, reference_s].

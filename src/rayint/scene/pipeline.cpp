@@ -132,36 +132,43 @@ PixelRay ScenePipeline::ray(long long index) const {
   return pr;
 }
 
-SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const {
-  SceneRenderResult out;
+SceneRenderPart ScenePipeline::render_part(const SceneRenderOptions& options, const ShardSpec& shard) const {
+  SceneRenderPart out;
   const unsigned threads = options.threads != 0 ? options.threads : threads_;
   out.threads = threads;
-  out.setup_seconds = setup_seconds_;
-  out.setup_cpu_seconds = setup_cpu_seconds_;
   const long long count = ray_count();
-  const int width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
-  const int height = scene_.camera ? scene_.camera->height : 1;
-  out.image = Image(width, height);
+  out.width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
+  out.height = scene_.camera ? scene_.camera->height : 1;
+  // A line is an image row (camera) or one explicit ray: the unit a shard owns.
+  const long long per_line = scene_.camera ? out.width : 1;
+  out.lines = scene_.camera ? out.height : count;
+  const IndexRange band = shard_range(static_cast<std::size_t>(out.lines), shard);
+  out.line_begin = static_cast<long long>(band.begin);
+  out.line_end = static_cast<long long>(band.end);
+  const long long first = out.line_begin * per_line;
+  const long long n = (out.line_end - out.line_begin) * per_line;
+  out.pixels.assign(static_cast<std::size_t>(n), Rgb{});
   const std::size_t ne = effects_.size();
   const bool absorption = scene_.has("absorption");
   const bool keep_terms = !scene_.camera;
-  if (keep_terms) out.ray_terms.assign(static_cast<std::size_t>(count), std::vector<Rgb>(ne));
+  if (keep_terms) out.ray_terms.assign(static_cast<std::size_t>(n), std::vector<Rgb>(ne));
 
   // work[worker][e] for the term effects, work[worker][ne] for shadows.
   std::vector<std::vector<EffectWork>> work(threads, std::vector<EffectWork>(ne + 1));
-  // row_sum[row][e]: each term summed over a row, and [ne] the whole pixel (for means). Summed
-  // per row and then over the rows in order, so the means do not depend on the thread count or
-  // on which worker took which row.
+  // line_sums[line][e]: each term summed over a line, and [ne] the whole pixel (for means).
+  // Summed per line and then over the lines in order, so the means do not depend on the thread
+  // count, on which worker took which line, or on how the lines were split into shards.
   std::mutex progress_mutex;
-  long long rows_done = 0;
-  const long long rows = height;
-  std::vector<std::vector<Rgb>> row_sum(static_cast<std::size_t>(rows), std::vector<Rgb>(ne + 1, Rgb{}));
+  long long lines_done = 0;
+  const long long lines = out.line_end - out.line_begin;
+  out.line_sums.assign(static_cast<std::size_t>(lines), std::vector<Rgb>(ne + 1, Rgb{}));
   const Clock::time_point t_render = Clock::now();
   const double cpu_render = process_cpu_seconds();
-  parallel_for(rows, threads, [&](long long row, unsigned w) {
-    for (int x = 0; x < width; ++x) {
-      const long long index = row * width + x;
-      const PixelRay pr = ray(index);
+  parallel_for(lines, threads, [&](long long line, unsigned w) {
+    std::vector<Rgb>& sums = out.line_sums[static_cast<std::size_t>(line)];
+    for (long long x = 0; x < per_line; ++x) {
+      const long long local = line * per_line + x;
+      const PixelRay pr = ray(first + local);
       Rgb pixel = absorption ? Rgb{} : pr.background;
       for (std::size_t e = 0; e < ne; ++e) {
         const Clock::time_point t0 = Clock::now();
@@ -171,47 +178,113 @@ SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const
         work[w][e].seconds += seconds_since(t0);
         for (int c = 0; c < kChannels; ++c) {
           pixel[c] += term[c];
-          row_sum[static_cast<std::size_t>(row)][e][c] += term[c];
+          sums[e][c] += term[c];
         }
-        if (keep_terms) out.ray_terms[static_cast<std::size_t>(index)][e] = term;
+        if (keep_terms) out.ray_terms[static_cast<std::size_t>(local)][e] = term;
       }
-      out.image.at(x, static_cast<int>(row)) = pixel;
-      for (int c = 0; c < kChannels; ++c) row_sum[static_cast<std::size_t>(row)][ne][c] += pixel[c];
+      out.pixels[static_cast<std::size_t>(local)] = pixel;
+      for (int c = 0; c < kChannels; ++c) sums[ne][c] += pixel[c];
     }
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress(static_cast<double>(++rows_done) / static_cast<double>(rows));
+      options.progress(static_cast<double>(++lines_done) / static_cast<double>(std::max(lines, 1LL)));
     }
   });
   out.render_seconds = seconds_since(t_render);
   out.render_cpu_seconds = process_cpu_seconds() - cpu_render;
+  out.setup_seconds = setup_seconds_;
+  out.setup_cpu_seconds = setup_cpu_seconds_;
+  out.work.assign(ne + 1, EffectWork{});
+  for (std::size_t e = 0; e <= ne; ++e) {
+    for (unsigned w = 0; w < threads; ++w) out.work[e].add(work[w][e]);
+    if (e < ne) {
+      out.work[e].setup_seconds = effect_setup_[e].first;
+      out.work[e].setup_cpu_seconds = effect_setup_[e].second;
+    } else if (scene_.has("shadows")) {
+      out.work[e].setup_seconds = shadowing_->setup_seconds();
+      out.work[e].setup_cpu_seconds = shadowing_->setup_cpu_seconds();
+    }
+  }
+  return out;
+}
+
+SceneRenderResult ScenePipeline::assemble(const std::vector<SceneRenderPart>& parts) const {
+  SceneRenderResult out;
+  const long long count = ray_count();
+  const int width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
+  const int height = scene_.camera ? scene_.camera->height : 1;
+  const long long per_line = scene_.camera ? width : 1;
+  const long long lines = scene_.camera ? height : count;
+  const std::size_t ne = effects_.size();
+  out.image = Image(width, height);
+  if (!scene_.camera) out.ray_terms.assign(static_cast<std::size_t>(count), std::vector<Rgb>(ne));
+  std::vector<EffectWork> work(ne + 1);
+  std::vector<const std::vector<Rgb>*> line_sums(static_cast<std::size_t>(lines), nullptr);
+  long long rendered = 0;
+  for (const SceneRenderPart& p : parts) {
+    if (p.width != width || p.height != height || p.lines != lines || p.line_begin < 0 ||
+        p.line_begin > p.line_end || p.line_end > lines || p.work.size() != ne + 1 ||
+        p.line_sums.size() != static_cast<std::size_t>(p.line_end - p.line_begin) ||
+        p.pixels.size() != static_cast<std::size_t>((p.line_end - p.line_begin) * per_line) ||
+        (!scene_.camera && p.ray_terms.size() != p.pixels.size()))
+      throw std::invalid_argument("a part of a " + std::to_string(width) + " x " + std::to_string(height) +
+                                  " render of " + std::to_string(ne) + " terms does not fit it");
+    for (long long l = p.line_begin; l < p.line_end; ++l) {
+      const std::vector<Rgb>& sums = p.line_sums[static_cast<std::size_t>(l - p.line_begin)];
+      if (sums.size() != ne + 1 || line_sums[static_cast<std::size_t>(l)] != nullptr)
+        throw std::invalid_argument("line " + std::to_string(l) + " of the render is in two parts");
+      line_sums[static_cast<std::size_t>(l)] = &sums;
+    }
+    const long long first = p.line_begin * per_line;
+    for (std::size_t i = 0; i < p.pixels.size(); ++i) {
+      const long long index = first + static_cast<long long>(i);
+      out.image.at(static_cast<int>(index % width), static_cast<int>(index / width)) = p.pixels[i];
+      if (!scene_.camera) out.ray_terms[static_cast<std::size_t>(index)] = p.ray_terms[i];
+    }
+    rendered += static_cast<long long>(p.pixels.size());
+    for (std::size_t e = 0; e <= ne; ++e) work[e].add(p.work[e]);
+    out.render_seconds += p.render_seconds;
+    out.render_cpu_seconds += p.render_cpu_seconds;
+    out.setup_seconds += p.setup_seconds;
+    out.setup_cpu_seconds += p.setup_cpu_seconds;
+    out.threads = std::max(out.threads, p.threads);
+  }
 
   for (std::size_t e = 0; e < ne; ++e) {
     EffectReport r;
     r.effect = effects_[e]->name();
     r.method = effects_[e]->method_label();
     r.role = role_name(infos_[e]->role);
-    r.work.setup_seconds = effect_setup_[e].first;
-    r.work.setup_cpu_seconds = effect_setup_[e].second;
-    for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][e]);
-    for (const std::vector<Rgb>& sums : row_sum)
-      for (int c = 0; c < kChannels; ++c) r.mean_term[c] += sums[e][c];
-    for (int c = 0; c < kChannels; ++c) r.mean_term[c] /= static_cast<double>(std::max(count, 1LL));
+    r.work = work[e];
+    for (const std::vector<Rgb>* sums : line_sums)
+      if (sums)
+        for (int c = 0; c < kChannels; ++c) r.mean_term[c] += (*sums)[e][c];
+    for (int c = 0; c < kChannels; ++c) r.mean_term[c] /= static_cast<double>(std::max(rendered, 1LL));
     out.effects.push_back(r);
   }
-  for (const std::vector<Rgb>& sums : row_sum)
-    for (int c = 0; c < kChannels; ++c) out.image_mean[c] += sums[ne][c];
-  for (int c = 0; c < kChannels; ++c) out.image_mean[c] /= static_cast<double>(std::max(count, 1LL));
+  for (const std::vector<Rgb>* sums : line_sums)
+    if (sums)
+      for (int c = 0; c < kChannels; ++c) out.image_mean[c] += (*sums)[ne][c];
+  for (int c = 0; c < kChannels; ++c) out.image_mean[c] /= static_cast<double>(std::max(rendered, 1LL));
   if (scene_.has("shadows")) {
     EffectReport r;
     r.effect = "shadows";
     r.method = shadowing_->label();
     r.role = "modifier";
-    for (unsigned w = 0; w < threads; ++w) r.work.add(work[w][ne]);
-    r.work.setup_seconds = shadowing_->setup_seconds();
-    r.work.setup_cpu_seconds = shadowing_->setup_cpu_seconds();
+    r.work = work[ne];
     out.effects.push_back(r);
   }
+  return out;
+}
+
+SceneRenderResult ScenePipeline::render(const SceneRenderOptions& options) const {
+  SceneRenderResult out = assemble({render_part(options, ShardSpec{})});
+  const unsigned threads = out.threads;
+  const long long count = ray_count();
+  const int width = scene_.camera ? scene_.camera->width : static_cast<int>(count);
+  const int height = scene_.camera ? scene_.camera->height : 1;
+  const std::size_t ne = effects_.size();
+  const bool absorption = scene_.has("absorption");
 
   if (options.error_grid > 0 && count > 0) {
     std::vector<long long> subset;

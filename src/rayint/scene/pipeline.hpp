@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "rayint/core/shard.hpp"
 #include "rayint/scene/effect.hpp"
 #include "rayint/scene/shadowing.hpp"
 
@@ -64,6 +65,23 @@ struct SceneRenderResult {
   std::vector<std::vector<Rgb>> ray_terms;
 };
 
+// One shard's part of a render (`rayint render SCENE --shard I/N`): the lines [line_begin,
+// line_end) of `lines`, a line being an image row (camera) or one explicit ray; what the
+// assembly needs to give the whole run's figures exactly: the pixels (and explicit rays'
+// terms), each line's sums of every term and of the pixel (the means are summed line by line in
+// order, so they do not depend on how the lines were split), and the work per term effect (then
+// shadows), with the effects' setup. Times are the part's; assembled, they are summed.
+struct SceneRenderPart {
+  int width = 0, height = 0;  // the whole image (explicit rays: N x 1)
+  long long lines = 0, line_begin = 0, line_end = 0;
+  std::vector<Rgb> pixels;                    // (line_end - line_begin) lines, in pixel order
+  std::vector<std::vector<Rgb>> ray_terms;    // explicit rays: the terms of each ray of the part
+  std::vector<std::vector<Rgb>> line_sums;    // per line: each term's sum, then the pixel's
+  std::vector<EffectWork> work;               // per term effect, then shadows
+  double render_seconds = 0.0, render_cpu_seconds = 0.0, setup_seconds = 0.0, setup_cpu_seconds = 0.0;
+  unsigned threads = 1;
+};
+
 // The scene's reference image (`rayint check SCENE --candidate-image`): every pixel (or explicit
 // ray) is what the pipeline would give if each named term were computed by its effect's
 // independent reference (Effect::reference: adaptive Gauss-Kronrod to the scene's
@@ -93,7 +111,14 @@ class ScenePipeline {
   const std::vector<std::unique_ptr<Effect>>& effects() const { return effects_; }
   const Shadowing& shadowing() const { return *shadowing_; }
 
+  // The whole render: assemble({render_part(options, whole)}), then the errors (error_grid).
   SceneRenderResult render(const SceneRenderOptions& options) const;
+  // The lines shard_range gives `shard` (options.error_grid is not used: errors need the whole run).
+  SceneRenderPart render_part(const SceneRenderOptions& options, const ShardSpec& shard) const;
+  // The render from parts (all of them: the whole run's image, means and work exactly, times
+  // summed; some: a partial merge, the missing lines black and left out of the means). Throws
+  // std::invalid_argument for a part that does not fit this scene or a line in two parts.
+  SceneRenderResult assemble(const std::vector<SceneRenderPart>& parts) const;
   ReferenceImage reference_image(unsigned threads = 0,
                                  const std::function<void(double fraction)>& progress = {}) const;
 

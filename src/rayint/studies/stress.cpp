@@ -167,6 +167,7 @@ void merge_into(MethodAccumulator& into, const MethodAccumulator& from) {
 }
 
 void merge_regime(RegimeAccumulator& into, const RegimeAccumulator& from) {
+  into.samples += from.samples;
   into.max_reference_rel_bound = std::max(into.max_reference_rel_bound, from.max_reference_rel_bound);
   into.reference_failures += from.reference_failures;
   if (from.first_reference_failure >= 0 &&
@@ -305,6 +306,41 @@ std::vector<MethodSpec> methods_of(const StressOptions& opt) {
 
 }  // namespace
 
+namespace {
+
+// Every sample of the run in work order: the ray samples first, largest first (they bound the
+// run time); then the piece samples interleaved across regimes so the progress rate is
+// representative from the start. Shard I of N takes the items k with k mod N == I.
+std::vector<WorkItem> work_items(const std::vector<RegimePlan>& plans) {
+  std::vector<WorkItem> all_items;
+  for (std::size_t r = 0; r < plans.size(); ++r) {
+    if (!is_ray_regime(plans[r].regime)) continue;
+    for (long i = 0; i < plans[r].samples; ++i)
+      all_items.push_back({r, i, plans[r].sample_pieces[static_cast<std::size_t>(i)]});
+  }
+  std::stable_sort(all_items.begin(), all_items.end(),
+                   [](const WorkItem& a, const WorkItem& b) { return a.pieces > b.pieces; });
+  long max_piece_samples = 0;
+  for (const auto& p : plans)
+    if (!is_ray_regime(p.regime)) max_piece_samples = std::max(max_piece_samples, p.samples);
+  for (long i = 0; i < max_piece_samples; ++i)
+    for (std::size_t r = 0; r < plans.size(); ++r)
+      if (!is_ray_regime(plans[r].regime) && i < plans[r].samples) all_items.push_back({r, i, 1});
+  return all_items;
+}
+
+}  // namespace
+
+std::vector<long> stress_shard_samples(const StressOptions& opt, const ShardSpec& shard) {
+  const std::vector<Regime> regimes = opt.regimes.empty() ? stress_regimes() : opt.regimes;
+  const std::vector<RegimePlan> plans = plan(opt, regimes);
+  const std::vector<WorkItem> all_items = work_items(plans);
+  std::vector<long> out(plans.size(), 0);
+  for (std::size_t k = 0; k < all_items.size(); ++k)
+    if (static_cast<long>(k % static_cast<std::size_t>(shard.count)) == shard.index) ++out[all_items[k].regime];
+  return out;
+}
+
 StressPartial run_stress_part(const StressOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -318,22 +354,7 @@ StressPartial run_stress_part(const StressOptions& opt) {
 
   const std::vector<RegimePlan> plans = plan(opt, regimes);
   const std::size_t n_methods = methods.size();
-  std::vector<WorkItem> all_items;
-  for (std::size_t r = 0; r < plans.size(); ++r) {
-    if (!is_ray_regime(plans[r].regime)) continue;
-    for (long i = 0; i < plans[r].samples; ++i)
-      all_items.push_back({r, i, plans[r].sample_pieces[static_cast<std::size_t>(i)]});
-  }
-  // Ray samples first, largest first (they bound the run time); then the piece samples
-  // interleaved across regimes so the progress rate is representative from the start.
-  std::stable_sort(all_items.begin(), all_items.end(),
-                   [](const WorkItem& a, const WorkItem& b) { return a.pieces > b.pieces; });
-  long max_piece_samples = 0;
-  for (const auto& p : plans)
-    if (!is_ray_regime(p.regime)) max_piece_samples = std::max(max_piece_samples, p.samples);
-  for (long i = 0; i < max_piece_samples; ++i)
-    for (std::size_t r = 0; r < plans.size(); ++r)
-      if (!is_ray_regime(plans[r].regime) && i < plans[r].samples) all_items.push_back({r, i, 1});
+  const std::vector<WorkItem> all_items = work_items(plans);
   // This shard's items: k mod N == I (round-robin over the cost-sorted list).
   std::vector<WorkItem> items;
   long total_pieces = 0;
@@ -387,6 +408,7 @@ StressPartial run_stress_part(const StressOptions& opt) {
         ra.first_reference_failure = item.index;
         ra.reference_failure = "sample " + std::to_string(item.index) + ": " + e.what();
       }
+      ++ra.samples;
       ++samples_done;
       pieces_done += item.pieces;
       return;
@@ -398,6 +420,7 @@ StressPartial run_stress_part(const StressOptions& opt) {
     for (std::size_t m = 0; m < n_methods; ++m)
       run_method(methods[m], sample, ref, item.index, s_seed, ra.methods[m],
                  rel[item.regime][m][idx], ulp[item.regime][m][idx]);
+    ++ra.samples;
     ++samples_done;
     pieces_done += item.pieces;
   };

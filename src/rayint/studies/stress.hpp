@@ -161,6 +161,7 @@ struct StressMethodPartial {
   std::vector<double> rel, ulp;  // per scored sample of this part
 };
 struct StressRegimePartial {
+  long samples = 0;  // samples of this regime the part evaluated (its coverage, checked by merge)
   double max_reference_rel_bound = 0.0;
   long reference_failures = 0;
   long first_reference_failure = -1;
@@ -173,6 +174,9 @@ struct StressPartial {
 
 // The part options.shard does.
 StressPartial run_stress_part(const StressOptions& options);
+// The samples of each regime (in the run's order) that shard `shard` of the run evaluates: what a
+// part's StressRegimePartial::samples must be (merge refuses a part that covers other samples).
+std::vector<long> stress_shard_samples(const StressOptions& options, const ShardSpec& shard);
 // The report of the whole run from its parts (all of them, or -- a partial merge -- some).
 StressReport finish_stress(const StressOptions& options, const std::vector<StressPartial>& parts);
 

@@ -510,6 +510,12 @@ SweepResult run_sweep(const std::vector<Case>& cases, const std::vector<SweepAxi
   return res;
 }
 
+std::vector<IndexRange> sweep_shard_rays(const std::vector<Case>& cases, const ShardSpec& shard) {
+  std::vector<IndexRange> out;
+  for (const CaseCover& cv : case_covers(cases, shard)) out.push_back({cv.begin, cv.end});
+  return out;
+}
+
 SweepPart run_sweep_part(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
                          const SweepOptions& opt, const ShardSpec& shard) {
   if (opt.max_seconds > 0 || opt.method_max_seconds > 0)

@@ -220,6 +220,9 @@ struct SweepPart {
 // a sharded sweep cannot have one: std::invalid_argument.
 SweepPart run_sweep_part(const std::vector<Case>& cases, const std::vector<SweepAxis>& axes,
                          const SweepOptions& options, const ShardSpec& shard);
+// The rays [begin, end) of each case that shard `shard` of the run measures (the cases' rays
+// taken as one list, shard_range of it): what a part's first_ray and covered must be.
+std::vector<IndexRange> sweep_shard_rays(const std::vector<Case>& cases, const ShardSpec& shard);
 // The sweep's result from its parts in shard order (a missing shard: leave it out). The run's
 // time fields: reference_seconds and measure_seconds are the sums over the parts, started_at
 // and load_start the first part's, load_end the last part's, hardware_threads the largest.

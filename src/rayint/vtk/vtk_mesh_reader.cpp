@@ -21,6 +21,7 @@
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
+#include "rayint/input/vtk_xml_reader.hpp"
 
 namespace rayint {
 namespace {
@@ -47,6 +48,10 @@ TetMesh read_vtk_unstructured_grid(const std::string& path, const std::string& s
   const vtkSmartPointer<vtkUnstructuredGrid> grid =
       parallel ? read_grid<vtkXMLPUnstructuredGridReader>(path, "vtkXMLPUnstructuredGridReader")
                : read_grid<vtkXMLUnstructuredGridReader>(path, "vtkXMLUnstructuredGridReader");
+  // VTK opened the pieces itself: each is an input of the run too (the shard fingerprint hashes
+  // every file read).
+  if (parallel)
+    for (const std::string& piece : pvtu_piece_files(path)) json_source::InputFileLog::note(piece);
   vtkPointData* pd = grid->GetPointData();
   vtkDataArray* scalars = nullptr;
   if (!scalar_name.empty()) {
