@@ -7,7 +7,7 @@
 //   - an InputError whose message is not one line starting with "<source>: ";
 //   - a case accepted although it breaks the format's guarantees (cases/README.md): non-empty
 //     name, at least one ray and one segment, lengths and values finite and >= 0, scalars finite,
-//     breakpoints strictly increasing;
+//     breakpoints non-decreasing, a scalar at most twice in a row (a jump);
 //   - the streaming reader (parse_case_text) and the whole-tree walk
 //     (detail::parse_case_text_tree) disagreeing: another message, or other rays.
 // Each check traps, so the input is saved as a crash artifact.
@@ -34,7 +34,8 @@ void check_function(const rayint::PiecewiseLinear& f) {
   require(!f.scalar.empty() && f.scalar.size() == f.value.size());
   for (std::size_t i = 0; i < f.scalar.size(); ++i) {
     require(std::isfinite(f.scalar[i]) && finite_non_negative(f.value[i]));
-    if (i > 0) require(f.scalar[i] > f.scalar[i - 1]);
+    if (i > 0) require(f.scalar[i] >= f.scalar[i - 1]);
+    if (i > 1) require(f.scalar[i] > f.scalar[i - 2]);
   }
 }
 

@@ -5,7 +5,8 @@
 //   - an exception other than rayint::InputError escaping (reported as a deadly signal);
 //   - an InputError whose message is not one line starting with "<source>: ";
 //   - an accepted import that breaks the guarantees of model/tf_import.hpp: every function has a
-//     point, scalars strictly increasing, values finite and >= 0, max deviation finite.
+//     point, scalars non-decreasing and at most twice in a row (a jump), values finite and >= 0,
+//     max deviation finite.
 // Paths of issue 27 reached through the bytes: UseLogScale, Step and "CIELAB" colour spaces,
 // repeated RGBPoints scalars, IndexedColors refusal, the default opacity ramp, --index selection.
 #include <cmath>
@@ -32,7 +33,8 @@ void check_function(const rayint::PiecewiseLinear& f) {
   require(!f.scalar.empty() && f.scalar.size() == f.value.size());
   for (std::size_t k = 0; k < f.scalar.size(); ++k) {
     require(std::isfinite(f.scalar[k]) && std::isfinite(f.value[k]) && f.value[k] >= 0.0);
-    if (k > 0) require(f.scalar[k] > f.scalar[k - 1]);
+    if (k > 0) require(f.scalar[k] >= f.scalar[k - 1]);
+    if (k > 1) require(f.scalar[k] > f.scalar[k - 2]);
   }
 }
 

@@ -1,5 +1,5 @@
-// libFuzzer target for rayint's .vti reader (rayint::parse_vti, input/vtk_xml_reader.hpp) on
-// arbitrary bytes. Built by fuzz/CMakeLists.txt with -fsanitize=fuzzer,address,undefined; run it
+// libFuzzer target for rayint's .vti readers (rayint::parse_vti, and parse_vti_cells: the image
+// as a mesh of its voxels; input/vtk_xml_reader.hpp) on arbitrary bytes. Built by fuzz/CMakeLists.txt with -fsanitize=fuzzer,address,undefined; run it
 // with RAYINT_FUZZ_TARGET=vti_reader scripts/fuzz.sh (seeds: tests/fixtures/vtkxml/*.vti). A
 // finding is any of:
 //   - a crash, sanitizer report, hang, leak or out-of-memory;
@@ -7,7 +7,9 @@
 //     std::invalid_argument included: the reader must refuse what the grid would refuse);
 //   - an InputError whose message is not one line starting with "<source>: ";
 //   - a grid accepted although it breaks the reader's guarantees: >= 2 points per axis, one finite
-//     value per point, spacing > 0, finite bounds.
+//     value per point, spacing > 0, finite bounds, a finite orthonormal Direction;
+//   - a voxel mesh accepted with a non-finite point or scalar, a cell index out of range, or
+//     point dimensions that do not match its points.
 // Each check traps, so the input is saved as a crash artifact.
 #include <cmath>
 #include <cstddef>
@@ -34,13 +36,27 @@ void check_grid(const rayint::VoxelGrid& g) {
   }
   require(g.values().size() == n);
   for (double v : g.values()) require(std::isfinite(v));
+  require(rayint::check_direction(g.placement().direction).empty() && g.placement().pivot.allFinite());
+}
+
+void check_cells(const rayint::CellMesh& m) {
+  require(m.cell_count() > 0 && m.offsets.size() == m.cell_count() + 1);
+  require(m.cell_scalars.empty() ? m.scalars.size() == m.points.size() : m.cell_scalars.size() == m.cell_count());
+  for (const auto& p : m.points) require(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
+  for (double s : m.scalars) require(std::isfinite(s));
+  for (double s : m.cell_scalars) require(std::isfinite(s));
+  for (std::size_t c = 0; c < m.cell_count(); ++c)
+    for (std::size_t k = 0; k < m.nodes_of(c); ++k)
+      require(m.cell(c)[k] >= 0 && static_cast<std::size_t>(m.cell(c)[k]) < m.points.size());
+  require(m.structured.has_value());
+  const auto& d = *m.structured;
+  require(static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]) == m.points.size());
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
-    check_grid(rayint::parse_vti(bytes, kSource));
-  });
+  rayint::fuzz::refusals_are_one_line(kSource, [&] { check_grid(rayint::parse_vti(bytes, kSource)); });
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] { check_cells(rayint::parse_vti_cells(bytes, kSource)); });
 }

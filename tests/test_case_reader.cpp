@@ -215,14 +215,16 @@ TEST_CASE("negative segment lengths are rejected", "[case_reader]") {
   CHECK_NOTHROW(parse_case_text(with(R"("length": 1.0)", R"("length": 0)"), kSource));
 }
 
-TEST_CASE("breakpoints must be strictly increasing", "[case_reader]") {
-  check_error(with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.0, 5.0], [0.5, 1.0], [0.5, 2.0]]"),
-              "transfer_function.density[2][0]",
-              "scalar points must be strictly increasing (0.5 after 0.5)");
+TEST_CASE("breakpoints must be non-decreasing, a scalar at most twice (a jump)", "[case_reader]") {
+  // Twice: a jump (left value, right value); three times: refused.
+  CHECK_NOTHROW(parse_case_text(with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.0, 5.0], [0.5, 1.0], [0.5, 2.0]]"), kSource));
+  check_error(with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.0, 5.0], [0.5, 1.0], [0.5, 2.0], [0.5, 3.0]]"),
+              "transfer_function.density[3][0]",
+              "scalar 0.5 appears three times (at most twice: a jump's left and right values)");
   check_error(with("[[0.0, 0.2], [1.0, 0.2]]", "[[0.0, 0.2], [-1.0, 0.2]]"),
               "transfer_function.color.b[1][0]",
-              "scalar points must be strictly increasing (-1 after 0)");
-  // Points one ulp apart are strictly increasing and allowed.
+              "scalar points must be non-decreasing (-1 after 0)");
+  // Points one ulp apart are allowed.
   CHECK_NOTHROW(parse_case_text(
       with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.7, 5.0], [0.7000000000000001, 2.0]]"), kSource));
 }

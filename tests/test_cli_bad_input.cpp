@@ -189,10 +189,10 @@ TEST_CASE("bad input: negative values", "[cli][bad_input]") {
 }
 
 TEST_CASE("bad input: non-increasing breakpoints", "[cli][bad_input]") {
-  expect_bad_case(case_with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.0, 5.0], [0.0, 2.0]]"),
-                  "transfer_function.density[1][0]", "strictly increasing (0 after 0)");
+  expect_bad_case(case_with("[[0.0, 5.0], [1.0, 2.0]]", "[[0.0, 5.0], [0.0, 2.0], [0.0, 1.0]]"),
+                  "transfer_function.density[2][0]", "scalar 0 appears three times");
   expect_bad_case(case_with(R"("r": [[0.0, 1.7]])", R"("r": [[1.0, 1.7], [0.5, 1.0]])"),
-                  "transfer_function.color.r[1][0]", "strictly increasing (0.5 after 1)");
+                  "transfer_function.color.r[1][0]", "non-decreasing (0.5 after 1)");
 }
 
 TEST_CASE("bad input: empty rays", "[cli][bad_input]") {

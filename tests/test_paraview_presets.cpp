@@ -340,9 +340,10 @@ TEST_CASE(
     "[tf][paraview][methods]") {
   // Two cases in tests/data/tf/: ParaView's "Spectrum Step" as shipped (kappa jumps at 7 scalars,
   // default opacity ramp) and jumps.json (kappa jumps at a repeated RGBPoints scalar, rho at a
-  // sharpness-1 opacity step). The import makes each jump a ramp one double wide at VTK's switch
-  // (docs/transfer-function-conventions.md), which every method sees as a breakpoint pair. Rays
-  // cross the jumps both ways, end on them, and hold a constant scalar exactly on one.
+  // sharpness-1 opacity step). The import makes each a true jump at VTK's switch (a repeated
+  // scalar: docs/transfer-function-conventions.md), which every method sees as a breakpoint
+  // whose pieces take the value on their own side. Rays cross the jumps both ways, end on them,
+  // and hold a constant scalar exactly on one.
   using rayint::test::MethodTolerances;
   using rayint::test::Tolerances;
   struct JumpCase {

@@ -7,9 +7,10 @@
 // the monotone stretches). On a piece f is monotone and between two breakpoints, so rho(f(s))
 // and kappa(f(s)) are polynomials in s and the 5(4) error estimate is valid (across a kink it
 // is not: the step control would see an O(h^2) local error it cannot model).
-// Right-hand side: rho and kappa through PiecewiseLinear::operator() at f(s); inside a piece
-// that is the piece's linear branch (at a piece end rounding may select the neighbouring branch,
-// which agrees there to rounding: the transfer functions are continuous).
+// Right-hand side: rho and kappa through PiecewiseLinear::limit at f(s), toward the piece's middle
+// scalar; inside a piece that is the piece's linear branch, and at a piece end on a jump the
+// value inside the piece (at a piece end rounding may select the neighbouring branch, which
+// agrees there to rounding where the transfer functions are continuous).
 // Stepping, budgets, failures and state (I_r, I_g, I_b, tau_r, tau_g, tau_b): exactly as the
 // `ode` method (integrators/ode.cpp, shared loop integrators/ode_stepping.hpp); transmittance
 // exp(-tau) at the end.
@@ -55,8 +56,10 @@ RayResult PolyOdeIntegrator::integrate(const PolyRay& ray, Diagnostics* diag) co
       if (!(L > 0.0)) continue;
       ++n_pieces;
       // s from the piece's start, knots[k] in the segment's s
-      const auto system =
-          eq3::scalar_system(*tf_, [&seg, s0 = knots[k]](double s) { return seg(s0 + s); });
+      // Values at a piece end that sits on a transfer-function jump: the limit from inside the
+      // piece (f is monotone on it, so toward its middle scalar).
+      const auto system = eq3::scalar_system(
+          *tf_, [&seg, s0 = knots[k]](double s) { return seg(s0 + s); }, seg(knots[k] + 0.5 * L));
       stepper.reset();
       failed = ode_stepping::integrate_interval(stepper, system, x, L, counts, kOdeStepBudget);
     }

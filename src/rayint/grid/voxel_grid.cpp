@@ -91,6 +91,21 @@ VoxelGrid::VoxelGrid(std::array<int, 3> dims, Vec3 origin, Vec3 spacing,
     if (!std::isfinite(v)) throw std::invalid_argument("VoxelGrid: value not finite");
 }
 
+std::string check_direction(const Eigen::Matrix3d& d) {
+  if (!d.allFinite()) return "Direction has a value that is not finite";
+  const Eigen::Matrix3d e = d.transpose() * d - Eigen::Matrix3d::Identity();
+  if (!(e.cwiseAbs().maxCoeff() <= 1e-12))
+    return "Direction is not orthonormal (a rotation or reflection; a sheared or scaled Direction is not read)";
+  return {};
+}
+
+void VoxelGrid::set_placement(const GridPlacement& p) {
+  const std::string why = check_direction(p.direction);
+  if (!why.empty()) throw std::invalid_argument("VoxelGrid: " + why);
+  if (!p.pivot.allFinite()) throw std::invalid_argument("VoxelGrid: placement pivot not finite");
+  placement_ = p;
+}
+
 Vec3 VoxelGrid::upper() const {
   return origin_ + Vec3(dims_[0] - 1, dims_[1] - 1, dims_[2] - 1).cwiseProduct(spacing_);
 }

@@ -34,6 +34,7 @@
 // ~eps |coordinate| / sin(theta): that is the conditioning of the ray, not of this code.
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "rayint/geometry/bounds.hpp"
@@ -42,6 +43,22 @@
 #include "rayint/model/ray.hpp"
 
 namespace rayint {
+
+// Where a grid's own frame sits in the world (VTK 9 ImageData's Direction): a point p of the
+// grid's axis-aligned frame (origin(), spacing(): every VoxelGrid function works there) is at
+// pivot + direction (p - pivot) in the world, i.e. world = Origin + Direction (index * spacing)
+// with pivot the image's Origin. The identity unless a reader set it; scene/grid_field.hpp
+// applies it, VoxelGrid's own functions ignore it.
+struct GridPlacement {
+  Eigen::Matrix3d direction = Eigen::Matrix3d::Identity();  // orthonormal: a rotation or reflection
+  Vec3 pivot = Vec3::Zero();
+  bool identity() const { return direction == Eigen::Matrix3d::Identity(); }
+};
+
+// Empty when `direction` is finite and orthonormal to 1e-12 (|D^T D - I| entrywise: a VTK
+// Direction written from a rotation holds it to a few ulps, and the transpose then inverts it to
+// that accuracy); else what is wrong, for a reader's message.
+std::string check_direction(const Eigen::Matrix3d& direction);
 
 class VoxelGrid {
  public:
@@ -72,6 +89,9 @@ class VoxelGrid {
   double kuhn_value(const Vec3& p) const;
 
   Bounds bounds() const { return {lower(), upper()}; }
+  const GridPlacement& placement() const { return placement_; }
+  // Throws std::invalid_argument unless check_direction(p.direction) is empty and pivot finite.
+  void set_placement(const GridPlacement& p);
   // Where the ray is inside the closed box, t >= 0: bounds().clip(ray) (geometry/bounds.hpp).
   RaySpan clip(const ViewRay& ray) const { return bounds().clip(ray); }
 
@@ -80,6 +100,7 @@ class VoxelGrid {
   Vec3 origin_ = Vec3::Zero();
   Vec3 spacing_ = Vec3::Ones();
   std::vector<double> values_ = std::vector<double>(8, 0.0);
+  GridPlacement placement_;
 };
 
 // The segments of the Kuhn interpolant along `ray` inside the grid, far -> near as model/ray.hpp

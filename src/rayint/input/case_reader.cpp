@@ -4,7 +4,7 @@
 //  1. json_source::parse (input/json_source.hpp) turns the text into a nlohmann::json tree,
 //     reporting duplicate keys, overflowing numbers and syntax errors at their field or line.
 //  2. A strict schema walk over the tree: required fields, types, finite and non-negative
-//     values, strictly increasing breakpoints, non-empty arrays, and no unknown fields.
+//     values, non-decreasing breakpoints (a scalar twice: a jump), non-empty arrays, no unknown fields.
 //
 // Every problem is thrown as one InputError line `<source>: <field path>: <what>`.
 //

@@ -202,10 +202,14 @@ PiecewiseLinear BasicJsonSchema<Json>::points(const json& j, const std::string& 
     array_of_size(p, ppath, 2, "a [scalar, value] pair");
     const double s = finite_number(p[0], index_path(ppath, 0));
     const double v = non_negative(p[1], index_path(ppath, 1));
-    if (i > 0 && !(s > f.scalar.back()))
-      fail(index_path(ppath, 0), "scalar points must be strictly increasing (" +
+    // A scalar may repeat once: the two points are a jump's left and right values.
+    if (i > 0 && !(s >= f.scalar.back()))
+      fail(index_path(ppath, 0), "scalar points must be non-decreasing (" +
                                      format_number(s) + " after " +
                                      format_number(f.scalar.back()) + ")");
+    if (i > 1 && s == f.scalar[i - 2])
+      fail(index_path(ppath, 0), "scalar " + format_number(s) +
+                                     " appears three times (at most twice: a jump's left and right values)");
     f.scalar.push_back(s);
     f.value.push_back(v);
   }

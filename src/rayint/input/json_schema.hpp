@@ -61,7 +61,8 @@ class BasicJsonSchema {
   Vec3 direction(const json& j, const std::string& path) const;       // finite, non-zero; normalized
   Rgb rgb(const json& j, const std::string& path) const;              // [r, g, b], finite, >= 0
 
-  // [[scalar, value], ...]: scalars finite and strictly increasing, values finite and >= 0.
+  // [[scalar, value], ...]: scalars finite and non-decreasing, a scalar at most twice in a row
+  // (a jump: left value, then right value), values finite and >= 0.
   PiecewiseLinear points(const json& j, const std::string& path) const;
   // One list for all three channels, or {"r": ..., "g": ..., "b": ...}.
   std::array<PiecewiseLinear, kChannels> channels(const json& j, const std::string& path) const;

@@ -28,7 +28,7 @@ using BuiltinReader = TetMesh (*)(const std::string& path, const std::string& sc
 TetMesh read_tetgen_mesh(const std::string& path, const std::string& scalar_name, bool) {
   return read_tetgen(path, scalar_name);  // TetGen point attributes are point data only
 }
-// Structured grids hold hexahedra (.vts) or voxels (.vtr): the tetrahedral path refuses them
+// Structured grids hold hexahedra (.vts) or voxels (.vtr, .vti): the tetrahedral path refuses them
 // the way it refuses any non-tetrahedral cell (unsupported_cell_message: use --cells split).
 template <CellMesh (*Read)(const std::string&, const std::string&, bool)>
 TetMesh read_structured_as_tets(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
@@ -48,6 +48,7 @@ const std::map<std::string, BuiltinReader>& builtin_mesh_readers() {
       {".pvtu", &read_pvtu},        // its parallel pieces (vtk_xml_reader.hpp)
       {".vts", &read_structured_as_tets<&read_vts>},  // structured grids: refused without --cells split
       {".vtr", &read_structured_as_tets<&read_vtr>},
+      {".vti", &read_structured_as_tets<&read_vti_cells>},  // an image as its voxels (cell data)
   };
   return readers;
 }
@@ -166,6 +167,7 @@ CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_
   static const std::map<std::string, CellReader> readers = {
       {".vtk", &read_vtk_legacy_cells}, {".vtu", &read_vtu_cells}, {".pvtu", &read_pvtu_cells},
       {".msh", &read_gmsh_cells},       {".vts", &read_vts},       {".vtr", &read_vtr},
+      {".vti", &read_vti_cells},
   };
   const std::string ext = std::filesystem::path(path).extension().string();
   const auto it = readers.find(ext);

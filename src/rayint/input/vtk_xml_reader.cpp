@@ -275,23 +275,29 @@ CellMesh read_pvtu_cells(const std::string& path, const std::string& scalar_name
 
 namespace {
 
-// The geometry of an image: WholeExtent, Origin, Spacing (Direction must be the identity).
+// The geometry of an image: WholeExtent, Origin, Spacing, Direction (row-major, as VTK writes
+// it: world = Origin + Direction (index * spacing); orthonormal, else refused).
 struct ImageFrame {
-  std::vector<double> extent, origin, spacing;
+  std::vector<double> extent, origin, spacing, direction;
   std::array<int, 3> dims{};
   long long total = 1;
 };
+
+Eigen::Matrix3d direction_matrix(const std::vector<double>& rows) {
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m(r, c) = rows[static_cast<std::size_t>(3 * r + c)];
+  return m;
+}
 
 ImageFrame image_frame(const Document& d, pugi::xml_node image, const std::string& field) {
   ImageFrame f;
   f.extent = d.numbers_attribute(image, "WholeExtent", field, 6);
   f.origin = d.numbers_attribute(image, "Origin", field, 3, {0.0, 0.0, 0.0});
   f.spacing = d.numbers_attribute(image, "Spacing", field, 3, {1.0, 1.0, 1.0});
-  const std::vector<double> direction =
-      d.numbers_attribute(image, "Direction", field, 9, {1, 0, 0, 0, 1, 0, 0, 0, 1});
-  for (std::size_t i = 0; i < 9; ++i)
-    if (direction[i] != (i % 4 == 0 ? 1.0 : 0.0))
-      d.fail(field, "Direction is not the identity; rayint's voxel grids are axis-aligned (resample the image)");
+  f.direction = d.numbers_attribute(image, "Direction", field, 9, {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  const std::string why = check_direction(direction_matrix(f.direction));
+  if (!why.empty()) d.fail(field, why);
   for (std::size_t a = 0; a < 3; ++a) {
     const double lo = f.extent[2 * a], hi = f.extent[2 * a + 1];
     if (lo != std::floor(lo) || hi != std::floor(hi) || std::fabs(lo) > 1e9 || std::fabs(hi) > 1e9 || hi - lo < 1)
@@ -312,7 +318,12 @@ VoxelGrid make_grid(const Document& d, const ImageFrame& f, std::vector<double> 
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(lower[a]) || !std::isfinite(lower[a] + (f.dims[static_cast<std::size_t>(a)] - 1) * step[a]))
       d.fail(field, "the image's extent overflows");
-  return VoxelGrid(f.dims, lower, step, std::move(values));
+  VoxelGrid grid(f.dims, lower, step, std::move(values));
+  GridPlacement placement;
+  placement.direction = direction_matrix(f.direction);
+  placement.pivot = Vec3(f.origin[0], f.origin[1], f.origin[2]);
+  if (!placement.identity()) grid.set_placement(placement);
+  return grid;
 }
 
 // The point scalar of an image piece (PointData; an image with cell data only is refused naming
@@ -328,7 +339,8 @@ std::vector<double> image_piece_values(const Document& d, pugi::xml_node piece, 
       cells += std::string(cells.empty() ? "" : ", ") + "\"" + a.attribute("Name").as_string() + "\"";
     if (!cells.empty())
       d.fail(piece_field + "/CellData", "an image with cell data only (" + cells +
-                                            ") is not read: rayint's voxel grids hold values at points");
+                                            ") is not a voxel grid (values at points): use it as a mesh case's "
+                                            "\"mesh_file\" with --cells split (constant per voxel, exact)");
   }
   std::string scalar_field;
   const pugi::xml_node scalars = scalar_array(d, piece, piece_field, scalar_name, scalar_field);
@@ -528,6 +540,51 @@ CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std:
   CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, structured_fields(type));
   mesh.structured = n;
   return mesh;
+}
+
+CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                         bool cell_to_point) {
+  const std::string type = "ImageData";
+  const Document d(bytes, source, type);
+  const ImageFrame f = image_frame(d, d.dataset(), type);
+  const std::string piece_field = type + "/Piece";
+  const pugi::xml_node piece = d.only_child(d.dataset(), "Piece", type);
+  if (d.numbers_attribute(piece, "Extent", piece_field, 6) != f.extent)
+    d.fail(piece_field, "Extent differs from the WholeExtent (only single-piece images are read)");
+  const std::array<int, 3> n = f.dims;
+  if (static_cast<double>(f.total) > static_cast<double>(kMaxIndex) / 8)
+    d.fail(piece_field, "more points than rayint's meshes hold (2^31 / 8)");
+  // VTK's point (i, j, k) of the extent: Origin + Direction (index * spacing), index counted from
+  // 0 at Extent 0 (vtkImageData::TransformIndexToPhysicalPoint).
+  const Eigen::Matrix3d dir = direction_matrix(f.direction);
+  const bool axis_aligned = dir == Eigen::Matrix3d::Identity();
+  const Vec3 origin(f.origin[0], f.origin[1], f.origin[2]);
+  RawMesh raw;
+  raw.points.reserve(static_cast<std::size_t>(f.total));
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Vec3 step((f.extent[0] + i) * f.spacing[0], (f.extent[2] + j) * f.spacing[1], (f.extent[4] + k) * f.spacing[2]);
+        const Vec3 p = axis_aligned ? Vec3(origin + step) : Vec3(origin + dir * step);
+        if (!p.allFinite()) d.fail(type, "the image's extent overflows");
+        raw.points.push_back(p);
+      }
+  // Voxels (vtkImageData::GetCell's order) when axis-aligned; a rotated voxel as the hexahedron
+  // of the same corners.
+  structured_cells(n, axis_aligned, raw);
+  structured_arrays(d, piece, type, static_cast<std::size_t>(f.total), cell_total(n), raw);
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  RawMeshFields fields = structured_fields(type);
+  fields.points = type + " (Origin, Spacing, Direction)";
+  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, fields);
+  mesh.structured = n;
+  return mesh;
+}
+
+CellMesh read_vti_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  return parse_vti_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
 }
 
 CellMesh read_vts(const std::string& path, const std::string& scalar_name, bool cell_to_point) {

@@ -65,6 +65,14 @@ CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std:
                    bool cell_to_point = false);
 CellMesh read_vtr(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
+// A .vti as a mesh of its voxels (CellMesh, like .vtr): points at Origin + Direction (index *
+// spacing), voxel cells (hexahedra of the same corners when Direction rotates them), point and
+// cell arrays, the scalar by the rule of input/mesh_assembly.hpp. The way to integrate an image
+// whose field is cell data: constant per voxel, exactly, with --cells split (docs/images.md).
+CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
+                         bool cell_to_point = false);
+CellMesh read_vti_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
 VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name = "");
 // A .pvti (VTKFile type="PImageData"): the .vti pieces it names, each placed at its Extent in the

@@ -85,10 +85,14 @@ RayResult CellIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
   for (const auto& seg : ray.segments) {
     if (!(seg.length > 0.0)) continue;  // a zero-length cell transmits everything
     ++cells;
+    // The end values as limits from inside the cell (they differ from operator() only at a
+    // transfer-function jump the cell starts or ends on).
+    const bool up = seg.scalar_far < seg.scalar_exit, down = seg.scalar_far > seg.scalar_exit;
     for (int c = 0; c < kChannels; ++c) {
-      const double kappa_avg = 0.5 * (tf_.color[c](seg.scalar_far) + tf_.color[c](seg.scalar_exit));
+      const double kappa_avg =
+          0.5 * (tf_.color[c].limit(seg.scalar_far, up) + tf_.color[c].limit(seg.scalar_exit, down));
       const double rho_avg =
-          0.5 * (tf_.density[c](seg.scalar_far) + tf_.density[c](seg.scalar_exit));
+          0.5 * (tf_.density[c].limit(seg.scalar_far, up) + tf_.density[c].limit(seg.scalar_exit, down));
       const double x = rho_avg * seg.length;
       double alpha, transparency;
       switch (rule_) {

@@ -25,18 +25,25 @@ void derivative(const State& x, State& dxdt, const RhoKappa& rho_kappa) {
 
 // The system where rho and kappa are the transfer functions of a scalar given along s by
 // `scalar_at(s)` (linear along a segment for rk4, a polynomial for cells/poly_ode.cpp).
+// `toward`: a scalar inside the piece being stepped (cells/poly_ode.cpp: its middle); at a
+// transfer-function jump the value is then the limit from that side (a piece that starts on a
+// jump takes the value inside it). NaN: the value at the scalar itself (operator(), the left
+// value at a jump), for steppers that ignore breakpoints (rk4).
 template <class ScalarAt>
 struct ScalarSystem {
   const TransferFunctions* tf;
   ScalarAt scalar_at;
+  double toward;
   void operator()(const State& x, State& dxdt, double s) const {
     const double f = scalar_at(s);
-    derivative(x, dxdt, [&](int c) { return std::pair{tf->density[c](f), tf->color[c](f)}; });
+    const bool above = f < toward;  // false for a NaN toward: limit(f, false) is operator()
+    derivative(x, dxdt, [&](int c) { return std::pair{tf->density[c].limit(f, above), tf->color[c].limit(f, above)}; });
   }
 };
 template <class ScalarAt>
-ScalarSystem<ScalarAt> scalar_system(const TransferFunctions& tf, ScalarAt scalar_at) {
-  return {&tf, scalar_at};
+ScalarSystem<ScalarAt> scalar_system(const TransferFunctions& tf, ScalarAt scalar_at,
+                                     double toward = std::nan("")) {
+  return {&tf, scalar_at, toward};
 }
 
 // The state at the start of a ray: the background, no optical depth yet.

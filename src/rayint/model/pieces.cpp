@@ -8,16 +8,19 @@
 namespace rayint {
 namespace {
 
+// Each end takes the one-sided limit from inside the piece (the far end from the exit's side);
+// a piece of constant scalar takes the value at that scalar (at a jump, the left one).
 Piece make_piece(const TransferFunctions& tf, double length, double s_far, double s_exit) {
   Piece p;
   p.length = length;
   p.scalar_far = s_far;
   p.scalar_exit = s_exit;
+  const bool up = s_far < s_exit, down = s_far > s_exit;
   for (int c = 0; c < kChannels; ++c) {
-    p.rho_far[c] = tf.density[c](s_far);
-    p.rho_exit[c] = tf.density[c](s_exit);
-    p.kappa_far[c] = tf.color[c](s_far);
-    p.kappa_exit[c] = tf.color[c](s_exit);
+    p.rho_far[c] = tf.density[c].limit(s_far, up);
+    p.rho_exit[c] = tf.density[c].limit(s_exit, down);
+    p.kappa_far[c] = tf.color[c].limit(s_far, up);
+    p.kappa_exit[c] = tf.color[c].limit(s_exit, down);
   }
   return p;
 }
@@ -112,8 +115,13 @@ PieceSplitter::PieceSplitter(const TransferFunctions& tf)
     }
   }
   at_breakpoint_.resize(m);
+  above_breakpoint_.resize(m);
   for (std::size_t j = 0; j < m; ++j)
-    for (int f = 0; f < kFunctions; ++f) at_breakpoint_[j][static_cast<std::size_t>(f)] = function(f)(breakpoints_[j]);
+    for (int f = 0; f < kFunctions; ++f) {
+      at_breakpoint_[j][static_cast<std::size_t>(f)] = function(f).limit(breakpoints_[j], false);
+      above_breakpoint_[j][static_cast<std::size_t>(f)] = function(f).limit(breakpoints_[j], true);
+    }
+  jumps_ = tf.has_jump();
 }
 
 // Two lanes of doubles (SSE2, the x86-64 baseline), in GCC's vector extension: + - * / are
@@ -193,6 +201,12 @@ void PieceSplitter::split(const Segment& seg, Put&& put) const {
   const Row& row1 = rows_[region(s1, lt1, le1)];
   alignas(16) double v_exit[kFunctions];
   eval(row1, s1, v_exit);
+  // An end on a breakpoint (lt < le) takes the limit from inside the segment: the row holds the
+  // left value, which differs only at a jump.
+  if (jumps_) {
+    if (s0 < s1 && lt0 < le0) std::copy_n(above_breakpoint_[lt0].data(), kFunctions, v_far);
+    if (s1 < s0 && lt1 < le1) std::copy_n(above_breakpoint_[lt1].data(), kFunctions, v_exit);
+  }
   // Breakpoints strictly inside (min, max): upper_bound(lo) .. lower_bound(hi).
   const std::size_t first = s0 < s1 ? le0 : le1, last = s0 < s1 ? lt1 : lt0;
   const double span = s1 - s0;
@@ -202,11 +216,14 @@ void PieceSplitter::split(const Segment& seg, Put&& put) const {
   for (std::size_t k = 0; k < inner; ++k) {  // interior ends, in the direction of travel
     const std::size_t j = s0 < s1 ? first + k : last - 1 - k;
     const double s = breakpoints_[j];
-    const double* v = at_breakpoint_[j].data();
+    // The piece below the breakpoint ends on its left value, the one above on its right value
+    // (the same unless a function jumps there).
+    const double* below = at_breakpoint_[j].data();
+    const double* above = above_breakpoint_[j].data();
     const double len = seg.length * ((s - s_prev) / span);
-    if (len > 0.0) put(len, s_prev, s, v_prev, v);
+    if (len > 0.0) put(len, s_prev, s, v_prev, s0 < s1 ? below : above);
     s_prev = s;
-    v_prev = v;
+    v_prev = s0 < s1 ? above : below;
   }
   // Without interior ends the fraction is span / span: exactly 1 when span is finite (it is not
   // 0, s0 != s1), so that division is skipped; an overflowed span keeps inf / inf = NaN.

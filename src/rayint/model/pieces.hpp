@@ -39,7 +39,9 @@ struct Piece {
 };
 
 // Appends the pieces of `segment` (far -> near) to `out`. A segment whose scalar is constant
-// (w = 0) is one piece. Interior piece ends sit exactly on breakpoints, where the transfer
+// (w = 0) is one piece. Each piece end takes the transfer functions' one-sided limit from inside
+// the piece (PiecewiseLinear::limit), so at a jump the piece below uses the left value and the
+// piece above the right value; a constant-scalar piece takes operator()'s value. Interior piece ends sit exactly on breakpoints, where the transfer
 // functions take their stored values; piece lengths are L * (s_{k+1} - s_k) / (s_exit - s_far),
 // so pieces between breakpoints 1e-12 apart keep full relative accuracy. Zero-length pieces
 // are dropped (they transmit everything and emit nothing).
@@ -134,8 +136,11 @@ class PieceSplitter {
   std::vector<double> breakpoints_;
   std::array<double, 8> padded_{};  // breakpoints_ then NaN (never counted), when m <= 8
   std::vector<Row> rows_;           // 2m + 1
-  // The six functions at each breakpoint, in function order (the constants of its row).
+  // The six functions at each breakpoint, in function order (the constants of its row: at a
+  // jump the left value), and their limits from above (at a jump the right value).
   std::vector<std::array<double, kFunctions>> at_breakpoint_;
+  std::vector<std::array<double, kFunctions>> above_breakpoint_;
+  bool jumps_ = false;              // tf_->has_jump(): segment ends on a breakpoint need limits
   bool grey_ = false;               // tf_->grey(): slots 4 and 5 repeat slot 0
 };
 

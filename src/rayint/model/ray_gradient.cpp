@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace rayint {
 
@@ -12,6 +13,11 @@ RayGradient RayGradient::zeros(const TransferFunctions& tf, const Ray& ray) {
 }
 
 void RayGradient::reset(const TransferFunctions& tf, const Ray& ray) {
+  // A jump's two nodes share one scalar: the derivative with respect to its position is a Dirac
+  // term the piece chain does not carry, and the pieces' end values would be credited to one node.
+  if (tf.has_jump())
+    throw std::invalid_argument(
+        "gradient: a transfer function with a jump (a scalar repeated) is not differentiated");
   const std::size_t m = ray.segments.size();
   intensity = background = Rgb{};
   length.assign(m, Rgb{});

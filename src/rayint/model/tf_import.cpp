@@ -52,6 +52,21 @@ class Builder {
     x_.push_back(x);
     v_.push_back(v);
   }
+  // A jump at the last node's scalar: the function is v just above it (the node keeps its value,
+  // the left one). Two jumps at one scalar keep the last right value (a scalar stays at most
+  // twice in a row, as PiecewiseLinear requires).
+  void jump(const Values& v) {
+    if (v == v_.back()) return;
+    if (x_.size() >= 2 && x_[x_.size() - 2] == x_.back()) {
+      v_.back() = v;
+      return;
+    }
+    if (x_.size() >= max_nodes_)
+      throw std::length_error("the linearisation needs more than " + std::to_string(max_nodes_) +
+                              " nodes (RAYINT_MAX_TF_NODES=N raises the limit; docs/limits.md)");
+    x_.push_back(x_.back());
+    v_.push_back(v);
+  }
   double last_x() const { return x_.back(); }
   const Values& last_value() const { return v_.back(); }
 
@@ -155,17 +170,21 @@ void linearise(const Intervals& f, Builder& out) {
     if (!(x2 > x1)) continue;
     const Curve curve = [&f, k](double x) { return f.value(k, x); };
     // VTK's value at x1 belongs to interval k-1 (or is node 0's own); interval k starts from its
-    // own right limit, one double later when the two differ.
+    // own right limit: a jump at x1 when the two differ (under a log scale at the last double
+    // where VTK still has the old value, a few doubles later).
     const Values start = f.value(k, x1);
     if (start != out.last_value()) {
-      const double y = first_change(f, x1, out.last_value());
-      if (y < x2) out.push(y, start);
+      const double at = std::nextafter(first_change(f, x1, out.last_value()), -std::numeric_limits<double>::infinity());
+      if (at < x2) {
+        if (at > out.last_x()) out.push(at, out.last_value());
+        out.jump(start);
+      }
     }
     const IntervalShape shape = f.shape(k);
     if (shape == IntervalShape::step) {
       const StepLocation step = f.step(k);
       out.push(step.below, f.left_value(k));
-      out.push(step.above, f.right_value(k));
+      out.jump(f.right_value(k));  // at step.below: step.above is the next double
       out.push(x2, f.at(x2));
       out.exact_interval();
     } else if (shape == IntervalShape::linear && f.linear_map) {
@@ -196,10 +215,11 @@ void linearise(const Intervals& f, Builder& out) {
     double y = std::nextafter(f.x(n - 1), inf);
     for (int i = 0; i < 64 && f.at(y) != beyond; ++i) y = std::nextafter(y, inf);
     if (f.at(y) != beyond) y = std::nextafter(f.x(n - 1), inf);
-    // The curve's own values up to the double before (a few doubles past s = 1 under a log scale).
+    // The curve's own values up to the double before (a few doubles past s = 1 under a log scale),
+    // then a jump there.
     const double before = std::nextafter(y, -inf);
     if (before > f.x(n - 1)) out.push(before, f.at(before));
-    if (std::isfinite(y)) out.push(y, beyond);
+    if (std::isfinite(y)) out.jump(beyond);
   }
 }
 

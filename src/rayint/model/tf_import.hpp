@@ -8,7 +8,7 @@
 // What is exact and what is linearised:
 //  - opacity intervals with sharpness < 0.01 (VTK's linear branch) are two straight pieces,
 //    reproduced node for node (a node at x1 + m(x2 - x1) when m != 1/2); steps (sharpness > 0.99)
-//    become a ramp one double wide at the place VTK switches. Under the density, unit-distance and
+//    become a jump (a repeated scalar: model/transfer_function.hpp) at the place VTK switches. Under the density, unit-distance and
 //    NeRF conventions rho is linear in opacity, so these stay exact (to rounding).
 //  - everything else -- sharpness in [0.01, 0.99], colour spaces other than RGB, and every
 //    interval under the per-sample convention (rho = -ln(1 - alpha)/d is not linear in alpha) --
@@ -17,8 +17,9 @@
 //    refined by Brent's method: tf_import.cpp), and the largest deviation found is reported.
 //    tests/test_tf_import.cpp checks the reported deviation against VTK 9.1's own values, and
 //    tests/test_paraview_presets.cpp against ParaView 5.11's on all its continuous presets.
-//  - colour steps: a Step colour space, sharpness > 0.99 and repeated scalars (a jump) become a
-//    ramp one double wide where VTK switches: exact at every double.
+//  - colour steps: a Step colour space, sharpness > 0.99 and repeated scalars become a jump of
+//    rayint's function (the scalar repeated: left value, right value) at the last double where
+//    VTK has the left value: exact at every double, and exact in the integral (no ramp).
 #include <cstddef>
 #include <string>
 

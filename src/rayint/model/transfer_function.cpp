@@ -6,14 +6,42 @@
 
 namespace rayint {
 
-double PiecewiseLinear::operator()(double s) const {
+double PiecewiseLinear::operator()(double s) const { return limit(s, false); }
+
+double PiecewiseLinear::limit(double s, bool from_above) const {
   // A NaN scalar gives NaN (it fails both end tests, and upper_bound would return the end, an
   // index one past the arrays).
   if (std::isnan(s)) return s;
-  if (s <= scalar.front()) return value.front();
-  if (s >= scalar.back()) return value.back();
-  const auto it = std::upper_bound(scalar.begin(), scalar.end(), s);
-  return interpolate(s, static_cast<std::size_t>(it - scalar.begin()));  // scalar[k-1] <= s < scalar[k]
+  // At a scalar stored twice the first point is the left value, the second the right value; a
+  // jump at an end point counts too (below the first point the function is the first value).
+  if (s < scalar.front() || (s == scalar.front() && !from_above)) return value.front();
+  if (s > scalar.back() || (s == scalar.back() && from_above)) return value.back();
+  if (from_above) {  // scalar[k-1] <= s < scalar[k]: k-1 is the last point at s, if any
+    const auto it = std::upper_bound(scalar.begin(), scalar.end(), s);
+    return interpolate(s, static_cast<std::size_t>(it - scalar.begin()));
+  }
+  // From below: k is the first point >= s; at s itself that point's (left) value, else the line
+  // of scalar[k-1] < s < scalar[k] (the same k as upper_bound's: bit for bit as without jumps).
+  const auto k = static_cast<std::size_t>(std::lower_bound(scalar.begin(), scalar.end(), s) - scalar.begin());
+  if (scalar[k] == s) return value[k];
+  return interpolate(s, k);
+}
+
+bool PiecewiseLinear::has_jump() const {
+  return std::adjacent_find(scalar.begin(), scalar.end()) != scalar.end();
+}
+
+std::string check_points(const PiecewiseLinear& f) {
+  if (f.scalar.empty() || f.scalar.size() != f.value.size())
+    return "needs matching, non-empty point lists";
+  for (std::size_t i = 0; i < f.scalar.size(); ++i) {
+    if (!std::isfinite(f.scalar[i])) return "scalars must be finite";
+    if (!(std::isfinite(f.value[i]) && f.value[i] >= 0.0)) return "values must be finite and >= 0";
+    if (i > 0 && !(f.scalar[i - 1] <= f.scalar[i])) return "scalars must be non-decreasing";
+    if (i > 1 && f.scalar[i - 2] == f.scalar[i])
+      return "a scalar may appear at most twice in a row (a jump: left, then right value)";
+  }
+  return {};
 }
 
 double PiecewiseLinear::interpolate(double s, std::size_t k) const {
@@ -36,6 +64,13 @@ std::vector<double> TransferFunctions::breakpoints() const {
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   return all;
+}
+
+bool TransferFunctions::has_jump() const {
+  for (const auto* group : {&density, &color})
+    for (const auto& f : *group)
+      if (f.has_jump()) return true;
+  return false;
 }
 
 bool TransferFunctions::grey() const {

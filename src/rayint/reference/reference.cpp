@@ -423,11 +423,11 @@ void check_function(const PiecewiseLinear& f) {
   bool ok = !f.scalar.empty() && f.scalar.size() == f.value.size();
   for (std::size_t i = 0; ok && i < f.scalar.size(); ++i)
     ok = std::isfinite(f.scalar[i]) && std::isfinite(f.value[i]) && f.value[i] >= 0 &&
-         (i == 0 || f.scalar[i - 1] < f.scalar[i]);
+         (i == 0 || f.scalar[i - 1] <= f.scalar[i]) && (i < 2 || f.scalar[i - 2] < f.scalar[i]);
   if (!ok)
     throw std::invalid_argument(
-        "reference: a transfer function needs matching, non-empty point lists with strictly "
-        "increasing finite scalars and finite values >= 0");
+        "reference: a transfer function needs matching, non-empty point lists with "
+        "non-decreasing finite scalars (at most two equal: a jump) and finite values >= 0");
 }
 
 }  // namespace
@@ -496,13 +496,19 @@ PieceQuadrature integrate_piece_forced(const PieceData& piece, int rule, int sub
   return integrate(piece, &forced);
 }
 
-Real interpolate(const PiecewiseLinear& f, double s) {
-  if (s <= f.scalar.front()) return Real(f.value.front());
-  if (s >= f.scalar.back()) return Real(f.value.back());
-  const auto it = std::upper_bound(f.scalar.begin(), f.scalar.end(), s);
-  const auto k = static_cast<std::size_t>(it - f.scalar.begin());  // scalar[k-1] <= s < scalar[k]
-  if (s == f.scalar[k - 1]) return Real(f.value[k - 1]);
-  const Real s0 = f.scalar[k - 1], s1 = f.scalar[k], x = s;
+Real interpolate(const PiecewiseLinear& f, double s, bool from_above) {
+  // A scalar stored twice is a jump: its first point is the limit from below, its second the
+  // limit from above (also at an end point: the end value holds beyond it).
+  if (s < f.scalar.front() || (s == f.scalar.front() && !from_above)) return Real(f.value.front());
+  if (s > f.scalar.back() || (s == f.scalar.back() && from_above)) return Real(f.value.back());
+  // k: the first point above s (from above) or at or above s (from below); a point at s is then
+  // k - 1 (its last copy) or k (its first copy).
+  const auto it = from_above ? std::upper_bound(f.scalar.begin(), f.scalar.end(), s)
+                             : std::lower_bound(f.scalar.begin(), f.scalar.end(), s);
+  const auto k = static_cast<std::size_t>(it - f.scalar.begin());
+  if (from_above && s == f.scalar[k - 1]) return Real(f.value[k - 1]);
+  if (!from_above && s == f.scalar[k]) return Real(f.value[k]);
+  const Real s0 = f.scalar[k - 1], s1 = f.scalar[k], x = s;  // s0 < s < s1
   return (Real(f.value[k - 1]) * (s1 - x) + Real(f.value[k]) * (x - s0)) / (s1 - s0);
 }
 
@@ -615,10 +621,13 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray, const Re
       // the scalar span (the whole segment when the scalar is constant).
       const Real piece_length =
           s_far == s_exit ? length : length * (Real(e_exit) - Real(e_far)) / span;
+      // Each end takes the limit from inside the piece (at a jump: the left value below it, the
+      // right value above it); a constant scalar takes the value at it, the left one at a jump.
+      const bool up = e_far < e_exit, down = e_far > e_exit;
       for (int c = 0; c < kChannels; ++c) {
         const reference_detail::PieceData data{
-            piece_length, interpolate(tf.density[c], e_far), interpolate(tf.density[c], e_exit),
-            interpolate(tf.color[c], e_far), interpolate(tf.color[c], e_exit)};
+            piece_length, interpolate(tf.density[c], e_far, up), interpolate(tf.density[c], e_exit, down),
+            interpolate(tf.color[c], e_far, up), interpolate(tf.color[c], e_exit, down)};
         qs.push_back(reference_detail::integrate_piece(data));
       }
     }

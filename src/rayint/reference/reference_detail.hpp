@@ -55,10 +55,11 @@ PieceQuadrature integrate_piece_forced(const PieceData& piece, int rule, int sub
 // given, receives a bound on |result / exp(z) - 1|.
 Real exp_series(const Real& z, double* relative_error = nullptr);
 
-// Transfer function evaluated in 50 digits at a double scalar: the stored value at a
-// breakpoint, the end value beyond the ends, else (v0 (s1 - s) + v1 (s - s0)) / (s1 - s0),
-// whose two terms are non-negative, so the result has a few ulps relative error.
-Real interpolate(const PiecewiseLinear& f, double s);
+// Transfer function evaluated in 50 digits at a double scalar, as the limit from below or from
+// above: the stored value at a breakpoint (at a jump, its left or right value), the end value
+// beyond the ends, else (v0 (s1 - s) + v1 (s - s0)) / (s1 - s0), whose two terms are
+// non-negative, so the result has a few ulps relative error.
+Real interpolate(const PiecewiseLinear& f, double s, bool from_above);
 
 // A Gauss-Kronrod rule on [-1, 1] with Boost.Math's nodes and weights in 50 digits, as the
 // quadrature above uses it (shared with reference/poly_reference.cpp): x[0] = 0 < x[1] < ... <
@@ -78,7 +79,7 @@ double unit_roundoff();
 // The smallest double >= x (error bounds are rounded up).
 double rounded_up(const Real& x);
 // Throws std::invalid_argument unless every function has matching, non-empty point lists with
-// strictly increasing finite scalars and finite values >= 0.
+// non-decreasing finite scalars (a scalar at most twice: a jump) and finite values >= 0.
 void check_transfer_functions(const TransferFunctions& tf);
 
 // hi = x rounded to nearest double (ties to even), lo = (x - hi) rounded likewise.

@@ -49,9 +49,9 @@ std::pair<Rgb, Rgb> nerf_march(const Medium& medium, const ViewRay& ray, int n, 
   return {C, T};
 }
 
-const VoxelGrid* trilinear_grid(const DensityField& field) {
+const GridField* trilinear_grid(const DensityField& field) {
   const auto* g = dynamic_cast<const GridField*>(&field);
-  return g != nullptr && g->interpolation() == GridInterpolation::trilinear ? &g->grid() : nullptr;
+  return g != nullptr && g->interpolation() == GridInterpolation::trilinear ? g : nullptr;
 }
 
 // Shared by both terms: method exact (integrators/exact, refused unless the medium is piecewise
@@ -88,7 +88,8 @@ class ExactOrRiemannEffect : public Effect {
   int n_ = 0;
   std::unique_ptr<ExactIntegrator> integrator_;
   // A trilinear voxel grid: exact is grid/trilinear_integral, the reference reference_poly_ray.
-  const VoxelGrid* trilinear_ = nullptr;
+  // Rays go to the grid's own frame first (GridField::to_grid: a rotated image).
+  const GridField* trilinear_ = nullptr;
   std::unique_ptr<TrilinearIntegrator> trilinear_integrator_;
 };
 
@@ -101,7 +102,7 @@ class AbsorptionEffect final : public ExactOrRiemannEffect {
     ++work.rays;
     Rgb T;
     if (exact_ && trilinear_ != nullptr) {
-      const TrilinearRayResult r = trilinear_integrator_->integrate(*trilinear_, pr.ray, Rgb{});
+      const TrilinearRayResult r = trilinear_integrator_->integrate(trilinear_->grid(), trilinear_->to_grid(pr.ray), Rgb{});
       work.samples += r.pieces;
       T = r.transmittance;
     } else if (exact_) {
@@ -120,7 +121,7 @@ class AbsorptionEffect final : public ExactOrRiemannEffect {
     ReferenceValue r;
     if (trilinear_ != nullptr || scene_.medium.field().piecewise_linear()) {
       const ReferenceRay ref = trilinear_ != nullptr
-                                   ? reference_poly_ray(tf_, trilinear_ray(*trilinear_, pr.ray, Rgb{}))
+                                   ? reference_poly_ray(tf_, trilinear_ray(trilinear_->grid(), trilinear_->to_grid(pr.ray), Rgb{}))
                                    : reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
       for (int c = 0; c < kChannels; ++c) {
         r.value[c] = ref.transmittance[c].hi;
@@ -146,8 +147,8 @@ class EmissionEffect final : public ExactOrRiemannEffect {
   Rgb term(const PixelRay& pr, EffectWork& work, EffectWork&) const override {
     ++work.rays;
     if (exact_ && trilinear_ != nullptr) {
-      if (!absorption_) return trilinear_integrator_->emission_only(*trilinear_, pr.ray);
-      const TrilinearRayResult r = trilinear_integrator_->integrate(*trilinear_, pr.ray, Rgb{});
+      if (!absorption_) return trilinear_integrator_->emission_only(trilinear_->grid(), trilinear_->to_grid(pr.ray));
+      const TrilinearRayResult r = trilinear_integrator_->integrate(trilinear_->grid(), trilinear_->to_grid(pr.ray), Rgb{});
       work.samples += r.pieces;
       return r.intensity;
     }
@@ -168,7 +169,7 @@ class EmissionEffect final : public ExactOrRiemannEffect {
     if (absorption_ && (trilinear_ != nullptr || scene_.medium.field().piecewise_linear())) {
       ReferenceValue r;
       const ReferenceRay ref = trilinear_ != nullptr
-                                   ? reference_poly_ray(tf_, trilinear_ray(*trilinear_, pr.ray, Rgb{}))
+                                   ? reference_poly_ray(tf_, trilinear_ray(trilinear_->grid(), trilinear_->to_grid(pr.ray), Rgb{}))
                                    : reference_ray(tf_, scene_.medium.field().linear_segments(pr.ray, Rgb{}));
       for (int c = 0; c < kChannels; ++c) {
         r.value[c] = ref.intensity[c].hi;

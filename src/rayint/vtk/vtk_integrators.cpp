@@ -78,6 +78,10 @@ class VtkIntegrator final : public RayIntegrator {
         throw std::invalid_argument(name +
                                     ": not applicable: per-channel density (VTK has one "
                                     "attenuation for all channels)");
+    // AddPoint at a scalar already present replaces that node: a jump would silently become a
+    // ramp to the next node.
+    if (tf.has_jump())
+      throw std::invalid_argument(name + ": not applicable: a transfer function with a jump (a scalar repeated)");
     std::set<double> points(tf.density[0].scalar.begin(), tf.density[0].scalar.end());
     for (int c = 0; c < kChannels; ++c)
       points.insert(tf.color[c].scalar.begin(), tf.color[c].scalar.end());
