@@ -11,10 +11,12 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "cli_harness.hpp"
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
@@ -338,4 +340,51 @@ TEST_CASE("own traversal: a face shared by three cells is refused naming them", 
     m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
   }
   CHECK_THROWS_WITH(CellTraversal(m, "three.vtu"), Catch::Contains("three.vtu: cells[2]: a face is shared by more than two cells"));
+}
+
+TEST_CASE("CLI: own mode by default for non-tet files, split on request, failed rays null and counted", "[celltraversal][cli]") {
+  test::TempDir dir;
+  const std::string tf = R"("transfer_function": {"density": [[0, 0.5], [1.3, 3]], "color": [[0, 1], [1.3, 0.2]]})";
+  dir.write("hex.json", R"({"name": "hex", )" + tf + R"(, "mesh_file": ")" + kDir + R"(cells-hex-41.msh",
+    "camera": {"position": [1.1, 0.3, 4], "look_at": [1.1, 0.5, 0.5], "fov_deg": 40, "width": 20, "height": 14}})");
+  const auto own = test::run_cli(dir.path, "render hex.json -o own.pfm --stats own.json");
+  REQUIRE(own.status == 0);
+  CHECK(own.err.find("mode own: 54 hexahedron") != std::string::npos);
+  const auto stats = nlohmann::json::parse(test::slurp(dir.path / "own.json"));
+  CHECK(stats["method"] == "own");
+  CHECK(stats["mesh"]["cells"]["mode"] == "own");
+  CHECK(stats["failed_pixels"] == 0);
+  CHECK(stats["cost"]["chords"].get<long>() > 100);
+  // Its own image passes check --candidate-image (own mode); the split image is a different field.
+  const auto same = test::run_cli(dir.path, "check hex.json --candidate-image own.pfm -o same.json -q");
+  CHECK(same.status == 0);
+  CHECK(nlohmann::json::parse(test::slurp(dir.path / "same.json"))["mode"] == "own");
+  REQUIRE(test::run_cli(dir.path, "render hex.json --cells split -o split.pfm -q").status == 0);
+  const auto differs = test::run_cli(dir.path, "check hex.json --candidate-image split.pfm -o differs.json -q");
+  CHECK(differs.status == 1);
+  const auto split_self = test::run_cli(dir.path, "check hex.json --cells split --candidate-image split.pfm -o s.json -q");
+  CHECK(split_self.status == 0);
+  // A bow-tie hexahedron (top face nodes 6 and 7 swapped): Newton cannot locate points in it,
+  // those rays fail: null in eval (exit 1, counted), NaN pixels counted in render (exit 1).
+  dir.write("bow.vtk", "# vtk DataFile Version 3.0\nh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n"
+                       "0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1\nCELLS 1 9\n8 0 1 2 3 4 5 7 6\n"
+                       "CELL_TYPES 1\n12\nPOINT_DATA 8\nSCALARS s float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n");
+  dir.write("bow.json", R"({"name": "bow", "transfer_function": {"density": [[0, 1], [7, 2]], "color": [[0, 1]]},
+    "mesh_file": "bow.vtk", "camera": {"position": [0.5, 0.3, 4], "look_at": [0.5, 0.5, 0.5], "fov_deg": 40, "width": 24, "height": 24}})");
+  const auto e = test::run_cli(dir.path, "eval bow.json -q --no-reference");
+  CHECK(e.status == 1);
+  const auto j = nlohmann::json::parse(e.out);
+  const long failed = j["cases"][0]["failed"].get<long>();
+  CHECK(failed > 0);
+  long nulls = 0;
+  for (const auto& r : j["cases"][0]["rays"])
+    if (r["intensity"].is_null()) {
+      ++nulls;
+      CHECK_FALSE(r["failure"].get<std::string>().empty());
+    }
+  CHECK(nulls == failed);
+  const auto r = test::run_cli(dir.path, "render bow.json -o bow.pfm --stats bow-stats.json -q");
+  CHECK(r.status == 1);
+  CHECK(r.err.find("pixels failed") != std::string::npos);
+  CHECK(nlohmann::json::parse(test::slurp(dir.path / "bow-stats.json"))["failed_pixels"].get<long>() == failed);
 }
