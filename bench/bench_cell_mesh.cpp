@@ -5,6 +5,7 @@
 // reader fixtures s = 0.5 + 0.3 sin(2x) cos(y) + 0.25 z + 0.2 xyz, the transfer functions of
 // bench_cells.cpp. 256 rays (16 x 16 parallel rays across the box, tilted), single-threaded:
 //   BM_mesh/own    CellTraversal: trace + LinearCellIntegrator on every chord, composited
+//   BM_mesh/own_trace_only  the traversal alone (its share of BM_mesh/own)
 //   BM_mesh/split  the same CellMesh through split_cells (VTK's structured 5-tet rule), then
 //                  TetTraversal + the `exact` method: what `--cells split` pays
 // Time per iteration = 256 rays; the ratio own / split is the figure.
@@ -93,6 +94,22 @@ void BM_mesh_own(benchmark::State& state) {
   state.counters["failed_rays"] = static_cast<double>(failed);
 }
 BENCHMARK(BM_mesh_own)->Name("BM_mesh/own")->Unit(benchmark::kMillisecond);
+
+// The traversal alone (chords found, not integrated): its share of BM_mesh/own.
+void BM_mesh_own_trace(benchmark::State& state) {
+  const CellTraversal mesh(twisted_grid(12), "bench");
+  const std::vector<ViewRay> rays = bench_rays();
+  CellTrace trace;
+  for (auto _ : state) {
+    std::size_t n = 0;
+    for (const ViewRay& r : rays) {
+      mesh.trace(r, trace);
+      n += trace.chords.size();
+    }
+    benchmark::DoNotOptimize(n);
+  }
+}
+BENCHMARK(BM_mesh_own_trace)->Name("BM_mesh/own_trace_only")->Unit(benchmark::kMillisecond);
 
 void BM_mesh_split(benchmark::State& state) {
   const TransferFunctions tf = mesh_tf();
