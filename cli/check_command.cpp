@@ -105,6 +105,7 @@ void set_check_command(CLI::App& app) {
     if (candidate_image->count() > 0) {
       ImageCheckOptions io = opt->image;
       io.case_file = opt->case_file;
+      io.mesh = opt->mesh;
       io.rel_tol = opt->check.rel_tol;
       io.abs_tol = opt->check.abs_tol;
       io.output = opt->output;

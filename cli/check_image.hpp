@@ -3,10 +3,13 @@
 // case's camera (check_image.cpp; library: render/image_compare.hpp).
 #include <string>
 
+#include "rayint/input/mesh_case_reader.hpp"
+
 namespace rayint::cli {
 
 struct ImageCheckOptions {
   std::string case_file;
+  MeshReadOptions mesh;  // --strict-mesh, --cells own|split
   std::string candidate_image;
   std::string candidate_variance;  // Monte Carlo: per-pixel variance of the candidate's mean
   long samples = 0;                // Monte Carlo: samples per pixel; the variance image is then per sample

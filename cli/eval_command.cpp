@@ -14,6 +14,8 @@
 #include "rayint/input/case_reader.hpp"
 #include "rayint/report/evaluation_json.hpp"
 #include "rayint/report/evaluation_table.hpp"
+#include "rayint/report/cell_render_json.hpp"
+#include "rayint/studies/own_cells_eval.hpp"
 
 namespace rayint::cli {
 
@@ -72,9 +74,17 @@ void set_eval_command(CLI::App& app) {
     const auto seconds = [&]() { return std::chrono::duration<double>(clock::now() - start).count(); };
     std::vector<Case> cases;
     std::vector<std::optional<TetRepairs>> repairs;  // mesh cases: reoriented / dropped tets
+    std::vector<MeshCase> own;  // mesh cases of cells other than tetrahedra ("mode": "own")
     const auto read = [&](const std::string& file) {
       repairs.emplace_back();
-      cases.push_back(read_case_file(file, opt->mesh, &repairs.back()));
+      std::optional<MeshCase> own_case;
+      Case c = read_case_file(file, opt->mesh, &repairs.back(), &own_case);
+      if (own_case) {
+        repairs.pop_back();
+        own.push_back(std::move(*own_case));
+      } else {
+        cases.push_back(std::move(c));
+      }
       if (line_due())
         std::fprintf(stderr, "eval: read %s, %.0f s\n", file.c_str(), seconds());
     };
@@ -86,6 +96,30 @@ void set_eval_command(CLI::App& app) {
       } else {
         read(f);  // validate all before evaluating any
       }
+    }
+    if (!own.empty()) {
+      // Cells other than tetrahedra in their own interpolation (mesh/cell_traversal.hpp): the
+      // methods take linear segments, so these cases are evaluated alone.
+      if (!cases.empty())
+        throw InputError(own.front().source + ": mesh_file: cells other than tetrahedra (own interpolation) cannot be "
+                         "evaluated together with segment cases (" + cases.front().source + "); run them separately or use --cells split");
+      if (!opt->methods.empty())
+        throw InputError(own.front().source + ": --methods: the own interpolation of cells other than tetrahedra is one "
+                         "method (cells/cell_integral.hpp); --cells split evaluates the methods on VTK's split");
+      std::vector<OwnCaseEvaluation> own_results;
+      long failed = 0;
+      for (const MeshCase& mc : own) {
+        if (!opt->quiet)
+          std::fprintf(stderr, "eval: %s: mode own: cells other than tetrahedra integrated in their own (isoparametric) "
+                       "interpolation (--cells split: VTK's tetrahedralisation)\n", mc.name.c_str());
+        own_results.push_back(evaluate_own_cells(mc, !opt->no_reference));
+        failed += own_results.back().failed;
+      }
+      emit(opt->format == "table" ? own_eval_table(own_results, !opt->no_reference)
+                                  : own_eval_json(own_results, !opt->no_reference).dump(2),
+           opt->output);
+      if (failed > 0) throw ChecksFailed{};  // written, failures marked: exit 1
+      return;
     }
     EvalOptions eo;
     eo.measure_time = !opt->no_timing;

@@ -28,16 +28,18 @@ inline CLI::Option* add_strict_mesh_flag(CLI::App* cmd, bool& strict) {
                        "reorient inverted ones, drop degenerate ones, and count both)");
 }
 
-// --cells split: a mesh file with hexahedra, wedges, pyramids or voxels is tetrahedralised as
-// VTK's vtkDataSetTriangleFilter does (mesh/cell_split.hpp) -- an approximation, said in the JSON
-// ("mesh_repairs": {"cells": {"mode": "split", ...}}) and on stderr. Without it such a file is
-// refused with one line (exit 2).
+// --cells own|split. A mesh file with hexahedra, wedges, pyramids or voxels is integrated in the
+// cells' own interpolation by default ("own", mesh/cell_traversal.hpp: "mode": "own" in the JSON
+// and on stderr); --cells split tetrahedralises it as VTK's vtkDataSetTriangleFilter does
+// (mesh/cell_split.hpp) -- an approximation, said in the JSON ("mesh_repairs": {"cells":
+// {"mode": "split", ...}}) and on stderr. Files of tetrahedra only take the tetrahedral path either way.
 inline CLI::Option* add_cells_option(CLI::App* cmd, bool& split) {
   auto* o = cmd->add_option_function<std::string>(
       "--cells", [&split](const std::string& v) { split = v == "split"; },
-      "Mesh files with hexahedra, wedges, pyramids, voxels: 'split' integrates them after VTK's "
-      "tetrahedralisation (vtkDataSetTriangleFilter), an approximation of their own interpolation");
-  o->check(CLI::IsMember({"split"}));
+      "Mesh files with hexahedra, wedges, pyramids, voxels: 'own' (default) integrates each cell in its "
+      "own (isoparametric) interpolation; 'split' after VTK's tetrahedralisation "
+      "(vtkDataSetTriangleFilter), an approximation of it");
+  o->check(CLI::IsMember({"own", "split"}));
   return o;
 }
 

@@ -27,7 +27,9 @@
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/render/float_image.hpp"
 #include "rayint/render/image.hpp"
+#include "rayint/render/cell_mesh_render.hpp"
 #include "rayint/render/mesh_render.hpp"
+#include "rayint/report/cell_render_json.hpp"
 #include "rayint/report/mesh_render_json.hpp"
 
 namespace rayint::cli {
@@ -39,11 +41,15 @@ std::string heat_map_path(const std::string& output) {
   return p.string() + ".error.png";
 }
 
+// The case's mesh points: the tetrahedra's, or the cells' in the own mode.
+const std::vector<Vec3>& case_points(const MeshCase& mc) { return mc.cells ? mc.cells->points : mc.mesh.points; }
+
 // --fit: the case's camera (or a 256 x 256 one looking down -z) moved to frame the mesh's bounds.
 void fit_camera_to_mesh(MeshCase& mc) {
-  if (mc.mesh.points.empty()) throw InputError(mc.mesh_source + ": points: --fit needs a mesh with points");
-  Vec3 lo = mc.mesh.points.front(), hi = lo;
-  for (const Vec3& p : mc.mesh.points) {
+  const std::vector<Vec3>& points = case_points(mc);
+  if (points.empty()) throw InputError(mc.mesh_source + ": points: --fit needs a mesh with points");
+  Vec3 lo = points.front(), hi = lo;
+  for (const Vec3& p : points) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
@@ -73,6 +79,9 @@ void fit_camera_to_mesh(MeshCase& mc) {
   }
 }
 
+// The own mode (mesh/cell_traversal.hpp): cells other than tetrahedra in their own interpolation.
+void render_own_cells(MeshCase& mc, const RenderOptions& options);
+
 }  // namespace
 
 void check_camera_memory(const Camera& camera, int images, bool per_pixel_error, const std::string& where) {
@@ -84,9 +93,10 @@ void check_camera_memory(const Camera& camera, int images, bool per_pixel_error,
 }
 
 void check_camera_reaches_mesh(const MeshCase& mc, const std::string& where) {
-  if (!mc.camera || mc.mesh.points.empty()) return;
-  Vec3 lo = mc.mesh.points.front(), hi = lo;
-  for (const Vec3& p : mc.mesh.points) {
+  const std::vector<Vec3>& points = case_points(mc);
+  if (!mc.camera || points.empty()) return;
+  Vec3 lo = points.front(), hi = lo;
+  for (const Vec3& p : points) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
@@ -108,6 +118,11 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   const json_source::InputFileLog read;  // the mesh files the case names: shard inputs
   SlowStage reading("rayint render: reading the mesh of " + options.input, options.quiet);
   MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh, options.split_cells});
+  if (mc.cells) {
+    reading.done(std::to_string(mc.cells->cell_count()) + " cells, " + std::to_string(mc.cells->points.size()) + " points");
+    render_own_cells(mc, options);
+    return;
+  }
   reading.done(std::to_string(mc.mesh.tets.size()) + " tets, " + std::to_string(mc.mesh.points.size()) + " points");
   if (mc.split && !options.quiet) {
     long cells = 0;
@@ -180,4 +195,54 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   if (!options.quiet) std::fputs(mesh_render_summary(r, compare ? &comparison : nullptr).c_str(), stderr);
 }
 
+}  // namespace rayint::cli
+
+namespace rayint::cli {
+namespace {
+
+void render_own_cells(MeshCase& mc, const RenderOptions& options) {
+  if (!options.compare.empty())
+    throw InputError(options.input + ": --compare: not available in the own mode of cells other than tetrahedra "
+                     "(the methods take linear segments); use --cells split to compare methods on VTK's split");
+  if (!options.shard.empty())
+    throw InputError(options.input + ": --shard: not available in the own mode of cells other than tetrahedra");
+  if (mc.shading.enabled)
+    throw InputError(options.input + ": shading: not available in the own mode of cells other than tetrahedra");
+  if (options.fit) fit_camera_to_mesh(mc);
+  if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
+  check_camera_reaches_mesh(mc, options.input);
+  check_camera_memory(*mc.camera, 1, false, options.input + ": camera");
+  SlowStage building("rayint render: building the cell traversal", options.quiet);
+  const CellTraversal mesh(std::move(*mc.cells), mc.mesh_source);
+  building.done(std::to_string(mesh.face_count()) + " faces, " + std::to_string(mesh.boundary_face_count()) + " on the boundary");
+  if (!options.quiet) {
+    std::string types;
+    for (const auto& [type, n] : cell_counts(mesh.mesh())) types += (types.empty() ? "" : ", ") + std::to_string(n) + " " + type;
+    std::fprintf(stderr, "rayint render: mode own: %s integrated in their own (isoparametric) interpolation "
+                 "(--cells split: VTK's tetrahedralisation instead)\n", types.c_str());
+  }
+  MeshRenderSettings settings;
+  settings.threads = options.threads;
+  auto progress_line = std::make_shared<ProgressLine>();
+  if (!options.quiet)
+    settings.progress = [progress_line](int done, int total) {
+      progress_line->update("rayint render: " + std::to_string(done) + "/" + std::to_string(total) + " rows",
+                            static_cast<double>(done) / total);
+      if (done == total) progress_line->finish();
+    };
+  const CellMeshRender r = render_cell_mesh(mc, mesh, settings);
+  PngOptions png;
+  png.exposure = options.exposure;
+  write_image(options.output, r.image, png);
+  if (!options.stats_path.empty())
+    write_file_atomically(options.stats_path, cell_mesh_render_json(mc, mesh, r).dump(2) + "\n");
+  if (!options.quiet) std::fputs(cell_mesh_render_summary(r).c_str(), stderr);
+  if (r.failed_pixels > 0) {
+    std::fprintf(stderr, "rayint render: %ld pixels failed (a cell chord not located or not integrated): NaN in the image\n",
+                 r.failed_pixels);
+    throw ChecksFailed{};  // written, failures marked: exit 1
+  }
+}
+
+}  // namespace
 }  // namespace rayint::cli

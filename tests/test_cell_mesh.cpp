@@ -269,20 +269,30 @@ TEST_CASE("rays along grid lines and through cell corners of a split .vtr cross 
   }
 }
 
-TEST_CASE("CLI: --cells split integrates a .vtr and says split, without it exit 2 and one line", "[cellmesh][cli]") {
+TEST_CASE("CLI: --cells split integrates a .vtr and says split, without it the own mode, methods refused in one line", "[cellmesh][cli]") {
   TempDir dir;
   dir.write("odd.json", R"({"name": "odd", "transfer_function": {"density": [[0, 1], [1.5, 2]], "color": [[0, 1]]},
     "mesh_file": ")" + kDir + R"(cells-odd.vtr",
     "rays": [{"origin": [-1, 0.05, 0.5], "direction": [1, 0, 0]}, {"origin": [-1, 0.1, 0.3], "direction": [1, 0, 0]}],
     "camera": {"position": [0.5, 0, 4], "look_at": [0.5, 0, 0.5], "fov_deg": 30, "width": 6, "height": 5}})");
   const auto before = dir.entries();
+  // Without --cells split the voxels are integrated in their own interpolation ("mode": "own",
+  // mesh/cell_traversal.hpp); the segment methods do not apply there: one line, exit 2.
   const auto refused = test::run_cli(dir.path, "eval odd.json --methods exact --no-timing -o out.json");
   CHECK(refused.status == 2);
   CHECK(refused.out.empty());
-  CHECK(refused.err.find("cell type voxel (VTK id 11)") != std::string::npos);
+  CHECK(refused.err.find("--methods") != std::string::npos);
   CHECK(refused.err.find("--cells split") != std::string::npos);
   CHECK(test::line_count(refused.err) == 1);
   CHECK(dir.entries() == before);
+  const auto own = test::run_cli(dir.path, "eval odd.json -q");
+  REQUIRE(own.status == 0);
+  const auto jo = nlohmann::json::parse(own.out);
+  CHECK(jo["mode"] == "own");
+  CHECK(jo["cases"][0]["cells"]["voxel"] == 12);
+  CHECK(jo["cases"][0]["rays"].size() == 2);
+  CHECK(jo["cases"][0]["failed"] == 0);
+  CHECK(jo["cases"][0]["max_abs_error"].get<double>() <= 1e-13);  // against the 50-digit cell reference
   const auto e = test::run_cli(dir.path, "eval odd.json --cells split --methods exact --no-timing");
   REQUIRE(e.status == 0);
   const auto j = nlohmann::json::parse(e.out);

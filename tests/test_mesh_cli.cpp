@@ -128,7 +128,10 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
                        "CELL_TYPES 1\n12\nPOINT_DATA 8\nSCALARS s float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n");
   dir.write("hex.json", R"({"name": "h", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
     "mesh_file": "hex.vtk", "rays": [{"origin": [0, 0, 5], "direction": [0, 0, -1]}]})");
-  expect_bad(dir, "eval hex.json -o out.json", "hex.vtk: CELL_TYPES[0]: cell type hexahedron (VTK id 12): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split");
+  // A hexahedron is integrated in its own interpolation ("mode": "own"); the segment methods do
+  // not apply there, and commands that need segments name --cells split.
+  expect_bad(dir, "eval hex.json --methods exact -o out.json", "hex.json: --methods: the own interpolation of cells other than tetrahedra is one method");
+  expect_bad(dir, "bench hex.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra; this command takes them only with --cells split");
   dir.write("nocam.json", with(kMeshCase, R"("camera": {"position": [0.3, 0.3, 4], "look_at": [0.3, 0.3, 0], "fov_deg": 30, "width": 12, "height": 10})", R"("description": "")"));
   expect_bad(dir, "render nocam.json -o out.png", "nocam.json: camera: required to render a mesh case");
   dir.write("tiny.json", kMeshCase);

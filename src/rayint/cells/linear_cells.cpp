@@ -472,8 +472,14 @@ Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* glob
     for (int k = 0; k < face.count; ++k)
       canonical[static_cast<std::size_t>(k)] = cyclic[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])];
     const FaceHits hits = intersect_face(canonical, face.count, ray);
-    for (int h = 0; h < hits.count; ++h) ts.push_back(hits.hit[static_cast<std::size_t>(h)].t);
+    for (int h = 0; h < hits.count; ++h) {
+      ts.push_back(hits.hit[static_cast<std::size_t>(h)].t);
+      out.hits.push_back({hits.hit[static_cast<std::size_t>(h)].t, f});
+    }
   }
+  std::sort(out.hits.begin(), out.hits.end(), [](const ChordFaceHit& a, const ChordFaceHit& b) {
+    return a.t < b.t || (a.t == b.t && a.face < b.face);
+  });
   std::sort(ts.begin(), ts.end());
   ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
   Vec3 start = linear_reference_centre(cell.type);

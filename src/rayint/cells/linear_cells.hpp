@@ -159,8 +159,14 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
 struct ChordInterval {
   double t_near = 0.0, t_far = 0.0;  // t_near < t_far
 };
+struct ChordFaceHit {
+  double t = 0.0;
+  int face = 0;  // local face index (linear_face)
+};
 struct Chord {
   std::vector<ChordInterval> intervals;  // sorted by t
+  std::vector<ChordFaceHit> hits;        // every face hit, sorted by (t, face): which faces an
+                                         // interval ends on (mesh traversal, mesh/cell_traversal.hpp)
   bool failed = false;
 };
 Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* global_ids = nullptr);

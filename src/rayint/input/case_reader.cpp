@@ -109,10 +109,24 @@ Case read_case(const JsonSchema& s, const json& root, StreamedRays* streamed) {
 }
 
 Case parse_case_root(const json& root, const std::string& source, StreamedRays* streamed,
-                     const MeshReadOptions& mesh_options, std::optional<TetRepairs>* repairs) {
+                     const MeshReadOptions& mesh_options, std::optional<TetRepairs>* repairs,
+                     std::optional<MeshCase>* own_cells = nullptr) {
   if (repairs) repairs->reset();
+  if (own_cells) own_cells->reset();
   if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
     MeshCase mc = parse_mesh_case(root, source, mesh_options);
+    if (mc.cells) {  // cells other than tetrahedra, in their own interpolation: no segments
+      if (!own_cells)
+        throw InputError(source + ": mesh_file: " + mc.mesh_source +
+                         " holds cells other than tetrahedra; this command takes them only with --cells split "
+                         "(rayint eval, render and check --candidate-image integrate them in their own interpolation)");
+      Case c;
+      c.name = mc.name;
+      c.description = mc.description;
+      c.transfer = mc.transfer;
+      *own_cells = std::move(mc);
+      return c;
+    }
     if (repairs) *repairs = mc.repairs;
     const TetTraversal mesh(mc.mesh, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
@@ -123,7 +137,8 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
 }  // namespace
 
 Case parse_case_text(std::string_view text, const std::string& source,
-                     const MeshReadOptions& mesh_options, std::optional<TetRepairs>* repairs) {
+                     const MeshReadOptions& mesh_options, std::optional<TetRepairs>* repairs,
+                     std::optional<MeshCase>* own_cells) {
   const JsonSchema schema(source);
   StreamedRays streamed;
   json_source::StreamedArray sink;
@@ -142,7 +157,7 @@ Case parse_case_text(std::string_view text, const std::string& source,
     }
   };
   const json root = json_source::parse(text, source, sink);
-  return parse_case_root(root, source, &streamed, mesh_options, repairs);
+  return parse_case_root(root, source, &streamed, mesh_options, repairs, own_cells);
 }
 
 namespace detail {
@@ -152,9 +167,9 @@ Case parse_case_text_tree(std::string_view text, const std::string& source) {
 }  // namespace detail
 
 Case read_case_file(const std::string& path, const MeshReadOptions& mesh_options,
-                    std::optional<TetRepairs>* repairs) {
+                    std::optional<TetRepairs>* repairs, std::optional<MeshCase>* own_cells) {
   const std::string text = json_source::read_text_file(path);
-  return parse_case_text(text, path, mesh_options, repairs);
+  return parse_case_text(text, path, mesh_options, repairs, own_cells);
 }
 
 std::vector<std::string> list_case_files(const std::string& dir) {

@@ -16,10 +16,14 @@ namespace rayint {
 // `source` is the file name used in messages. Throws InputError. `mesh` applies to mesh cases
 // (mesh_case_reader.hpp: reorient/drop by default, refuse with --strict-mesh); for a mesh case,
 // `*repairs` (when given) receives what reading its mesh reoriented and dropped.
+// A mesh case whose file holds cells other than tetrahedra (without --cells split) has no
+// segments: with `own_cells` given, its MeshCase goes there (MeshCase::cells set; eval integrates
+// it in the cells' own interpolation, studies/own_cells_eval.hpp) and the Case returned holds only
+// its name and transfer functions; without, it is refused with one line naming the mesh file.
 Case parse_case_text(std::string_view text, const std::string& source, const MeshReadOptions& mesh = {},
-                     std::optional<TetRepairs>* repairs = nullptr);
+                     std::optional<TetRepairs>* repairs = nullptr, std::optional<MeshCase>* own_cells = nullptr);
 Case read_case_file(const std::string& path, const MeshReadOptions& mesh = {},
-                    std::optional<TetRepairs>* repairs = nullptr);
+                    std::optional<TetRepairs>* repairs = nullptr, std::optional<MeshCase>* own_cells = nullptr);
 
 namespace detail {
 // The same reading with every segment kept in the JSON tree until the schema walk (how

@@ -162,13 +162,24 @@ TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name, 
   throw InputError(path + ": (file): unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
 }
 
-CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  using CellReader = CellMesh (*)(const std::string&, const std::string&, bool);
+namespace {
+using CellReader = CellMesh (*)(const std::string&, const std::string&, bool);
+const std::map<std::string, CellReader>& cell_readers() {
   static const std::map<std::string, CellReader> readers = {
       {".vtk", &read_vtk_legacy_cells}, {".vtu", &read_vtu_cells}, {".pvtu", &read_pvtu_cells},
       {".msh", &read_gmsh_cells},       {".vts", &read_vts},       {".vtr", &read_vtr},
       {".vti", &read_vti_cells},
   };
+  return readers;
+}
+// Whether files ending in `ext` are read by a built-in cell reader (not replaced by a registered one).
+bool has_cell_reader(const std::string& ext) {
+  return cell_readers().count(ext) > 0 && extra_mesh_readers().count(ext) == 0;
+}
+}  // namespace
+
+CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  const auto& readers = cell_readers();
   const std::string ext = std::filesystem::path(path).extension().string();
   const auto it = readers.find(ext);
   if (it != readers.end() && extra_mesh_readers().count(ext) == 0) return it->second(path, scalar_name, cell_to_point);
@@ -235,16 +246,30 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
       mc.mesh = split_cells(read_cell_mesh_file(mc.mesh_source, name, cell_to_point), &counts);
       mc.split = counts;
     } else {
-      mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
+      try {
+        mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
+      } catch (const InputError&) {
+        // The tetrahedral readers refuse any other volume cell. A file that the cell readers take
+        // and that holds such cells is integrated in their own interpolation ("mode": "own"); for
+        // any other file the tetrahedral reader's message stands. Tetrahedra-only files never
+        // come here: their path is unchanged.
+        if (!has_cell_reader(ext)) throw;
+        CellMesh cells = read_cell_mesh_file(mc.mesh_source, name, cell_to_point);
+        if (cells.only_tets()) throw;
+        mc.cells = std::move(cells);
+      }
     }
     names = file_field_names(p.extension().string());
   }
-  if (options.strict)
+  if (mc.cells) {
+    // Own interpolation: no tetrahedra to repair or check; the traversal refuses a face shared by
+    // more than two cells when it is built.
+  } else if (options.strict)
     validate_tet_mesh(mc.mesh, mc.mesh_source, names);
   else
     mc.repairs = repair_tet_mesh(mc.mesh, mc.mesh_source, names);
   if (mc.split) mc.repairs.split_cells = mc.split->cells;
-  refuse_overlapping_tets(mc.mesh, mc.mesh_source, names.tets);
+  if (!mc.cells) refuse_overlapping_tets(mc.mesh, mc.mesh_source, names.tets);
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");

@@ -31,6 +31,10 @@ struct MeshCase {
   // `--cells split`: the file's cells were tetrahedralised as vtkDataSetTriangleFilter does (an
   // approximation of their own interpolation; mesh/cell_split.hpp). Every output says so.
   std::optional<CellSplitCounts> split;
+  // The file holds cells other than tetrahedra and `--cells split` was not given: they are
+  // integrated in their own interpolation (mesh/cell_traversal.hpp, "mode": "own"); `mesh` is
+  // then empty.
+  std::optional<CellMesh> cells;
   std::vector<MeshViewRay> rays;  // "rays" (may be empty when a camera is given)
   std::optional<Camera> camera;   // "camera"
   Rgb background{0.0, 0.0, 0.0};  // "background": behind every camera pixel

@@ -103,6 +103,10 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
     j["tolerance_note"] = "in z-test mode the tolerance figures above are for information; the z-test decides";
   }
   if (!ctx.note.empty()) j["note"] = ctx.note;
+  if (!ctx.mode.empty()) {
+    j["mode"] = ctx.mode;
+    if (ctx.mode == "own") j["failed_pixels"] = ctx.failed_pixels;
+  }
   return j;
 }
 

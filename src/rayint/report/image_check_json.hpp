@@ -19,6 +19,10 @@ struct ImageCheckContext {
   std::string heat_map;                 // path written, or empty
   std::vector<std::string> worst_cases; // per worst pixel: its case file (empty: none written)
   std::string note;                     // e.g. why no case files were written
+  // Mesh cases of cells other than tetrahedra: "own" (their own interpolation) or "split" (VTK's
+  // split); empty for tetrahedra and scenes (no "mode" field then).
+  std::string mode;
+  long failed_pixels = 0;               // own mode: expected pixels that are not a result (NaN)
   // Monte Carlo mode (--candidate-variance): the z-test decides; null otherwise.
   const ZTestResult* z_test = nullptr;
   double alpha = 0.0, min_fraction = 0.0;

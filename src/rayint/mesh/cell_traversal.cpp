@@ -1,0 +1,519 @@
+// Own-interpolation traversal of a mesh of linear cells (see cell_traversal.hpp; rules 1-4 there).
+#include "rayint/mesh/cell_traversal.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
+
+namespace rayint {
+
+void CellTraversalStats::add(const CellTraversalStats& o) {
+  rays += o.rays;
+  chords += o.chords;
+  face_steps += o.face_steps;
+  star_steps += o.star_steps;
+  first_hit_queries += o.first_hit_queries;
+  failed_chords += o.failed_chords;
+  budget_exhausted += o.budget_exhausted;
+}
+
+LinearCellType linear_type_of(MeshCellType type) {
+  return static_cast<LinearCellType>(static_cast<int>(type));
+}
+
+namespace {
+// As tet_traversal.cpp: Embree's single-precision ray must stay within +-1.8e18.
+constexpr double kMaxCoordinate = 1e18;
+}  // namespace
+
+// ---- The walk's state ------------------------------------------------------------------------
+
+struct CellTraversal::Walk {
+  Vec3 o, d;
+  double t_lo = 0.0;   // re-entry: hits at or beyond t_lo - tol
+  double tol = 0.0;
+  const CellTraversal* self = nullptr;
+  // Best accepted boundary hit so far (first-hit query).
+  double best_t = std::numeric_limits<double>::infinity();
+  double best_far = 0.0;
+  std::int64_t best_face = -1;
+  std::vector<int> best_exit;
+  long failed = 0;
+  ViewRay ray() const { return ViewRay{o, d}; }
+  double slack(double t) const { return kCellEntrySlack * (self->diagonal_ + std::fabs(t)); }
+};
+
+// ---- Boundary first hit: Embree user geometry, every decision in double ----------------------
+
+struct CellFirstHitAccess {
+  static void intersect_face(const CellTraversal::Walk& w, std::uint32_t prim, RTCRayHit& rh,
+                             unsigned geom_id);
+};
+
+class CellBoundaryFirstHit {
+ public:
+  explicit CellBoundaryFirstHit(const CellTraversal& mesh);
+  ~CellBoundaryFirstHit() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+  }
+  CellBoundaryFirstHit(const CellBoundaryFirstHit&) = delete;
+  CellBoundaryFirstHit& operator=(const CellBoundaryFirstHit&) = delete;
+  // Fills w.best_*: the nearest boundary face hit at t >= w.t_lo - w.tol whose cell holds the ray
+  // beyond max(hit, t_lo).
+  void first(CellTraversal::Walk& w, double t_near, double t_far) const;
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<std::array<float, 6>> bounds_;
+  friend void cell_face_bounds(const RTCBoundsFunctionArguments* args);
+};
+
+namespace {
+
+struct QueryContext {
+  RTCIntersectContext base;  // first member: Embree passes a pointer to it
+  CellTraversal::Walk* walk;
+};
+
+}  // namespace
+
+void cell_face_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto* self = static_cast<const CellBoundaryFirstHit*>(args->geometryUserPtr);
+  const std::array<float, 6>& b = self->bounds_[args->primID];
+  RTCBounds* o = args->bounds_o;
+  o->lower_x = b[0], o->lower_y = b[1], o->lower_z = b[2];
+  o->upper_x = b[3], o->upper_y = b[4], o->upper_z = b[5];
+}
+
+namespace {
+
+void cell_face_intersect(const RTCIntersectFunctionNArguments* args) {
+  if (args->valid[0] == 0) return;
+  const auto* ctx = reinterpret_cast<const QueryContext*>(args->context);
+  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 (rtcIntersect1)
+  CellFirstHitAccess::intersect_face(*ctx->walk, args->primID, *rh, args->geomID);
+}
+
+void cell_face_occluded(const RTCOccludedFunctionNArguments*) {}  // never queried
+
+}  // namespace
+
+CellBoundaryFirstHit::CellBoundaryFirstHit(const CellTraversal& mesh) {
+  device_ = rtcNewDevice("threads=1");
+  if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  const std::size_t n = mesh.boundary_face_count();
+  const double pad = 1e-7 * ((mesh.box_max() - mesh.box_min()).norm());
+  bounds_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& f = mesh.boundary_face(i);
+    Vec3 lo = mesh.mesh().points[static_cast<std::size_t>(f.points[0])], hi = lo;
+    for (int k = 1; k < f.count; ++k) {
+      const Vec3& p = mesh.mesh().points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    for (int k = 0; k < 3; ++k) {
+      // Rounded outward to float, then padded.
+      bounds_[i][static_cast<std::size_t>(k)] = std::nextafter(static_cast<float>(lo[k] - pad), -HUGE_VALF);
+      bounds_[i][static_cast<std::size_t>(k + 3)] = std::nextafter(static_cast<float>(hi[k] + pad), HUGE_VALF);
+    }
+  }
+  if (n > 0) {
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(n));
+    rtcSetGeometryUserData(geom, this);
+    rtcSetGeometryBoundsFunction(geom, cell_face_bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, cell_face_intersect);
+    rtcSetGeometryOccludedFunction(geom, cell_face_occluded);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(scene_);
+  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree: scene build failed (error " +
+                             std::to_string(static_cast<int>(rtcGetDeviceError(device_))) + ")");
+}
+
+void CellBoundaryFirstHit::first(CellTraversal::Walk& w, double t_near, double t_far) const {
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.walk = &w;
+  w.best_t = std::numeric_limits<double>::infinity();
+  w.best_face = -1;
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(w.o.x());
+  rh.ray.org_y = static_cast<float>(w.o.y());
+  rh.ray.org_z = static_cast<float>(w.o.z());
+  rh.ray.dir_x = static_cast<float>(w.d.x());
+  rh.ray.dir_y = static_cast<float>(w.d.y());
+  rh.ray.dir_z = static_cast<float>(w.d.z());
+  rh.ray.tnear = static_cast<float>(std::max(0.0, t_near));
+  rh.ray.tfar = std::isfinite(t_far) && t_far < 3e38 ? std::nextafter(static_cast<float>(t_far), HUGE_VALF)
+                                                      : std::numeric_limits<float>::infinity();
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx.base, &rh);
+}
+
+void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint32_t prim, RTCRayHit& rh,
+                                        unsigned geom_id) {
+  auto& w = const_cast<CellTraversal::Walk&>(cw);
+  const CellTraversal& m = *w.self;
+  const CellTraversal::BoundaryFace& f = m.boundary_[prim];
+  std::array<Vec3, 4> nodes{};
+  for (int k = 0; k < f.count; ++k)
+    nodes[static_cast<std::size_t>(k)] = m.mesh_.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
+  const FaceHits hits = rayint::intersect_face(nodes, f.count, w.ray());
+  for (int h = 0; h < hits.count; ++h) {
+    const double t_hit = hits.hit[static_cast<std::size_t>(h)].t;
+    if (!(t_hit >= w.t_lo - w.tol) || !(t_hit < w.best_t)) continue;
+    const double t_start = std::max(t_hit, w.t_lo);
+    double t_far = 0.0;
+    std::vector<int> exit_faces;
+    bool failed = false;
+    const bool holds = m.continue_in(static_cast<std::size_t>(f.cell), w, t_start, t_far, &exit_faces, &failed);
+    if (failed) ++w.failed;
+    if (!holds) continue;
+    w.best_t = t_hit;
+    w.best_far = t_far;
+    w.best_face = prim;
+    w.best_exit = std::move(exit_faces);
+    // Let Embree cull boxes beyond this hit (rounded up: a nearer hit is never culled).
+    rh.ray.tfar = std::nextafter(static_cast<float>(t_hit), HUGE_VALF);
+    rh.hit.geomID = geom_id;
+    rh.hit.primID = prim;
+    rh.hit.u = rh.hit.v = 0.0f;
+    rh.hit.Ng_x = rh.hit.Ng_y = 0.0f;
+    rh.hit.Ng_z = 1.0f;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    break;  // hits are sorted by t: the first accepted is this face's nearest
+  }
+}
+
+// ---- Building ----------------------------------------------------------------------------------
+
+CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(std::move(mesh)) {
+  for (std::size_t i = 0; i < mesh_.points.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::fabs(mesh_.points[i][k]) <= kMaxCoordinate))
+        throw InputError(source + ": points[" + std::to_string(i) + "][" + std::to_string(k) + "]: coordinate " +
+                         format_number(mesh_.points[i][k]) +
+                         " beyond +-1e18, the range of the boundary ray tracer (Embree, single precision)");
+  const std::size_t n = mesh_.cell_count();
+  if (n == 0) throw InputError(source + ": cells: no volume cells");
+  if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 8))
+    throw InputError(source + ": cells: " + std::to_string(n) + " cells; at most 2^28 - 1 are supported");
+  // Cells in their own interpolation.
+  cells_.reserve(n);
+  std::vector<Vec3> x;
+  std::vector<double> v;
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::int32_t* ids = mesh_.cell(c);
+    x.clear();
+    v.clear();
+    for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k) {
+      const auto p = static_cast<std::size_t>(ids[k]);
+      x.push_back(mesh_.points[p]);
+      v.push_back(mesh_.cell_scalars.empty() ? mesh_.scalars[p] : mesh_.cell_scalars[c]);
+    }
+    try {
+      cells_.push_back(make_linear_cell(linear_type_of(mesh_.types[c]), x, v));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(source + ": cells[" + std::to_string(c) + "]: " + e.what());
+    }
+  }
+  // Faces keyed by sorted point ids (triangles padded with -1 in front).
+  struct Rec {
+    std::array<std::int32_t, 4> key;
+    std::int32_t cell;
+    std::int32_t local;
+  };
+  std::vector<Rec> recs;
+  neighbor_offsets_.assign(n + 1, 0);
+  for (std::size_t c = 0; c < n; ++c) {
+    const LinearCellType type = cells_[c].type;
+    const int faces = linear_face_count(type);
+    neighbor_offsets_[c + 1] = neighbor_offsets_[c] + faces;
+    for (int f = 0; f < faces; ++f) {
+      const FaceNodes fn = linear_face(type, f);
+      Rec r{{-1, -1, -1, -1}, static_cast<std::int32_t>(c), f};
+      for (int k = 0; k < fn.count; ++k)
+        r.key[static_cast<std::size_t>(k)] = mesh_.cell(c)[fn.node[static_cast<std::size_t>(k)]];
+      std::sort(r.key.begin(), r.key.end());
+      recs.push_back(r);
+    }
+  }
+  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
+    return a.key != b.key ? a.key < b.key : (a.cell != b.cell ? a.cell < b.cell : a.local < b.local);
+  });
+  neighbors_.assign(static_cast<std::size_t>(neighbor_offsets_[n]), -1);
+  const auto slot = [&](const Rec& r) {
+    return static_cast<std::size_t>(neighbor_offsets_[static_cast<std::size_t>(r.cell)] + r.local);
+  };
+  for (std::size_t i = 0; i < recs.size();) {
+    std::size_t j = i + 1;
+    while (j < recs.size() && recs[j].key == recs[i].key) ++j;
+    if (j - i > 2)
+      throw InputError(source + ": cells[" + std::to_string(recs[i + 2].cell) + "]: a face is shared by more than two cells (also cells[" +
+                       std::to_string(recs[i].cell) + "] and cells[" + std::to_string(recs[i + 1].cell) + "])");
+    if (j - i == 2) {
+      neighbors_[slot(recs[i])] = recs[i + 1].cell;
+      neighbors_[slot(recs[i + 1])] = recs[i].cell;
+    } else {
+      const Rec& r = recs[i];
+      const auto c = static_cast<std::size_t>(r.cell);
+      const FaceNodes fn = linear_face(cells_[c].type, r.local);
+      std::array<std::int64_t, 4> ids{};
+      for (int k = 0; k < fn.count; ++k) ids[static_cast<std::size_t>(k)] = mesh_.cell(c)[fn.node[static_cast<std::size_t>(k)]];
+      const std::array<int, 4> perm = canonical_face_order(ids, fn.count);
+      BoundaryFace b;
+      b.count = fn.count;
+      b.cell = r.cell;
+      b.local = r.local;
+      for (int k = 0; k < fn.count; ++k)
+        b.points[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(ids[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])]);
+      boundary_.push_back(b);
+    }
+    ++face_count_;
+    i = j;
+  }
+  std::vector<Rec>().swap(recs);
+  // Cells around each point (for exits through edges and vertices).
+  point_cells_offsets_.assign(mesh_.points.size() + 1, 0);
+  for (std::int32_t p : mesh_.connectivity) ++point_cells_offsets_[static_cast<std::size_t>(p) + 1];
+  for (std::size_t p = 0; p < mesh_.points.size(); ++p) point_cells_offsets_[p + 1] += point_cells_offsets_[p];
+  point_cells_.assign(mesh_.connectivity.size(), -1);
+  {
+    std::vector<std::int32_t> fill(point_cells_offsets_.begin(), point_cells_offsets_.end() - 1);
+    for (std::size_t c = 0; c < n; ++c)
+      for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k)
+        point_cells_[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh_.cell(c)[k])]++)] = static_cast<std::int32_t>(c);
+  }
+  box_min_ = box_max_ = mesh_.points.front();
+  for (const Vec3& p : mesh_.points) {
+    box_min_ = box_min_.cwiseMin(p);
+    box_max_ = box_max_.cwiseMax(p);
+  }
+  diagonal_ = (box_max_ - box_min_).norm();
+  first_hit_ = std::make_unique<CellBoundaryFirstHit>(*this);
+}
+
+CellTraversal::~CellTraversal() = default;
+
+std::array<std::int64_t, kMaxLinearNodes> CellTraversal::global_ids(std::size_t c) const {
+  std::array<std::int64_t, kMaxLinearNodes> ids{};
+  for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k) ids[k] = mesh_.cell(c)[k];
+  return ids;
+}
+
+// ---- Walking -----------------------------------------------------------------------------------
+
+bool CellTraversal::continue_in(std::size_t c, const Walk& w, double t, double& t_far,
+                                std::vector<int>* exit_faces, bool* failed) const {
+  const auto ids = global_ids(c);
+  const Chord ch = chord(cells_[c], w.ray(), ids.data());
+  if (ch.failed && failed) *failed = true;
+  const double slack = w.slack(t);
+  for (const ChordInterval& iv : ch.intervals) {
+    if (!(iv.t_near <= t + slack) || !(iv.t_far > t)) continue;
+    t_far = iv.t_far;
+    if (exit_faces) {
+      exit_faces->clear();
+      const double s = w.slack(t_far);
+      for (const ChordFaceHit& h : ch.hits)
+        if (std::fabs(h.t - t_far) <= s && std::find(exit_faces->begin(), exit_faces->end(), h.face) == exit_faces->end())
+          exit_faces->push_back(h.face);
+    }
+    return true;
+  }
+  return false;
+}
+
+// Rule 2: the cell that continues the ray at t after `from` (left through `exit_faces`).
+bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector<int>& exit_faces, double t,
+                              std::int32_t& cell, double& t_far, std::vector<int>& faces,
+                              CellTraversalStats& stats, bool& failed) const {
+  double best = t;
+  bool found = false;
+  std::vector<int> cand_faces;
+  const auto consider = [&](std::int32_t c) {
+    double far = 0.0;
+    if (continue_in(static_cast<std::size_t>(c), w, t, far, &cand_faces, &failed) && far > best) {
+      best = far;
+      cell = c;
+      faces = cand_faces;
+      found = true;
+    }
+  };
+  std::vector<std::int32_t> tried;
+  for (int f : exit_faces) {
+    const std::int32_t nb = neighbors_[static_cast<std::size_t>(neighbor_offsets_[from] + f)];
+    if (nb < 0 || std::find(tried.begin(), tried.end(), nb) != tried.end()) continue;
+    tried.push_back(nb);
+    consider(nb);
+  }
+  if (found) {
+    ++stats.face_steps;
+    t_far = best;
+    return true;
+  }
+  // An edge or vertex exit: every cell sharing a point with the exit faces (or with the cell).
+  std::vector<std::int32_t> points;
+  const LinearCellType type = cells_[from].type;
+  if (exit_faces.empty()) {
+    for (std::size_t k = 0; k < mesh_.nodes_of(from); ++k) points.push_back(mesh_.cell(from)[k]);
+  } else {
+    for (int f : exit_faces) {
+      const FaceNodes fn = linear_face(type, f);
+      for (int k = 0; k < fn.count; ++k) points.push_back(mesh_.cell(from)[fn.node[static_cast<std::size_t>(k)]]);
+    }
+  }
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  tried.push_back(static_cast<std::int32_t>(from));
+  for (std::int32_t p : points)
+    for (std::int32_t i = point_cells_offsets_[static_cast<std::size_t>(p)]; i < point_cells_offsets_[static_cast<std::size_t>(p) + 1]; ++i) {
+      const std::int32_t c = point_cells_[static_cast<std::size_t>(i)];
+      if (std::find(tried.begin(), tried.end(), c) != tried.end()) continue;
+      tried.push_back(c);
+      consider(c);
+    }
+  if (found) {
+    ++stats.star_steps;
+    t_far = best;
+  }
+  return found;
+}
+
+void CellTraversal::trace(const ViewRay& ray, CellTrace& out, CellTraversalStats* stats) const {
+  out.chords.clear();
+  out.failed_chords = 0;
+  CellTraversalStats local;
+  local.rays = 1;
+  Vec3 d = ray.direction;
+  const double dnorm = d.norm();
+  if (dnorm > 0.0 && std::isfinite(dnorm)) d /= dnorm;
+  out.direction = d;
+  out.origin = ray.origin;
+  out.t_eye = 0.0;
+  double tb0 = -std::numeric_limits<double>::infinity(), tb1 = std::numeric_limits<double>::infinity();
+  const double pad = 1e-6 * diagonal_ + 1e-300;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = box_min_[k] - pad, hi = box_max_[k] + pad;
+    if (d[k] == 0.0) {
+      if (ray.origin[k] < lo || ray.origin[k] > hi) tb1 = -1.0;
+    } else {
+      double a = (lo - ray.origin[k]) / d[k], b = (hi - ray.origin[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      tb0 = std::max(tb0, a);
+      tb1 = std::min(tb1, b);
+    }
+  }
+  if (!(tb1 >= std::max(tb0, 0.0)) || !(dnorm > 0.0)) {
+    if (stats) stats->add(local);
+    return;
+  }
+  const double t_base = tb0 - 0.01 * diagonal_;
+  out.origin = ray.origin + t_base * d;
+  out.t_eye = -t_base;
+  Walk w;
+  w.o = out.origin;
+  w.d = d;
+  w.self = this;
+  const double t_end = tb1 - t_base + 0.01 * diagonal_;
+  const long budget = 8 * static_cast<long>(cells_.size()) + 1000;
+  long steps = 0;
+  double t = 0.0;
+  bool failed = false;
+  std::vector<int> exit_faces, next_faces;
+  const auto emit = [&](std::int32_t c, double a, double b) {
+    ++local.chords;
+    out.chords.push_back({c, a, b});
+  };
+  while (steps < budget) {
+    // Rule 3: outside the mesh, the next entry beyond t.
+    w.t_lo = t;
+    w.tol = w.slack(t);
+    ++local.first_hit_queries;
+    const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
+    first_hit_->first(w, t - margin, t_end);
+    if (w.best_face < 0) break;
+    std::int32_t cell = boundary_[static_cast<std::size_t>(w.best_face)].cell;
+    double t_in = std::max(t, w.best_t);
+    double t_out = w.best_far;
+    exit_faces = w.best_exit;
+    while (++steps < budget) {
+      emit(cell, t_in, t_out);  // t_out > t_in (continue_in)
+      t = t_out;
+      std::int32_t next = -1;
+      double next_far = 0.0;
+      if (!next_cell(w, static_cast<std::size_t>(cell), exit_faces, t, next, next_far, next_faces, local, failed))
+        break;  // left the mesh at t
+      cell = next;
+      t_in = t;
+      t_out = next_far;
+      std::swap(exit_faces, next_faces);
+    }
+  }
+  if (steps >= budget) ++local.budget_exhausted;
+  // Chords that failed to classify (Newton) anywhere on this ray's candidates.
+  if (failed || w.failed > 0) {
+    out.failed_chords = 1 + w.failed;
+    local.failed_chords += out.failed_chords;
+  }
+  if (stats) stats->add(local);
+}
+
+CellRayResult CellTraversal::integrate(const CellTrace& trace, const LinearCellIntegrator& integrator,
+                                       const Rgb& background) const {
+  CellRayResult r;
+  const ViewRay ray{trace.origin, trace.direction};
+  CellPieceIntegral acc;
+  acc.converged = true;
+  bool any = false;
+  if (trace.failed_chords > 0) {
+    r.failed_chords += trace.failed_chords;
+    r.converged = false;
+    r.failure = "a cell's chord could not be located (inverse map did not converge)";
+  }
+  for (const CellChordOnRay& c : trace.chords) {
+    const double a = std::max(c.t_in, trace.t_eye);
+    if (!(c.t_out > a)) continue;
+    const CellPieceIntegral p = integrator.integrate(cells_[static_cast<std::size_t>(c.cell)], ray, a, c.t_out);
+    ++r.chords;
+    if (!p.converged) {
+      ++r.failed_chords;
+      if (r.converged) r.failure = std::string("cell ") + std::to_string(c.cell) + ": " + p.failure;
+      r.converged = false;
+    }
+    acc = any ? composite(acc, p) : p;
+    any = true;
+  }
+  if (any) {
+    r.emission = acc.emission;
+    r.optical_depth = acc.optical_depth;
+    r.error_estimate = acc.error_estimate;
+  }
+  for (std::size_t ch = 0; ch < kChannels; ++ch)
+    r.intensity[ch] = r.emission[ch] + std::exp(-r.optical_depth[ch]) * background[ch];
+  return r;
+}
+
+}  // namespace rayint

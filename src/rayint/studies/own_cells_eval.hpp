@@ -1,0 +1,47 @@
+#pragma once
+// `rayint eval` of a mesh case whose file holds cells other than tetrahedra, in the cells' own
+// interpolation ("mode": "own", mesh/cell_traversal.hpp): per ray the composite of its chords
+// integrated in double (cells/cell_integral.hpp) and, unless skipped, the same chords integrated
+// by the independent 50-digit cell reference (reference/cell_reference.hpp) and composited in long
+// double, with the absolute difference (the largest channel of emission and optical depth).
+// A ray whose chord could not be located or integrated is failed: its value and error are not
+// numbers (null in JSON) and it is counted. The reference checks the integration along the
+// traversal's chords; the chords themselves are checked against every cell's own chord in the
+// tests ([celltraversal]).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rayint/mesh/cell_traversal.hpp"
+#include "rayint/mesh/mesh_case.hpp"
+
+namespace rayint {
+
+struct OwnRayEvaluation {
+  bool converged = true;
+  std::string failure;          // why not (empty when converged)
+  Rgb intensity{}, emission{}, optical_depth{};
+  double error_estimate = 0.0;  // the double path's own estimate (sum over chords)
+  long chords = 0;
+  bool referenced = false;      // the 50-digit reference ran and succeeded
+  std::string reference_failure;
+  Rgb reference_intensity{};
+  double abs_error = 0.0;       // max over channels of |emission - ref| and |depth - ref|
+};
+
+struct OwnCaseEvaluation {
+  std::string name, source, mesh_source;
+  std::vector<std::pair<std::string, long>> cells;  // by type
+  std::size_t faces = 0, boundary_faces = 0;
+  std::vector<OwnRayEvaluation> rays;
+  long failed = 0;                 // rays not converged
+  long reference_failed = 0;
+  double max_abs_error = 0.0;      // over referenced rays
+  double seconds_per_ray = 0.0;    // traversal + integration, mean (no reference)
+  CellTraversalStats traversal;
+};
+
+// `mesh_case.cells` must be set. threads: for the reference (0 = all cores).
+OwnCaseEvaluation evaluate_own_cells(const MeshCase& mesh_case, bool with_reference, unsigned threads = 0);
+
+}  // namespace rayint
