@@ -188,3 +188,42 @@ TEST_CASE("grad: a transfer function from a ParaView preset names where its node
   REQUIRE(r2.status == 0);
   CHECK_FALSE(json::parse(slurp(dir.path / "g2.json"))["cases"][0].contains("transfer_function_nodes"));
 }
+
+TEST_CASE("grad: a preset case carries the gradient w.r.t. the preset's own points, or why not", "[grad][grad_cli]") {
+  TempDir dir;
+  // RGB with default midpoints: the imported colour nodes are the RGBPoints themselves, so
+  // dI_r/dr_k must equal the colour node k's value derivative (an independent plumbing check).
+  dir.write("rgb.json", R"([{"Name": "lin", "ColorSpace": "RGB",
+    "RGBPoints": [0, 0.1, 0.2, 0.9, 0.5, 0.8, 0.3, 0.2, 1, 0.9, 0.6, 0.5],
+    "Points": [0, 0.1, 0.5, 0, 0.45, 0.6, 0.5, 0, 1, 0.3, 0.5, 0]}])");
+  dir.write("case.json", R"({"name": "preset-points", "transfer_function": {"paraview_preset": "rgb.json",
+    "unit_distance": 2}, "rays": [{"background": [0.2, 0.1, 0], "segments": [
+    {"length": 0.7, "scalar": [0.1, 0.9]}, {"length": 0.4, "scalar": [0.9, 0.3]}]}]})");
+  auto r = run_cli(dir.path, "grad case.json --no-reference --methods exact,riemann:n=8 -o g.json");
+  REQUIRE(r.status == 0);
+  json j = json::parse(slurp(dir.path / "g.json"));
+  const json& m = j["cases"][0]["rays"][0]["methods"]["exact"];
+  const json& pg = m["preset_gradient"];
+  REQUIRE(pg["RGBPoints"].is_object());
+  REQUIRE(pg["RGBPoints"]["r"].size() == 3);
+  REQUIRE(pg["Points"]["g"].size() == 3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(pg["RGBPoints"]["r"][k][1].get<double>() == m["gradient"]["color"]["r"][k][1].get<double>());
+    CHECK(pg["RGBPoints"]["r"][k][2].get<double>() == 0.0);  // I_r does not depend on green
+    // rho = opacity / 2 under unit_distance 2: dI/dopacity = dI/drho / 2.
+    CHECK(pg["Points"]["b"][k][1].get<double>() == Approx(m["gradient"]["density"]["b"][k][1].get<double>() / 2));
+  }
+  CHECK(j["cases"][0]["rays"][0]["methods"]["riemann:n=8"].contains("preset_gradient"));
+  // "Cool to Warm" is Diverging: linearised adaptively, so no numbers, a reason.
+  dir.write("cw.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));
+  dir.write("case2.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
+    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
+    {"length": 0.7, "scalar": [0.1, 0.9]}]}]})");
+  r = run_cli(dir.path, "grad case2.json --no-reference -o g2.json");
+  REQUIRE(r.status == 0);
+  j = json::parse(slurp(dir.path / "g2.json"));
+  const json& pg2 = j["cases"][0]["rays"][0]["methods"]["exact"]["preset_gradient"];
+  CHECK(pg2["RGBPoints"].is_null());
+  CHECK(pg2["RGBPoints_unavailable"].get<std::string>().find("adaptively") != std::string::npos);
+  CHECK(pg2["Points"].is_null());  // a constant opacity was given
+}

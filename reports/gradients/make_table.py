@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Gradient error of Riemann renderers vs step count and of psi_table vs table size, from `rayint grad` JSON.
+"""Gradient error of Riemann renderers vs step count and of psi_table and preintegrated vs table size, from `rayint grad` JSON.
 
 Usage (from the repository root; the commands that made the files in this folder are in
 reports/gradients/README.md):
@@ -61,19 +61,21 @@ def main(path, outdir):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6)
 
-    # psi_table (bilinear lookup): gradient error vs table size.
+    # psi_table and preintegrated (bilinear lookup): gradient error vs table size.
     tables = {}
     for c, r, label, g, i in rows:
-        mm = re.match(r"psi_table:size=(\d+)$", label)
+        mm = re.match(r"(psi_table|preintegrated):size=(\d+)$", label)
         if mm and g is not None:
-            tables.setdefault((c, r), []).append((int(mm.group(1)), g, i))
-    for (c, r), pts in sorted(tables.items()):
+            tables.setdefault((mm.group(1), c, r), []).append((int(mm.group(2)), g, i))
+    for (method, c, r), pts in sorted(tables.items()):
         pts.sort()
         ns = [p[0] for p in pts]
-        line, = ax_t.loglog(ns, [p[1] for p in pts], "o-", label=f"{c} ray {r}: gradient")
-        ax_t.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
-                    label=f"{c} ray {r}: intensity")
-    ax_t.set_xlabel("psi_table size (lookup=linear)")
+        style = "o-" if method == "psi_table" else "^-."
+        line, = ax_t.loglog(ns, [p[1] for p in pts], style, label=f"{method} {c} ray {r}: gradient")
+        if method == "psi_table":
+            ax_t.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
+                        label=f"{method} {c} ray {r}: intensity")
+    ax_t.set_xlabel("table size (lookup=linear; preintegrated: dims=2, step 2^-6)")
     ax_t.set_ylabel("max relative error vs 50-digit reference")
     ax_t.set_title("... and a table's (derivative of the bilinear table)")
     ax_t.grid(True, which="both", alpha=0.3)

@@ -8,6 +8,7 @@
 #include "rayint/grid/trilinear_integral.hpp"
 
 #include <algorithm>
+#include <map>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <stdexcept>
@@ -38,18 +39,24 @@ Cubic shifted(const Cubic& c, double x0) {
   return {horner(c, x0), (3.0 * c[3] * x0 + 2.0 * c[2]) * x0 + c[1], 3.0 * c[3] * x0 + c[2], c[3]};
 }
 
-// The linear branch of f containing the scalar x: value = v0 + beta (x - x0).
+// The linear branch of f containing the scalar x: value = v0 + beta (x - x0); for gradients the
+// node it came from: the interval's lower node `node` (interval = true, span its width) or the
+// end node whose value is extended (interval = false).
 struct Line {
   double v0 = 0.0, beta = 0.0, x0 = 0.0;
+  std::size_t node = 0;
+  bool interval = false;
+  double span = 0.0;
   double at(double x) const { return v0 + beta * (x - x0); }
 };
 
 Line line_at(const PiecewiseLinear& f, double x) {
   const auto& s = f.scalar;
-  if (s.size() == 1 || x <= s.front()) return {f.value.front(), 0.0, 0.0};
-  if (x >= s.back()) return {f.value.back(), 0.0, 0.0};
+  if (s.size() == 1 || x <= s.front()) return {f.value.front(), 0.0, 0.0, 0, false, 0.0};
+  if (x >= s.back()) return {f.value.back(), 0.0, 0.0, s.size() - 1, false, 0.0};
   const std::size_t k = static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), x) - s.begin());
-  return {f.value[k - 1], (f.value[k] - f.value[k - 1]) / (s[k] - s[k - 1]), s[k - 1]};
+  const double span = s[k] - s[k - 1];
+  return {f.value[k - 1], (f.value[k] - f.value[k - 1]) / span, s[k - 1], k - 1, true, span};
 }
 
 // The line composed with the cubic g: a cubic in u.
@@ -60,6 +67,62 @@ Cubic compose(const Line& l, const Cubic& g) {
 // tau(u) = int_0^u rho (rho a cubic).
 double depth(const Cubic& rho, double u) {
   return u * (rho[0] + u * (rho[1] / 2.0 + u * (rho[2] / 3.0 + u * rho[3] / 4.0)));
+}
+
+// The points and weights of the colour term's composite Gauss-Legendre rule on a piece of length
+// h with density cubic rho, depth T and density bound rho_max > 0: panels of depth <= kPanelDepth
+// from where the depth to the exit falls below kTailDepth (tau is monotone). Each entry is
+// (u, half panel width * GL weight); the integrand's factor rho(u) exp(-(T - tau(u))) is the
+// caller's.
+void quadrature_points(const Cubic& rho, double h, double T, double rho_max,
+                       std::vector<std::pair<double, double>>& out) {
+  const auto& x = Rule::abscissa();  // nodes in [0, 1] of the symmetric rule on [-1, 1]
+  const auto& w = Rule::weights();
+  out.clear();
+  double u0 = 0.0;
+  if (T > TrilinearIntegrator::kTailDepth) {
+    double a = 0.0, b = h;
+    for (int it = 0; it < 200 && b - a > 1e-16 * h; ++it) {
+      const double m = 0.5 * (a + b);
+      (T - depth(rho, m) > TrilinearIntegrator::kTailDepth ? a : b) = m;
+    }
+    u0 = a;
+  }
+  const double span = h - u0;
+  const double panels = std::max(1.0, std::ceil(span * rho_max / TrilinearIntegrator::kPanelDepth));
+  const long n = static_cast<long>(panels);
+  const double p = span / panels, half = 0.5 * p;
+  for (long j = 0; j < n; ++j) {
+    const double mid = u0 + (static_cast<double>(j) + 0.5) * p;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      for (int side = 0; side < (x[i] == 0.0 ? 1 : 2); ++side)
+        out.emplace_back(side == 0 ? mid + half * x[i] : mid - half * x[i], half * w[i]);
+  }
+}
+
+// The pieces of one cube (cubic c on [0, length]) between the transfer functions' breakpoints:
+// f(g, h, f_mid, knot) per piece, g the cubic shifted to the piece's far end `knot`, f_mid the
+// scalar at its middle (which picks the functions' linear branch). A cube whose Bernstein hull
+// holds no breakpoint strictly inside is one piece; otherwise poly::split_points cuts it (and
+// `split` counts it).
+template <class F>
+void visit_pieces(const Cubic& c, double length, const std::vector<double>& breakpoints, F&& f, long& split) {
+  if (!(length > 0.0)) return;
+  double lo = 0.0, hi = 0.0;
+  hull(c, length, lo, hi);
+  const auto first_above = std::upper_bound(breakpoints.begin(), breakpoints.end(), lo);
+  if (first_above == breakpoints.end() || !(*first_above < hi)) {
+    f(c, length, horner(c, 0.5 * length), 0.0);
+    return;
+  }
+  ++split;
+  const std::vector<double> knots =
+      poly::split_points(std::vector<double>(c.begin(), c.end()), breakpoints, length);
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    const double h = knots[k + 1] - knots[k];
+    if (!(h > 0.0)) continue;
+    f(shifted(c, knots[k]), h, horner(c, 0.5 * (knots[k] + knots[k + 1])), knots[k]);
+  }
 }
 
 }  // namespace
@@ -105,22 +168,9 @@ TrilinearRayResult TrilinearIntegrator::integrate(const PolyRay& ray) const {
 void TrilinearIntegrator::add_segment(const Cubic& c, double length, TrilinearRayResult& r,
                                       Rgb* emission_only) const {
   ++r.cubes;
-  if (!(length > 0.0)) return;
-  double lo = 0.0, hi = 0.0;
-  hull(c, length, lo, hi);
-  const auto first_above = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), lo);
-  if (first_above == breakpoints_.end() || !(*first_above < hi)) {
-    add_piece(c, length, horner(c, 0.5 * length), r, emission_only);
-    return;
-  }
-  ++r.split_cubes;
-  const std::vector<double> knots =
-      poly::split_points(std::vector<double>(c.begin(), c.end()), breakpoints_, length);
-  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
-    const double h = knots[k + 1] - knots[k];
-    if (!(h > 0.0)) continue;
-    add_piece(shifted(c, knots[k]), h, horner(c, 0.5 * (knots[k] + knots[k + 1])), r, emission_only);
-  }
+  visit_pieces(c, length, breakpoints_, [&](const Cubic& g, double h, double f_mid, double) {
+    add_piece(g, h, f_mid, r, emission_only);
+  }, r.split_cubes);
 }
 
 void TrilinearIntegrator::add_piece(const Cubic& g, double h, double f_mid, TrilinearRayResult& r,
@@ -152,28 +202,8 @@ void TrilinearIntegrator::add_piece(const Cubic& g, double h, double f_mid, Tril
         trans = std::exp(-T);
         nodes.clear();
         if (emission_only == nullptr) {
-          // Start of the part that matters: depth to the exit below kTailDepth (tau monotone).
-          double u0 = 0.0;
-          if (T > kTailDepth) {
-            double a = 0.0, b = h;
-            for (int it = 0; it < 200 && b - a > 1e-16 * h; ++it) {
-              const double m = 0.5 * (a + b);
-              (T - depth(rho, m) > kTailDepth ? a : b) = m;
-            }
-            u0 = a;
-          }
-          const double span = h - u0;
-          const double panels = std::max(1.0, std::ceil(span * rho_max / kPanelDepth));
-          const long n = static_cast<long>(panels);
-          const double p = span / panels, half = 0.5 * p;
-          for (long j = 0; j < n; ++j) {
-            const double mid = u0 + (static_cast<double>(j) + 0.5) * p;
-            for (std::size_t i = 0; i < x.size(); ++i)
-              for (int side = 0; side < (x[i] == 0.0 ? 1 : 2); ++side) {
-                const double u = side == 0 ? mid + half * x[i] : mid - half * x[i];
-                nodes.emplace_back(u, half * w[i] * horner(rho, u) * std::exp(-(T - depth(rho, u))));
-              }
-          }
+          quadrature_points(rho, h, T, rho_max, nodes);
+          for (auto& [u, wt] : nodes) wt = wt * horner(rho, u) * std::exp(-(T - depth(rho, u)));
         } else {  // int_0^h kappa rho du, degree 6: 8 nodes are exact
           for (std::size_t i = 0; i < x.size(); ++i)
             for (int side = 0; side < (x[i] == 0.0 ? 1 : 2); ++side) {
@@ -202,6 +232,188 @@ void TrilinearIntegrator::add_piece(const Cubic& g, double h, double f_mid, Tril
     r.intensity[ch] = r.intensity[ch] * trans + emission;
     r.transmittance[ch] *= trans;
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gradient. The derivative of the integral above, piece by piece, with the same pieces (the
+// cube walk, visit_pieces' cuts, the branch picked at f_mid) and the same quadrature points
+// (quadrature_points): per piece and channel, with rho(u) = sum_m rho_m u^m and kappa(u) =
+// sum_m kappa_m u^m (the composed cubics), tau and T as above, E_j = exp(-(T - tau(u_j))) and
+// wt_j = cw_j rho(u_j) E_j at the points u_j with weights cw_j, the light leaving is
+//     I_out = I_in e^{-T} + kappa(h) (1 - e^{-T}) + sum_j wt_j (kappa(u_j) - kappa(h)),
+// and its derivatives are
+//     d/dT       = e^{-T} (kappa(h) - I_in) - sum_j wt_j (kappa(u_j) - kappa(h)),
+//     d/d rho_m  = d/dT h^{m+1}/(m+1) + sum_j (kappa(u_j) - kappa(h)) cw_j E_j (u_j^m + rho(u_j) u_j^{m+1}/(m+1)),
+//     d/d kappa_m = h^m (1 - e^{-T}) + sum_j wt_j (u_j^m - h^m),
+// the derivative of the rule, i.e. the same rule applied to the derivative's integrand (smooth on
+// the piece: 8-point Gauss-Legendre on panels of depth <= kPanelDepth integrates it as accurately
+// as the forward one). The forward skips a transparent piece (rho = 0 on it) and the colour
+// term where kappa or f is constant on the piece; those terms are 0 there but their derivatives
+// are not (a density node value raised inside a transparent stretch absorbs), so the gradient
+// evaluates every term on every piece. Then rho_m = beta_rho g_m (+ v0 - beta x0 for m = 0) with
+// g the piece's scalar cubic and (v0, beta, x0) the density's branch at f_mid (likewise kappa):
+//   - d/d g_m = beta_rho d/d rho_m + beta_kappa d/d kappa_m, and g = sum over the cube's corners
+//     of value_c * (corner cubic c shifted to the piece, trilinear_corner_cubics), so
+//     d/d value_c = sum_m d/d g_m * (corner cubic c)_m;
+//   - d/d v0 = d/d rho_0, d/d beta = d/d rho_0 (g_0 - x0) + sum_{m>=1} d/d rho_m g_m,
+//     d/d x0 = -beta d/d rho_0, to the branch's two nodes (beta = (v_k - v_{k-1})/(p_k - p_{k-1}))
+//     or, on a constant extension, to the end node's value.
+// The cut points move with the values and nodes, but rho(f) and kappa(f) are continuous there,
+// so those terms cancel (Leibniz): the pieces are held fixed. The tail skipped where the depth to
+// the exit exceeds kTailDepth is skipped in the derivative too (its share < e^{-50}).
+// Reverse accumulation: each piece's derivatives are scaled by the transmittance of everything
+// nearer than it (the adjoint), computed after the forward sweep.
+// Accuracy: tests/test_trilinear_grad.cpp ([trilinear_grad]) against fourth-order differences
+// (h = 1e-5) of the 50-digit polynomial reference on the trilinear tests' hard rays, 56 rays:
+// voxel values worst 2.1e-11, node values and positions 5.2e-11 of the channel's largest entry.
+
+double TrilinearGradient::channel_scale(int c) const {
+  double m = 0.0;
+  for (const Rgb& d : d_value) m = std::max(m, std::fabs(d[c]));
+  for (const auto* block : {&density, &color})
+    for (const NodeDerivative& n : (*block)[static_cast<std::size_t>(c)])
+      m = std::max({m, std::fabs(n.value), std::fabs(n.position)});
+  return m;
+}
+
+TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const ViewRay& ray,
+                                                const Rgb& background) const {
+  TrilinearGradient out;
+  for (int c = 0; c < kChannels; ++c) {
+    const std::size_t ch = static_cast<std::size_t>(c);
+    out.density[ch].assign(tf_->density[ch].scalar.size(), NodeDerivative{});
+    out.color[ch].assign(tf_->color[ch].scalar.size(), NodeDerivative{});
+  }
+  out.intensity = integrate(grid, ray, background).intensity;
+  std::vector<TrilinearCubic> cubics;
+  std::vector<double> scratch;
+  trilinear_cubics(grid, ray, cubics, scratch);
+
+  // Forward: per piece and channel the local derivatives of I_out (before the adjoint).
+  struct Local {
+    double trans = 1.0;
+    double dg[4] = {0.0, 0.0, 0.0, 0.0};
+    Line rho_line, kappa_line;
+    double rho_v0 = 0.0, rho_beta = 0.0, rho_x0 = 0.0, kappa_v0 = 0.0, kappa_beta = 0.0, kappa_x0 = 0.0;
+  };
+  struct PieceRecord {
+    std::size_t cube = 0;
+    double knot = 0.0;
+    Local ch[kChannels];
+  };
+  std::vector<PieceRecord> pieces;
+  std::vector<std::pair<double, double>> points;
+  Rgb light = background;
+  long split = 0;
+  for (std::size_t m = 0; m < cubics.size(); ++m) {
+    visit_pieces(cubics[m].coeffs, cubics[m].length, breakpoints_, [&](const Cubic& g, double h, double f_mid, double knot) {
+      PieceRecord rec;
+      rec.cube = m;
+      rec.knot = knot;
+      double f_lo = 0.0, f_hi = 0.0;
+      hull(g, h, f_lo, f_hi);
+      for (int c = 0; c < kChannels; ++c) {
+        const std::size_t ch = static_cast<std::size_t>(c);
+        Local& L = rec.ch[ch];
+        L.rho_line = line_at(tf_->density[ch], f_mid);
+        L.kappa_line = line_at(tf_->color[ch], f_mid);
+        const Cubic rho = compose(L.rho_line, g), kappa = compose(L.kappa_line, g);
+        const double rho_max = std::max({L.rho_line.at(f_lo), L.rho_line.at(f_hi), 0.0});
+        const bool transparent = rho_max == 0.0;
+        const double T = transparent ? 0.0 : depth(rho, h);
+        const double trans = transparent ? 1.0 : std::exp(-T);
+        const double absorbed = transparent ? 0.0 : -std::expm1(-T);
+        quadrature_points(rho, h, T, rho_max, points);
+        const double kappa_exit = horner(kappa, h);
+        double q = 0.0;
+        double d_rho[4] = {0.0, 0.0, 0.0, 0.0}, d_kappa[4] = {0.0, 0.0, 0.0, 0.0};
+        double h_pow[5] = {1.0, h, h * h, h * h * h, h * h * h * h};
+        for (const auto& [u, cw] : points) {
+          const double rho_u = horner(rho, u);
+          const double e = std::exp(-(T - depth(rho, u)));
+          const double wt = cw * rho_u * e;
+          const double dk = horner(kappa, u) - kappa_exit;
+          q += wt * dk;
+          double u_pow = 1.0;
+          for (int k = 0; k < 4; ++k) {
+            d_rho[k] += dk * cw * e * (u_pow + rho_u * u_pow * u / (k + 1));
+            d_kappa[k] += wt * (u_pow - h_pow[k]);
+            u_pow *= u;
+          }
+        }
+        const double d_T = trans * (kappa_exit - light[ch]) - q;
+        for (int k = 0; k < 4; ++k) {
+          d_rho[k] += d_T * h_pow[k + 1] / (k + 1);
+          d_kappa[k] += h_pow[k] * absorbed;
+          L.dg[k] = L.rho_line.beta * d_rho[k] + L.kappa_line.beta * d_kappa[k];
+        }
+        L.rho_v0 = d_rho[0];
+        L.rho_x0 = -L.rho_line.beta * d_rho[0];
+        L.rho_beta = d_rho[0] * (g[0] - L.rho_line.x0) + d_rho[1] * g[1] + d_rho[2] * g[2] + d_rho[3] * g[3];
+        L.kappa_v0 = d_kappa[0];
+        L.kappa_x0 = -L.kappa_line.beta * d_kappa[0];
+        L.kappa_beta =
+            d_kappa[0] * (g[0] - L.kappa_line.x0) + d_kappa[1] * g[1] + d_kappa[2] * g[2] + d_kappa[3] * g[3];
+        L.trans = trans;
+        // The forward's light, as add_piece composites it (colour term where it computes it).
+        if (!transparent) {
+          double emission = kappa_exit * absorbed;
+          if (L.kappa_line.beta != 0.0 && (g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0)) emission += q;
+          light[ch] = light[ch] * trans + emission;
+        }
+      }
+      pieces.push_back(rec);
+    }, split);
+  }
+
+  // Reverse: adjoint = transmittance of everything nearer than the piece.
+  std::map<std::size_t, Rgb> voxel;
+  const auto to_nodes = [](const Line& line, double bar_v0, double bar_beta, double bar_x0,
+                           std::vector<NodeDerivative>& nodes) {
+    if (!line.interval) {
+      nodes[line.node].value += bar_v0;
+      return;
+    }
+    const double per_value = bar_beta / line.span, per_position = bar_beta * line.beta / line.span;
+    nodes[line.node].value += bar_v0 - per_value;
+    nodes[line.node + 1].value += per_value;
+    nodes[line.node].position += bar_x0 + per_position;
+    nodes[line.node + 1].position -= per_position;
+  };
+  Rgb adjoint{1.0, 1.0, 1.0};
+  std::size_t corners_of = cubics.size();
+  std::array<std::array<double, 4>, 8> corners{};
+  for (std::size_t k = pieces.size(); k-- > 0;) {
+    const PieceRecord& rec = pieces[k];
+    if (rec.cube != corners_of) {
+      corners = trilinear_corner_cubics(grid, ray, cubics[rec.cube]);
+      corners_of = rec.cube;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      const Cubic b = shifted(corners[static_cast<std::size_t>(corner)], rec.knot);
+      Rgb d{};
+      for (int c = 0; c < kChannels; ++c) {
+        const Local& L = rec.ch[c];
+        d[c] = adjoint[c] * (L.dg[0] * b[0] + L.dg[1] * b[1] + L.dg[2] * b[2] + L.dg[3] * b[3]);
+      }
+      Rgb& acc = voxel[trilinear_corner_index(grid, cubics[rec.cube].cube, corner)];
+      for (int c = 0; c < kChannels; ++c) acc[c] += d[c];
+    }
+    for (int c = 0; c < kChannels; ++c) {
+      const std::size_t ch = static_cast<std::size_t>(c);
+      const Local& L = rec.ch[ch];
+      const double a = adjoint[c];
+      to_nodes(L.rho_line, a * L.rho_v0, a * L.rho_beta, a * L.rho_x0, out.density[ch]);
+      to_nodes(L.kappa_line, a * L.kappa_v0, a * L.kappa_beta, a * L.kappa_x0, out.color[ch]);
+      adjoint[c] *= L.trans;
+    }
+  }
+  out.background = adjoint;
+  for (const auto& [i, d] : voxel) {
+    out.index.push_back(i);
+    out.d_value.push_back(d);
+  }
+  return out;
 }
 
 }  // namespace rayint

@@ -32,6 +32,7 @@
 
 #include "rayint/grid/voxel_grid.hpp"
 #include "rayint/model/poly_ray.hpp"
+#include "rayint/model/ray_gradient.hpp"
 #include "rayint/model/transfer_function.hpp"
 
 namespace rayint {
@@ -42,6 +43,20 @@ struct TrilinearRayResult {
   long cubes = 0;                    // cubes (segments) crossed
   long pieces = 0;                   // pieces integrated (>= cubes with non-zero length)
   long split_cubes = 0;              // cubes cut at a transfer-function breakpoint
+};
+
+// The gradient of one ray's trilinear integral (TrilinearIntegrator::gradient): per channel c,
+// dI_c with respect to the background, every grid point value the ray's cubes touch (sparse,
+// ascending index; the others are 0), and every transfer-function node's position and value
+// (density[c] and color[c], like model/ray_gradient.hpp's node blocks).
+struct TrilinearGradient {
+  Rgb intensity{};   // the forward intensity (integrate()'s, bit for bit)
+  Rgb background{};  // dI_c / d background_c = transmittance
+  std::vector<std::size_t> index;  // grid points with a derivative (ascending)
+  std::vector<Rgb> d_value;        // [i][c] dI_c / d value of point index[i]
+  std::array<std::vector<NodeDerivative>, kChannels> density, color;
+  // Largest |entry| of channel c over the voxel and node blocks.
+  double channel_scale(int c) const;
 };
 
 class TrilinearIntegrator {
@@ -59,6 +74,9 @@ class TrilinearIntegrator {
   // absorption off): on each piece kappa rho is a polynomial of degree 6, integrated exactly
   // (up to rounding) by 8-point Gauss-Legendre.
   Rgb emission_only(const VoxelGrid& grid, const ViewRay& ray) const;
+  // The derivative of integrate(grid, ray, background) with respect to every grid point value,
+  // transfer-function node and the background (see trilinear_integral.cpp, "Gradient").
+  TrilinearGradient gradient(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background) const;
 
  private:
   void add_segment(const std::array<double, 4>& c, double length, TrilinearRayResult& r,

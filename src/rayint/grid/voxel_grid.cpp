@@ -169,6 +169,44 @@ Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RaySpan& withi
   return out;
 }
 
+namespace {
+
+// The trilinear weight of each corner c of `cube` (bit i of c: upper side on axis i) along the
+// ray as a cubic in s, the distance from the piece's far end (t = t_far - s / speed): the
+// product over the axes of u_i(s) = a_i + b_i s or 1 - u_i(s).
+std::array<Cubic, 8> corner_cubics(const IndexRay& r, const std::array<int, 3>& cube, double t_far, double speed) {
+  std::array<double, 3> a{}, b{};
+  for (int i = 0; i < 3; ++i) {
+    a[i] = r.x0[i] + t_far * r.dx[i] - cube[i];
+    b[i] = -r.dx[i] / speed;
+  }
+  std::array<Cubic, 8> out{};
+  for (int c = 0; c < 8; ++c) {
+    Cubic p{1.0, 0.0, 0.0, 0.0};
+    for (int i = 0; i < 3; ++i) {
+      const bool upper_side = (c >> i) & 1;
+      p = upper_side ? times_linear(p, a[i], b[i]) : times_linear(p, 1.0 - a[i], -b[i]);
+    }
+    out[static_cast<std::size_t>(c)] = p;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::array<std::array<double, 4>, 8> trilinear_corner_cubics(const VoxelGrid& grid, const ViewRay& ray,
+                                                             const TrilinearCubic& piece) {
+  return corner_cubics(to_index(grid, ray), piece.cube, piece.t_far, ray.direction.norm());
+}
+
+std::size_t trilinear_corner_index(const VoxelGrid& grid, const std::array<int, 3>& cube, int corner) {
+  const auto& d = grid.dims();
+  return static_cast<std::size_t>(cube[0] + (corner & 1)) +
+         static_cast<std::size_t>(d[0]) * (static_cast<std::size_t>(cube[1] + ((corner >> 1) & 1)) +
+                                           static_cast<std::size_t>(d[1]) *
+                                               static_cast<std::size_t>(cube[2] + ((corner >> 2) & 1)));
+}
+
 void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<TrilinearCubic>& out,
                       std::vector<double>& t) {
   out.clear();
@@ -198,23 +236,13 @@ void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<Tri
     piece.t_far = t[m + 1];
     piece.t_near = t[m];
     const double t_mid = 0.5 * (piece.t_far + piece.t_near);
-    // u_i(s) = a_i + b_i s with t = t_far - s / speed.
-    std::array<double, 3> a{}, b{};
-    for (int i = 0; i < 3; ++i) {
-      piece.cube[i] = cube_and_local(r.x0[i] + t_mid * r.dx[i], dims[i]).first;
-      a[i] = r.x0[i] + piece.t_far * r.dx[i] - piece.cube[i];
-      b[i] = -r.dx[i] / speed;
-    }
+    for (int i = 0; i < 3; ++i) piece.cube[i] = cube_and_local(r.x0[i] + t_mid * r.dx[i], dims[i]).first;
+    const std::array<Cubic, 8> basis = corner_cubics(r, piece.cube, piece.t_far, speed);
     Cubic f{};
     for (int c = 0; c < 8; ++c) {
-      Cubic p{1.0, 0.0, 0.0, 0.0};
-      for (int i = 0; i < 3; ++i) {
-        const bool upper_side = (c >> i) & 1;
-        p = upper_side ? times_linear(p, a[i], b[i]) : times_linear(p, 1.0 - a[i], -b[i]);
-      }
       const double fv = grid.value(piece.cube[0] + (c & 1), piece.cube[1] + ((c >> 1) & 1),
                                    piece.cube[2] + ((c >> 2) & 1));
-      for (int k = 0; k < 4; ++k) f[k] += fv * p[k];
+      for (int k = 0; k < 4; ++k) f[k] += fv * basis[static_cast<std::size_t>(c)][k];
     }
     piece.length = (piece.t_far - piece.t_near) * speed;
     piece.coeffs = f;

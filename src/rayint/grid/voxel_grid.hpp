@@ -144,6 +144,14 @@ struct TrilinearCubic {
 };
 void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<TrilinearCubic>& out,
                       std::vector<double>& scratch);
+// The trilinear weight of each of the piece's cube's 8 corners along the ray, as a cubic in the
+// same s as the piece's coefficients (corner c: bit i set = upper side on axis i): the piece's
+// cubic is sum_c value(corner c) * weight_c, computed by trilinear_cubics from these same cubics
+// (so d coeffs / d value(corner c) = weight_c exactly as the walk uses it). For gradients.
+std::array<std::array<double, 4>, 8> trilinear_corner_cubics(const VoxelGrid& grid, const ViewRay& ray,
+                                                             const TrilinearCubic& piece);
+// Index into values() of corner c of `cube`.
+std::size_t trilinear_corner_index(const VoxelGrid& grid, const std::array<int, 3>& cube, int corner);
 // The same as a PolyRay for the polynomial reference (reference/poly_reference.hpp).
 PolyRay trilinear_ray(const VoxelGrid& grid, const ViewRay& ray, const Rgb& background = Rgb{});
 

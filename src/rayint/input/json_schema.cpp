@@ -251,6 +251,11 @@ TransferFunctions BasicJsonSchema<Json>::transfer_functions(const json& j, const
 template <class Json>
 TransferFunctions BasicJsonSchema<Json>::preset_transfer_functions(const json& j,
                                                                    const std::string& path) const {
+  return import_paraview_preset(preset_import_request(j, path)).result.transfer;
+}
+
+template <class Json>
+PresetImportRequest BasicJsonSchema<Json>::preset_import_request(const json& j, const std::string& path) const {
   check_fields(j, path, {"paraview_preset", "name", "index", "convention", "unit_distance", "sample_distance",
                          "tolerance", "opacity", "range"});
   PresetImportRequest r;
@@ -294,7 +299,7 @@ TransferFunctions BasicJsonSchema<Json>::preset_transfer_functions(const json& j
     r.range = std::array<double, 2>{finite_number((*rg)[0], index_path(rpath, 0)),
                                     finite_number((*rg)[1], index_path(rpath, 1))};
   }
-  return import_paraview_preset(r).result.transfer;
+  return r;
 }
 
 template <class Json>

@@ -21,6 +21,8 @@
 
 namespace rayint {
 
+struct PresetImportRequest;  // input/paraview_preset.hpp
+
 template <class Json>
 class BasicJsonSchema {
  public:
@@ -70,6 +72,8 @@ class BasicJsonSchema {
   // reference to a ParaView preset {"paraview_preset": FILE, ...} (cases/README.md).
   TransferFunctions transfer_functions(const json& j, const std::string& path) const;
   TransferFunctions preset_transfer_functions(const json& j, const std::string& path) const;
+  // The import request of a {"paraview_preset": ...} transfer function (fields checked).
+  PresetImportRequest preset_import_request(const json& j, const std::string& path) const;
 
   // {"position", "look_at", "up"?, "fov_deg" | "ortho_height", "width", "height"}; validated.
   Camera camera(const json& j, const std::string& path) const;

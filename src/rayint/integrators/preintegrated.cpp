@@ -93,18 +93,12 @@
 #include "rayint/model/pieces.hpp"
 
 namespace rayint {
-namespace {
-
-// Number of equal-length-`step` pieces a length is cut into: ceil(length/step), except that a
-// remainder below 1e-9 step (length/step an integer up to rounding) adds no step.
-double step_count(double length, double step) {
+double preintegrated_step_count(double length, double step) {
   const double ratio = length / step;
   double n = std::ceil(ratio);
   if (n >= 2.0 && ratio - (n - 1.0) <= 1e-9) n -= 1.0;
   return std::max(n, 1.0);
 }
-
-}  // namespace
 
 PreintegratedOptions preintegrated_options(const MethodSpec& spec) {
   PreintegratedOptions o;
@@ -155,9 +149,7 @@ PreintegratedIntegrator::PreintegratedIntegrator(const TransferFunctions& tf,
   if (!(s_hi_ > s_lo_)) s_hi_ = s_lo_ + 1.0;  // one breakpoint: every function is constant
   const int n = opt_.size;
   inv_ds_ = (n - 1) / (s_hi_ - s_lo_);
-  const auto grid_scalar = [&](int i) {
-    return i == n - 1 ? s_hi_ : s_lo_ + (s_hi_ - s_lo_) * i / (n - 1);
-  };
+  const auto grid_scalar = [this](int i) { return this->grid_scalar(i); };
 
   const std::size_t entries = static_cast<std::size_t>(n) * n;
   for (auto& r : rate_) r.assign(entries, 0.0);
@@ -212,6 +204,11 @@ double preintegrated_table_bytes(const PreintegratedOptions& o) {
   return entries * kChannels * (1.0 + planes) * sizeof(double);
 }
 
+double PreintegratedIntegrator::grid_scalar(int i) const {
+  const int n = opt_.size;
+  return i == n - 1 ? s_hi_ : s_lo_ + (s_hi_ - s_lo_) * i / (n - 1);
+}
+
 double PreintegratedIntegrator::table_bytes() const { return preintegrated_table_bytes(opt_); }
 
 PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far, double s_exit,
@@ -237,17 +234,20 @@ PreintegratedIntegrator::StepOptics PreintegratedIntegrator::lookup(double s_far
   return out;
 }
 
-RayResult PreintegratedIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
-  // Cut length per segment: D for dims = 2, max_length for dims = 3.
+double PreintegratedIntegrator::count_lookups(const Ray& ray) const {
   const double cut = opt_.dims == 2 ? opt_.step : opt_.max_length;
   double lookups = 0.0;
   for (const auto& seg : ray.segments)
-    if (seg.length > 0.0) lookups += step_count(seg.length, cut);
+    if (seg.length > 0.0) lookups += preintegrated_step_count(seg.length, cut);
   if (lookups > static_cast<double>(kPreintegratedMaxLookupsPerRay))
     throw std::runtime_error("preintegrated: the ray needs " + std::to_string(lookups) +
                              " table lookups, over the budget of 2^22; use a larger " +
                              (opt_.dims == 2 ? "step" : "max_length"));
+  return lookups;
+}
 
+RayResult PreintegratedIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+  const double lookups = count_lookups(ray);
   // Emission is composited step by step; the background term uses the total optical depth,
   // summed with Neumaier's compensation (relative error ~ 1 ulp of the total, against
   // ~ n ulps for a product of n step transmittances), and a product of many factors that has
@@ -256,34 +256,25 @@ RayResult PreintegratedIntegrator::integrate(const Ray& ray, Diagnostics* diag) 
   Rgb emission{0.0, 0.0, 0.0}, depth{0.0, 0.0, 0.0}, depth_carry{0.0, 0.0, 0.0};
   long clamped = 0, corrected = 0, split = 0;
   const auto outside = [&](double s) { return s < s_lo_ || s > s_hi_; };
-  for (const auto& seg : ray.segments) {
-    if (!(seg.length > 0.0)) continue;
-    const long n = static_cast<long>(step_count(seg.length, cut));
-    // dims = 2: n - 1 steps of D then the rest; dims = 3: n equal parts.
-    const double part = opt_.dims == 2 ? opt_.step : seg.length / static_cast<double>(n);
-    const double ds = seg.scalar_exit - seg.scalar_far;
-    if (opt_.dims == 3 && n > 1) ++split;
-    double s0 = seg.scalar_far;
-    for (long k = 0; k < n; ++k) {
-      const bool last = k + 1 == n;
-      const double l = last ? seg.length - part * static_cast<double>(n - 1) : part;
-      const double s1 =
-          last ? seg.scalar_exit
-               : seg.scalar_far + ds * (part * static_cast<double>(k + 1) / seg.length);
-      const StepOptics o = lookup(s0, s1, l);
-      for (int c = 0; c < kChannels; ++c) {
-        emission[c] = emission[c] * o.transmittance[c] + o.emission[c];
-        const double sum = depth[c] + o.depth[c];
-        depth_carry[c] += std::fabs(depth[c]) >= std::fabs(o.depth[c])
-                              ? (depth[c] - sum) + o.depth[c]
-                              : (o.depth[c] - sum) + depth[c];
-        depth[c] = sum;
-      }
-      if (outside(s0) || outside(s1)) ++clamped;
-      if (opt_.dims == 2 && std::fabs(l - opt_.step) > 1e-9 * opt_.step) ++corrected;
-      s0 = s1;
+  std::size_t last_split = ray.segments.size();
+  for_each_step(ray, [&](const Cut& cut) {
+    const StepOptics o = lookup(cut.s0, cut.s1, cut.l);
+    for (int c = 0; c < kChannels; ++c) {
+      emission[c] = emission[c] * o.transmittance[c] + o.emission[c];
+      const double sum = depth[c] + o.depth[c];
+      depth_carry[c] += std::fabs(depth[c]) >= std::fabs(o.depth[c])
+                            ? (depth[c] - sum) + o.depth[c]
+                            : (o.depth[c] - sum) + depth[c];
+      depth[c] = sum;
     }
-  }
+    if (outside(cut.s0) || outside(cut.s1)) ++clamped;
+    if (opt_.dims == 2 && std::fabs(cut.l - opt_.step) > 1e-9 * opt_.step) ++corrected;
+    // dims = 3: a segment cut into more than one part (its first part is not its whole length).
+    if (opt_.dims == 3 && cut.segment != last_split && cut.l < ray.segments[cut.segment].length) {
+      ++split;
+      last_split = cut.segment;
+    }
+  });
   RayResult r;
   for (int c = 0; c < kChannels; ++c) {
     r.transmittance[c] = std::exp(-(depth[c] + depth_carry[c]));

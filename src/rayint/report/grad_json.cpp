@@ -24,6 +24,37 @@ ojson nodes(const std::array<std::vector<NodeDerivative>, kChannels>& per_channe
   return j;
 }
 
+// dI_c / d the preset's RGBPoints (x, r, g, b) and Points (x, opacity), or null with the reason.
+ojson preset_json(const PresetPointGradient& p) {
+  ojson out = ojson::object();
+  if (p.color_ok) {
+    ojson j = ojson::object();
+    for (int c = 0; c < kChannels; ++c) {
+      ojson list = ojson::array();
+      for (const auto& e : p.rgb_points[c])
+        list.push_back(ojson::array({number_or_null(e[0]), number_or_null(e[1]), number_or_null(e[2]), number_or_null(e[3])}));
+      j[kChannelNames[c]] = list;
+    }
+    out["RGBPoints"] = j;
+  } else {
+    out["RGBPoints"] = nullptr;
+    out["RGBPoints_unavailable"] = p.color_unavailable;
+  }
+  if (p.opacity_ok) {
+    ojson j = ojson::object();
+    for (int c = 0; c < kChannels; ++c) {
+      ojson list = ojson::array();
+      for (const auto& e : p.points[c]) list.push_back(ojson::array({number_or_null(e[0]), number_or_null(e[1])}));
+      j[kChannelNames[c]] = list;
+    }
+    out["Points"] = j;
+  } else {
+    out["Points"] = nullptr;
+    out["Points_unavailable"] = p.opacity_unavailable;
+  }
+  return out;
+}
+
 }  // namespace
 
 ojson gradient_json(const RayGradient& g) {
@@ -50,6 +81,7 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
         ray["reference"] = {{"intensity", rgb(r.reference->gradient.intensity)},
                             {"gradient", gradient_json(r.reference->gradient)},
                             {"noise", rgb(r.reference->noise)}};
+        if (r.reference_preset) ray["reference"]["preset_gradient"] = preset_json(*r.reference_preset);
       } else {
         ray["reference"] = nullptr;
       }
@@ -65,6 +97,7 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
                              {{"gradient_max_rel_vs_reference", rgb(m.error_vs_reference)},
                               {"gradient_max_rel_vs_exact", rgb(m.error_vs_exact)},
                               {"intensity_rel_vs_reference", rgb(m.intensity_error)}}}};
+        if (m.preset) methods[m.label]["preset_gradient"] = preset_json(*m.preset);
       }
       ray["methods"] = methods;
       rays.push_back(ray);
@@ -76,7 +109,10 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
       entry["transfer_function_nodes"] = {
           {"imported_from", c.transfer_origin},
           {"meaning", "density and color node k are node k of the imported piecewise-linear functions "
-                      "(as `rayint tf import` lists them), not the preset's RGBPoints/Points"}};
+                      "(as `rayint tf import` lists them); preset_gradient (per method) is with respect to "
+                      "the preset's own points: RGBPoints[k] -> [dI/dx, dI/dr, dI/dg, dI/db], Points[k] -> "
+                      "[dI/dx, dI/dopacity] per channel of I, x in the preset file's scalars (before any "
+                      "range); null with the reason where the import is not differentiable in them"}};
     entry["rays"] = rays;
     out_cases.push_back(entry);
   }

@@ -1,9 +1,12 @@
 #include "rayint/studies/grad_study.hpp"
 
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 
 #include "rayint/integrators/exact_grad.hpp"
+#include "rayint/integrators/preintegrated.hpp"
 #include "rayint/integrators/psi_table_grad.hpp"
 #include "rayint/integrators/riemann_grad.hpp"
 
@@ -11,23 +14,44 @@ namespace rayint {
 
 bool has_gradient(const MethodSpec& spec) {
   return spec.name == "exact" || spec.name == "riemann" || spec.name == "nerf" || spec.name == "pl_nerf" ||
-         spec.name == "psi_table";
+         spec.name == "psi_table" || spec.name == "preintegrated";
 }
 
-RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray) {
+namespace {
+
+using GradientFunction = std::function<RayGradient(const Ray&)>;
+
+// The gradient of `spec` for rays of one case (a table method builds its table once here).
+GradientFunction gradient_function(const MethodSpec& spec, const TransferFunctions& tf) {
   if (spec.name == "exact") {
     for (const auto& [key, value] : spec.params)
       if (key != "path")
         throw std::invalid_argument("method " + spec.label() + ": unknown parameter " + key);
-    return exact_ray_gradient(tf, ray);
+    return [&tf](const Ray& ray) { return exact_ray_gradient(tf, ray); };
   }
-  if (spec.name == "riemann") return riemann_ray_gradient(tf, ray, riemann_options(spec));
-  if (spec.name == "nerf") return nerf_ray_gradient(tf, ray, nerf_options(spec), false);
-  if (spec.name == "pl_nerf") return nerf_ray_gradient(tf, ray, pl_nerf_options(spec), true);
+  if (spec.name == "riemann")
+    return [&tf, o = riemann_options(spec)](const Ray& ray) { return riemann_ray_gradient(tf, ray, o); };
+  if (spec.name == "nerf")
+    return [&tf, o = nerf_options(spec)](const Ray& ray) { return nerf_ray_gradient(tf, ray, o, false); };
+  if (spec.name == "pl_nerf")
+    return [&tf, o = pl_nerf_options(spec)](const Ray& ray) { return nerf_ray_gradient(tf, ray, o, true); };
   if (spec.name == "psi_table")
-    return psi_table_ray_gradient(tf, ray, spec.integer("size"), table::parse_lookup(spec));
-  throw std::invalid_argument("method " + spec.label() +
-                              ": no gradient (gradients exist for exact, riemann, nerf, pl_nerf and psi_table)");
+    return [&tf, size = spec.integer("size"), lookup = table::parse_lookup(spec)](const Ray& ray) {
+      return psi_table_ray_gradient(tf, ray, size, lookup);
+    };
+  if (spec.name == "preintegrated") {
+    auto table = std::make_shared<const PreintegratedIntegrator>(tf, preintegrated_options(spec));
+    return [&tf, table](const Ray& ray) { return table->gradient(tf, ray); };
+  }
+  throw std::invalid_argument(
+      "method " + spec.label() +
+      ": no gradient (gradients exist for exact, riemann, nerf, pl_nerf, psi_table and preintegrated)");
+}
+
+}  // namespace
+
+RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray) {
+  return gradient_function(spec, tf)(ray);
 }
 
 double gradient_relative_error(const RayGradient& got, const RayGradient& want, int c) {
@@ -54,6 +78,16 @@ GradCaseResult grad_case(const Case& c, const GradStudyOptions& options) {
   out.source = c.source;
   std::vector<MethodSpec> methods = options.methods;
   if (methods.empty()) methods.push_back(parse_method_spec("exact"));
+  // One gradient function per method for the whole case (or why it has none).
+  std::vector<GradientFunction> functions(methods.size());
+  std::vector<std::string> setup_error(methods.size());
+  for (std::size_t k = 0; k < methods.size(); ++k) {
+    try {
+      functions[k] = gradient_function(methods[k], c.transfer);
+    } catch (const std::exception& e) {
+      setup_error[k] = e.what();
+    }
+  }
   for (const Ray& ray : c.rays) {
     GradRayResult r;
     r.exact = exact_ray_gradient(c.transfer, ray);
@@ -62,12 +96,13 @@ GradCaseResult grad_case(const Case& c, const GradStudyOptions& options) {
       ro.threads = options.threads;
       r.reference = reference_gradient(c.transfer, ray, ro);
     }
-    for (const MethodSpec& spec : methods) {
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      const MethodSpec& spec = methods[k];
       GradMethodResult m;
       m.label = spec.label();
       try {
-        m.gradient = spec.name == "exact" && spec.params.empty() ? r.exact
-                                                                 : method_gradient(spec, c.transfer, ray);
+        if (!functions[k]) throw std::invalid_argument(setup_error[k]);
+        m.gradient = spec.name == "exact" && spec.params.empty() ? r.exact : functions[k](ray);
         m.ok = true;
       } catch (const std::exception& e) {
         m.error = e.what();

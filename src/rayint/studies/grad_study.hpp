@@ -5,7 +5,9 @@
 //
 // Methods with a gradient: exact (integrators/exact_grad.hpp, analytic); riemann with n per
 // segment and correction=exp, nerf and pl_nerf (integrators/riemann_grad.hpp, the derivative of
-// their discrete sums, what autodiff through such a renderer computes). Any other method is
+// their discrete sums, what autodiff through such a renderer computes); psi_table
+// (integrators/psi_table_grad.hpp) and preintegrated (PreintegratedIntegrator::gradient,
+// integrators/preintegrated_grad.cpp; the table is built once per case). Any other method is
 // reported as failed ("no gradient"), never as a number.
 #include <optional>
 #include <string>
@@ -13,6 +15,7 @@
 
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/model/ray.hpp"
+#include "rayint/model/preset_point_gradient.hpp"
 #include "rayint/model/ray_gradient.hpp"
 #include "rayint/reference/reference_grad.hpp"
 
@@ -20,7 +23,8 @@ namespace rayint {
 
 // The gradient of `spec` on `ray`; throws std::invalid_argument for a method without one.
 RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf, const Ray& ray);
-// Whether method_gradient supports `spec` (names only: exact, riemann, nerf, pl_nerf).
+// Whether method_gradient supports `spec` (names only: exact, riemann, nerf, pl_nerf, psi_table,
+// preintegrated).
 bool has_gradient(const MethodSpec& spec);
 
 // max over channel c's entries of |got - want| / (largest |want| entry of channel c); NaN if
@@ -35,12 +39,15 @@ struct GradMethodResult {
   Rgb error_vs_reference{};        // gradient_relative_error(gradient, reference), per channel
   Rgb error_vs_exact{};            // gradient_relative_error(gradient, exact), per channel
   Rgb intensity_error{};           // |I - I_ref| / |I_ref| (absolute where I_ref == 0)
+  // With respect to the ParaView preset's own points (set by the CLI for a preset case).
+  std::optional<PresetPointGradient> preset;
 };
 
 struct GradRayResult {
   std::optional<ReferenceGradient> reference;
   RayGradient exact;
   std::vector<GradMethodResult> methods;
+  std::optional<PresetPointGradient> reference_preset;  // the reference gradient's, likewise
 };
 
 struct GradCaseResult {
