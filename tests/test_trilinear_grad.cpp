@@ -222,3 +222,15 @@ TEST_CASE("trilinear gradient: the Kuhn split's gradient fails as a candidate fo
   CHECK(worst_right <= 1e-8);
   CHECK(worst_kuhn > 1e-2);
 }
+
+TEST_CASE("trilinear gradient refuses a transfer function with a jump, as RayGradient does", "[trilinear_grad]") {
+  std::mt19937 rng(kSeed);
+  const VoxelGrid g = random_grid(rng);
+  TransferFunctions tf = test_tf(1.0);
+  tf.density[0] = {{0.0, 0.5, 0.5, 1.0}, {0.5, 1.0, 3.0, 2.0}};  // a jump at 0.5
+  REQUIRE(tf.has_jump());
+  const TrilinearIntegrator integrator(tf);
+  const ViewRay ray = sample_rays(g, rng).front();
+  CHECK_THROWS_WITH(integrator.gradient(g, ray, Rgb{}), Catch::Contains("jump"));
+  CHECK(std::isfinite(integrator.integrate(g, ray, Rgb{}).intensity[0]));  // the forward integral is fine
+}

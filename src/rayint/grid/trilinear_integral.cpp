@@ -278,6 +278,10 @@ double TrilinearGradient::channel_scale(int c) const {
 
 TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const ViewRay& ray,
                                                 const Rgb& background) const {
+  // As RayGradient::reset: a jump's derivative w.r.t. its position is a Dirac term not carried here.
+  if (tf_->has_jump())
+    throw std::invalid_argument(
+        "gradient: a transfer function with a jump (a scalar repeated) is not differentiated");
   TrilinearGradient out;
   for (int c = 0; c < kChannels; ++c) {
     const std::size_t ch = static_cast<std::size_t>(c);
