@@ -114,7 +114,7 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
   if (is_mesh_case(root)) {  // rays traced through a tetrahedral mesh (cases/README.md)
     MeshCase mc = parse_mesh_case(root, source, mesh_options);
     if (repairs) *repairs = mc.repairs;
-    const TetTraversal mesh(mc.mesh, mc.mesh_source);
+    const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
   }
   return read_case(JsonSchema(source), root, streamed);

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "rayint/geometry/vec3.hpp"
+#include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/tet_cell.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/model/ray.hpp"
@@ -92,6 +93,10 @@ class TetTraversal {
   // boundary first-hit structure. Throws InputError "<source>: tets: ..." for a face shared by
   // more than two tets or two tets overlapping across a face.
   explicit TetTraversal(TetMesh mesh, const std::string& source = "mesh");
+  // The same with the mesh's face adjacency given (tet_neighbors(mesh), as the mesh case reader
+  // computed it for the overlap check; moved in and freed once used): the faces are not sorted a
+  // second time. An empty `neighbors` is computed here.
+  TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::string& source);
   ~TetTraversal();
   TetTraversal(const TetTraversal&) = delete;
   TetTraversal& operator=(const TetTraversal&) = delete;
