@@ -145,8 +145,24 @@ TEST_CASE("overlap check: the boundary fast path agrees with testing every pair"
 }
 
 TEST_CASE("traversal adjacency equals a map of sorted faces", "[mesh][scaling]") {
-  for (const std::string kind : {"ball", "linear-box", "ring"}) {
-    const TetMesh m = generate_mesh(kind, 3, 1).mesh;
+  std::vector<std::pair<std::string, TetMesh>> meshes;
+  for (const std::string kind : {"ball", "linear-box", "ring"}) meshes.emplace_back(kind, generate_mesh(kind, 3, 1).mesh);
+  {
+    // The ball with its most used point renumbered 0: its faces fill one bucket of the
+    // adjacency's counting sort past the insertion sort's limit (> 64 records).
+    TetMesh hub = generate_mesh("ball", 3, 1).mesh;
+    std::vector<int> uses(hub.points.size(), 0);
+    for (const auto& t : hub.tets)
+      for (const auto i : t) ++uses[static_cast<std::size_t>(i)];
+    const auto top = static_cast<std::int32_t>(std::max_element(uses.begin(), uses.end()) - uses.begin());
+    REQUIRE(3 * uses[static_cast<std::size_t>(top)] > 64);
+    std::swap(hub.points[0], hub.points[static_cast<std::size_t>(top)]);
+    std::swap(hub.scalars[0], hub.scalars[static_cast<std::size_t>(top)]);
+    for (auto& t : hub.tets)
+      for (auto& i : t) i = i == top ? 0 : i == 0 ? top : i;
+    meshes.emplace_back("ball, hub point first", hub);
+  }
+  for (const auto& [kind, m] : meshes) {
     std::map<std::array<std::int32_t, 3>, std::vector<std::pair<std::size_t, int>>> faces;
     for (std::size_t t = 0; t < m.tets.size(); ++t)
       for (int k = 0; k < 4; ++k) {

@@ -28,19 +28,41 @@ TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
     std::array<std::int32_t, 3> key;
     std::int32_t tet_k;  // 4 tet + k: sorts as (tet, k)
   };
-  std::vector<Rec> recs(4 * n);
+  // Sorted by (key, tet_k) without a comparison sort of 4n records (it was ~40% of the load's
+  // adjacency time): the records are placed straight into buckets by their lowest point index
+  // (a counting sort, in tet order, so tet_k ascends within a bucket), then each bucket (~24
+  // records on a tetrahedral mesh) is sorted by (key[1], key[2]) with a stable insertion sort.
+  // The order is that of sorting by (key, tet_k): the same faces, cells and errors as before.
+  std::vector<std::uint32_t> start(mesh.points.size() + 1, 0);
   for (std::size_t t = 0; t < n; ++t)
-    for (std::size_t k = 0; k < 4; ++k) {
-      Rec& r = recs[4 * t + k];
-      r.key = face_key(mesh, t, k);
-      r.tet_k = static_cast<std::int32_t>(4 * t + k);
+    for (std::size_t k = 0; k < 4; ++k) ++start[static_cast<std::size_t>(face_key(mesh, t, k)[0]) + 1];
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) start[p + 1] += start[p];
+  std::vector<Rec> recs(4 * n);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < n; ++t)
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::array<std::int32_t, 3> key = face_key(mesh, t, k);
+        recs[fill[static_cast<std::size_t>(key[0])]++] = Rec{key, static_cast<std::int32_t>(4 * t + k)};
+      }
+  }
+  const auto by_rest = [](const Rec& x, const Rec& y) {
+    return x.key[1] != y.key[1] ? x.key[1] < y.key[1] : x.key[2] < y.key[2];
+  };
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+    // A point in very many faces (the hub of a fan): a stable sort, not a quadratic one.
+    if (start[p + 1] - start[p] > 64) {
+      std::stable_sort(recs.begin() + start[p], recs.begin() + start[p + 1], by_rest);
+      continue;
     }
-  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
-    if (a.key[0] != b.key[0]) return a.key[0] < b.key[0];
-    if (a.key[1] != b.key[1]) return a.key[1] < b.key[1];
-    if (a.key[2] != b.key[2]) return a.key[2] < b.key[2];
-    return a.tet_k < b.tet_k;
-  });
+    for (std::size_t i = start[p] + 1; i < start[p + 1]; ++i) {
+      const Rec r = recs[i];
+      std::size_t j = i;
+      for (; j > start[p] && by_rest(r, recs[j - 1]); --j) recs[j] = recs[j - 1];
+      recs[j] = r;
+    }
+  }
+  std::vector<std::uint32_t>().swap(start);
   // +1 when the face's normal points out of tet t (away from its point k).
   const auto sign_of = [&](const std::array<std::int32_t, 3>& key, const Vec3& normal, std::size_t t, std::size_t k) {
     const Vec3& opposite = mesh.points[static_cast<std::size_t>(mesh.tets[t][k])];

@@ -85,8 +85,8 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
     CellRecord& c = cells_[t];
     const auto& tet = mesh_.tets[t];
     const std::int32_t lowest = std::min({tet[0], tet[1], tet[2], tet[3]});
-    c.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
-    c.second_point = c.first_point;
+    c.first_point = lowest;
+    c.second_point = lowest;
     c.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
     for (std::size_t k = 0; k < 4; ++k) {
       const std::array<std::int32_t, 3> key = face_key(mesh_, t, k);
@@ -95,12 +95,13 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
       c.next[k] = neighbors[t][k];
       if (key[0] != lowest) {
         c.k_second = static_cast<std::int32_t>(k);
-        c.second_point = mesh_.points[static_cast<std::size_t>(key[0])];
+        c.second_point = key[0];
       }
     }
   }
   TetNeighbors().swap(neighbors);
-  // Eq. 9 per cell.
+  // Eq. 9 per cell: the gradient (field() puts the anchor and its scalar back from the mesh).
+  gradients_.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
     std::array<Vec3, 4> x;
     std::array<double, 4> s{};
@@ -108,7 +109,7 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
       x[k] = mesh_.points[mesh_.tets[t][k]];
       s[k] = mesh_.cell_scalars.empty() ? mesh_.scalars[mesh_.tets[t][k]] : mesh_.cell_scalars[t];
     }
-    cells_[t].field = fit_linear_tet(x, s);
+    gradients_[t] = fit_linear_tet(x, s).gradient;
   }
   box_min_ = box_max_ = mesh_.points.front();
   for (const Vec3& p : mesh_.points) {
@@ -127,6 +128,15 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
 
 TetTraversal::~TetTraversal() = default;
 
+LinearTetField TetTraversal::field(std::size_t cell) const {
+  LinearTetField f;
+  const auto p0 = static_cast<std::size_t>(mesh_.tets[cell][0]);
+  f.anchor = mesh_.points[p0];
+  f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[cell];
+  f.gradient = gradients_[cell];
+  return f;
+}
+
 std::int32_t TetTraversal::neighbor(std::size_t cell, int k) const {
   return cells_[cell].next[static_cast<std::size_t>(k)];
 }
@@ -144,7 +154,7 @@ struct TetTraversal::Walk {
 double TetTraversal::crossing(const Walk& w, std::size_t cell, int k) const {
   const CellRecord& r = cells_[cell];
   const Vec3& n = r.normal[static_cast<std::size_t>(k)];
-  return n.dot(r.face_point(k) - w.o) / n.dot(w.d);
+  return n.dot(face_point(r, k) - w.o) / n.dot(w.d);
 }
 
 struct FirstHitFilterAccess {
@@ -180,7 +190,7 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     for (int k = 0; k < 4; ++k) {
       // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d.
       const Vec3& normal = r.normal[static_cast<std::size_t>(k)];
-      const double dist = normal.dot(p - r.face_point(k)) / normal.norm();
+      const double dist = normal.dot(p - face_point(r, k)) / normal.norm();
       if (dist > tol) holds = false;
       const double dn = normal.dot(w.d);
       if (dn > 0.0) tb = std::min(tb, crossing(w, c, k));
@@ -247,7 +257,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
-    const LinearTetField& f = cells_[static_cast<std::size_t>(cell)].field;
+    const LinearTetField f = field(static_cast<std::size_t>(cell));
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
     // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
     CellCrossing& c = out.crossings.emplace_back();
@@ -284,7 +294,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
         // The ray leaves through one of these faces: start loading the cells behind them now.
         __builtin_prefetch(&cells_[static_cast<std::size_t>(std::max(r.next[static_cast<std::size_t>(k)], 0))]);
         // crossing(w, c, k) with its denominator (the same expression, w.d == d) computed once.
-        const double tf = normal.dot(r.face_point(k) - w.o) / nd;
+        const double tf = normal.dot(face_point(r, k) - w.o) / nd;
         if (tf < t_min) {
           t_min = tf;
           k_min = k;
