@@ -45,7 +45,7 @@ bool tets_overlap(const TetMesh& mesh, std::size_t a, std::size_t b);
 // share no point (what every mesh case does on load: it finds meshes appended without shared
 // points, the overlap issue 27 met in practice, at a fraction of the cost, because the
 // neighbours that share points are most of the candidates). Cost on load, CPU per tet:
-// reports/scaling/README.md (1.6 us per tet on the 105k-tet ball, from 5.6 before issue 33).
+// reports/scaling/README.md and NOTES.md; on load the boundary fast path below runs first.
 enum class OverlapScope { all_pairs, disjoint_pairs };
 
 // The first overlapping pair (a < b) found, or nothing.
