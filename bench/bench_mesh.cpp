@@ -45,7 +45,7 @@ struct MeshBench {
     const std::filesystem::path base =
         dir ? std::filesystem::path(dir) : std::filesystem::path(__FILE__).parent_path().parent_path() / "cases";
     mc = read_mesh_case_file((base / "mesh-ball-100k.json").string());
-    mesh = std::make_unique<TetTraversal>(mc.mesh, mc.mesh_source);
+    mesh = std::make_unique<TetTraversal>(mc.mesh, mc.neighbors, mc.mesh_source);
     for (std::size_t f = 0; f < mesh->boundary_face_count(); ++f) boundary.push_back(mesh->boundary_face(f).points);
     embree = std::make_unique<BoundaryFirstHit>(mc.mesh.points, boundary);
     for (int y = 0; y < mc.camera->height; y += 8)

@@ -290,7 +290,7 @@ void run_image_check(const ImageCheckOptions& o) {
   if (mc.cells) return run_own_cells_image_check(o, mc, candidate, variance);
 
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
-  const TetTraversal mesh(mc.mesh, mc.mesh_source);
+  const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = o.threads;
   const MeshRender render = render_mesh(mc, mesh, *exact, nullptr, settings);

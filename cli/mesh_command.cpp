@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "rayint/core/error.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/mesh/mesh_check.hpp"
 #include "rayint/report/mesh_info.hpp"
@@ -46,7 +47,19 @@ void set_mesh_command(CLI::App& app) {
     info.orientation = orientation_counts(m);
     if (opt->check || opt->quick) {
       const auto t0 = std::chrono::steady_clock::now();
-      info.overlap = find_overlapping_tets(m, opt->check ? OverlapScope::all_pairs : OverlapScope::disjoint_pairs);
+      // As on load: the face adjacency, then the boundary fast path
+      // (mesh_check.hpp), when its premises hold: no degenerate tet, and faces that the
+      // traversal accepts (otherwise the full check decides, as it does when the fast path
+      // finds anything).
+      TetNeighbors next;
+      if (info.orientation.zero_volume == 0 && info.orientation.slivers == 0) {
+        try {
+          next = tet_neighbors(m, opt->file);
+        } catch (const InputError&) {
+          next.clear();
+        }
+      }
+      info.overlap = find_overlapping_tets(m, next, opt->check ? OverlapScope::all_pairs : OverlapScope::disjoint_pairs);
       info.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       info.checked = true;
     }

@@ -149,7 +149,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   // The mesh moves into the traversal (one copy of it in memory, not two: issue 33); the case
   // keeps its other fields.
   SlowStage building("rayint render: building the traversal", options.quiet);
-  const TetTraversal mesh(std::move(mc.mesh), mc.mesh_source);
+  const TetTraversal mesh(std::move(mc.mesh), std::move(mc.neighbors), mc.mesh_source);
   building.done(std::to_string(mesh.face_count()) + " faces, " + std::to_string(mesh.boundary_face_count()) + " on the boundary");
   MeshRenderSettings settings;
   settings.threads = options.threads;

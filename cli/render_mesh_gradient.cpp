@@ -31,7 +31,7 @@ void render_mesh_gradient_file(const nlohmann::json& root, const RenderOptions& 
     throw InputError(target_path + ": --loss-target: the image is " + std::to_string(target.width) + " x " +
                      std::to_string(target.height) + ", the camera renders " + std::to_string(mc.camera->width) +
                      " x " + std::to_string(mc.camera->height));
-  const TetTraversal mesh(mc.mesh, mc.mesh_source);
+  const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
   const LossGradient g = image_loss_gradient(mc, mesh, target, options.threads, !options.grad_positions_out.empty());
   if (g.pixels_failed > 0) {  // nothing is written: a failed gradient is never shown as numbers
     std::fprintf(stderr, "rayint render: %ld pixels failed (non-finite intensity or gradient); no gradient written\n",

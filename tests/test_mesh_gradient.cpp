@@ -226,7 +226,7 @@ TEST_CASE("mesh gradient: a wrong candidate is caught by the same comparison", "
     for (int end = 0; end < 2; ++end) {
       const Vec3 p = trace.origin + (end ? x.t_out : x.t_in) * trace.direction;
       const auto lambda = barycentric(m, static_cast<std::size_t>(x.cell), p);
-      const Vec3& grad_s = t.field(static_cast<std::size_t>(x.cell)).gradient;
+      const Vec3& grad_s = t.gradient(static_cast<std::size_t>(x.cell));
       for (std::size_t k = 0; k < 4; ++k) {
         const std::int32_t v = m.tets[static_cast<std::size_t>(x.cell)][k];
         const auto si = static_cast<std::size_t>(std::lower_bound(right.index.begin(), right.index.end(), v) - right.index.begin());

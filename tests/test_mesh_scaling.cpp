@@ -51,6 +51,25 @@ TetMesh appended(const TetMesh& m, const Vec3& shift) {
   return out;
 }
 
+// The points and tets of `a` and then of `b` (no shared points).
+TetMesh concat(const TetMesh& a, const TetMesh& b) {
+  TetMesh out = a;
+  const auto offset = static_cast<std::int32_t>(a.points.size());
+  out.points.insert(out.points.end(), b.points.begin(), b.points.end());
+  out.scalars.insert(out.scalars.end(), b.scalars.begin(), b.scalars.end());
+  for (auto t : b.tets) {
+    for (auto& i : t) i += offset;
+    out.tets.push_back(t);
+  }
+  return out;
+}
+
+// `m` with its points scaled about the origin by `scale`, then moved by `shift`.
+TetMesh transformed(TetMesh m, double scale, const Vec3& shift) {
+  for (Vec3& p : m.points) p = scale * p + shift;
+  return m;
+}
+
 void append_be(std::string& out, const void* value, std::size_t width) {
   const auto* p = static_cast<const unsigned char*>(value);
   for (std::size_t i = width; i > 0; --i) out.push_back(static_cast<char>(p[i - 1]));  // host is little-endian
@@ -85,9 +104,65 @@ TEST_CASE("overlap check: the candidate grid finds what testing every pair finds
   CHECK(find_overlapping_tets(appended(cube, Vec3(0.999, 0.0, 0.0)), OverlapScope::disjoint_pairs).has_value());
 }
 
+TEST_CASE("overlap check: the boundary fast path agrees with testing every pair", "[mesh][scaling]") {
+  // The lemma of mesh_check.hpp: with the face adjacency checked, no tet with a boundary face
+  // overlapping another tet means no two tets overlap. Checked against brute force (every pair)
+  // on single meshes, appended copies sharing no points (apart, touching, shifted, nested: a small
+  // ball inside a larger one, a tiny ball inside one tet) in both scopes.
+  const TetMesh box = generate_mesh("linear-box", 3, 7).mesh;  // 162 tets
+  const TetMesh ball = generate_mesh("ball", 2, 1).mesh;      // 384 tets
+  const TetMesh ring = generate_mesh("ring", 2, 1).mesh;      // non-convex
+  const TetMesh cube = structured_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), 2, 2, 2);
+  std::vector<std::pair<std::string, TetMesh>> meshes{{"box", box}, {"ball", ball}, {"ring", ring}, {"cube", cube}};
+  for (const Vec3& shift : {Vec3(3.0, 0.0, 0.0), Vec3(0.5, 0.13, 0.0), Vec3(0.05, 0.02, 0.01)})
+    meshes.emplace_back("box + shifted box", appended(box, shift));
+  meshes.emplace_back("cube + touching cube", appended(cube, Vec3(1.0, 0.0, 0.0)));
+  meshes.emplace_back("cube + cube 0.999", appended(cube, Vec3(0.999, 0.0, 0.0)));
+  meshes.emplace_back("ball + shifted ball", appended(ball, Vec3(1.7, 0.4, -0.3)));
+  meshes.emplace_back("ball + ball inside it", concat(ball, transformed(ball, 0.4, Vec3(0.05, -0.02, 0.03))));
+  meshes.emplace_back("ring + small ball", concat(ring, transformed(ball, 0.1, Vec3::Zero())));
+  // A tiny ball inside one tet of the box: it meets no boundary face of the box.
+  Vec3 c = Vec3::Zero();
+  for (const auto i : box.tets[80]) c += 0.25 * box.points[static_cast<std::size_t>(i)];
+  meshes.emplace_back("box + tiny ball inside one tet", concat(box, transformed(ball, 1e-3, c)));
+  int overlapping = 0, decided_fast = 0;
+  for (const auto& [name, m] : meshes) {
+    INFO(name << ", " << m.tets.size() << " tets");
+    const TetNeighbors next = tet_neighbors(m);
+    const bool free = boundary_tets_overlap_free(m, next);
+    const auto all = brute_force_overlap(m, OverlapScope::all_pairs);
+    if (free) {
+      ++decided_fast;
+      CHECK_FALSE(all.has_value());  // the lemma: nothing overlaps anywhere
+    } else {
+      ++overlapping;
+    }
+    for (const OverlapScope scope : {OverlapScope::all_pairs, OverlapScope::disjoint_pairs})
+      CHECK(find_overlapping_tets(m, next, scope) == brute_force_overlap(m, scope));
+  }
+  CHECK(decided_fast >= 6);  // single meshes, far apart, touching: no full check needed
+  CHECK(overlapping >= 6);   // shifted, nested, inside one tet
+}
+
 TEST_CASE("traversal adjacency equals a map of sorted faces", "[mesh][scaling]") {
-  for (const std::string kind : {"ball", "linear-box", "ring"}) {
-    const TetMesh m = generate_mesh(kind, 3, 1).mesh;
+  std::vector<std::pair<std::string, TetMesh>> meshes;
+  for (const std::string kind : {"ball", "linear-box", "ring"}) meshes.emplace_back(kind, generate_mesh(kind, 3, 1).mesh);
+  {
+    // The ball with its most used point renumbered 0: its faces fill one bucket of the
+    // adjacency's counting sort past the insertion sort's limit (> 64 records).
+    TetMesh hub = generate_mesh("ball", 3, 1).mesh;
+    std::vector<int> uses(hub.points.size(), 0);
+    for (const auto& t : hub.tets)
+      for (const auto i : t) ++uses[static_cast<std::size_t>(i)];
+    const auto top = static_cast<std::int32_t>(std::max_element(uses.begin(), uses.end()) - uses.begin());
+    REQUIRE(3 * uses[static_cast<std::size_t>(top)] > 64);
+    std::swap(hub.points[0], hub.points[static_cast<std::size_t>(top)]);
+    std::swap(hub.scalars[0], hub.scalars[static_cast<std::size_t>(top)]);
+    for (auto& t : hub.tets)
+      for (auto& i : t) i = i == top ? 0 : i == 0 ? top : i;
+    meshes.emplace_back("ball, hub point first", hub);
+  }
+  for (const auto& [kind, m] : meshes) {
     std::map<std::array<std::int32_t, 3>, std::vector<std::pair<std::size_t, int>>> faces;
     for (std::size_t t = 0; t < m.tets.size(); ++t)
       for (int k = 0; k < 4; ++k) {

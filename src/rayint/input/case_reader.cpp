@@ -128,7 +128,7 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
       return c;
     }
     if (repairs) *repairs = mc.repairs;
-    const TetTraversal mesh(mc.mesh, mc.mesh_source);
+    const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
     return trace_mesh_case(mc, mesh);
   }
   return read_case(JsonSchema(source), root, streamed);

@@ -269,7 +269,10 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
   else
     mc.repairs = repair_tet_mesh(mc.mesh, mc.mesh_source, names);
   if (mc.split) mc.repairs.split_cells = mc.split->cells;
-  if (!mc.cells) refuse_overlapping_tets(mc.mesh, mc.mesh_source, names.tets);
+  if (!mc.cells) {  // own-interpolation cell meshes are walked by mesh/cell_traversal, not as tets
+    mc.neighbors = tet_neighbors(mc.mesh, mc.mesh_source);
+    refuse_overlapping_tets(mc.mesh, mc.neighbors, mc.mesh_source, names.tets);
+  }
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");

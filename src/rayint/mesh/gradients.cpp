@@ -41,7 +41,7 @@ GradientField::GradientField(const TetTraversal& mesh, GradientMode mode) : mesh
     Vec3 centroid = Vec3::Zero();
     for (auto i : m.tets[c]) centroid += m.points[i];
     centroid /= 4.0;
-    const Vec3& g = mesh.field(c).gradient;
+    const Vec3& g = mesh.gradient(c);
     for (auto i : m.tets[c]) {
       const double wgt = mode == GradientMode::vertex_average ? 1.0 : 1.0 / (centroid - m.points[i]).norm();
       vertex_[i] += wgt * g;
@@ -53,7 +53,7 @@ GradientField::GradientField(const TetTraversal& mesh, GradientMode mode) : mesh
 }
 
 Vec3 GradientField::at(std::size_t cell, const Vec3& p) const {
-  if (mode_ == GradientMode::cell) return mesh_->field(cell).gradient;
+  if (mode_ == GradientMode::cell) return mesh_->gradient(cell);
   const auto l = barycentric(mesh_->mesh(), cell, p);
   Vec3 g = Vec3::Zero();
   for (std::size_t k = 0; k < 4; ++k) g += l[k] * vertex_[mesh_->mesh().tets[cell][k]];

@@ -27,6 +27,9 @@ struct MeshCase {
   std::string mesh_source;  // the .vtk file, or `source` for an inline mesh
   TransferFunctions transfer;
   TetMesh mesh;
+  // Face adjacency of `mesh` (mesh/tet_adjacency.hpp), computed on load for the overlap check;
+  // hand it to the TetTraversal (moved, when the mesh is) so the faces are not sorted twice.
+  TetNeighbors neighbors;
   TetRepairs repairs;             // what reading reoriented or dropped (all 0 under --strict-mesh)
   // `--cells split`: the file's cells were tetrahedralised as vtkDataSetTriangleFilter does (an
   // approximation of their own interpolation; mesh/cell_split.hpp). Every output says so.

@@ -215,6 +215,118 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
   return first;
 }
 
+bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
+  const std::size_t n = m.tets.size();
+  if (next.size() != n) return false;
+  std::vector<std::uint32_t> bt;  // the tets with a boundary face
+  for (std::size_t t = 0; t < n; ++t)
+    if (next[t][0] < 0 || next[t][1] < 0 || next[t][2] < 0 || next[t][3] < 0) bt.push_back(static_cast<std::uint32_t>(t));
+  if (n < 2) return true;
+  if (bt.empty()) return false;  // a finite mesh has a boundary: let the full check decide
+  // A grid of the boundary tets' boxes (cells of their mean extent, at most ~8 |bt| of them),
+  // filled by a counting sort as in find_overlapping_tets; then every tet is looked up in it.
+  std::vector<Box> bbox(bt.size());
+  Box all = box_of(m, bt[0]);
+  Vec3 mean_extent = Vec3::Zero();
+  for (std::size_t i = 0; i < bt.size(); ++i) {
+    bbox[i] = box_of(m, bt[i]);
+    all.lo = all.lo.cwiseMin(bbox[i].lo);
+    all.hi = all.hi.cwiseMax(bbox[i].hi);
+    mean_extent += bbox[i].hi - bbox[i].lo;
+  }
+  mean_extent /= static_cast<double>(bt.size());
+  std::array<long, 3> dims{};
+  Vec3 cell;
+  for (int k = 0; k < 3; ++k) {
+    const double span = all.hi[k] - all.lo[k];
+    const double want = std::max(mean_extent[k], span / std::cbrt(8.0 * static_cast<double>(bt.size())));
+    dims[static_cast<std::size_t>(k)] = span > 0 && want > 0 ? std::max(1L, std::min(1L << 20, static_cast<long>(span / want))) : 1;
+    cell[k] = span > 0 ? span / static_cast<double>(dims[static_cast<std::size_t>(k)]) : 1.0;
+  }
+  const auto index = [&](double x, int k) {
+    const long i = static_cast<long>(std::floor((x - all.lo[k]) / cell[k]));
+    return std::clamp(i, 0L, dims[static_cast<std::size_t>(k)] - 1);
+  };
+  const auto key = [&](long i, long j, long k) { return static_cast<std::size_t>(i + dims[0] * (j + dims[1] * k)); };
+  const auto n_cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
+  std::vector<std::array<long, 6>> bspan(bt.size());  // lo i, j, k, hi i, j, k
+  std::vector<std::size_t> begin(n_cells + 1, 0);
+  for (std::size_t x = 0; x < bt.size(); ++x) {
+    auto& sp = bspan[x];
+    for (int k = 0; k < 3; ++k) {
+      sp[static_cast<std::size_t>(k)] = index(bbox[x].lo[k], k);
+      sp[static_cast<std::size_t>(k + 3)] = index(bbox[x].hi[k], k);
+    }
+    for (long k = sp[2]; k <= sp[5]; ++k)
+      for (long j = sp[1]; j <= sp[4]; ++j)
+        for (long i = sp[0]; i <= sp[3]; ++i) ++begin[key(i, j, k) + 1];
+  }
+  for (std::size_t c = 0; c < n_cells; ++c) begin[c + 1] += begin[c];
+  std::vector<std::uint32_t> members(begin[n_cells]);  // indices into bt
+  {
+    std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
+    for (std::size_t x = 0; x < bt.size(); ++x) {
+      const auto& sp = bspan[x];
+      for (long k = sp[2]; k <= sp[5]; ++k)
+        for (long j = sp[1]; j <= sp[4]; ++j)
+          for (long i = sp[0]; i <= sp[3]; ++i) members[fill[key(i, j, k)]++] = static_cast<std::uint32_t>(x);
+    }
+  }
+  std::vector<char> is_boundary(n, 0);
+  for (const std::uint32_t t : bt) is_boundary[t] = 1;
+  for (std::size_t t = 0; t < n; ++t) {
+    const Box b = box_of(m, t);
+    const double size_t_ = (b.hi - b.lo).norm();
+    bool outside = false;
+    for (int k = 0; k < 3; ++k)
+      if (b.hi[k] < all.lo[k] || b.lo[k] > all.hi[k]) outside = true;
+    if (outside) continue;
+    std::array<long, 6> sp{};
+    for (int k = 0; k < 3; ++k) {
+      sp[static_cast<std::size_t>(k)] = index(b.lo[k], k);
+      sp[static_cast<std::size_t>(k + 3)] = index(b.hi[k], k);
+    }
+    for (long ck = sp[2]; ck <= sp[5]; ++ck)
+      for (long cj = sp[1]; cj <= sp[4]; ++cj)
+        for (long ci = sp[0]; ci <= sp[3]; ++ci) {
+          const std::size_t c = key(ci, cj, ck);
+          for (std::size_t r = begin[c]; r < begin[c + 1]; ++r) {
+            const std::uint32_t x = members[r];
+            const std::size_t u = bt[x];
+            // Each pair once: a boundary pair from its lower tet, and in the grid cell of the lower
+            // corner of the two boxes (the cell index is monotone in the coordinate).
+            if (u == t || (is_boundary[t] && u < t)) continue;
+            const auto& us = bspan[x];
+            if (std::max(sp[0], us[0]) != ci || std::max(sp[1], us[1]) != cj || std::max(sp[2], us[2]) != ck) continue;
+            // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
+            if (next[t][0] == static_cast<std::int32_t>(u) || next[t][1] == static_cast<std::int32_t>(u) ||
+                next[t][2] == static_cast<std::int32_t>(u) || next[t][3] == static_cast<std::int32_t>(u))
+              continue;
+            const Box& B = bbox[x];
+            const double size = std::max(size_t_, (B.hi - B.lo).norm());
+            const double tol = kOverlapTolerance * size;
+            bool apart = false;
+            for (int k = 0; k < 3; ++k)
+              if (std::min(b.hi[k], B.hi[k]) - std::max(b.lo[k], B.lo[k]) <= tol) apart = true;
+            if (!apart && overlap_exact(m, t, u, size)) return false;
+          }
+        }
+  }
+  return true;
+}
+
+std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& mesh, const TetNeighbors& next,
+                                                                          OverlapScope scope) {
+  if (boundary_tets_overlap_free(mesh, next)) return std::nullopt;
+  return find_overlapping_tets(mesh, scope);
+}
+
+void refuse_overlapping_tets(const TetMesh& mesh, const TetNeighbors& next, const std::string& source,
+                             const std::string& tets_field) {
+  if (boundary_tets_overlap_free(mesh, next)) return;
+  refuse_overlapping_tets(mesh, source, tets_field);
+}
+
 void refuse_overlapping_tets(const TetMesh& mesh, const std::string& source, const std::string& tets_field) {
   const auto pair = find_overlapping_tets(mesh, OverlapScope::disjoint_pairs);
   if (!pair) return;

@@ -26,6 +26,7 @@
 #include <string>
 #include <utility>
 
+#include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
@@ -44,7 +45,7 @@ bool tets_overlap(const TetMesh& mesh, std::size_t a, std::size_t b);
 // share no point (what every mesh case does on load: it finds meshes appended without shared
 // points, the overlap issue 27 met in practice, at a fraction of the cost, because the
 // neighbours that share points are most of the candidates). Cost on load, CPU per tet:
-// reports/scaling/README.md (1.6 us per tet on the 105k-tet ball, from 5.6 before issue 33).
+// reports/scaling/README.md and NOTES.md; on load the boundary fast path below runs first.
 enum class OverlapScope { all_pairs, disjoint_pairs };
 
 // The first overlapping pair (a < b) found, or nothing.
@@ -55,5 +56,52 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
 // the file numbers them (MeshFileInfo::cell_ids when the reader recorded them). Tests the pairs
 // that share no point (OverlapScope::disjoint_pairs).
 void refuse_overlapping_tets(const TetMesh& mesh, const std::string& source, const std::string& tets_field);
+
+// The load check's fast path (issue 33). It rests on this
+//
+// LEMMA. Let M be a finite set of tetrahedra of positive volume in which every face (a triple of
+// point indices) belongs to at most two tets, and the two tets of a shared face lie on opposite
+// sides of it. If the interiors of two tets of M intersect, then the interior of some tet that
+// has a boundary face (a face of that tet alone) intersects the interior of another tet.
+//
+// PROOF. Let U be the set of points in the interiors of at least two tets: open, bounded and, by
+// hypothesis, not empty. Every point y of its frontier lies on a face of some tet (otherwise the
+// number of tets whose interior holds the points near y would be constant near y, and >= 2,
+// putting y in U). Take a direction e in general position and, on each line parallel to e that
+// meets U, the last point y of the closure of U: these points project onto the projection of U
+// (an open set, so of positive area), while the points on tet edges, on the lines where two face
+// planes cross and on faces parallel to e project onto a set of zero area. So there is such a y
+// in the relative interior of a face with plane P, on no edge, on faces (only) lying in P. In a
+// small ball around y every tet either holds the whole ball (set I; |I| <= 1 since y is not in
+// U), misses it, or holds exactly one half-ball, having a face in P through y (sets H+ and H- by
+// side). U holds the half-ball B- before y (on the side e comes from) but not B+, so
+// |I| + |H-| >= 2 and |I| + |H+| <= 1. A face through y shared by two tets has them on opposite
+// sides, and a tet has one face in P, so pairing a tet of H- with the tet across its face is one
+// to one into H+. If |I| = 1, H+ is empty, so H- (>= 1 tet) has a tet T whose face at y is a
+// boundary face, and T overlaps the tet of I. If |I| = 0, |H-| >= 2 > |H+|, so some T in H- has no
+// partner: its face at y is a boundary face, and T overlaps the other tets of H- (all hold B-). []
+//
+// The premises hold after tet_neighbors (shared faces: at most two tets, opposite sides) and
+// validate or repair (no tet of zero volume or a sliver). So the fast path tests only the pairs
+// (tet with a boundary face, any tet) whose boxes overlap, all of them, point-sharing ones
+// included (face neighbours excepted: the adjacency found them on opposite sides), with the
+// exact test above; no overlap there proves no overlap anywhere, and the mesh passes. If one is
+// found (a fold inside one mesh may be point-sharing only), the full check decides, so the
+// answer is always the full check's. Cost: one box and grid lookup per tet plus the exact test
+// for the boundary tets' neighbours; reports/scaling/README.md. Limits: the lemma is exact; the
+// pair test has the tolerance above, so an overlap thinner than 1e-9 of the cells' size near the
+// boundary, with a deeper one inside, would be missed by the fast path alone (none is known).
+// Tests ([mesh][scaling]): against the full check on appended, shifted, touching and nested
+// meshes sharing no points.
+//
+// True when no tet with a boundary face (next[t][k] < 0) overlaps another tet: by the lemma, no
+// two tets overlap. `next` is tet_neighbors(mesh); false (undecided) when it does not match.
+bool boundary_tets_overlap_free(const TetMesh& mesh, const TetNeighbors& next);
+
+// find_overlapping_tets and refuse_overlapping_tets with the fast path first: the same answers.
+std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& mesh, const TetNeighbors& next,
+                                                                          OverlapScope scope);
+void refuse_overlapping_tets(const TetMesh& mesh, const TetNeighbors& next, const std::string& source,
+                             const std::string& tets_field);
 
 }  // namespace rayint

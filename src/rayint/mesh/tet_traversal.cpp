@@ -10,6 +10,7 @@
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
 #include "rayint/mesh/first_hit.hpp"
+#include "rayint/mesh/tet_adjacency.hpp"
 
 namespace rayint {
 
@@ -24,8 +25,6 @@ void TraversalStats::add(const TraversalStats& o) {
 }
 
 namespace {
-// Local face k of a tet is the one opposite point k.
-constexpr std::array<std::array<int, 3>, 4> kFacePoints{{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
 // The largest point coordinate the boundary ray tracer takes. Embree works in single precision
 // and asserts ray.valid(): |origin|, |direction| <= FLT_LARGE = 1.844e18 (embree
 // common/math/constants.h); a coordinate beyond float's range even becomes inf. The walk's
@@ -35,7 +34,10 @@ constexpr std::array<std::array<int, 3>, 4> kFacePoints{{{1, 2, 3}, {0, 2, 3}, {
 constexpr double kMaxCoordinate = 1e18;
 }  // namespace
 
-TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std::move(mesh)) {
+TetTraversal::TetTraversal(TetMesh mesh, const std::string& source)
+    : TetTraversal(std::move(mesh), TetNeighbors{}, source) {}
+
+TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::string& source) : mesh_(std::move(mesh)) {
   for (std::size_t i = 0; i < mesh_.points.size(); ++i)
     for (int k = 0; k < 3; ++k)
       if (!(std::fabs(mesh_.points[i][k]) <= kMaxCoordinate))
@@ -43,74 +45,39 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
                          "]: coordinate " + format_number(mesh_.points[i][k]) +
                          " beyond +-1e18, the range of the boundary ray tracer (Embree, single precision)");
   const std::size_t n = mesh_.tets.size();
-  if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 4))
-    throw InputError(source + ": tets: " + std::to_string(n) + " tetrahedra; at most 2^29 - 1 are supported");
-  // Faces: sort (sorted point triple, 4 tet + k) records and merge equal triples. 16 bytes a
-  // record, 64 per tet: the largest transient of the build besides cells_ (issue 33).
-  struct Rec {
+  // Phase 1, adjacency (mesh/tet_adjacency.hpp): given by the caller (the mesh case reader
+  // computes it for the overlap check) or computed here.
+  if (neighbors.size() != n) neighbors = tet_neighbors(mesh_, source);
+  // The boundary faces in the order of their sorted point triples (Embree's primitive order).
+  // A face's plane (rule 1) is a function of its sorted point triple alone, so phase 2
+  // recomputes it per cell, the same doubles.
+  struct BoundaryRec {
     std::array<std::int32_t, 3> key;
-    std::int32_t tet_k;  // 4 tet + k: sorts as (tet, k)
+    std::int32_t tet_k;
   };
-  std::vector<Rec> recs(4 * n);
+  std::vector<BoundaryRec> brecs;
   for (std::size_t t = 0; t < n; ++t)
-    for (int k = 0; k < 4; ++k) {
-      Rec& r = recs[4 * t + static_cast<std::size_t>(k)];
-      for (int j = 0; j < 3; ++j) r.key[static_cast<std::size_t>(j)] = mesh_.tets[t][static_cast<std::size_t>(kFacePoints[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)])];
-      std::sort(r.key.begin(), r.key.end());
-      r.tet_k = static_cast<std::int32_t>(4 * t) + k;
-    }
-  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
-    if (a.key[0] != b.key[0]) return a.key[0] < b.key[0];
-    if (a.key[1] != b.key[1]) return a.key[1] < b.key[1];
-    if (a.key[2] != b.key[2]) return a.key[2] < b.key[2];
-    return a.tet_k < b.tet_k;
-  });
-  // Phase 1, adjacency: equal triples are one face; the cell across face k of t goes to next[t][k]
-  // (-1: boundary). The face's plane (rule 1) is a function of its sorted point triple alone, so
-  // phase 2 recomputes it per cell, the same doubles, after recs is freed: the two never share
-  // memory (peak memory, issue 33).
-  const auto plane = [&](const std::array<std::int32_t, 3>& key) {
-    const Vec3& a = mesh_.points[static_cast<std::size_t>(key[0])];
-    return (mesh_.points[static_cast<std::size_t>(key[1])] - a).cross(mesh_.points[static_cast<std::size_t>(key[2])] - a);
-  };
+    for (std::size_t k = 0; k < 4; ++k)
+      if (neighbors[t][k] < 0) brecs.push_back({face_key(mesh_, t, k), static_cast<std::int32_t>(4 * t + k)});
+  std::sort(brecs.begin(), brecs.end(), [](const BoundaryRec& a, const BoundaryRec& b) { return a.key < b.key; });
+  face_count_ = (4 * n + brecs.size()) / 2;
+  boundary_.reserve(brecs.size());
+  boundary_k_.reserve(brecs.size());
+  for (const BoundaryRec& r : brecs) {
+    Face f;
+    f.points = r.key;
+    f.normal = face_plane(mesh_, f.points);
+    f.cells = {r.tet_k / 4, -1};
+    boundary_.push_back(f);
+    boundary_k_.push_back(static_cast<std::int8_t>(r.tet_k % 4));
+  }
+  std::vector<BoundaryRec>().swap(brecs);
+  const auto plane = [&](const std::array<std::int32_t, 3>& key) { return face_plane(mesh_, key); };
   // +1 when the face's normal points out of cell t (away from its point k).
   const auto sign_of = [&](const std::array<std::int32_t, 3>& key, const Vec3& normal, std::size_t t, std::size_t k) {
     const Vec3& opposite = mesh_.points[static_cast<std::size_t>(mesh_.tets[t][k])];
     return normal.dot(opposite - mesh_.points[static_cast<std::size_t>(key[0])]) < 0.0 ? 1 : -1;
   };
-  std::vector<std::array<std::int32_t, 4>> next(n);
-  face_count_ = 0;
-  for (std::size_t i = 0; i < recs.size();) {
-    std::size_t j = i + 1;
-    while (j < recs.size() && recs[j].key == recs[i].key) ++j;
-    if (j - i > 2)
-      throw InputError(source + ": tets[" + std::to_string(recs[i + 2].tet_k / 4) + "]: face (" +
-                       std::to_string(recs[i].key[0]) + ", " + std::to_string(recs[i].key[1]) + ", " +
-                       std::to_string(recs[i].key[2]) + ") is shared by more than two tetrahedra (also tets[" +
-                       std::to_string(recs[i].tet_k / 4) + "] and tets[" + std::to_string(recs[i + 1].tet_k / 4) + "])");
-    Face f;
-    f.points = recs[i].key;
-    f.normal = plane(f.points);
-    std::array<int, 2> sign{};
-    for (std::size_t r = i; r < j; ++r) {
-      const auto t = static_cast<std::size_t>(recs[r].tet_k / 4);
-      sign[r - i] = sign_of(f.points, f.normal, t, static_cast<std::size_t>(recs[r].tet_k % 4));
-      f.cells[r - i] = recs[r].tet_k / 4;
-    }
-    if (j - i == 2 && sign[0] == sign[1])
-      throw InputError(source + ": tets[" + std::to_string(f.cells[1]) + "]: overlaps tets[" + std::to_string(f.cells[0]) +
-                       "] (both lie on the same side of their shared face)");
-    for (std::size_t r = i; r < j; ++r)
-      next[static_cast<std::size_t>(recs[r].tet_k / 4)][static_cast<std::size_t>(recs[r].tet_k % 4)] =
-          j - i == 2 ? f.cells[1 - (r - i)] : -1;
-    if (j - i == 1) {
-      boundary_.push_back(f);
-      boundary_k_.push_back(static_cast<std::int8_t>(recs[i].tet_k % 4));
-    }
-    ++face_count_;
-    i = j;
-  }
-  std::vector<Rec>().swap(recs);
   // Phase 2, the walk's per-cell records (see CellRecord): face k of cell t gets its face's normal
   // times the cell's sign (+1: the normal points out).
   cells_.resize(n);
@@ -118,24 +85,23 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
     CellRecord& c = cells_[t];
     const auto& tet = mesh_.tets[t];
     const std::int32_t lowest = std::min({tet[0], tet[1], tet[2], tet[3]});
-    c.first_point = mesh_.points[static_cast<std::size_t>(lowest)];
-    c.second_point = c.first_point;
+    c.first_point = lowest;
+    c.second_point = lowest;
     c.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
     for (std::size_t k = 0; k < 4; ++k) {
-      std::array<std::int32_t, 3> key{};
-      for (std::size_t j = 0; j < 3; ++j) key[j] = tet[static_cast<std::size_t>(kFacePoints[k][j])];
-      std::sort(key.begin(), key.end());
+      const std::array<std::int32_t, 3> key = face_key(mesh_, t, k);
       const Vec3 normal = plane(key);
       c.normal[k] = sign_of(key, normal, t, k) > 0 ? normal : Vec3(-normal);
-      c.next[k] = next[t][k];
+      c.next[k] = neighbors[t][k];
       if (key[0] != lowest) {
         c.k_second = static_cast<std::int32_t>(k);
-        c.second_point = mesh_.points[static_cast<std::size_t>(key[0])];
+        c.second_point = key[0];
       }
     }
   }
-  std::vector<std::array<std::int32_t, 4>>().swap(next);
-  // Eq. 9 per cell.
+  TetNeighbors().swap(neighbors);
+  // Eq. 9 per cell: the gradient (field() puts the anchor and its scalar back from the mesh).
+  gradients_.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
     std::array<Vec3, 4> x;
     std::array<double, 4> s{};
@@ -143,7 +109,7 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
       x[k] = mesh_.points[mesh_.tets[t][k]];
       s[k] = mesh_.cell_scalars.empty() ? mesh_.scalars[mesh_.tets[t][k]] : mesh_.cell_scalars[t];
     }
-    cells_[t].field = fit_linear_tet(x, s);
+    gradients_[t] = fit_linear_tet(x, s).gradient;
   }
   box_min_ = box_max_ = mesh_.points.front();
   for (const Vec3& p : mesh_.points) {
@@ -162,6 +128,15 @@ TetTraversal::TetTraversal(TetMesh mesh, const std::string& source) : mesh_(std:
 
 TetTraversal::~TetTraversal() = default;
 
+LinearTetField TetTraversal::field(std::size_t cell) const {
+  LinearTetField f;
+  const auto p0 = static_cast<std::size_t>(mesh_.tets[cell][0]);
+  f.anchor = mesh_.points[p0];
+  f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[cell];
+  f.gradient = gradients_[cell];
+  return f;
+}
+
 std::int32_t TetTraversal::neighbor(std::size_t cell, int k) const {
   return cells_[cell].next[static_cast<std::size_t>(k)];
 }
@@ -179,7 +154,7 @@ struct TetTraversal::Walk {
 double TetTraversal::crossing(const Walk& w, std::size_t cell, int k) const {
   const CellRecord& r = cells_[cell];
   const Vec3& n = r.normal[static_cast<std::size_t>(k)];
-  return n.dot(r.face_point(k) - w.o) / n.dot(w.d);
+  return n.dot(face_point(r, k) - w.o) / n.dot(w.d);
 }
 
 struct FirstHitFilterAccess {
@@ -215,7 +190,7 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     for (int k = 0; k < 4; ++k) {
       // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d.
       const Vec3& normal = r.normal[static_cast<std::size_t>(k)];
-      const double dist = normal.dot(p - r.face_point(k)) / normal.norm();
+      const double dist = normal.dot(p - face_point(r, k)) / normal.norm();
       if (dist > tol) holds = false;
       const double dn = normal.dot(w.d);
       if (dn > 0.0) tb = std::min(tb, crossing(w, c, k));
@@ -282,7 +257,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
-    const LinearTetField& f = cells_[static_cast<std::size_t>(cell)].field;
+    const LinearTetField f = field(static_cast<std::size_t>(cell));
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
     // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
     CellCrossing& c = out.crossings.emplace_back();
@@ -319,7 +294,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
         // The ray leaves through one of these faces: start loading the cells behind them now.
         __builtin_prefetch(&cells_[static_cast<std::size_t>(std::max(r.next[static_cast<std::size_t>(k)], 0))]);
         // crossing(w, c, k) with its denominator (the same expression, w.d == d) computed once.
-        const double tf = normal.dot(r.face_point(k) - w.o) / nd;
+        const double tf = normal.dot(face_point(r, k) - w.o) / nd;
         if (tf < t_min) {
           t_min = tf;
           k_min = k;

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "rayint/geometry/vec3.hpp"
+#include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/tet_cell.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/model/ray.hpp"
@@ -92,12 +93,19 @@ class TetTraversal {
   // boundary first-hit structure. Throws InputError "<source>: tets: ..." for a face shared by
   // more than two tets or two tets overlapping across a face.
   explicit TetTraversal(TetMesh mesh, const std::string& source = "mesh");
+  // The same with the mesh's face adjacency given (tet_neighbors(mesh), as the mesh case reader
+  // computed it for the overlap check; moved in and freed once used): the faces are not sorted a
+  // second time. An empty `neighbors` is computed here.
+  TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::string& source);
   ~TetTraversal();
   TetTraversal(const TetTraversal&) = delete;
   TetTraversal& operator=(const TetTraversal&) = delete;
 
   const TetMesh& mesh() const { return mesh_; }
-  const LinearTetField& field(std::size_t cell) const { return cells_[cell].field; }
+  // Eq. 9 of a cell: its gradient as stored, its anchor (the cell's point 0) and that point's
+  // scalar (or the cell's) from the mesh: the values fit_linear_tet gave, bit for bit.
+  LinearTetField field(std::size_t cell) const;
+  const Vec3& gradient(std::size_t cell) const { return gradients_[cell]; }
   std::size_t cell_count() const { return mesh_.tets.size(); }
   std::size_t face_count() const { return face_count_; }
   std::size_t boundary_face_count() const { return boundary_.size(); }
@@ -119,24 +127,28 @@ class TetTraversal {
 
  private:
   struct Walk;
-  // What one walk step needs about a cell, in one 256-byte record (4 cache lines) so that a step
-  // does not gather from a face array, the points, the signs and the fields (measured: the walk
-  // takes ~30% less time than with those separate arrays; README "Rendering throughput"). The
-  // values are those of the face planes of rule 1, unchanged: normal[k] is face k's normal times
-  // the cell's sign (+-1, an exact negation), so normal[k].d = sign * (n.d) and
+  // What one walk step needs about a cell, in one 128-byte record (2 cache lines) so that a step
+  // does not gather from a face array, the signs and the fields (measured: the walk took ~30%
+  // less time than with those separate arrays; README "Rendering throughput"). The values are
+  // those of the face planes of rule 1, unchanged: normal[k] is face k's normal times the cell's
+  // sign (+-1, an exact negation), so normal[k].d = sign * (n.d) and
   // normal[k].(a - o) / normal[k].d = n.(a - o) / n.d bit for bit. A face's first point (its
   // lowest point index) is the cell's lowest-index point, except for the face opposite that point,
-  // whose first point is the cell's second-lowest. Renders are cmp-identical to the separate arrays.
+  // whose first point is the cell's second-lowest: both are kept as point indices (issue 33: the
+  // record was 256 bytes with the two points and the Eq. 9 field in it; the field's gradient is
+  // now in gradients_, its anchor and scalar in the mesh). Renders are cmp-identical to the
+  // 256-byte records (reports/scaling/README.md, "Memory").
   struct alignas(64) CellRecord {
     std::array<Vec3, 4> normal;            // face opposite point k, times the cell's sign (outward)
-    Vec3 first_point;                      // first point of every face but k_second
-    Vec3 second_point;                     // first point of face k_second
-    std::array<std::int32_t, 4> next{};   // the cell across face k, -1 on the boundary
-    std::int32_t k_second = 0;
-    LinearTetField field;                  // Eq. 9
-    const Vec3& face_point(int k) const { return k == k_second ? second_point : first_point; }
+    std::array<std::int32_t, 4> next{};    // the cell across face k, -1 on the boundary
+    std::int32_t first_point = 0;          // point index: the first point of every face but k_second
+    std::int32_t second_point = 0;         // point index: the first point of face k_second
+    std::int32_t k_second = -1;
   };
-  static_assert(sizeof(CellRecord) == 256, "four cache lines per cell");
+  static_assert(sizeof(CellRecord) == 128, "two cache lines per cell");
+  const Vec3& face_point(const CellRecord& r, int k) const {
+    return mesh_.points[static_cast<std::size_t>(k == r.k_second ? r.second_point : r.first_point)];
+  }
   // Rule 1: the crossing parameter of local face k of `cell`, the same double whichever cell asks.
   double crossing(const Walk& w, std::size_t cell, int k) const;
   bool star_search(const Walk& w, std::int32_t from, double t, std::int32_t& cell, double& t_out) const;
@@ -144,6 +156,7 @@ class TetTraversal {
 
   TetMesh mesh_;
   std::vector<CellRecord> cells_;
+  std::vector<Vec3> gradients_;           // Eq. 9 gradient per cell (24 B; used once per crossing)
   std::vector<Face> boundary_;            // boundary faces, in Embree's primitive order
   std::vector<std::int8_t> boundary_k_;   // local index of boundary_[i] in boundary_[i].cells[0]
   std::size_t face_count_ = 0;

@@ -55,7 +55,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
                 [&](std::size_t a, std::size_t b) { return std::fabs(lambda[a]) < std::fabs(lambda[b]); });
       if (std::fabs(lambda[order[0]]) > kOnFace) {  // interior point: t fixed, s(p) moves
         if (on_cells) continue;
-        const Vec3& grad_s = traversal.field(cell).gradient;
+        const Vec3& grad_s = traversal.gradient(cell);
         for (std::size_t k = 0; k < 4; ++k) {
           std::array<Rgb, 3> d{};
           for (int a = 0; a < 3; ++a)
