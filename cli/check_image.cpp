@@ -24,6 +24,7 @@
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/render/float_image.hpp"
 #include "rayint/render/image_compare.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/scene/pipeline.hpp"
@@ -255,6 +256,7 @@ void run_image_check(const ImageCheckOptions& o) {
   const Image variance = read_variance(o, candidate);
 
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
+  refuse_quadratic_tets(mc.mesh, mc.mesh_source, "check --candidate-image");
   const TetTraversal mesh(mc.mesh, mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = o.threads;
