@@ -216,7 +216,8 @@ TEST_CASE("tet10 node order: every reader's quadratic field equals vtkQuadraticT
     }
     CHECK(located == 300);
     CHECK(swapped_differs >= 270);
-    // Measured: worst 5.6e-16 (values O(1)); 1e-13 leaves the rounding of 10 shape functions room.
+    // Measured: worst 8.2e-16 in every format (values O(1)); 1e-13 leaves the rounding of 10
+    // shape functions room.
     CHECK(worst <= 1e-13);
     WARN(fmt.file << ": worst |rayint - vtkQuadraticTetra| = " << worst << " over " << located << " points");
   }
@@ -244,7 +245,7 @@ TEST_CASE("tet10 node order: every reader, TetGen's too, reproduces the quadrati
         const double got = quadratic_tet_value(fit_quadratic_tet(mesh, t), x);
         worst = std::max(worst, std::fabs(got - q_field(x[0], x[1], x[2])));
       }
-    // Measured <= 1.2e-15 (q = O(1)); 1e-13 as above.
+    // Measured <= 8.9e-16 (q = O(1)); 1e-13 as above.
     CHECK(worst <= 1e-13);
     WARN(fmt.file << ": " << mesh.tets.size() << " tet10, largest mid-edge offset " << edges.worst_offset
                   << ", worst |f - q| = " << worst);
@@ -279,7 +280,7 @@ TEST_CASE("tet10 ray integral: q against the mesh-free 50-digit reference in eve
       }
     }
     // The mesh reproduces q up to the rounding of its node coordinates; issue 2's target for
-    // `exact` applies. Measured: see the warning (<= ~1e-15).
+    // `exact` applies. Measured: intensity <= 1.8e-15, transmittance <= 2.1e-15 (all six files).
     CHECK(worst <= rayint::test::Tolerances::exact_rel);
     CHECK(worst_t <= rayint::test::Tolerances::exact_rel);
     WARN(fmt.file << ": 60 rays, worst relative error intensity " << worst << ", transmittance " << worst_t);
@@ -308,12 +309,12 @@ TEST_CASE("tet10 ray integral: the non-polynomial r against a per-crossing 50-di
       for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, rel_err(got.intensity[c], ref.intensity[c].hi));
     }
     CHECK(curved > crossings / 2);  // the sample is quadratic, not linear in disguise
-    CHECK(worst <= rayint::test::Tolerances::exact_rel);
+    CHECK(worst <= rayint::test::Tolerances::exact_rel);  // measured 1.3e-15 (gmsh), 8.0e-16 (TetGen)
     WARN(fmt.file << ": 40 rays, " << crossings << " crossings, worst relative error " << worst);
   }
 }
 
-TEST_CASE("tet10: the same mesh read from five formats gives identical answers", "[tet10][mesh][readers]") {
+TEST_CASE("tet10: the same mesh read from five formats gives the same answers to rounding", "[tet10][mesh][readers]") {
   const TransferFunctions tf = steep_tf();
   const QuadraticTraceIntegrator integrator(tf);
   const std::vector<ViewRay> rays = random_rays(50, 5);
@@ -334,8 +335,17 @@ TEST_CASE("tet10: the same mesh read from five formats gives identical answers",
       continue;
     }
     long differ = 0;
-    for (std::size_t i = 0; i < got.size(); ++i) differ += got[i] != first[i];
-    CHECK(differ == 0);  // the same doubles in every file: bit for bit
+    double worst = 0.0;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      differ += got[i] != first[i];
+      for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, rel_err(got[i][c], first[i][c]));
+    }
+    // The files hold the same doubles, but not in the same point order (meshio and VTK renumber
+    // gmsh's nodes), so a face's plane and a chord end may differ by an ulp: rounding, nothing
+    // more. Measured: .vtk bit-identical to .msh 2.2; 4.1, meshio, VTK: 7 of 50 rays differ, by
+    // <= 3.3e-16 relative; 1e-14 is ~45 ulps.
+    CHECK(worst <= 1e-14);
+    WARN(fmt.file << " vs tet10-22.msh, 50 rays: " << differ << " differ, worst relative difference " << worst);
   }
 }
 
@@ -365,7 +375,7 @@ TEST_CASE("tet10 whose mid-edge values are the corner averages integrates as the
     const RayResult b = exact.integrate(ray_from_trace(trace, Rgb{0.0, 0.0, 0.0}), nullptr);
     for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, rel_err(a.intensity[c], b.intensity[c]));
   }
-  CHECK(worst <= rayint::test::Tolerances::exact_rel);
+  CHECK(worst <= rayint::test::Tolerances::exact_rel);  // measured 7.4e-16
   WARN("corner-average tet10 vs linear tets (exact), 60 rays: worst relative difference " << worst);
 }
 
