@@ -30,6 +30,9 @@
 // TetGen 1.6 (-o2) lists the mid-edge nodes of a tetrahedron (corners 0-3) on the edges (2,3),
 // (0,3), (0,1), (1,2), (1,3), (0,2) (found on the file tetgen writes, tests/fixtures/readers/
 // cube-o2.1.ele: each node at exactly one edge midpoint); kTetgenTet10ToVtk maps it.
+// The quadratic volume cells' parametric nodes, shape functions and derivatives in VTK's own
+// parametric coordinates are cells/quadratic_cells.hpp (checked against VTK 9.1, which also checks
+// the gmsh permutations below against gmsh's documented edge lists, tests [cells][quadratic]).
 // Shape functions: `shape` names the cells/shape_functions.hpp family for the types that have one
 // (quadratic tetrahedron: tet10; hexahedron: hex8; quadratic hexahedron: hex20).
 #include <array>
