@@ -421,6 +421,9 @@ TEST_CASE("CLI: mesh info counts tet10 and says the edges are straight, render i
   const auto r = rayint::test::run_cli(dir.path, "render c.json -o c.png --stats st.json -q");
   CHECK(r.status == 0);
   CHECK(fs::exists(dir.path / "c.png"));
+  const auto stats = nlohmann::json::parse(rayint::test::slurp(dir.path / "st.json"));
+  CHECK(stats["mesh"]["quadratic_tets"] == 197);
+  CHECK(stats["method"] == "exact (quadratic tetrahedra)");
   const auto e = rayint::test::run_cli(dir.path, "eval c.json --methods exact --no-timing -o out.json");
   CHECK(e.status == 2);
   CHECK(e.err.find("197 quadratic tetrahedra") != std::string::npos);
