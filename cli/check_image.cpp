@@ -25,6 +25,7 @@
 #include "rayint/render/float_image.hpp"
 #include "rayint/render/image_compare.hpp"
 #include "rayint/render/cell_mesh_render.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/scene/pipeline.hpp"
@@ -290,6 +291,7 @@ void run_image_check(const ImageCheckOptions& o) {
   if (mc.cells) return run_own_cells_image_check(o, mc, candidate, variance);
 
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
+  refuse_quadratic_tets(mc.mesh, mc.mesh_source, "check --candidate-image");
   const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = o.threads;

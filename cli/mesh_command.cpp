@@ -5,12 +5,15 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
+#include "rayint/core/error.hpp"
 #include "rayint/mesh/mesh_check.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/report/mesh_info.hpp"
 
 namespace rayint::cli {
@@ -34,17 +37,28 @@ void set_mesh_command(CLI::App& app) {
   cmd->callback([opt] {
     // Read as cells: a file of tetrahedra only continues as before; one with hexahedra, wedges,
     // pyramids or voxels is reported by type (it has no tetrahedra to check for overlaps).
-    CellMesh cells = read_cell_mesh_file(opt->file, opt->array, opt->point_average);
+    // Quadratic tetrahedra are not cells of the CellMesh path (--cells split refuses them): a
+    // file the cell reader refuses is read again by the tetrahedral path, which keeps them; when
+    // that refuses it too, the cell reader's line stands.
+    CellMesh cells;
+    std::optional<TetMesh> quadratic;
+    try {
+      cells = read_cell_mesh_file(opt->file, opt->array, opt->point_average);
+    } catch (const InputError& cell_error) {
+      if (std::string(cell_error.what()).find("quadratic tetra (VTK id 24)") == std::string::npos) throw;
+      quadratic = read_mesh_file(opt->file, opt->array, opt->point_average);  // its own line if it refuses
+    }
     MeshInfo info;
     info.file = opt->file;
-    if (!cells.only_tets()) {
+    if (!quadratic && !cells.only_tets()) {
       info.cells = &cells;
       emit(opt->format == "json" ? to_json(info).dump(2) + "\n" : to_text(info), opt->output);
       return;
     }
-    const TetMesh m = take_tets(std::move(cells));
+    const TetMesh m = quadratic ? std::move(*quadratic) : take_tets(std::move(cells));
     info.mesh = &m;
     info.orientation = orientation_counts(m);
+    if (!m.edge_nodes.empty()) info.tet10 = check_tet10_edges(m);
     if (opt->check || opt->quick) {
       const auto t0 = std::chrono::steady_clock::now();
       // As on load: the face adjacency, then the boundary fast path

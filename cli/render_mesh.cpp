@@ -23,6 +23,7 @@
 #include "rayint/core/format.hpp"
 #include "rayint/core/limits.hpp"
 #include "rayint/geometry/camera_fit.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/render/float_image.hpp"
@@ -137,6 +138,8 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   // The image, with --compare the compared image and the per-pixel error: before any is taken.
   check_camera_memory(*mc.camera, options.compare.empty() ? 1 : 2, !options.compare.empty(),
                       options.input + ": camera");
+  if (!options.compare.empty()) refuse_quadratic_tets(mc.mesh, mc.mesh_source, "render --compare");
+  if (mc.shading.enabled) refuse_quadratic_tets(mc.mesh, mc.mesh_source, "render with \"shading\"");
   // Validate the methods before the (long) render.
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
   std::unique_ptr<RayIntegrator> compare;

@@ -14,6 +14,7 @@
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/render/float_image.hpp"
 #include "rayint/render/mesh_gradient.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/render/npy_array.hpp"
 
 namespace rayint::cli {
@@ -31,6 +32,7 @@ void render_mesh_gradient_file(const nlohmann::json& root, const RenderOptions& 
     throw InputError(target_path + ": --loss-target: the image is " + std::to_string(target.width) + " x " +
                      std::to_string(target.height) + ", the camera renders " + std::to_string(mc.camera->width) +
                      " x " + std::to_string(mc.camera->height));
+  refuse_quadratic_tets(mc.mesh, mc.mesh_source, "render --gradient");
   const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
   const LossGradient g = image_loss_gradient(mc, mesh, target, options.threads, !options.grad_positions_out.empty());
   if (g.pixels_failed > 0) {  // nothing is written: a failed gradient is never shown as numbers

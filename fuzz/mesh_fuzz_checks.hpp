@@ -1,7 +1,8 @@
 #pragma once
 // What every mesh-reader fuzz target checks (vtk_legacy, tetgen, gmsh): an accepted mesh keeps
 // the readers' guarantees (tet_mesh.hpp, validate_tet_mesh_structure) and then goes through what a
-// mesh case does with it — repair_tet_mesh and, when small, the traversal of one ray — and every
+// mesh case does with it — repair_tet_mesh, the curved-tet10 refusal and, when small, the
+// traversal of one ray (quadratic crossings for tet10) — and every
 // refusal is one InputError line starting "<source>: ". Each check traps, so libFuzzer saves the
 // input as a crash artifact.
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "rayint/core/error.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/cell_split.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "fuzz_checks.hpp"
@@ -27,10 +29,16 @@ inline void check_mesh(TetMesh mesh, const std::string& source) {
   for (const double s : mesh.cell_scalars) require(std::isfinite(s));
   for (const auto& t : mesh.tets)
     for (const auto i : t) require(i >= 0 && static_cast<std::size_t>(i) < mesh.points.size());
+  // Quadratic tets: one list of six mid-edge nodes per tet (-1: a linear tet's edge).
+  require(mesh.edge_nodes.empty() || mesh.edge_nodes.size() == mesh.tets.size());
+  for (const auto& e : mesh.edge_nodes)
+    for (const auto i : e) require(i >= -1 && (i < 0 || static_cast<std::size_t>(i) < mesh.points.size()));
   try {
     const TetRepairs r = repair_tet_mesh(mesh, source);
     require(r.tets_read == r.zero_volume + r.slivers + static_cast<long>(mesh.tets.size()));
     validate_tet_mesh(mesh, source);  // after repair the strict check must pass
+    require(mesh.edge_nodes.empty() || mesh.edge_nodes.size() == mesh.tets.size());  // repair kept them in step
+    refuse_curved_tet10(mesh, source);  // what a mesh case does: straight-edged tet10 only
     if (mesh.tets.size() > 2000) return;
     const TetTraversal traversal(mesh, source);
     RayTrace trace;
@@ -40,6 +48,7 @@ inline void check_mesh(TetMesh mesh, const std::string& source) {
     double last = -INFINITY;
     for (const CellCrossing& c : trace.crossings) {
       require(c.t_out > c.t_in && c.t_in >= last && std::isfinite(c.s_in) == std::isfinite(c.s_out));
+      require(traversal.quadratic() || c.q == 0.0);
       last = c.t_out;
     }
   } catch (const InputError& e) {

@@ -46,7 +46,7 @@ const std::vector<CellTypeInfo>& table() {
       row(28, "biquadratic quad", 9, 2, 10, identity(9), S::Skipped),
       // Volume cells.
       row(kVtkTetra, "tetra", 4, 3, 4, identity(4), S::Traversed),
-      row(kVtkQuadraticTetra, "quadratic tetra", 10, 3, 11, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, S::NotYet,
+      row(kVtkQuadraticTetra, "quadratic tetra", 10, 3, 11, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}, S::Quadratic,
           CellType::tet10),
       // Linear cells other than the tetrahedron. gmsh's node numbering of the 8-node hexahedron,
       // 6-node prism and 5-node pyramid lists the nodes as VTK does (bottom face, then top face /
@@ -103,8 +103,12 @@ std::string unsupported_cell_message(long long vtk_id) {
     return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
            "): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split "
            "(VTK's tetrahedralisation, an approximation of the cell's own interpolation)";
+  if (r->support == CellSupport::Quadratic)
+    return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
+           "): --cells split tetrahedralises linear cells only; read this file without --cells split "
+           "(its straight-edged quadratic tetrahedra are integrated with their quadratic interpolation)";
   return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
-         ") is not supported yet; only tetrahedra (VTK id 10) are integrated";
+         ") is not supported yet; only tetrahedra (VTK ids 10 and 24) are integrated";
 }
 
 }  // namespace rayint

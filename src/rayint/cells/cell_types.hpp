@@ -4,8 +4,12 @@
 // (vtkCellType.h), the node count, the dimension, gmsh's element type id (gmsh reference manual,
 // "MSH file format", elm-type) with the permutation from gmsh's node order to VTK's, and what
 // rayint does with the type:
-//   Traversed   a volume cell the tetrahedral traversal integrates (linear tetrahedron; the
-//               quadratic tetrahedron is read and checked, see below);
+//   Traversed   a volume cell the tetrahedral traversal integrates: the linear tetrahedron;
+//   Quadratic   the quadratic tetrahedron (10 nodes): its corners are traversed as a tetrahedron
+//               and its six mid-edge nodes kept beside it (TetMesh::edge_nodes); with straight
+//               edges its scalar is quadratic along a chord and integrated as such
+//               (mesh/quadratic_tets.hpp); curved edges are refused. `--cells split` (the
+//               CellMesh path) refuses it: VTK's split is defined for linear cells;
 //   Skipped     a cell of dimension 0-2 (vertex, line, triangle, quad, ...): boundary and
 //               annotation cells gmsh writes beside the volume; they hold no volume, so a ray
 //               integral never sees them. Readers drop them and count them by type;
@@ -13,14 +17,22 @@
 //               pyramid): read into a CellMesh (mesh/cell_mesh.hpp) and integrated after
 //               `--cells split` (mesh/cell_split.hpp, VTK's tetrahedralisation: an approximation);
 //               the tetrahedral path refuses it with unsupported_cell_message(), which says so;
-//   NotYet      a volume cell rayint does not integrate yet (quadratic cells, polyhedra):
+//   NotYet      a volume cell rayint does not integrate yet (quadratic hexahedra, wedges and
+//               pyramids, polyhedra):
 //               refused with unsupported_cell_message().
 // Node order is always VTK's once read: a reader permutes gmsh's order with gmsh_to_vtk
 // (vtk node i = gmsh node gmsh_to_vtk[i]). The permutations are gmsh's documented node numbering
 // ("Node ordering") against VTK's cell documentation (vtkQuadraticTetra.h: edge nodes on
 // (0,1), (1,2), (2,0), (0,3), (1,3), (2,3); gmsh's 10-node tetrahedron has node 8 on edge (2,3)
 // and node 9 on edge (1,3): the last two are swapped), checked on files gmsh 4.8 writes
-// (tests/test_mesh_formats.cpp, "[mesh][tet10]": every edge node at its edge's midpoint).
+// (tests/test_tet10.cpp, "[tet10]": every edge node at its edge's midpoint, and rayint's quadratic
+// field equal to vtkQuadraticTetra's interpolation at random points of every cell).
+// TetGen 1.6 (-o2) lists the mid-edge nodes of a tetrahedron (corners 0-3) on the edges (2,3),
+// (0,3), (0,1), (1,2), (1,3), (0,2) (found on the file tetgen writes, tests/fixtures/readers/
+// cube-o2.1.ele: each node at exactly one edge midpoint); kTetgenTet10ToVtk maps it.
+// The quadratic volume cells' parametric nodes, shape functions and derivatives in VTK's own
+// parametric coordinates are cells/quadratic_cells.hpp (checked against VTK 9.1, which also checks
+// the gmsh permutations below against gmsh's documented edge lists, tests [cells][quadratic]).
 // Shape functions: `shape` names the cells/shape_functions.hpp family for the types that have one
 // (quadratic tetrahedron: tet10; hexahedron: hex8; quadratic hexahedron: hex20).
 #include <array>
@@ -31,7 +43,7 @@
 
 namespace rayint {
 
-enum class CellSupport { Traversed, Skipped, CellPath, NotYet };
+enum class CellSupport { Traversed, Quadratic, Skipped, CellPath, NotYet };
 
 struct CellTypeInfo {
   int vtk_id = 0;
@@ -49,6 +61,12 @@ inline constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkTriangle = 5, kVtkQuad = 
                      kVtkVoxel = 11, kVtkHexahedron = 12, kVtkWedge = 13, kVtkPyramid = 14,
                      kVtkQuadraticTetra = 24;
 
+// The quadratic tetrahedron's mid-edge nodes in VTK's order (vtkQuadraticTetra.h): node 4 + e
+// lies on the edge (kTet10Edges[e][0], kTet10Edges[e][1]) of the corners 0-3.
+inline constexpr std::array<std::array<int, 2>, 6> kTet10Edges{{{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}}};
+// TetGen's 10-node tetrahedron in VTK's order: vtk node i = tetgen node kTetgenTet10ToVtk[i].
+inline constexpr std::array<int, 10> kTetgenTet10ToVtk{0, 1, 2, 3, 6, 7, 9, 5, 8, 4};
+
 // The row of a VTK type id / gmsh element type id, or nullptr for an id rayint does not know.
 const CellTypeInfo* cell_type_from_vtk(long long vtk_id);
 const CellTypeInfo* cell_type_from_gmsh(long long gmsh_id);
@@ -56,7 +74,7 @@ const CellTypeInfo* cell_type_from_gmsh(long long gmsh_id);
 // For a CellPath row: "cell type hexahedron (VTK id 12): the tetrahedral path integrates only
 // tetrahedra; integrate this file with --cells split (VTK's tetrahedralisation, an approximation
 // of the cell's own interpolation)"; for a NotYet row "cell type X (VTK id N) is not supported
-// yet; only tetrahedra (VTK id 10) are integrated"; for an unknown id "cell type N is not a VTK
+// yet; only tetrahedra (VTK ids 10 and 24) are integrated"; for an unknown id "cell type N is not a VTK
 // cell type rayint knows".
 std::string unsupported_cell_message(long long vtk_id);
 

@@ -17,6 +17,8 @@
 // on every case of cases/): syntax errors anywhere, then the walk's order.
 #include "rayint/input/case_reader.hpp"
 
+#include "rayint/mesh/quadratic_tets.hpp"
+
 #include "rayint/input/json_schema.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
@@ -127,6 +129,8 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
       *own_cells = std::move(mc);
       return c;
     }
+    // A case is a list of linear segments for every method: a quadratic scalar is not one.
+    refuse_quadratic_tets(mc.mesh, mc.mesh_source, "a case of rays for eval, check, bench and gate");
     if (repairs) *repairs = mc.repairs;
     const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
     return trace_mesh_case(mc, mesh);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -70,7 +71,7 @@ class MshReader {
   TetMesh read() {
     parse();
     if (tet_nodes_.empty())
-      fail_whole("$Elements", "no 4-node tetrahedra (type 4); " + std::to_string(mesh_.info.skipped_cells) +
+      fail_whole("$Elements", "no tetrahedra (type 4 or 11); " + std::to_string(mesh_.info.skipped_cells) +
                                   " elements of dimension 0-2 skipped");
     return finish();
   }
@@ -279,11 +280,15 @@ class MshReader {
       for (int k = 0; k < row->nodes; ++k) cells_.back().nodes.push_back(nodes[static_cast<std::size_t>(k)]);
       return;
     }
-    if (row->support != CellSupport::Traversed)
+    if (keep_cells_ || (row->support != CellSupport::Traversed && row->support != CellSupport::Quadratic))
       c_.fail(f, unsupported_cell_message(row->vtk_id) + " (gmsh element type " + std::to_string(type) + ")");
     tet_tags_.push_back(t);
-    std::array<long long, 4> v{};
-    for (std::size_t k = 0; k < 4; ++k) v[k] = nodes[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
+    // VTK's node order (the table's permutation); a linear tet's mid-edge tags stay kNoNode.
+    std::array<long long, 10> v{};
+    v.fill(kNoNode);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(row->nodes); ++k)
+      v[k] = nodes[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
+    quadratic_ = quadratic_ || row->nodes == 10;
     tet_nodes_.push_back(v);
   }
 
@@ -453,6 +458,12 @@ class MshReader {
         t[k] = node(tet_nodes_[i][k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
       mesh_.tets.push_back(t);
       mesh_.info.cell_ids.push_back(tet_tags_[i]);
+      if (quadratic_) {
+        std::array<std::int32_t, 6>& e = mesh_.edge_nodes.emplace_back();
+        for (std::size_t k = 0; k < 6; ++k)
+          e[k] = tet_nodes_[i][4 + k] == kNoNode ? -1
+                                           : node(tet_nodes_[i][4 + k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
+      }
     }
     const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
                                                   : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
@@ -471,16 +482,20 @@ class MshReader {
       for (const auto& [t, vs] : element_data_.element_values) {
         const auto it = tet_of.find(t);
         if (it == tet_of.end()) continue;  // data on a point, line or triangle element
-        if (vs.size() != 4)
+        const std::size_t nodes = tet_nodes_[it->second][4] == kNoNode ? 4 : 10;
+        if (vs.size() != nodes)
           fail_whole("$ElementNodeData", "element " + std::to_string(t) + " (a tetrahedron) has " +
-                                          std::to_string(vs.size()) + " values, expected 4");
-        for (std::size_t k = 0; k < 4; ++k) {
-          const auto i = static_cast<std::size_t>(mesh_.tets[it->second][k]);
-          if (have[i] && value[i] != vs[k])
+                                          std::to_string(vs.size()) + " values, expected " + std::to_string(nodes));
+        const CellTypeInfo* row = cell_type_from_vtk(nodes == 4 ? kVtkTetra : kVtkQuadraticTetra);
+        for (std::size_t k = 0; k < nodes; ++k) {
+          // vtk node k is gmsh node gmsh_to_vtk[k]: its value is vs[gmsh_to_vtk[k]].
+          const auto i = static_cast<std::size_t>(k < 4 ? mesh_.tets[it->second][k] : mesh_.edge_nodes[it->second][k - 4]);
+          const double v = vs[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
+          if (have[i] && value[i] != v)
             fail_whole("$ElementNodeData",
                     "node " + std::to_string(tet_nodes_[it->second][k]) + " has two values (" + format_number(value[i]) +
-                        " and " + format_number(vs[k]) + "): the field is not continuous");
-          value[i] = vs[k];
+                        " and " + format_number(v) + "): the field is not continuous");
+          value[i] = v;
           have[i] = 1;
         }
       }
@@ -507,8 +522,12 @@ class MshReader {
       fail_whole("$NodeData", what + " (one scalar per node is required; arrays: " + list_arrays(mesh_.info.arrays) + ")");
     }
     mesh_.info.scalar = node_data_.present ? node_data_.name : element_data_.name;
-    for (const auto& t : mesh_.tets)
-      for (const std::int32_t i : t)
+    std::vector<std::int32_t> used;
+    for (const auto& t : mesh_.tets) used.insert(used.end(), t.begin(), t.end());
+    for (const auto& e : mesh_.edge_nodes)
+      for (const std::int32_t i : e)
+        if (i >= 0) used.push_back(i);
+    for (const std::int32_t i : used)
         if (!have[static_cast<std::size_t>(i)])
           fail_whole(node_data_.present ? "$NodeData" : "$ElementNodeData",
                   "no value for a node of a tetrahedron (point " + std::to_string(i) + ")");
@@ -622,7 +641,9 @@ class MshReader {
   TetMesh mesh_;
   std::unordered_map<long long, std::int32_t> node_index_;
   std::vector<long long> tet_tags_;
-  std::vector<std::array<long long, 4>> tet_nodes_;
+  static constexpr long long kNoNode = std::numeric_limits<long long>::min();
+  std::vector<std::array<long long, 10>> tet_nodes_;  // node tags, VTK's order; kNoNode: a linear tet's
+  bool quadratic_ = false;                             // some tet has 10 nodes
   DataBlock node_data_, element_data_, cell_data_;
 };
 

@@ -220,17 +220,27 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
   const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
 
   // Cells through the table.
+  // Quadratic tetrahedra: corners as a tet, the six mid-edge nodes (VTK's order) beside it.
   std::vector<std::size_t> kept;
+  bool quadratic = false;
   for (std::size_t i = 0; i < n_cells; ++i) {
-    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
-                                         [](CellSupport support) { return support == CellSupport::Traversed; });
+    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, [](CellSupport support) {
+      return support == CellSupport::Traversed || support == CellSupport::Quadratic;
+    });
     if (row == nullptr) continue;
     std::array<std::int32_t, 4> t{};
     for (std::size_t k = 0; k < 4; ++k) t[k] = mesh_point(raw, raw.offsets[i] + k, i, k, shared, source, fields);
     mesh.tets.push_back(t);
+    std::array<std::int32_t, 6>& e = mesh.edge_nodes.emplace_back();
+    e.fill(-1);
+    if (row->support == CellSupport::Quadratic) {
+      quadratic = true;
+      for (std::size_t k = 0; k < 6; ++k) e[k] = mesh_point(raw, raw.offsets[i] + 4 + k, i, 4 + k, shared, source, fields);
+    }
     kept.push_back(i);
     info.cell_ids.push_back(static_cast<long long>(i));
   }
+  if (!quadratic) mesh.edge_nodes.clear();
   if (mesh.tets.empty())
     field::fail(source, fields.cells,
                 "no tetrahedra (" + std::to_string(n_cells) + " cells, " + std::to_string(info.skipped_cells) +
@@ -252,7 +262,9 @@ CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const Assemb
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < n_cells; ++i) {
     const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
-                                         [](CellSupport support) { return support != CellSupport::NotYet; });
+                                         [](CellSupport support) {
+                                           return support == CellSupport::Traversed || support == CellSupport::CellPath;
+                                         });
     if (row == nullptr) continue;
     for (std::size_t k = raw.offsets[i]; k < raw.offsets[i + 1]; ++k)
       mesh.connectivity.push_back(mesh_point(raw, k, i, k - raw.offsets[i], shared, source, fields));

@@ -4,8 +4,9 @@
 // concatenated) map their format onto a RawMesh and call assemble_tet_mesh, so every rule below
 // holds for all of them alike.
 //
-// Cells (cells/cell_types.hpp): tetrahedra are kept; cells of dimension 0-2 are skipped and
-// counted by type (TetMesh::info); other volume cells are refused with
+// Cells (cells/cell_types.hpp): tetrahedra are kept, quadratic tetrahedra as their corners with
+// the mid-edge nodes in TetMesh::edge_nodes (VTK's order is the files' order); cells of dimension
+// 0-2 are skipped and counted by type (TetMesh::info); other volume cells are refused with
 // unsupported_cell_message ("cell type hexahedron (VTK id 12): ... --cells split ..."); an
 // unknown type id is refused. Ghost cells: a cell array named vtkGhostType marks duplicated cells
 // (bit 1, vtkDataSetAttributes::DUPLICATECELL: the copy of a cell another piece owns); they are
@@ -65,7 +66,8 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
 
 // The same dataset as a CellMesh (mesh/cell_mesh.hpp): every linear volume cell kept (tetrahedra,
 // voxels, hexahedra, wedges, pyramids), dimensions 0-2 skipped and counted, ghost cells dropped,
-// the scalar chosen by the same rule. Quadratic cells and polyhedra are refused naming their type.
+// the scalar chosen by the same rule. Quadratic cells (the tet10 too: VTK's split is for linear
+// cells) and polyhedra are refused naming their type.
 CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                             const RawMeshFields& fields = {});
 

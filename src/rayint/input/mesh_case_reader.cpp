@@ -13,6 +13,7 @@
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/mesh_check.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/input/gmsh_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/tetgen_reader.hpp"
@@ -185,6 +186,8 @@ CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_
   if (it != readers.end() && extra_mesh_readers().count(ext) == 0) return it->second(path, scalar_name, cell_to_point);
   // Formats of tetrahedra only (TetGen, registered readers): their TetMesh as cells.
   TetMesh t = read_mesh_file(path, scalar_name, cell_to_point);
+  // One rule for every reader: the cell path refuses quadratic tetrahedra (cells/cell_types.hpp).
+  if (!t.edge_nodes.empty()) throw InputError(path + ": cells: " + unsupported_cell_message(kVtkQuadraticTetra));
   CellMesh m;
   m.points = std::move(t.points);
   m.scalars = std::move(t.scalars);
@@ -273,6 +276,7 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     mc.neighbors = tet_neighbors(mc.mesh, mc.mesh_source);
     refuse_overlapping_tets(mc.mesh, mc.neighbors, mc.mesh_source, names.tets);
   }
+  refuse_curved_tet10(mc.mesh, mc.mesh_source);  // straight-edged tet10 only (mesh/quadratic_tets.hpp)
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");

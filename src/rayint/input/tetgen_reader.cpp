@@ -65,9 +65,8 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
   const auto per_tet = h.size() >= 2 ? e.integer(h[1], "header", 4, 10) : 4;
   if (per_tet != 4 && per_tet != 10) e.fail("header", "nodes per tetrahedron must be 4 or 10");
   // One rule for every reader (cells/cell_types.hpp): a 10-node tetrahedron (tetgen -o2) is a
-  // quadratic tetra, which is refused until it is integrated with its quadratic interpolation
-  // (reading its corners only would integrate another field).
-  if (per_tet == 10) e.fail("header", unsupported_cell_message(kVtkQuadraticTetra) + " (tetgen -o2 writes 10 nodes per tetrahedron)");
+  // quadratic tetra, read as its corners with its mid-edge nodes in VTK's order
+  // (kTetgenTet10ToVtk) and integrated with its quadratic interpolation.
   const auto region = h.size() >= 3 ? static_cast<std::size_t>(e.integer(h[2], "header", 0, 1000)) : 0;
   if (tets == 0) e.fail("header", "no tetrahedra");
   mesh.tets.reserve(mesh_text::reserve_bound(tets, e.remaining_bytes(), 10));
@@ -83,13 +82,14 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
       e.fail(f, "index " + std::to_string(index) + " out of sequence (expected " +
                     std::to_string(ele_base + static_cast<long long>(i)) + ")");
     }
-    std::array<std::int32_t, 4> t{};
-    for (std::size_t k = 0; k < 4; ++k)
-      t[k] = static_cast<std::int32_t>(
-          e.integer(w[1 + k], f, base, base + static_cast<long long>(points) - 1) - base);
-    mesh.tets.push_back(t);
+    std::array<std::int32_t, 10> v{};
+    for (std::size_t k = 0; k < static_cast<std::size_t>(per_tet); ++k)
+      v[k] = static_cast<std::int32_t>(
+          e.integer(w[1 + static_cast<std::size_t>(kTetgenTet10ToVtk[k])], f, base, base + static_cast<long long>(points) - 1) - base);
+    mesh.tets.push_back({v[0], v[1], v[2], v[3]});
+    if (per_tet == 10) mesh.edge_nodes.push_back({v[4], v[5], v[6], v[7], v[8], v[9]});
   }
-  mesh.info.cells_by_type["tetra"] = static_cast<long>(mesh.tets.size());
+  mesh.info.cells_by_type[per_tet == 10 ? "quadratic tetra" : "tetra"] = static_cast<long>(mesh.tets.size());
   for (std::size_t a = 0; a < attributes; ++a)
     mesh.info.arrays.push_back({"attribute " + std::to_string(a), "point", 1, false});
   if (markers > 0) mesh.info.arrays.push_back({"boundary marker", "point", 1, true});

@@ -17,6 +17,7 @@ namespace {
 
 std::string at(const std::string& field, std::size_t i) { return field + "[" + std::to_string(i) + "]"; }
 
+
 }  // namespace
 
 double signed_volume6(const TetMesh& mesh, std::size_t tet) {
@@ -25,11 +26,21 @@ double signed_volume6(const TetMesh& mesh, std::size_t tet) {
   return (mesh.points[t[1]] - p0).cross(mesh.points[t[2]] - p0).dot(mesh.points[t[3]] - p0);
 }
 
+// Swapping corners 2 and 3 maps VTK's edges (0,1) (1,2) (0,2) (0,3) (1,3) (2,3) onto
+// (0,1) (1,3) (0,3) (0,2) (1,2) (3,2): mid-edge nodes 1 <-> 4 and 2 <-> 3 follow their edges.
+static void swap_corners_2_3(TetMesh& mesh, std::size_t tet) {
+  std::swap(mesh.tets[tet][2], mesh.tets[tet][3]);
+  if (mesh.edge_nodes.empty()) return;
+  auto& e = mesh.edge_nodes[tet];
+  std::swap(e[1], e[4]);
+  std::swap(e[2], e[3]);
+}
+
 std::size_t reorient_tets(TetMesh& mesh) {
   std::size_t swapped = 0;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     if (signed_volume6(mesh, i) < 0.0) {
-      std::swap(mesh.tets[i][2], mesh.tets[i][3]);
+      swap_corners_2_3(mesh, i);
       ++swapped;
     }
   }
@@ -84,6 +95,18 @@ void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,
         fail(source, at(at(names.tets, i), k),
              "point index " + std::to_string(t[k]) + " out of range [0, " + std::to_string(n) + ")");
   }
+  if (!mesh.edge_nodes.empty()) {
+    if (mesh.edge_nodes.size() != mesh.tets.size())
+      fail(source, names.tets, std::to_string(mesh.edge_nodes.size()) + " mid-edge node lists for " +
+                                   std::to_string(mesh.tets.size()) + " tetrahedra");
+    for (std::size_t i = 0; i < mesh.edge_nodes.size(); ++i)
+      for (std::size_t k = 0; k < 6; ++k) {
+        const std::int32_t p = mesh.edge_nodes[i][k];
+        if (p < -1 || p >= n)
+          fail(source, at(at(names.tets, i), 4 + k),
+               "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n) + ")");
+      }
+  }
 }
 
 void validate_tet_mesh(const TetMesh& mesh, const std::string& source, const MeshFieldNames& names) {
@@ -116,22 +139,25 @@ TetRepairs repair_tet_mesh(TetMesh& mesh, const std::string& source, const MeshF
   r.ghost_cells = mesh.info.ghost_cells;
   const bool per_cell = !mesh.cell_scalars.empty();
   const bool ids = mesh.info.cell_ids.size() == mesh.tets.size();
+  const bool quadratic = !mesh.edge_nodes.empty();
   std::size_t kept = 0;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     switch (classify_tet(mesh, i)) {
       case TetShape::ZeroVolume: ++r.zero_volume; continue;
       case TetShape::Sliver: ++r.slivers; continue;
       case TetShape::Inverted:
-        std::swap(mesh.tets[i][2], mesh.tets[i][3]);
+        swap_corners_2_3(mesh, i);
         ++r.reoriented;
         break;
       case TetShape::Positive: break;
     }
     if (per_cell) mesh.cell_scalars[kept] = mesh.cell_scalars[i];
     if (ids) mesh.info.cell_ids[kept] = mesh.info.cell_ids[i];
+    if (quadratic) mesh.edge_nodes[kept] = mesh.edge_nodes[i];
     mesh.tets[kept++] = mesh.tets[i];
   }
   mesh.tets.resize(kept);
+  if (quadratic) mesh.edge_nodes.resize(kept);
   if (per_cell) mesh.cell_scalars.resize(kept);
   if (ids) mesh.info.cell_ids.resize(kept);
   if (mesh.tets.empty())
@@ -157,11 +183,18 @@ bool is_marker_array(const std::string& name) {
 std::vector<double> cell_to_point_average(const TetMesh& mesh) {
   std::vector<double> sum(mesh.points.size(), 0.0);
   std::vector<long> count(mesh.points.size(), 0);
-  for (std::size_t c = 0; c < mesh.tets.size(); ++c)
+  for (std::size_t c = 0; c < mesh.tets.size(); ++c) {
     for (const std::int32_t p : mesh.tets[c]) {
       sum[static_cast<std::size_t>(p)] += mesh.cell_scalars[c];
       ++count[static_cast<std::size_t>(p)];
     }
+    if (c < mesh.edge_nodes.size())  // a quadratic tet's mid-edge nodes are its points too
+      for (const std::int32_t p : mesh.edge_nodes[c])
+        if (p >= 0) {
+          sum[static_cast<std::size_t>(p)] += mesh.cell_scalars[c];
+          ++count[static_cast<std::size_t>(p)];
+        }
+  }
   for (std::size_t i = 0; i < sum.size(); ++i)
     if (count[i] > 0) sum[i] /= static_cast<double>(count[i]);
   return sum;

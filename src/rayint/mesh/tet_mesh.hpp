@@ -65,6 +65,13 @@ struct TetMesh {
   // crossing s_in == s_out == the cell's value, so every integrator sees a constant segment and
   // the exact method is exact on it.
   std::vector<double> cell_scalars;
+  // Quadratic tetrahedra (VTK_QUADRATIC_TETRA, gmsh order 2, tetgen -o2): per tet the point
+  // indices of its six mid-edge nodes in VTK's edge order (cells/cell_types.hpp, kTet10Edges);
+  // -1 for every edge of a linear tet of a mixed mesh (its mid-edge value is then the mean of
+  // the edge's ends, which reproduces the linear field exactly). Empty when every tet is linear.
+  // The corners stay in `tets`, so traversal walks a tet10 as the tetrahedron of its corners;
+  // the scalar inside is quadratic (mesh/quadratic_tets.hpp). Curved edges are refused there.
+  std::vector<std::array<std::int32_t, 6>> edge_nodes;
   MeshFileInfo info;
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
 
 #include "rayint/core/error.hpp"
@@ -110,6 +111,11 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
       s[k] = mesh_.cell_scalars.empty() ? mesh_.scalars[mesh_.tets[t][k]] : mesh_.cell_scalars[t];
     }
     gradients_[t] = fit_linear_tet(x, s).gradient;
+  }
+  // Quadratic tets: their fields beside the walk's records (quadratic_tets.hpp).
+  if (!mesh_.edge_nodes.empty() && mesh_.cell_scalars.empty()) {
+    quadratic_.resize(n);
+    for (std::size_t t = 0; t < n; ++t) quadratic_[t] = fit_quadratic_tet(mesh_, t);
   }
   box_min_ = box_max_ = mesh_.points.front();
   for (const Vec3& p : mesh_.points) {
@@ -257,15 +263,23 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
-    const LinearTetField f = field(static_cast<std::size_t>(cell));
-    const Eq13 e = ray_parameters(f, w.o + a * d, d);
     // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
     CellCrossing& c = out.crossings.emplace_back();
     c.cell = cell;
     c.t_in = a;
     c.t_out = t_out;
-    c.s_in = e.v;
-    c.s_out = e.v + e.w * (t_out - a);
+    if (!quadratic_.empty()) {  // the hook for quadratic tets: s(t) of their quadratic field
+      const std::array<double, 3> q = quadratic_tet_chord(quadratic_[static_cast<std::size_t>(cell)], w.o + a * d, d);
+      const double L = t_out - a;
+      c.s_in = q[0];
+      c.s_out = q[0] + L * (q[1] + L * q[2]);
+      c.q = q[2];
+    } else {
+      const LinearTetField f = field(static_cast<std::size_t>(cell));
+      const Eq13 e = ray_parameters(f, w.o + a * d, d);
+      c.s_in = e.v;
+      c.s_out = e.v + e.w * (t_out - a);
+    }
     ++local.crossings;
   };
   while (steps < budget) {
@@ -349,8 +363,12 @@ void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& r) {
   r.background = background;
   r.segments.clear();
   r.segments.reserve(trace.crossings.size());
-  for (auto it = trace.crossings.rbegin(); it != trace.crossings.rend(); ++it)
+  for (auto it = trace.crossings.rbegin(); it != trace.crossings.rend(); ++it) {
+    if (it->q != 0.0)
+      throw std::invalid_argument("ray_from_trace: a crossing of a quadratic tetrahedron (cell " +
+                                  std::to_string(it->cell) + ") is not a linear segment");
     r.segments.push_back(Segment{it->t_out - it->t_in, it->s_out, it->s_in});
+  }
 }
 
 Ray mesh_ray(const TetTraversal& mesh, const ViewRay& ray, const Rgb& background, TraversalStats* stats) {

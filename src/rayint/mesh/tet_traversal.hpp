@@ -50,6 +50,7 @@
 
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/mesh/tet_cell.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/model/ray.hpp"
@@ -63,10 +64,13 @@ inline constexpr double kStarTolerance = 1e-10;
 
 // One cell crossed by a ray: parameters relative to RayTrace::origin (increasing toward the far
 // end) and the scalar there (Eq. 13: s(t) = v + w (t - t_in), v = s_in, w = gradient . d).
+// In a mesh with quadratic tetrahedra (TetTraversal::quadratic()) the scalar is
+// s(t) = s_in + w (t - t_in) + q (t - t_in)^2 (mesh/quadratic_tets.hpp); q is 0 otherwise.
 struct CellCrossing {
   std::int32_t cell = -1;
   double t_in = 0.0, t_out = 0.0;
   double s_in = 0.0, s_out = 0.0;
+  double q = 0.0;
 };
 
 struct RayTrace {
@@ -106,6 +110,10 @@ class TetTraversal {
   // scalar (or the cell's) from the mesh: the values fit_linear_tet gave, bit for bit.
   LinearTetField field(std::size_t cell) const;
   const Vec3& gradient(std::size_t cell) const { return gradients_[cell]; }
+  // True when the mesh has quadratic tetrahedra (TetMesh::edge_nodes with point scalars): the
+  // crossings then carry the quadratic scalar, integrate them with QuadraticTraceIntegrator
+  // (ray_from_trace refuses them).
+  bool quadratic() const { return !quadratic_.empty(); }
   std::size_t cell_count() const { return mesh_.tets.size(); }
   std::size_t face_count() const { return face_count_; }
   std::size_t boundary_face_count() const { return boundary_.size(); }
@@ -163,11 +171,13 @@ class TetTraversal {
   Vec3 box_min_, box_max_;
   double diagonal_ = 0.0;
   std::unique_ptr<BoundaryFirstHit> first_hit_;
+  std::vector<QuadraticTetField> quadratic_;  // per cell, only for a mesh with quadratic tets
 };
 
 // The Ray the integrators take: one segment per crossing, ordered far -> near, with the
 // background entering at the far end. A ray that misses the mesh has no segments (only the
-// background reaches the eye).
+// background reaches the eye). Throws std::invalid_argument for a quadratic crossing (q != 0):
+// a linear segment would be another field (use poly_ray_from_trace, mesh/quadratic_tets.hpp).
 Ray ray_from_trace(const RayTrace& trace, const Rgb& background);
 // The same into `out`, reusing its storage (no allocation per ray in a render loop).
 void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& out);

@@ -7,12 +7,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
 #include "rayint/core/parallel.hpp"
 #include "rayint/core/statistics.hpp"
 #include "rayint/mesh/gradients.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/model/pieces.hpp"
 
 namespace rayint {
@@ -92,6 +94,15 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   std::unique_ptr<GradientField> gradients;
   if (mc.shading.enabled) gradients = std::make_unique<GradientField>(mesh, mc.shading.gradient);
   const PieceCounter count_pieces(mc.transfer.breakpoints());
+  // Quadratic tetrahedra (mesh/quadratic_tets.hpp): the image is their exact quadratic integral;
+  // the methods of `method` and `compare` take linear segments only.
+  std::unique_ptr<QuadraticTraceIntegrator> quadratic;
+  if (mesh.quadratic()) {
+    if (compare || mc.shading.enabled)
+      throw std::invalid_argument(mc.mesh_source + ": quadratic tetrahedra: a render with a compared method or shading "
+                                  "takes linear tetrahedra only");
+    quadratic = std::make_unique<QuadraticTraceIntegrator>(mc.transfer);
+  }
 
   const IndexRange rows = shard_range(static_cast<std::size_t>(height), settings.shard);
   const int band = static_cast<int>(rows.size());
@@ -108,17 +119,21 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       const ViewRay vr = cam.ray_for_pixel(x, y);
       const auto t0 = Clock::now();
       mesh.trace(vr, trace, &cost.traversal);
-      ray_from_trace(trace, mc.background, ray);
+      if (!quadratic) ray_from_trace(trace, mc.background, ray);
       const auto t1 = Clock::now();
-      const RayResult r = mc.shading.enabled
-                              ? integrate_shaded(method, trace, mc.background, mc.shading, *gradients)
-                              : method.integrate(ray, nullptr);
+      const RayResult r = quadratic               ? quadratic->integrate(trace, mc.background, &cost.pieces)
+                          : mc.shading.enabled ? integrate_shaded(method, trace, mc.background, mc.shading, *gradients)
+                                               : method.integrate(ray, nullptr);
       const auto t2 = Clock::now();
       cost.traversal_seconds += seconds(t1 - t0);
       cost.integration_seconds += seconds(t2 - t1);
       ++cost.rays;
-      cost.segments += static_cast<long>(ray.segments.size());
-      for (const Segment& s : ray.segments) cost.pieces += count_pieces(s);
+      if (quadratic) {  // pieces counted by the integrator (split at extrema and crossings)
+        cost.segments += static_cast<long>(trace.crossings.size());
+      } else {
+        cost.segments += static_cast<long>(ray.segments.size());
+        for (const Segment& s : ray.segments) cost.pieces += count_pieces(s);
+      }
       out.image.at(x, y) = r.intensity;
       if (compare) {
         const RayResult c = mc.shading.enabled

@@ -117,6 +117,18 @@ nlohmann::json to_json(const MeshInfo& in) {
   j.update(file_json(m.info, m.points));
   j["orientation"] = {{"positive", in.orientation.positive}, {"inverted", in.orientation.inverted},
                       {"zero_volume", in.orientation.zero_volume}, {"slivers", in.orientation.slivers}};
+  if (in.tet10) {
+    const Tet10EdgeCheck& q = *in.tet10;
+    j["quadratic_tets"] = {{"tets", q.quadratic_tets},
+                           {"edges", q.straight() ? "straight" : "curved"},
+                           {"worst_edge_offset", q.worst_offset},
+                           {"worst_cell", cell_label(m, q.worst_tet)},
+                           {"tolerance", kStraightEdgeTolerance},
+                           {"integrated", q.straight() ? "quadratic interpolation, exact along each chord"
+                                                       : "refused (curved quadratic tetrahedra are not integrated yet)"}};
+  } else {
+    j["quadratic_tets"] = {{"tets", 0}};
+  }
   if (in.checked) {
     j["check"] = {{"overlap", in.overlap.has_value()}, {"seconds", in.check_seconds}};
     if (in.overlap)
@@ -136,6 +148,14 @@ std::string to_text(const MeshInfo& in) {
   out += "  orientation: positive " + std::to_string(in.orientation.positive) + ", inverted " +
          std::to_string(in.orientation.inverted) + ", zero volume " + std::to_string(in.orientation.zero_volume) +
          ", slivers " + std::to_string(in.orientation.slivers) + "\n";
+  if (in.tet10) {
+    const Tet10EdgeCheck& q = *in.tet10;
+    out += "  quadratic tetrahedra " + std::to_string(q.quadratic_tets) + ": edges " +
+           (q.straight() ? "straight" : "curved") + " (largest mid-edge offset " + format_number(q.worst_offset) +
+           " of the edge length, cell " + cell_label(m, q.worst_tet) + "; straight within " +
+           format_number(kStraightEdgeTolerance) + ")" +
+           (q.straight() ? ", integrated with their quadratic interpolation\n" : ", refused\n");
+  }
   if (in.checked) {
     char t[64];
     std::snprintf(t, sizeof t, " (%.3f s)", in.check_seconds);

@@ -4,7 +4,9 @@
 // association and components, which one is the scalar, orientation counts and, with --check, the
 // overlap check (mesh/mesh_check.hpp). A file with hexahedra, wedges, pyramids or voxels is
 // reported by cell type, with each type's orientation counts (cell_mesh.hpp) and the line
-// "integrated: with --cells split (VTK's tetrahedralisation, an approximation)".
+// "integrated: with --cells split (VTK's tetrahedralisation, an approximation)". Quadratic
+// tetrahedra: their count and "edges straight" (integrated with their quadratic interpolation) or
+// "edges curved" (refused), with the largest mid-edge offset and its cell.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -12,6 +14,7 @@
 
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/mesh_check.hpp"
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
@@ -26,6 +29,9 @@ struct MeshInfo {
   bool checked = false;                                        // --check ran
   std::optional<std::pair<std::size_t, std::size_t>> overlap;  // its finding
   double check_seconds = 0.0;
+  // Quadratic tetrahedra (mesh/quadratic_tets.hpp): how many, and whether their edges are
+  // straight (integrated) or curved (refused), with the worst mid-edge node's offset.
+  std::optional<Tet10EdgeCheck> tet10;
 };
 
 nlohmann::json to_json(const MeshInfo& info);

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/report/evaluation_json.hpp"
 
 namespace rayint {
@@ -30,11 +31,14 @@ nlohmann::json mesh_render_json(const MeshCase& mc, const TetTraversal& mesh, co
   nlohmann::json stats = {{"case", mc.name},
                           {"source", mc.source},
                           {"mesh", {{"source", mc.mesh_source}, {"points", mesh.mesh().points.size()},
-                                    {"tets", mesh.mesh().tets.size()}, {"boundary_faces", mesh.boundary_face_count()},
+                                    {"tets", mesh.mesh().tets.size()},
+                                    {"quadratic_tets", check_tet10_edges(mesh.mesh()).quadratic_tets},
+                                    {"boundary_faces", mesh.boundary_face_count()},
                                     {"repairs", to_json(mc.repairs)}}},
                           {"width", mc.camera->width},
                           {"height", mc.camera->height},
-                          {"method", "exact"},
+                          // Quadratic tetrahedra: "exact" along each chord's quadratic (mesh/quadratic_tets.hpp).
+                          {"method", mesh.quadratic() ? "exact (quadratic tetrahedra)" : "exact"},
                           {"shading", mc.shading.enabled},
                           {"cost", to_json(r.cost)}};
   if (compare) {

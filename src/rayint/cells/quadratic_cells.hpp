@@ -1,0 +1,40 @@
+#pragma once
+// VTK's quadratic volume cells in VTK's parametric coordinates (vtkQuadraticTetra,
+// vtkQuadraticHexahedron, vtkQuadraticWedge): node order, parametric node coordinates, shape
+// functions and their derivatives -- the building blocks an isoparametric treatment of these
+// cells needs (inverse map by Newton, as cells/linear_cells.hpp does for the linear ones). Not yet
+// used by a traversal; straight-edged tet10 meshes are integrated by mesh/quadratic_tets.hpp.
+//
+// Interpolation spaces (each unisolvent on its nodes, so the nodal basis is unique and equals
+// VTK's whatever formulas VTK writes):
+//   quadratic tetra (10 nodes)      P2: 1, r, s, t, r^2, s^2, t^2, rs, st, rt;
+//   quadratic hexahedron (20)       serendipity: P2 and r^2 s, r^2 t, s^2 r, s^2 t, t^2 r,
+//                                   t^2 s, rst, r^2 st, rs^2 t, rst^2 (superlinear degree <= 2);
+//   quadratic wedge (15)            {1, r, s, r^2, rs, s^2} x {1, t} + t^2, r t^2, s t^2.
+// Method: N(p) = V^-T m(p) with m the monomials above and V the Vandermonde matrix of the nodes
+// (V_ij = m_j(node_i), inverted once in double: entries are 0, 1/2, 1 and their products, its
+// condition number is <= 1e3); dN = V^-T dm/dp. Accuracy (tests/test_quadratic_cells.cpp,
+// [cells][quadratic]): against VTK 9.1's InterpolateFunctions / InterpolateDerivs at 10 random
+// parametric points per type (tests/fixtures/cells/vtk_quadratic_cells.json, written by
+// scripts/cells/vtk_quadratic_fixture.py): parametric nodes identical; worst |N - VTK| 1.8e-16
+// (tetra), 1.1e-15 (hexahedron), 4.4e-16 (wedge); worst |dN - VTK| 0, 1.8e-15, 5.6e-16.
+// The gmsh permutations of the cell-type table (cells/cell_types.cpp) are checked there too,
+// against gmsh's documented edge lists.
+#include <vector>
+
+#include "rayint/geometry/vec3.hpp"
+
+namespace rayint {
+
+enum class QuadraticCellType : int { tetra = 24, hexahedron = 25, wedge = 26 };
+
+bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type);
+int quadratic_node_count(QuadraticCellType type);  // 10, 20, 15
+// VTK's parametric node coordinates (vtkCell::GetParametricCoords), VTK's node order.
+const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type);
+// N[i] for every node at parametric point p (N has quadratic_node_count entries).
+void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N);
+// dN laid out as VTK's InterpolateDerivs: dN[i] = dN_i/dr, dN[n + i] = dN_i/ds, dN[2n + i] = dN_i/dt.
+void quadratic_shape_derivatives(QuadraticCellType type, const Vec3& p, double* dN);
+
+}  // namespace rayint
