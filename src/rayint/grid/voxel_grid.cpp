@@ -91,6 +91,21 @@ VoxelGrid::VoxelGrid(std::array<int, 3> dims, Vec3 origin, Vec3 spacing,
     if (!std::isfinite(v)) throw std::invalid_argument("VoxelGrid: value not finite");
 }
 
+void VoxelGrid::set_hidden_cubes(std::vector<unsigned char> hidden) {
+  const std::size_t cubes = static_cast<std::size_t>(dims_[0] - 1) * static_cast<std::size_t>(dims_[1] - 1) *
+                            static_cast<std::size_t>(dims_[2] - 1);
+  if (!hidden.empty() && hidden.size() != cubes)
+    throw std::invalid_argument("VoxelGrid: hidden-cube mask of " + std::to_string(hidden.size()) +
+                                " entries for " + std::to_string(cubes) + " cubes");
+  if (std::none_of(hidden.begin(), hidden.end(), [](unsigned char h) { return h != 0; })) hidden.clear();
+  hidden_ = std::move(hidden);
+}
+
+std::size_t VoxelGrid::hidden_cube_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(hidden_.begin(), hidden_.end(), [](unsigned char h) { return h != 0; }));
+}
+
 Vec3 VoxelGrid::upper() const {
   return origin_ + Vec3(dims_[0] - 1, dims_[1] - 1, dims_[2] - 1).cwiseProduct(spacing_);
 }
@@ -149,8 +164,16 @@ Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RaySpan& withi
   std::vector<double> f(t.size());
   for (std::size_t m = 0; m < t.size(); ++m) f[m] = grid.kuhn_value(ray.origin + t[m] * ray.direction);
   out.segments.reserve(t.size() - 1);
-  for (std::size_t m = t.size() - 1; m-- > 0;)  // far -> near
+  const auto& dims = grid.dims();
+  for (std::size_t m = t.size() - 1; m-- > 0;) {  // far -> near
+    if (grid.has_hidden_cubes()) {
+      const double t_mid = 0.5 * (t[m] + t[m + 1]);
+      std::array<int, 3> c{};
+      for (int i = 0; i < 3; ++i) c[i] = cube_and_local(r.x0[i] + t_mid * r.dx[i], dims[i]).first;
+      if (grid.cube_hidden(c[0], c[1], c[2])) continue;  // empty: passes the light unchanged
+    }
     out.segments.push_back({(t[m + 1] - t[m]) * speed, f[m + 1], f[m]});
+  }
   return out;
 }
 
@@ -190,6 +213,7 @@ void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<Tri
       a[i] = r.x0[i] + piece.t_far * r.dx[i] - piece.cube[i];
       b[i] = -r.dx[i] / speed;
     }
+    if (grid.cube_hidden(piece.cube[0], piece.cube[1], piece.cube[2])) continue;  // empty
     Cubic f{};
     for (int c = 0; c < 8; ++c) {
       Cubic p{1.0, 0.0, 0.0, 0.0};
