@@ -381,10 +381,10 @@ def summary(entries, results, spread, rayint):
 REFUSAL_CLASSES = [  # (words in the line, class): whether refusing is right or a gap, for the summary
     (("no field", "no one-component", "no point attributes"), "right: the file holds no field (markers only)"),
     (("overlap", "shared by more than two"), "right: overlapping or repeated cells (a ray would count the volume twice)"),
-    (("no volume cells", "CELLS: missing"), "right: the file holds no cells (an empty output)"),
+    (("no volume cells", "CELLS: missing", "has no cells"), "right: the file holds no cells (an empty output)"),
     (("categorical",), "right: a categorical map has no continuous transfer function"),
     (("not in $Nodes", "out of range [N, N]"), "the file contradicts itself (gmsh: $NodeData for a node not in $Nodes)"),
-    (("not supported yet", "Direction is not the identity", "cell data only", "not a VTK cell type rayint knows"),
+    (("not supported", "Direction is not the identity", "cell data only", "not a VTK cell type"),
      "gap: not supported yet"),
 ]
 

@@ -1,6 +1,7 @@
 // The cell-type table (see cell_types.hpp).
 #include "rayint/cells/cell_types.hpp"
 
+#include <utility>
 #include <vector>
 
 namespace rayint {
@@ -96,9 +97,35 @@ std::string cell_type_label(long long vtk_id) {
   return r != nullptr ? r->name : "VTK id " + std::to_string(vtk_id);
 }
 
+// The VTK cell types outside the table (vtkCellType.h, VTK 9.1; ids checked against python3-vtk9's
+// VTK_* constants), named in refusals so that a user sees which cell the file holds.
+const char* other_vtk_cell_name(long long vtk_id) {
+  static const std::pair<int, const char*> names[] = {
+      {0, "empty cell"}, {30, "quadratic-linear quad"}, {31, "quadratic-linear wedge"},
+      {32, "biquadratic-quadratic wedge"}, {33, "biquadratic-quadratic hexahedron"}, {34, "biquadratic triangle"},
+      {35, "cubic line"}, {36, "quadratic polygon"}, {37, "triquadratic pyramid"}, {41, "convex point set"},
+      {51, "parametric curve"}, {52, "parametric surface"}, {53, "parametric tri surface"},
+      {54, "parametric quad surface"}, {55, "parametric tetra region"}, {56, "parametric hex region"},
+      {60, "higher-order edge"}, {61, "higher-order triangle"}, {62, "higher-order quad"},
+      {63, "higher-order polygon"}, {64, "higher-order tetrahedron"}, {65, "higher-order wedge"},
+      {66, "higher-order pyramid"}, {67, "higher-order hexahedron"}, {68, "Lagrange curve"},
+      {69, "Lagrange triangle"}, {70, "Lagrange quadrilateral"}, {71, "Lagrange tetrahedron"},
+      {72, "Lagrange hexahedron"}, {73, "Lagrange wedge"}, {74, "Lagrange pyramid"}, {75, "Bezier curve"},
+      {76, "Bezier triangle"}, {77, "Bezier quadrilateral"}, {78, "Bezier tetrahedron"},
+      {79, "Bezier hexahedron"}, {80, "Bezier wedge"}, {81, "Bezier pyramid"}};
+  for (const auto& [id, name] : names)
+    if (id == vtk_id) return name;
+  return nullptr;
+}
+
 std::string unsupported_cell_message(long long vtk_id) {
   const CellTypeInfo* r = cell_type_from_vtk(vtk_id);
-  if (r == nullptr) return "cell type " + std::to_string(vtk_id) + " is not a VTK cell type rayint knows";
+  if (r == nullptr) {
+    if (const char* name = other_vtk_cell_name(vtk_id))
+      return std::string("cell type ") + name + " (VTK id " + std::to_string(vtk_id) +
+             ") is not supported; only tetrahedra (VTK id 10) are integrated";
+    return "cell type " + std::to_string(vtk_id) + " is not a VTK cell type";
+  }
   if (r->support == CellSupport::CellPath)
     return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
            "): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split "

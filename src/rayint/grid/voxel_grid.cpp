@@ -106,6 +106,21 @@ void VoxelGrid::set_placement(const GridPlacement& p) {
   placement_ = p;
 }
 
+void VoxelGrid::set_hidden_cubes(std::vector<unsigned char> hidden) {
+  const std::size_t cubes = static_cast<std::size_t>(dims_[0] - 1) * static_cast<std::size_t>(dims_[1] - 1) *
+                            static_cast<std::size_t>(dims_[2] - 1);
+  if (!hidden.empty() && hidden.size() != cubes)
+    throw std::invalid_argument("VoxelGrid: hidden-cube mask of " + std::to_string(hidden.size()) +
+                                " entries for " + std::to_string(cubes) + " cubes");
+  if (std::none_of(hidden.begin(), hidden.end(), [](unsigned char h) { return h != 0; })) hidden.clear();
+  hidden_ = std::move(hidden);
+}
+
+std::size_t VoxelGrid::hidden_cube_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(hidden_.begin(), hidden_.end(), [](unsigned char h) { return h != 0; }));
+}
+
 Vec3 VoxelGrid::upper() const {
   return origin_ + Vec3(dims_[0] - 1, dims_[1] - 1, dims_[2] - 1).cwiseProduct(spacing_);
 }
@@ -164,8 +179,16 @@ Ray ray_segments(const VoxelGrid& grid, const ViewRay& ray, const RaySpan& withi
   std::vector<double> f(t.size());
   for (std::size_t m = 0; m < t.size(); ++m) f[m] = grid.kuhn_value(ray.origin + t[m] * ray.direction);
   out.segments.reserve(t.size() - 1);
-  for (std::size_t m = t.size() - 1; m-- > 0;)  // far -> near
+  const auto& dims = grid.dims();
+  for (std::size_t m = t.size() - 1; m-- > 0;) {  // far -> near
+    if (grid.has_hidden_cubes()) {
+      const double t_mid = 0.5 * (t[m] + t[m + 1]);
+      std::array<int, 3> c{};
+      for (int i = 0; i < 3; ++i) c[i] = cube_and_local(r.x0[i] + t_mid * r.dx[i], dims[i]).first;
+      if (grid.cube_hidden(c[0], c[1], c[2])) continue;  // empty: passes the light unchanged
+    }
     out.segments.push_back({(t[m + 1] - t[m]) * speed, f[m + 1], f[m]});
+  }
   return out;
 }
 
@@ -237,6 +260,7 @@ void trilinear_cubics(const VoxelGrid& grid, const ViewRay& ray, std::vector<Tri
     piece.t_near = t[m];
     const double t_mid = 0.5 * (piece.t_far + piece.t_near);
     for (int i = 0; i < 3; ++i) piece.cube[i] = cube_and_local(r.x0[i] + t_mid * r.dx[i], dims[i]).first;
+    if (grid.cube_hidden(piece.cube[0], piece.cube[1], piece.cube[2])) continue;  // empty (blanked)
     const std::array<Cubic, 8> basis = corner_cubics(r, piece.cube, piece.t_far, speed);
     Cubic f{};
     for (int c = 0; c < 8; ++c) {

@@ -88,6 +88,26 @@ class VoxelGrid {
   // The piecewise linear (Kuhn, 6 tets per cube) interpolant at a world point; clamped likewise.
   double kuhn_value(const Vec3& p) const;
 
+  // Blanked (hidden) cubes, as VTK's vtkImageData blanks cells (vtkGhostType: a cell is not
+  // visible when it is flagged HIDDENCELL or any of its 8 points HIDDENPOINT; vtkImageData::
+  // IsCellVisible, checked on VTK 9.1). A hidden cube is EMPTY: no absorption, no emission, the
+  // light passes it unchanged; its point values are never read by the ray integrals. The mask is
+  // one byte per cube, index i + (nx-1) * (j + (ny-1) * k), non-zero = hidden; an empty mask (the
+  // default) hides nothing. Throws std::invalid_argument for a mask of the wrong size.
+  // Honoured by trilinear_cubics / trilinear_pieces / trilinear_ray and ray_segments (and so by
+  // every integral built on them); sample() and kuhn_value() ignore it (a value cannot say
+  // "empty"): callers that sample a blanked grid must check cube_hidden() themselves.
+  void set_hidden_cubes(std::vector<unsigned char> hidden);
+  bool has_hidden_cubes() const { return !hidden_.empty(); }
+  std::size_t hidden_cube_count() const;
+  bool cube_hidden(int i, int j, int k) const {
+    return !hidden_.empty() &&
+           hidden_[static_cast<std::size_t>(i) +
+                   static_cast<std::size_t>(dims_[0] - 1) *
+                       (static_cast<std::size_t>(j) +
+                        static_cast<std::size_t>(dims_[1] - 1) * static_cast<std::size_t>(k))] != 0;
+  }
+
   Bounds bounds() const { return {lower(), upper()}; }
   const GridPlacement& placement() const { return placement_; }
   // Throws std::invalid_argument unless check_direction(p.direction) is empty and pivot finite.
@@ -101,11 +121,15 @@ class VoxelGrid {
   Vec3 spacing_ = Vec3::Ones();
   std::vector<double> values_ = std::vector<double>(8, 0.0);
   GridPlacement placement_;
+  std::vector<unsigned char> hidden_;  // per cube; empty: none hidden
 };
 
 // The segments of the Kuhn interpolant along `ray` inside the grid, far -> near as model/ray.hpp
 // orders them, each with its world length (|direction| need not be 1) and the scalars at its
 // ends; `background` is what enters at the far end. A ray that misses gives no segments.
+// Segments inside hidden cubes (VoxelGrid::cube_hidden) are left out: they are empty, and a ray
+// of segments integrates each on its own, so leaving one out is exactly "no absorption, no
+// emission there" (the Kuhn planes include the cube faces, so every segment lies in one cube).
 // Breakpoints are never merged (merging would put a kink inside a segment): planes crossing at
 // one point (a ray through an edge or vertex) give equal t values, kept once; nearly equal ones
 // give very short segments, which cost a piece each and contribute their (tiny) share exactly.
@@ -125,7 +149,9 @@ struct TrilinearPiece {
   PolySegment segment;        // length and the 4 coefficients in s
 };
 
-// The cubes the ray crosses inside the grid, far -> near, with the cubic of each.
+// The cubes the ray crosses inside the grid, far -> near, with the cubic of each; hidden cubes
+// (VoxelGrid::cube_hidden) are left out (empty: the light passes them unchanged), so with a
+// blanked grid consecutive pieces need not share their ends.
 std::vector<TrilinearPiece> trilinear_pieces(const VoxelGrid& grid, const ViewRay& ray);
 
 // The same in fixed storage, for loops over many rays: `out` is cleared and refilled, `scratch`

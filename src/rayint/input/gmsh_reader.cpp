@@ -419,14 +419,20 @@ class MshReader {
     for (long long i = 0; i < n; ++i) {
       long long t = 0, per = 1;
       std::vector<double> values;
+      // gmsh's "Save View" of a built-in-kernel geometry writes entries with node tag -1 for
+      // geometry points that are not mesh nodes (e.g. a circle's centre); gmsh itself ignores
+      // them when it reads the file back. So does rayint, counting them (skipped_node_data).
+      bool orphan = false;
       if (binary_) {
         t = bin_int(f);
+        orphan = !per_element && !per_cell && t == -1;
         if (per_element) per = bin_int(f);
         if (per < 0 || per > 1000) c_.fail(f, "nodes per element out of range");
         for (long long k = 0; k < per * comps; ++k) values.push_back(bin_real(f));
       } else {
         const auto w = c_.need_words(f, 2, "tag value...");
-        t = tag(w[0], f);
+        orphan = !per_element && !per_cell && w[0] == "-1";
+        t = orphan ? -1 : tag(w[0], f);
         std::size_t k0 = 1;
         if (per_element) {
           per = c_.integer(w[1], f, 0, 1000);
@@ -438,6 +444,10 @@ class MshReader {
         for (std::size_t k = k0; k < w.size(); ++k) values.push_back(c_.real(w[k], f));
       }
       if (!take) continue;
+      if (orphan) {
+        ++mesh_.info.skipped_node_data;
+        continue;
+      }
       if (per_element) slot.element_values.emplace_back(t, std::move(values));
       else slot.node_values.emplace_back(t, values[0]);  // per node, or per element for $ElementData
     }

@@ -383,7 +383,7 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
   }
   if (d.kind == "UNSTRUCTURED_GRID") {
     if (!d.have_points) c.fail("POINTS", "missing");
-    if (!d.have_cells) c.fail("CELLS", "missing");
+    if (!d.have_cells) c.fail("CELLS", "the file has no cells (an empty mesh: nothing to integrate)");
     if (!d.have_types) c.fail("CELL_TYPES", "missing");
     if (raw.types.size() != n_cells_read)
       c.fail("CELL_TYPES", std::to_string(raw.types.size()) + " types for " + std::to_string(n_cells_read) + " cells");

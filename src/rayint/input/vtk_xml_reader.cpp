@@ -13,6 +13,7 @@
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/voxel_grid_reader.hpp"
 #include "rayint/input/mesh_assembly.hpp"
+#include "rayint/input/vtk_image_blanking.hpp"
 #include "rayint/input/vtk_xml_data_array.hpp"
 
 namespace rayint {
@@ -357,7 +358,10 @@ VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std
   const pugi::xml_node piece = d.only_child(d.dataset(), "Piece", field);
   if (d.numbers_attribute(piece, "Extent", piece_field, 6) != f.extent)
     d.fail(piece_field, "Extent differs from the WholeExtent (only single-piece images are read; a .pvti joins pieces)");
-  return make_grid(d, f, image_piece_values(d, piece, piece_field, scalar_name, static_cast<std::size_t>(f.total)), field);
+  VoxelGrid grid = make_grid(d, f, image_piece_values(d, piece, piece_field, scalar_name, static_cast<std::size_t>(f.total)), field);
+  const ImageGhosts ghosts = read_image_ghosts(d, piece, piece_field, f.dims);  // blanking: vtk_image_blanking.hpp
+  grid.set_hidden_cubes(hidden_cubes(f.dims, ghosts.hidden_points, ghosts.hidden_cells));
+  return grid;
 }
 
 VoxelGrid read_pvti(const std::string& path, const std::string& scalar_name) {
@@ -367,6 +371,10 @@ VoxelGrid read_pvti(const std::string& path, const std::string& scalar_name) {
   const ImageFrame f = image_frame(d, d.dataset(), field);
   std::vector<double> values(static_cast<std::size_t>(f.total), 0.0);
   std::vector<char> set(values.size(), 0);
+  // Blanking (vtk_image_blanking.hpp), each piece's hidden points and cells placed in the whole.
+  std::vector<unsigned char> hidden_points(values.size(), 0);
+  std::vector<unsigned char> hidden_cells(static_cast<std::size_t>(f.dims[0] - 1) * static_cast<std::size_t>(f.dims[1] - 1) *
+                                          static_cast<std::size_t>(f.dims[2] - 1), 0);
   for (const std::string& file : piece_sources(d, d.dataset(), field, path)) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) d.fail(field + "/Piece", "the piece " + file + " does not exist");
@@ -396,10 +404,24 @@ VoxelGrid read_pvti(const std::string& path, const std::string& scalar_name) {
           values[at] = v[q];
           set[at] = 1;
         }
+    const std::array<int, 3> piece_dims{static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])};
+    const ImageGhosts ghosts = read_image_ghosts(pd, piece, piece_field, piece_dims);
+    for (long long k = 0; k < n[2]; ++k)
+      for (long long j = 0; j < n[1]; ++j)
+        for (long long i = 0; i < n[0]; ++i) {
+          const auto local = static_cast<std::size_t>(i + n[0] * (j + n[1] * k));
+          if (!ghosts.hidden_points.empty() && ghosts.hidden_points[local] != 0)
+            hidden_points[static_cast<std::size_t>((lo[0] + i) + f.dims[0] * ((lo[1] + j) + f.dims[1] * (lo[2] + k)))] = 1;
+          if (!ghosts.hidden_cells.empty() && i + 1 < n[0] && j + 1 < n[1] && k + 1 < n[2] &&
+              ghosts.hidden_cells[static_cast<std::size_t>(i + (n[0] - 1) * (j + (n[1] - 1) * k))] != 0)
+            hidden_cells[static_cast<std::size_t>((lo[0] + i) + (f.dims[0] - 1) * ((lo[1] + j) + (f.dims[1] - 1) * (lo[2] + k)))] = 1;
+        }
   }
   for (std::size_t i = 0; i < set.size(); ++i)
     if (!set[i]) d.fail(field, "the pieces do not cover the WholeExtent (point " + std::to_string(i) + " missing)");
-  return make_grid(d, f, std::move(values), field);
+  VoxelGrid grid = make_grid(d, f, std::move(values), field);
+  grid.set_hidden_cubes(hidden_cubes(f.dims, hidden_points, hidden_cells));
+  return grid;
 }
 
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name) {

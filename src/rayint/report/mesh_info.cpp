@@ -39,6 +39,7 @@ nlohmann::json file_json(const MeshFileInfo& info, const std::vector<Vec3>& poin
           {"skipped_cells", info.skipped_cells},
           {"ghost_cells", info.ghost_cells},
           {"merged_points", info.merged_points},
+          {"skipped_node_data", info.skipped_node_data},
           {"arrays", arrays},
           {"scalar", {{"name", info.scalar}, {"association", info.scalar_association}}}};
 }
@@ -55,6 +56,8 @@ std::string file_text(const MeshFileInfo& info, const std::vector<Vec3>& points)
     out += " " + type + " " + std::to_string(n) + (s != info.skipped_by_type.end() ? " (skipped)" : "") + ";";
   }
   if (info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(info.ghost_cells) + ";";
+  if (info.skipped_node_data > 0)
+    out += " $NodeData entries with node tag -1 skipped " + std::to_string(info.skipped_node_data) + ";";
   out += "\n  arrays:";
   if (info.arrays.empty()) out += " none";
   for (const MeshArrayInfo& a : info.arrays)

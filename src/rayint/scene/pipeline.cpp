@@ -92,6 +92,16 @@ ScenePipeline::ScenePipeline(const Scene& scene, unsigned threads)
   shadowing_ = make_shadowing(scene, threads_);
   const bool absorption = scene.has("absorption");
   const bool shadows = scene.has("shadows");
+  // A blanked image (hidden cubes, grid/voxel_grid.hpp) is empty there. Only the exact absorption
+  // and emission integrals leave those cubes out; every sampling method reads the density by
+  // value, and a value cannot say "empty": refused rather than integrating the hidden voxels.
+  if (const auto* g = dynamic_cast<const GridField*>(&scene.medium.field()); g != nullptr && g->grid().has_hidden_cubes())
+    for (const EffectInfo& info : effect_registry())
+      if (scene.has(info.name) &&
+          ((info.name != "absorption" && info.name != "emission") || effective_method(scene, info).name != "exact"))
+        throw std::invalid_argument("the grid is a blanked image (" + std::to_string(g->grid().hidden_cube_count()) +
+                                    " hidden voxels, vtkGhostType): effect " + info.name +
+                                    " needs method exact of absorption/emission (sampling would read the hidden voxels)");
   for (const EffectInfo& info : effect_registry()) {
     if (!scene.has(info.name) || info.role == EffectInfo::Role::modifier) continue;
     if (!info.make)
