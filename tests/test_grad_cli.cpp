@@ -171,16 +171,17 @@ TEST_CASE("render --loss-target --grad-out: the loss gradient as NPY, zero at it
 
 TEST_CASE("grad: a transfer function from a ParaView preset names where its nodes come from", "[grad][grad_cli]") {
   TempDir dir;
-  dir.write("preset.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));  // "Cool to Warm"
+  dir.write("preset.json", R"([{"Name": "lin", "ColorSpace": "RGB",
+    "RGBPoints": [0, 0.1, 0.2, 0.9, 0.5, 0.8, 0.3, 0.2, 1, 0.9, 0.6, 0.5]}])");
   dir.write("case.json", R"({"name": "preset-grad", "transfer_function": {"paraview_preset": "preset.json",
-    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
+    "name": "lin", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
     {"length": 0.7, "scalar": [0.1, 0.9]}, {"length": 0.4, "scalar": [0.9, 0.3]}]}]})");
   const auto r = run_cli(dir.path, "grad case.json --no-reference -o g.json");
   REQUIRE(r.status == 0);
   const json j = json::parse(slurp(dir.path / "g.json"));
   const json& c = j["cases"][0];
   REQUIRE(c.contains("transfer_function_nodes"));
-  CHECK(c["transfer_function_nodes"]["imported_from"] == "ParaView preset \"Cool to Warm\" of preset.json");
+  CHECK(c["transfer_function_nodes"]["imported_from"] == "ParaView preset \"lin\" of preset.json");
   CHECK(c["rays"][0]["methods"]["exact"]["gradient"]["color"]["r"].size() >= 3);  // the imported nodes
   // A case with its own nodes has no such entry.
   dir.copy_case("paper-figure-2");
@@ -214,10 +215,11 @@ TEST_CASE("grad: a preset case carries the gradient w.r.t. the preset's own poin
     CHECK(pg["Points"]["b"][k][1].get<double>() == Approx(m["gradient"]["density"]["b"][k][1].get<double>() / 2));
   }
   CHECK(j["cases"][0]["rays"][0]["methods"]["riemann:n=8"].contains("preset_gradient"));
-  // "Cool to Warm" is Diverging: linearised adaptively, so no numbers, a reason.
-  dir.write("cw.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));
-  dir.write("case2.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
-    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
+  // An HSV interval is linearised adaptively: no numbers for RGBPoints, a reason.
+  dir.write("hsv.json", R"([{"Name": "hsv", "ColorSpace": "HSV",
+    "RGBPoints": [0, 0.1, 0.2, 0.9, 0.5, 0.8, 0.3, 0.2, 1, 0.9, 0.6, 0.5]}])");
+  dir.write("case2.json", R"({"name": "hsv", "transfer_function": {"paraview_preset": "hsv.json",
+    "name": "hsv", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
     {"length": 0.7, "scalar": [0.1, 0.9]}]}]})");
   r = run_cli(dir.path, "grad case2.json --no-reference -o g2.json");
   REQUIRE(r.status == 0);
@@ -226,4 +228,14 @@ TEST_CASE("grad: a preset case carries the gradient w.r.t. the preset's own poin
   CHECK(pg2["RGBPoints"].is_null());
   CHECK(pg2["RGBPoints_unavailable"].get<std::string>().find("adaptively") != std::string::npos);
   CHECK(pg2["Points"].is_null());  // a constant opacity was given
+  // "Cool to Warm" (Diverging) imports with jumps of ~3e-5 at its two end nodes, where VTK's
+  // node colour and its Diverging interpolation differ: the gradient refuses it with one line.
+  dir.write("cw.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));
+  dir.write("case3.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
+    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
+    {"length": 0.7, "scalar": [0.1, 0.9]}]}]})");
+  r = run_cli(dir.path, "grad case3.json --no-reference -o g3.json");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("jump") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.path / "g3.json"));
 }

@@ -15,14 +15,15 @@ using namespace rayint;
 
 namespace {
 
-// RGB with a two-piece interval (midpoint 0.3) and a step (sharpness 1); opacity with a
-// two-piece interval (midpoint 0.7).
-PresetCurves test_curves(OpacityConvention convention = OpacityConvention::unit_distance) {
+// RGB with a two-piece interval (midpoint 0.3) and, with `step`, a step (sharpness 1: imported as
+// a true jump since the jump change, which the gradient refuses); opacity with a two-piece
+// interval (midpoint 0.7).
+PresetCurves test_curves(OpacityConvention convention = OpacityConvention::unit_distance, bool step = false) {
   PresetCurves p;
   p.color.space = VtkColorSpace::rgb;
   p.color.nodes = {{0.0, {0.1, 0.2, 0.9}, 0.5, 0.0},
                    {0.35, {0.8, 0.3, 0.2}, 0.3, 0.0},
-                   {0.6, {0.4, 0.9, 0.1}, 0.5, 1.0},
+                   {0.6, {0.4, 0.9, 0.1}, 0.5, step ? 1.0 : 0.0},
                    {1.0, {0.9, 0.6, 0.5}, 0.5, 0.0}};
   p.opacity.nodes = {{0.0, 0.1, 0.5, 0.0}, {0.45, 0.6, 0.7, 0.0}, {1.0, 0.3, 0.5, 0.0}};
   p.options.convention = convention;
@@ -156,4 +157,11 @@ TEST_CASE("preset point gradient: where the import is not differentiable it says
     CHECK_FALSE(pg.opacity_ok);
     CHECK(pg.opacity_unavailable.find("adaptively") != std::string::npos);
   }
+}
+
+TEST_CASE("preset point gradient: a preset step is a jump and its gradient is refused, not guessed", "[grad][preset_grad]") {
+  const PresetCurves p = test_curves(OpacityConvention::unit_distance, true);
+  const TfImport imp = import_vtk_transfer_function(p.color, p.opacity, p.options);
+  REQUIRE(imp.transfer.has_jump());
+  CHECK_THROWS_WITH(exact_ray_gradient(imp.transfer, test_ray()), Catch::Contains("jump"));
 }
