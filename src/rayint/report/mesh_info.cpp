@@ -78,8 +78,8 @@ std::map<std::string, CellOrientationCounts> orientation_by_type(const CellMesh&
 }
 
 constexpr const char* kCellsIntegrated =
-    "with --cells split (VTK's vtkDataSetTriangleFilter tetrahedralisation, an approximation of the cells' own "
-    "interpolation); without it refused";
+    "in each cell's own interpolation (default, \"mode\": \"own\"); --cells split integrates VTK's "
+    "vtkDataSetTriangleFilter tetrahedralisation instead (an approximation of it)";
 
 nlohmann::json cells_json(const MeshInfo& in) {
   const CellMesh& m = *in.cells;
