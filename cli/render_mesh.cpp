@@ -36,6 +36,20 @@
 namespace rayint::cli {
 namespace {
 
+// Threads and the rows progress line, shared by the tetrahedral and the own-cells renders.
+MeshRenderSettings render_settings(const RenderOptions& options) {
+  MeshRenderSettings settings;
+  settings.threads = options.threads;
+  auto progress_line = std::make_shared<ProgressLine>();
+  if (!options.quiet)
+    settings.progress = [progress_line](int done, int total) {
+      progress_line->update("rayint render: " + std::to_string(done) + "/" + std::to_string(total) + " rows",
+                            static_cast<double>(done) / total);
+      if (done == total) progress_line->finish();
+    };
+  return settings;
+}
+
 std::string heat_map_path(const std::string& output) {
   std::filesystem::path p(output);
   p.replace_extension();
@@ -154,15 +168,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   SlowStage building("rayint render: building the traversal", options.quiet);
   const TetTraversal mesh(std::move(mc.mesh), std::move(mc.neighbors), mc.mesh_source);
   building.done(std::to_string(mesh.face_count()) + " faces, " + std::to_string(mesh.boundary_face_count()) + " on the boundary");
-  MeshRenderSettings settings;
-  settings.threads = options.threads;
-  auto progress_line = std::make_shared<ProgressLine>();
-  if (!options.quiet)
-    settings.progress = [progress_line](int done, int total) {
-      progress_line->update("rayint render: " + std::to_string(done) + "/" + std::to_string(total) + " rows",
-                            static_cast<double>(done) / total);
-      if (done == total) progress_line->finish();
-    };
+  MeshRenderSettings settings = render_settings(options);
   // --shard I/N: render the shard's band of rows and write it as a shard file (-o); merging:
   // the image and its figures assembled from the shards' bands, written as a single run would.
   const bool in_shard = !options.shard.empty();
@@ -224,15 +230,7 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options) {
     std::fprintf(stderr, "rayint render: mode own: %s integrated in their own (isoparametric) interpolation "
                  "(--cells split: VTK's tetrahedralisation instead)\n", types.c_str());
   }
-  MeshRenderSettings settings;
-  settings.threads = options.threads;
-  auto progress_line = std::make_shared<ProgressLine>();
-  if (!options.quiet)
-    settings.progress = [progress_line](int done, int total) {
-      progress_line->update("rayint render: " + std::to_string(done) + "/" + std::to_string(total) + " rows",
-                            static_cast<double>(done) / total);
-      if (done == total) progress_line->finish();
-    };
+  MeshRenderSettings settings = render_settings(options);
   const CellMeshRender r = render_cell_mesh(mc, mesh, settings);
   PngOptions png;
   png.exposure = options.exposure;

@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "cell_samples.hpp"
 #include "cli_harness.hpp"
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
@@ -74,19 +75,9 @@ double traced_length(const CellTrace& trace) {
   return s;
 }
 
+// The reference's input for the chord [a, b] of the traced ray (its walk origin and direction).
 CellReferenceInput reference_input(const LinearCell& cell, const CellTrace& trace, double a, double b) {
-  CellReferenceInput in;
-  in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < linear_node_count(cell.type); ++i) {
-    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-  }
-  in.origin = {trace.origin[0], trace.origin[1], trace.origin[2]};
-  in.direction = {trace.direction[0], trace.direction[1], trace.direction[2]};
-  in.t_near = a;
-  in.t_far = b;
-  return in;
+  return test::reference_input(cell, ViewRay{trace.origin, trace.direction}, a, b);
 }
 
 // Front-to-back composite of the 50-digit chords of the brute-force list (long double).

@@ -35,4 +35,21 @@ RaySpan Bounds::clip(const ViewRay& ray) const {
   return {t_enter, t_exit, true};
 }
 
+SlabInterval padded_slab_interval(const Vec3& lower, const Vec3& upper, double pad, const Vec3& origin,
+                                  const Vec3& d) {
+  SlabInterval s{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  for (int k = 0; k < 3; ++k) {
+    const double lo = lower[k] - pad, hi = upper[k] + pad;
+    if (d[k] == 0.0) {
+      if (origin[k] < lo || origin[k] > hi) s.t1 = -1.0;
+    } else {
+      double a = (lo - origin[k]) / d[k], b = (hi - origin[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      s.t0 = std::max(s.t0, a);
+      s.t1 = std::min(s.t1, b);
+    }
+  }
+  return s;
+}
+
 }  // namespace rayint

@@ -32,4 +32,14 @@ struct Bounds {
   RaySpan clip(const ViewRay& ray) const;
 };
 
+// The same slabs against [lower - pad, upper + pad], NOT restricted to t >= 0: {t0, t1} with t0
+// negative when the origin is inside, and t1 < max(t0, 0) (or -1) when the ray misses. The mesh
+// traversals start their walk just before t0 and stop just after t1.
+struct SlabInterval {
+  double t0;
+  double t1;
+};
+SlabInterval padded_slab_interval(const Vec3& lower, const Vec3& upper, double pad, const Vec3& origin,
+                                  const Vec3& direction);
+
 }  // namespace rayint

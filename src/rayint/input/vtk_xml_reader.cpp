@@ -497,6 +497,22 @@ std::size_t cell_total(const std::array<int, 3>& n) {
   return static_cast<std::size_t>(n[0] - 1) * static_cast<std::size_t>(n[1] - 1) * static_cast<std::size_t>(n[2] - 1);
 }
 
+// The part every structured reader shares once its points are placed: the n[0] x n[1] x n[2]
+// cells (voxels, or hexahedra when not axis-aligned), the point and cell arrays, the assembly.
+CellMesh structured_mesh(const Document& d, pugi::xml_node piece, const std::string& type,
+                         const std::array<int, 3>& n, bool voxels, RawMesh raw, const std::string& source,
+                         const std::string& scalar_name, bool cell_to_point, const RawMeshFields& fields) {
+  const std::size_t points = raw.points.size();
+  structured_cells(n, voxels, raw);
+  structured_arrays(d, piece, type, points, cell_total(n), raw);
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, fields);
+  mesh.structured = n;
+  return mesh;
+}
+
 }  // namespace
 
 CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name,
@@ -514,14 +530,8 @@ CellMesh parse_vts(std::string_view bytes, const std::string& source, const std:
   RawMesh raw;
   raw.points.reserve(points);
   for (std::size_t i = 0; i < points; ++i) raw.points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  structured_cells(n, false, raw);
-  structured_arrays(d, piece, type, points, cell_total(n), raw);
-  AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
-  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, structured_fields(type));
-  mesh.structured = n;
-  return mesh;
+  return structured_mesh(d, piece, type, n, false, std::move(raw), source, scalar_name, cell_to_point,
+                         structured_fields(type));
 }
 
 CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name,
@@ -554,14 +564,8 @@ CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std:
       for (int i = 0; i < n[0]; ++i)
         raw.points.emplace_back(axis[0][static_cast<std::size_t>(i)], axis[1][static_cast<std::size_t>(j)],
                                 axis[2][static_cast<std::size_t>(k)]);
-  structured_cells(n, true, raw);
-  structured_arrays(d, piece, type, points, cell_total(n), raw);
-  AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
-  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, structured_fields(type));
-  mesh.structured = n;
-  return mesh;
+  return structured_mesh(d, piece, type, n, true, std::move(raw), source, scalar_name, cell_to_point,
+                         structured_fields(type));
 }
 
 CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
@@ -593,16 +597,9 @@ CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, cons
       }
   // Voxels (vtkImageData::GetCell's order) when axis-aligned; a rotated voxel as the hexahedron
   // of the same corners.
-  structured_cells(n, axis_aligned, raw);
-  structured_arrays(d, piece, type, static_cast<std::size_t>(f.total), cell_total(n), raw);
-  AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
   RawMeshFields fields = structured_fields(type);
   fields.points = type + " (Origin, Spacing, Direction)";
-  CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, fields);
-  mesh.structured = n;
-  return mesh;
+  return structured_mesh(d, piece, type, n, axis_aligned, std::move(raw), source, scalar_name, cell_to_point, fields);
 }
 
 CellMesh read_vti_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "rayint/core/error.hpp"
+#include "rayint/geometry/bounds.hpp"
 #include "rayint/core/format.hpp"
 #include "rayint/mesh/first_hit.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
@@ -230,19 +231,8 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   if (dnorm > 0.0 && std::isfinite(dnorm)) d /= dnorm;
   out.direction = d;
   // Ray against the bounding box (slabs), to move the walk's origin just outside it.
-  double tb0 = -std::numeric_limits<double>::infinity(), tb1 = std::numeric_limits<double>::infinity();
-  const double pad = 1e-6 * diagonal_ + 1e-300;
-  for (int k = 0; k < 3; ++k) {
-    const double lo = box_min_[k] - pad, hi = box_max_[k] + pad;
-    if (d[k] == 0.0) {
-      if (ray.origin[k] < lo || ray.origin[k] > hi) tb1 = -1.0;
-    } else {
-      double a = (lo - ray.origin[k]) / d[k], b = (hi - ray.origin[k]) / d[k];
-      if (a > b) std::swap(a, b);
-      tb0 = std::max(tb0, a);
-      tb1 = std::min(tb1, b);
-    }
-  }
+  const SlabInterval box = padded_slab_interval(box_min_, box_max_, 1e-6 * diagonal_ + 1e-300, ray.origin, d);
+  const double tb0 = box.t0, tb1 = box.t1;
   out.origin = ray.origin;
   out.t_eye = 0.0;
   if (!(tb1 >= std::max(tb0, 0.0)) || !(dnorm > 0.0)) {
