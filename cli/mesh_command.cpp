@@ -48,6 +48,17 @@ void set_mesh_command(CLI::App& app) {
       if (std::string(cell_error.what()).find("quadratic tetra (VTK id 24)") == std::string::npos) throw;
       quadratic = read_mesh_file(opt->file, opt->array, opt->point_average);  // its own line if it refuses
     }
+    // The cell readers keep quadratic tetrahedra as cells (curved ones are integrated there); a
+    // file of tetrahedra and tet10 only is reported by the tetrahedral reading, which says
+    // whether the edges are straight.
+    if (!quadratic) {
+      bool tets = true, tet10 = false;
+      for (MeshCellType t : cells.types) {
+        tets = tets && (t == MeshCellType::tetra || t == MeshCellType::quadratic_tetra);
+        tet10 = tet10 || t == MeshCellType::quadratic_tetra;
+      }
+      if (tets && tet10) quadratic = read_mesh_file(opt->file, opt->array, opt->point_average);
+    }
     MeshInfo info;
     info.file = opt->file;
     if (!quadratic && !cells.only_tets()) {

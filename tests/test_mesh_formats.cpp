@@ -290,7 +290,9 @@ TEST_CASE("gmsh reader: every problem is one line naming the file and the sectio
       {replace(kMsh22, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", ""), "g.msh: $Nodes, line 1: the file must start with $MeshFormat"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 5 2 0 1 1 2 3 4"), "g.msh: $Elements, line 14: element 2: 9 numbers, a 8-node hexahedron with 2 tags needs 13"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 17 2 0 1 1 2 3 4 1 2 3 4 1 2 3 4 1 2 3 4 1 2 3 4"),
-       "g.msh: $Elements, line 14: cell type quadratic hexahedron (VTK id 25) is not supported yet; only tetrahedra (VTK ids 10 and 24) are integrated (gmsh element type 17)"},
+       "g.msh: $Elements, line 14: cell type quadratic hexahedron (VTK id 25): the tetrahedral paths and --cells split take "
+       "linear cells only; `rayint render` integrates it in its own (isoparametric) interpolation without --cells split "
+       "(gmsh element type 17)"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 4 2 0 1 1 2 3 9"), "g.msh: $Elements (element 2): node tag 9 is not in $Nodes"},
       {replace(kMsh22, "2 1 0 0", "2 1 0 x"), "g.msh: $Nodes, line 7: expected a finite number, got \"x\""},
       {replace(kMsh22, "$EndNodes", "$EndNode"), "g.msh: $Nodes, line 10: expected $EndNodes, got \"$EndNode\""},

@@ -183,7 +183,8 @@ struct Sampler {
 };
 
 // Interpolants covering [a, b]; false on a Newton failure or a missed tail after the budget.
-bool interpolate(Sampler& f, double a, double b, int depth, int n0, double tail_target,
+template <class F>
+bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target,
                  std::vector<Interpolant>& out, int& max_degree) {
   std::vector<double> v(static_cast<std::size_t>(n0) + 1);
   auto node = [&](int j, int n) { return 0.5 * (a + b) + 0.5 * (b - a) * std::cos(kPi * j / n); };
@@ -321,22 +322,29 @@ CellPieceIntegral LinearCellIntegrator::integrate_isoparametric(const LinearCell
 
 CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell, const ViewRay& ray,
                                                    double t_near, double t_far, bool use_newton) const {
+  double value_scale = 0.0;
+  for (int i = 0; i < linear_node_count(cell.type); ++i)
+    value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
+  Sampler sampler{&cell, &ray, use_newton, linear_reference_centre(cell.type)};
+  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton ? 16 : 8,
+                           use_newton ? CellPath::isoparametric : CellPath::polynomial);
+}
+
+template <class F>
+CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double value_scale, const ViewRay& ray,
+                                                          double t_near, double t_far, int n0, CellPath path) const {
   CellPieceIntegral out;
-  out.path = use_newton ? CellPath::isoparametric : CellPath::polynomial;
+  out.path = path;
   if (!(t_far >= t_near) || !std::isfinite(t_near) || !std::isfinite(t_far)) {
     out.converged = false;
     out.failure = "chord ends not finite or reversed";
     return out;
   }
   if (t_far == t_near) return out;
-  double value_scale = 0.0;
-  for (int i = 0; i < linear_node_count(cell.type); ++i)
-    value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
   const double tail_target = std::max(kChebyshevTail * value_scale, std::numeric_limits<double>::min());
 
-  Sampler sampler{&cell, &ray, use_newton, linear_reference_centre(cell.type)};
   std::vector<Interpolant> parts;
-  const bool ok = interpolate(sampler, t_near, t_far, 0, use_newton ? 16 : 8, tail_target, parts, out.max_degree);
+  const bool ok = interpolate(sampler, t_near, t_far, 0, n0, tail_target, parts, out.max_degree);
   out.samples = sampler.samples;
   if (!ok) {
     out.converged = false;
@@ -420,6 +428,44 @@ CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell,
   for (std::size_t c = 0; c < kChannels; ++c) error[c] += kRoundingUlps * (emission[c] + depth[c]);
   out.error_estimate = std::max({error[0], error[1], error[2]});
   return out;
+}
+
+// ---- Quadratic cells (cells/quadratic_isoparametric.hpp) ----------------------------------------
+
+namespace {
+
+// f(t) of a quadratic cell: the affine inverse, or Newton warm-started from the previous point.
+struct QuadraticSampler {
+  const QuadraticCell* cell;
+  const ViewRay* ray;
+  Vec3 start;
+  int samples = 0;
+  bool ok = true;
+  double operator()(double t) {
+    ++samples;
+    const Vec3 x = ray->origin + t * ray->direction;
+    if (cell->affine) return cell_scalar(*cell, cell->affine_inverse * (x - cell->affine_origin));
+    InverseMap m = inverse_map(*cell, x, start);
+    if (!m.converged) m = inverse_map(*cell, x);  // from the centre
+    if (!m.converged) {
+      ok = false;
+      return 0.0;
+    }
+    start = m.p;
+    return cell_scalar(*cell, m.p);
+  }
+};
+
+}  // namespace
+
+CellPieceIntegral LinearCellIntegrator::integrate(const QuadraticCell& cell, const ViewRay& ray, double t_near,
+                                                  double t_far) const {
+  double value_scale = 0.0;
+  for (int i = 0; i < quadratic_node_count(cell.type); ++i)
+    value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
+  QuadraticSampler sampler{&cell, &ray, quadratic_reference_centre(cell.type)};
+  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, cell.affine ? 8 : 16,
+                           cell.affine ? CellPath::polynomial : CellPath::isoparametric);
 }
 
 }  // namespace rayint

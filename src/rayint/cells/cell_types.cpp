@@ -66,12 +66,16 @@ const std::vector<CellTypeInfo>& table() {
       // gmsh 20-node hexahedron: edge nodes (0,1) (0,3) (0,4) (1,2) (1,5) (2,3) (2,6) (3,7) (4,5)
       // (4,7) (5,6) (6,7); VTK's: (0,1) (1,2) (2,3) (3,0) (4,5) (5,6) (6,7) (7,4) (0,4) (1,5) (2,6) (3,7).
       row(25, "quadratic hexahedron", 20, 3, 17,
-          {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15}, S::NotYet, CellType::hex20),
+          {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15}, S::Isoparametric, CellType::hex20),
       // gmsh 15-node prism: edge nodes (0,1) (0,2) (0,3) (1,2) (1,4) (2,5) (3,4) (3,5) (4,5); VTK's:
       // (0,1) (1,2) (2,0) (3,4) (4,5) (5,3) (0,3) (1,4) (2,5).
-      row(26, "quadratic wedge", 15, 3, 18, {0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11}, S::NotYet),
+      row(26, "quadratic wedge", 15, 3, 18, {0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11}, S::Isoparametric),
       row(27, "quadratic pyramid", 13, 3, 19, {}, S::NotYet),
+      // gmsh's order-2 hexahedron is this 27-node one unless Mesh.SecondOrderIncomplete = 1 (then
+      // the 20-node one above); its prism is the 18-node one (gmsh type 13, VTK's biquadratic-
+      // quadratic wedge 32) unless the same option gives the 15-node one. Neither is integrated.
       row(29, "triquadratic hexahedron", 27, 3, 12, {}, S::NotYet),
+      row(32, "biquadratic-quadratic wedge", 18, 3, 13, {}, S::NotYet),
       row(42, "polyhedron", -1, 3, 0, {}, S::NotYet),
   };
   return rows;
@@ -102,7 +106,7 @@ std::string cell_type_label(long long vtk_id) {
 const char* other_vtk_cell_name(long long vtk_id) {
   static const std::pair<int, const char*> names[] = {
       {0, "empty cell"}, {30, "quadratic-linear quad"}, {31, "quadratic-linear wedge"},
-      {32, "biquadratic-quadratic wedge"}, {33, "biquadratic-quadratic hexahedron"}, {34, "biquadratic triangle"},
+{33, "biquadratic-quadratic hexahedron"}, {34, "biquadratic triangle"},
       {35, "cubic line"}, {36, "quadratic polygon"}, {37, "triquadratic pyramid"}, {41, "convex point set"},
       {51, "parametric curve"}, {52, "parametric surface"}, {53, "parametric tri surface"},
       {54, "parametric quad surface"}, {55, "parametric tetra region"}, {56, "parametric hex region"},
@@ -130,12 +134,17 @@ std::string unsupported_cell_message(long long vtk_id) {
     return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
            "): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split "
            "(VTK's tetrahedralisation, an approximation of the cell's own interpolation)";
+  if (r->support == CellSupport::Isoparametric)
+    return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
+           "): the tetrahedral paths and --cells split take linear cells only; `rayint render` integrates it "
+           "in its own (isoparametric) interpolation without --cells split";
   if (r->support == CellSupport::Quadratic)
     return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
            "): --cells split tetrahedralises linear cells only; read this file without --cells split "
            "(its straight-edged quadratic tetrahedra are integrated with their quadratic interpolation)";
   return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
-         ") is not supported yet; only tetrahedra (VTK ids 10 and 24) are integrated";
+         ") is not supported yet; tetrahedra, voxels, hexahedra, wedges, pyramids and quadratic tetrahedra, "
+         "hexahedra and wedges (VTK ids 10-14, 24-26) are integrated";
 }
 
 }  // namespace rayint

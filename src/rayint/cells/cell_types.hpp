@@ -8,8 +8,14 @@
 //   Quadratic   the quadratic tetrahedron (10 nodes): its corners are traversed as a tetrahedron
 //               and its six mid-edge nodes kept beside it (TetMesh::edge_nodes); with straight
 //               edges its scalar is quadratic along a chord and integrated as such
-//               (mesh/quadratic_tets.hpp); curved edges are refused. `--cells split` (the
-//               CellMesh path) refuses it: VTK's split is defined for linear cells;
+//               (mesh/quadratic_tets.hpp); a mesh with curved edges is read as a CellMesh
+//               instead and integrated in its isoparametric interpolation like Isoparametric
+//               cells. `--cells split` (the CellMesh path) refuses it: VTK's split is defined
+//               for linear cells;
+//   Isoparametric  a quadratic volume cell other than the tetrahedron (quadratic hexahedron,
+//               quadratic wedge): read into a CellMesh and integrated in its own isoparametric
+//               interpolation, curved or not (cells/quadratic_isoparametric.hpp); the
+//               tetrahedral paths and `--cells split` refuse it (unsupported_cell_message);
 //   Skipped     a cell of dimension 0-2 (vertex, line, triangle, quad, ...): boundary and
 //               annotation cells gmsh writes beside the volume; they hold no volume, so a ray
 //               integral never sees them. Readers drop them and count them by type;
@@ -17,8 +23,8 @@
 //               pyramid): read into a CellMesh (mesh/cell_mesh.hpp) and integrated after
 //               `--cells split` (mesh/cell_split.hpp, VTK's tetrahedralisation: an approximation);
 //               the tetrahedral path refuses it with unsupported_cell_message(), which says so;
-//   NotYet      a volume cell rayint does not integrate yet (quadratic hexahedra, wedges and
-//               pyramids, polyhedra):
+//   NotYet      a volume cell rayint does not integrate yet (quadratic pyramids, triquadratic
+//               hexahedra (gmsh's default 27-node order-2 hexahedron), polyhedra):
 //               refused with unsupported_cell_message().
 // Node order is always VTK's once read: a reader permutes gmsh's order with gmsh_to_vtk
 // (vtk node i = gmsh node gmsh_to_vtk[i]). The permutations are gmsh's documented node numbering
@@ -43,7 +49,7 @@
 
 namespace rayint {
 
-enum class CellSupport { Traversed, Quadratic, Skipped, CellPath, NotYet };
+enum class CellSupport { Traversed, Quadratic, Skipped, CellPath, NotYet, Isoparametric };
 
 struct CellTypeInfo {
   int vtk_id = 0;
@@ -59,7 +65,7 @@ struct CellTypeInfo {
 // VTK type ids used by name in readers.
 inline constexpr int kVtkVertex = 1, kVtkLine = 3, kVtkTriangle = 5, kVtkQuad = 9, kVtkTetra = 10,
                      kVtkVoxel = 11, kVtkHexahedron = 12, kVtkWedge = 13, kVtkPyramid = 14,
-                     kVtkQuadraticTetra = 24;
+                     kVtkQuadraticTetra = 24, kVtkQuadraticHexahedron = 25, kVtkQuadraticWedge = 26;
 
 // The quadratic tetrahedron's mid-edge nodes in VTK's order (vtkQuadraticTetra.h): node 4 + e
 // lies on the edge (kTet10Edges[e][0], kTet10Edges[e][1]) of the corners 0-3.

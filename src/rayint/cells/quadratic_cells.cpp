@@ -62,6 +62,9 @@ const Basis& basis(QuadraticCellType type) {
 
 double power(double x, int e) { return e == 0 ? 1.0 : (e == 1 ? x : x * x); }
 
+// At most 20 entries, on the stack (the inverse map evaluates these in its Newton loop).
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 20, 1>;
+
 }  // namespace
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type) {
@@ -77,12 +80,13 @@ const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type) { ret
 void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N) {
   const Basis& b = basis(type);
   const auto n = static_cast<Eigen::Index>(b.nodes.size());
-  Eigen::VectorXd m(n);
+  SmallVector m(n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const Exponents& e = b.monomials[static_cast<std::size_t>(j)];
     m(j) = power(p[0], e[0]) * power(p[1], e[1]) * power(p[2], e[2]);
   }
-  const Eigen::VectorXd out = b.inverse.transpose() * m;
+  SmallVector out(n);
+  out.noalias() = b.inverse.transpose() * m;
   for (Eigen::Index i = 0; i < n; ++i) N[i] = out(i);
 }
 
@@ -90,7 +94,7 @@ void quadratic_shape_derivatives(QuadraticCellType type, const Vec3& p, double* 
   const Basis& b = basis(type);
   const auto n = static_cast<Eigen::Index>(b.nodes.size());
   for (int axis = 0; axis < 3; ++axis) {
-    Eigen::VectorXd m(n);
+    SmallVector m(n);
     for (Eigen::Index j = 0; j < n; ++j) {
       const Exponents& e = b.monomials[static_cast<std::size_t>(j)];
       double v = 1.0;
@@ -101,7 +105,8 @@ void quadratic_shape_derivatives(QuadraticCellType type, const Vec3& p, double* 
       }
       m(j) = v;
     }
-    const Eigen::VectorXd out = b.inverse.transpose() * m;
+    SmallVector out(n);
+    out.noalias() = b.inverse.transpose() * m;
     for (Eigen::Index i = 0; i < n; ++i) dN[axis * n + i] = out(i);
   }
 }

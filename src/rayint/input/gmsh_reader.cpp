@@ -275,7 +275,8 @@ class MshReader {
     }
     if (row == nullptr)
       c_.fail(f, "element type " + std::to_string(type) + " (" + et->name + ") is not supported yet; only 4-node tetrahedra (type 4) are integrated");
-    if (keep_cells_ && (row->support == CellSupport::Traversed || row->support == CellSupport::CellPath)) {
+    if (keep_cells_ && (row->support == CellSupport::Traversed || row->support == CellSupport::CellPath ||
+                        row->support == CellSupport::Quadratic || row->support == CellSupport::Isoparametric)) {
       cells_.push_back({t, row, {}});
       for (int k = 0; k < row->nodes; ++k) cells_.back().nodes.push_back(nodes[static_cast<std::size_t>(k)]);
       return;

@@ -263,7 +263,8 @@ CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const Assemb
   for (std::size_t i = 0; i < n_cells; ++i) {
     const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
                                          [](CellSupport support) {
-                                           return support == CellSupport::Traversed || support == CellSupport::CellPath;
+                                           return support == CellSupport::Traversed || support == CellSupport::CellPath ||
+                                                  support == CellSupport::Quadratic || support == CellSupport::Isoparametric;
                                          });
     if (row == nullptr) continue;
     for (std::size_t k = raw.offsets[i]; k < raw.offsets[i + 1]; ++k)

@@ -65,9 +65,10 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
                           const RawMeshFields& fields = {});
 
 // The same dataset as a CellMesh (mesh/cell_mesh.hpp): every linear volume cell kept (tetrahedra,
-// voxels, hexahedra, wedges, pyramids), dimensions 0-2 skipped and counted, ghost cells dropped,
-// the scalar chosen by the same rule. Quadratic cells (the tet10 too: VTK's split is for linear
-// cells) and polyhedra are refused naming their type.
+// voxels, hexahedra, wedges, pyramids) and the quadratic tetrahedra, hexahedra and wedges (their
+// own interpolation; `--cells split` refuses them), dimensions 0-2 skipped and counted, ghost
+// cells dropped, the scalar chosen by the same rule. Other quadratic cells and polyhedra are
+// refused naming their type.
 CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                             const RawMeshFields& fields = {});
 

@@ -185,20 +185,8 @@ CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_
   const auto it = readers.find(ext);
   if (it != readers.end() && extra_mesh_readers().count(ext) == 0) return it->second(path, scalar_name, cell_to_point);
   // Formats of tetrahedra only (TetGen, registered readers): their TetMesh as cells.
-  TetMesh t = read_mesh_file(path, scalar_name, cell_to_point);
-  // One rule for every reader: the cell path refuses quadratic tetrahedra (cells/cell_types.hpp).
-  if (!t.edge_nodes.empty()) throw InputError(path + ": cells: " + unsupported_cell_message(kVtkQuadraticTetra));
-  CellMesh m;
-  m.points = std::move(t.points);
-  m.scalars = std::move(t.scalars);
-  m.cell_scalars = std::move(t.cell_scalars);
-  m.info = std::move(t.info);
-  for (const auto& tet : t.tets) {
-    m.connectivity.insert(m.connectivity.end(), tet.begin(), tet.end());
-    m.types.push_back(MeshCellType::tetra);
-    m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
-  }
-  return m;
+  // Quadratic tetrahedra become quadratic tetra cells, as the cell readers give them.
+  return cell_mesh_of(read_mesh_file(path, scalar_name, cell_to_point));
 }
 
 bool is_mesh_case(const json& root) {
@@ -246,7 +234,13 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
       s.fail("mesh_file", "unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
     if (options.split_cells) {
       CellSplitCounts counts;
-      mc.mesh = split_cells(read_cell_mesh_file(mc.mesh_source, name, cell_to_point), &counts);
+      CellMesh cells = read_cell_mesh_file(mc.mesh_source, name, cell_to_point);
+      for (std::size_t c = 0; c < cells.cell_count(); ++c)  // VTK's split is for linear cells
+        if (is_quadratic(cells.types[c]))
+          throw InputError(mc.mesh_source + ": cells[" +
+                           std::to_string(c < cells.info.cell_ids.size() ? cells.info.cell_ids[c] : static_cast<long long>(c)) +
+                           "]: " + unsupported_cell_message(static_cast<int>(cells.types[c])));
+      mc.mesh = split_cells(cells, &counts);
       mc.split = counts;
     } else {
       try {
@@ -260,6 +254,13 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
         CellMesh cells = read_cell_mesh_file(mc.mesh_source, name, cell_to_point);
         if (cells.only_tets()) throw;
         mc.cells = std::move(cells);
+      }
+      // Quadratic tetrahedra with curved edges: their isoparametric interpolation on the
+      // own-cells path (mesh/cell_traversal.hpp); straight-edged ones stay on the tetrahedral
+      // path (mesh/quadratic_tets.hpp), exact along each chord's quadratic.
+      if (!mc.cells && !mc.mesh.edge_nodes.empty() && !check_tet10_edges(mc.mesh).straight()) {
+        mc.cells = cell_mesh_of(std::move(mc.mesh));
+        mc.mesh = TetMesh{};
       }
     }
     names = file_field_names(p.extension().string());
@@ -276,7 +277,6 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     mc.neighbors = tet_neighbors(mc.mesh, mc.mesh_source);
     refuse_overlapping_tets(mc.mesh, mc.neighbors, mc.mesh_source, names.tets);
   }
-  refuse_curved_tet10(mc.mesh, mc.mesh_source);  // straight-edged tet10 only (mesh/quadratic_tets.hpp)
   if (const json* b = s.optional(root, "background")) mc.background = s.rgb(*b, "background");
   const json* rays = s.optional(root, "rays");
   if (const json* cam = s.optional(root, "camera")) mc.camera = s.camera(*cam, "camera");

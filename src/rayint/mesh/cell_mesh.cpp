@@ -59,9 +59,14 @@ int mesh_cell_nodes(long long vtk_id) {
     case 12: return 8;
     case 13: return 6;
     case 14: return 5;
+    case 24: return 10;
+    case 25: return 20;
+    case 26: return 15;
     default: return 0;
   }
 }
+
+bool is_quadratic(MeshCellType type) { return static_cast<int>(type) >= 24; }
 
 const char* mesh_cell_name(MeshCellType type) {
   switch (type) {
@@ -70,6 +75,9 @@ const char* mesh_cell_name(MeshCellType type) {
     case MeshCellType::hexahedron: return "hexahedron";
     case MeshCellType::wedge: return "wedge";
     case MeshCellType::pyramid: return "pyramid";
+    case MeshCellType::quadratic_tetra: return "quadratic tetra";
+    case MeshCellType::quadratic_hexahedron: return "quadratic hexahedron";
+    case MeshCellType::quadratic_wedge: return "quadratic wedge";
   }
   return "?";
 }
@@ -129,6 +137,22 @@ void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& sourc
   }
 }
 
+CellMesh cell_mesh_of(TetMesh&& mesh) {
+  CellMesh m;
+  m.points = std::move(mesh.points);
+  m.scalars = std::move(mesh.scalars);
+  m.cell_scalars = std::move(mesh.cell_scalars);
+  m.info = std::move(mesh.info);
+  for (std::size_t c = 0; c < mesh.tets.size(); ++c) {
+    m.connectivity.insert(m.connectivity.end(), mesh.tets[c].begin(), mesh.tets[c].end());
+    const bool quadratic = c < mesh.edge_nodes.size() && mesh.edge_nodes[c][0] >= 0;
+    if (quadratic) m.connectivity.insert(m.connectivity.end(), mesh.edge_nodes[c].begin(), mesh.edge_nodes[c].end());
+    m.types.push_back(quadratic ? MeshCellType::quadratic_tetra : MeshCellType::tetra);
+    m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
+  }
+  return m;
+}
+
 TetMesh take_tets(CellMesh&& mesh) {
   TetMesh t;
   t.points = std::move(mesh.points);
@@ -151,6 +175,10 @@ int cell_orientation(const CellMesh& mesh, std::size_t c) {
     case MeshCellType::hexahedron: return corner_signs(mesh, p, kHexCorners);
     case MeshCellType::wedge: return corner_signs(mesh, p, kWedgeCorners);
     case MeshCellType::pyramid: return corner_signs(mesh, p, kPyramidCorners);
+    // Quadratic cells list their corners first: the corner Jacobians of the linear cell.
+    case MeshCellType::quadratic_tetra: return corner_signs(mesh, p, kTetCorners);
+    case MeshCellType::quadratic_hexahedron: return corner_signs(mesh, p, kHexCorners);
+    case MeshCellType::quadratic_wedge: return corner_signs(mesh, p, kWedgeCorners);
   }
   return 0;
 }

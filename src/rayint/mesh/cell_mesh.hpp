@@ -24,9 +24,16 @@
 namespace rayint {
 
 // VTK type ids of the cells a CellMesh holds (vtkCellType.h).
-enum class MeshCellType : std::uint8_t { tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14 };
+// The quadratic ones (24-26: tet10, hex20, wedge15; corners first, then the mid-edge nodes, VTK's
+// order) are integrated in their own isoparametric interpolation only (cells/quadratic_isoparametric.hpp).
+enum class MeshCellType : std::uint8_t {
+  tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14,
+  quadratic_tetra = 24, quadratic_hexahedron = 25, quadratic_wedge = 26
+};
+// Whether the type is one of the quadratic cells (24-26).
+bool is_quadratic(MeshCellType type);
 
-// Nodes of a linear cell type (4, 8, 8, 6, 5); 0 for an id that is not one.
+// Nodes of a cell type (4, 8, 8, 6, 5; quadratic 10, 20, 15); 0 for an id that is not one.
 int mesh_cell_nodes(long long vtk_id);
 // "tetra", "voxel", "hexahedron", "wedge", "pyramid" (the table's names).
 const char* mesh_cell_name(MeshCellType type);
@@ -56,6 +63,10 @@ std::vector<std::pair<std::string, long>> cell_counts(const CellMesh& mesh);
 // scalars, one scalar per point (or per cell). Throws InputError "<source>: <field>: <what>".
 void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& source,
                                   const MeshFieldNames& names = {});
+
+// The CellMesh of a TetMesh (moves the arrays): a tet with mid-edge nodes (TetMesh::edge_nodes)
+// becomes a quadratic tetra (corners, then the edge nodes in VTK's order), the others tetrahedra.
+CellMesh cell_mesh_of(TetMesh&& mesh);
 
 // The TetMesh of a CellMesh that holds only tetrahedra (moves the arrays). Precondition: only_tets().
 TetMesh take_tets(CellMesh&& mesh);

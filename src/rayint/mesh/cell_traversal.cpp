@@ -25,6 +25,8 @@ void CellTraversalStats::add(const CellTraversalStats& o) {
 }
 
 LinearCellType linear_type_of(MeshCellType type) {
+  QuadraticCellType q;
+  if (quadratic_cell_type_from_vtk(static_cast<int>(type), q)) return quadratic_corner_type(q);
   return static_cast<LinearCellType>(static_cast<int>(type));
 }
 
@@ -124,6 +126,14 @@ CellBoundaryFirstHit::CellBoundaryFirstHit(const CellTraversal& mesh) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
+    if (f.mids[0] >= 0) {  // a quadratic patch: the box of its Bernstein control points
+      std::array<Vec3, 8> nodes{};
+      for (int k = 0; k < f.count; ++k) {
+        nodes[static_cast<std::size_t>(k)] = mesh.mesh().points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
+        nodes[static_cast<std::size_t>(f.count + k)] = mesh.mesh().points[static_cast<std::size_t>(f.mids[static_cast<std::size_t>(k)])];
+      }
+      patch_control_box(nodes, f.count, lo, hi);
+    }
     for (int k = 0; k < 3; ++k) {
       // Rounded outward to float, then padded.
       bounds_[i][static_cast<std::size_t>(k)] = std::nextafter(static_cast<float>(lo[k] - pad), -HUGE_VALF);
@@ -178,12 +188,22 @@ void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint
   auto& w = const_cast<CellTraversal::Walk&>(cw);
   const CellTraversal& m = *w.self;
   const CellTraversal::BoundaryFace& f = m.boundary_[prim];
-  std::array<Vec3, 4> nodes{};
-  for (int k = 0; k < f.count; ++k)
-    nodes[static_cast<std::size_t>(k)] = m.mesh_.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
-  const FaceHits hits = rayint::intersect_face(nodes, f.count, w.ray());
-  for (int h = 0; h < hits.count; ++h) {
-    const double t_hit = hits.hit[static_cast<std::size_t>(h)].t;
+  std::vector<double> hit_t;
+  if (f.mids[0] >= 0) {  // a quadratic patch, nodes in canonical order
+    std::array<Vec3, 8> nodes{};
+    for (int k = 0; k < f.count; ++k) {
+      nodes[static_cast<std::size_t>(k)] = m.mesh_.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
+      nodes[static_cast<std::size_t>(f.count + k)] = m.mesh_.points[static_cast<std::size_t>(f.mids[static_cast<std::size_t>(k)])];
+    }
+    for (const PatchHit& h : intersect_quadratic_face(nodes, f.count, w.ray())) hit_t.push_back(h.t);
+  } else {
+    std::array<Vec3, 4> nodes{};
+    for (int k = 0; k < f.count; ++k)
+      nodes[static_cast<std::size_t>(k)] = m.mesh_.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
+    const FaceHits hits = rayint::intersect_face(nodes, f.count, w.ray());
+    for (int h = 0; h < hits.count; ++h) hit_t.push_back(hits.hit[static_cast<std::size_t>(h)].t);
+  }
+  for (const double t_hit : hit_t) {
     if (!(t_hit >= w.t_lo - w.tol) || !(t_hit < w.best_t)) continue;
     const double t_start = std::max(t_hit, w.t_lo);
     double t_far = 0.0;
@@ -235,9 +255,21 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
       v.push_back(mesh_.cell_scalars.empty() ? mesh_.scalars[p] : mesh_.cell_scalars[c]);
     }
     try {
-      cells_.push_back(make_linear_cell(linear_type_of(mesh_.types[c]), x, v));
+      QuadraticCellType q;
+      if (quadratic_cell_type_from_vtk(static_cast<int>(mesh_.types[c]), q)) {
+        if (quadratic_index_.empty()) quadratic_index_.assign(n, -1);
+        quadratic_index_[c] = static_cast<std::int32_t>(quadratic_.size());
+        quadratic_.push_back(make_quadratic_cell(q, x, v));
+        // The corners' linear cell: its faces' corners key the adjacency below.
+        const auto corners = static_cast<std::ptrdiff_t>(linear_node_count(quadratic_corner_type(q)));
+        cells_.push_back(make_linear_cell(quadratic_corner_type(q), std::vector<Vec3>(x.begin(), x.begin() + corners),
+                                          std::vector<double>(v.begin(), v.begin() + corners)));
+      } else {
+        cells_.push_back(make_linear_cell(linear_type_of(mesh_.types[c]), x, v));
+      }
     } catch (const std::invalid_argument& e) {
-      throw InputError(source + ": cells[" + std::to_string(c) + "]: " + e.what());
+      const long long id = c < mesh_.info.cell_ids.size() ? mesh_.info.cell_ids[c] : static_cast<long long>(c);
+      throw InputError(source + ": cells[" + std::to_string(id) + "]: " + e.what());
     }
   }
   // Faces keyed by sorted point ids (triangles padded with -1 in front).
@@ -290,6 +322,15 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
       b.local = r.local;
       for (int k = 0; k < fn.count; ++k)
         b.points[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(ids[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])]);
+      if (const QuadraticCell* q = quadratic_cell(c)) {  // the patch's nodes in the same canonical order
+        std::array<std::int64_t, kMaxQuadraticNodes> all{};
+        for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k) all[k] = mesh_.cell(c)[k];
+        const QuadraticFacePatch patch = canonical_quadratic_face(*q, r.local, all.data());
+        for (int k = 0; k < fn.count; ++k) {
+          b.points[static_cast<std::size_t>(k)] = mesh_.cell(c)[patch.local[static_cast<std::size_t>(k)]];
+          b.mids[static_cast<std::size_t>(k)] = mesh_.cell(c)[patch.local[static_cast<std::size_t>(fn.count + k)]];
+        }
+      }
       boundary_.push_back(b);
     }
     ++face_count_;
@@ -320,16 +361,26 @@ CellTraversal::~CellTraversal() = default;
 
 std::array<std::int64_t, kMaxLinearNodes> CellTraversal::global_ids(std::size_t c) const {
   std::array<std::int64_t, kMaxLinearNodes> ids{};
-  for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k) ids[k] = mesh_.cell(c)[k];
+  // A quadratic cell's corners come first: the linear cell's ids.
+  for (std::size_t k = 0; k < std::min<std::size_t>(mesh_.nodes_of(c), kMaxLinearNodes); ++k) ids[k] = mesh_.cell(c)[k];
   return ids;
 }
 
 // ---- Walking -----------------------------------------------------------------------------------
 
+Chord CellTraversal::cell_chord(std::size_t c, const ViewRay& ray) const {
+  if (const QuadraticCell* q = quadratic_cell(c)) {
+    std::array<std::int64_t, kMaxQuadraticNodes> ids{};
+    for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k) ids[k] = mesh_.cell(c)[k];
+    return quadratic_chord(*q, ray, ids.data());
+  }
+  const auto ids = global_ids(c);
+  return chord(cells_[c], ray, ids.data());
+}
+
 bool CellTraversal::continue_in(std::size_t c, const Walk& w, double t, double& t_far,
                                 std::vector<int>* exit_faces, bool* failed) const {
-  const auto ids = global_ids(c);
-  const Chord ch = chord(cells_[c], w.ray(), ids.data());
+  const Chord ch = cell_chord(c, w.ray());
   if (ch.failed && failed) *failed = true;
   const double slack = w.slack(t);
   for (const ChordInterval& iv : ch.intervals) {
@@ -486,7 +537,9 @@ CellRayResult CellTraversal::integrate(const CellTrace& trace, const LinearCellI
   for (const CellChordOnRay& c : trace.chords) {
     const double a = std::max(c.t_in, trace.t_eye);
     if (!(c.t_out > a)) continue;
-    const CellPieceIntegral p = integrator.integrate(cells_[static_cast<std::size_t>(c.cell)], ray, a, c.t_out);
+    const QuadraticCell* q = quadratic_cell(static_cast<std::size_t>(c.cell));
+    const CellPieceIntegral p = q != nullptr ? integrator.integrate(*q, ray, a, c.t_out)
+                                             : integrator.integrate(cells_[static_cast<std::size_t>(c.cell)], ray, a, c.t_out);
     ++r.chords;
     if (!p.converged) {
       ++r.failed_chords;

@@ -38,6 +38,16 @@
 // A chord whose midpoint classification did not converge (Newton) or whose integral failed marks
 // the ray failed: counted, and the ray's value is not a result (CellRayResult::converged).
 //
+// Quadratic cells (tet10, hex20, wedge15: cells/quadratic_isoparametric.hpp), curved or not, take
+// part in the same walk: their faces are keyed by their corners like the linear ones (the same
+// face indices), a face is a quadratic patch through its corners and mid-edge nodes, intersected
+// with the nodes in the canonical order of the corners' global ids (so a shared curved face is
+// watertight as above), the chord is quadratic_chord, the integral LinearCellIntegrator's
+// quadratic overload. cell(c) of a quadratic cell is its corners' linear cell (its faces'
+// corners); quadratic_cell(c) the cell itself. A boundary patch's first-hit box is the box of
+// its Bernstein control points (patch_control_box), padded as above. A quadratic cell whose map
+// folds (det J of both signs or ~0, make_quadratic_cell) is refused naming it.
+//
 // The eye may be inside the mesh: the walk starts outside the bounding box (origin moved back
 // along the ray) and the chords are clipped at the true origin, as tet_traversal does.
 #include <array>
@@ -48,6 +58,7 @@
 
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
+#include "rayint/cells/quadratic_isoparametric.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/model/transfer_function.hpp"
@@ -102,7 +113,7 @@ struct CellRayResult {
 class CellTraversal {
  public:
   // `mesh` must pass validate_cell_mesh_structure. Throws InputError "<source>: cells: ..." for a
-  // face shared by more than two cells or a cell that make_linear_cell refuses.
+  // face shared by more than two cells or a cell that make_linear_cell / make_quadratic_cell refuses.
   explicit CellTraversal(CellMesh mesh, const std::string& source = "mesh");
   ~CellTraversal();
   CellTraversal(const CellTraversal&) = delete;
@@ -111,6 +122,11 @@ class CellTraversal {
   const CellMesh& mesh() const { return mesh_; }
   const LinearCell& cell(std::size_t c) const { return cells_[c]; }
   std::size_t cell_count() const { return cells_.size(); }
+  // The quadratic cell c, or nullptr for a linear one.
+  const QuadraticCell* quadratic_cell(std::size_t c) const {
+    return quadratic_index_.empty() || quadratic_index_[c] < 0 ? nullptr
+                                                               : &quadratic_[static_cast<std::size_t>(quadratic_index_[c])];
+  }
   std::size_t face_count() const { return face_count_; }
   std::size_t boundary_face_count() const { return boundary_.size(); }
   const Vec3& box_min() const { return box_min_; }
@@ -129,6 +145,8 @@ class CellTraversal {
     int count = 0;                          // 3 or 4
     std::int32_t cell = -1;
     int local = 0;  // face index in the cell (linear_face)
+    std::array<std::int32_t, 4> mids{-1, -1, -1, -1};  // a quadratic face: mid-edge node of canonical
+                                                       // corner edge (k, k + 1); -1 for a linear face
   };
   const BoundaryFace& boundary_face(std::size_t i) const { return boundary_[i]; }
 
@@ -143,9 +161,14 @@ class CellTraversal {
                  std::int32_t& cell, double& t_far, std::vector<int>& faces, CellTraversalStats& stats,
                  bool& failed) const;
   friend struct CellFirstHitAccess;
+  // The chord of cell c (linear or quadratic), nodes by their global ids (canonical faces).
+  Chord cell_chord(std::size_t c, const ViewRay& ray) const;
 
   CellMesh mesh_;
   std::vector<LinearCell> cells_;
+  std::vector<QuadraticCell> quadratic_;         // the quadratic cells
+  std::vector<std::int32_t> quadratic_index_;    // per cell: its index in quadratic_, -1 if linear
+                                                 // (empty when the mesh has no quadratic cell)
   std::vector<std::int32_t> neighbor_offsets_;  // cell c: neighbours_[neighbor_offsets_[c] + face]
   std::vector<std::int32_t> neighbors_;         // the cell across each face, -1 on the boundary
   std::vector<std::int32_t> point_cells_offsets_, point_cells_;  // cells around each point
@@ -156,7 +179,8 @@ class CellTraversal {
   std::unique_ptr<CellBoundaryFirstHit> first_hit_;
 };
 
-// The LinearCell of cell c of a CellMesh (points and scalars by VTK order; cell data: constant).
+// The LinearCell of cell c of a CellMesh (points and scalars by VTK order; cell data: constant);
+// for a quadratic type, its corners' linear type.
 LinearCellType linear_type_of(MeshCellType type);
 
 }  // namespace rayint

@@ -8,7 +8,10 @@
 // over the corners i and the six edges (a, b) (cells/cell_types.hpp, kTet10Edges). This is the
 // isoparametric interpolant only when every mid-edge node lies at its edge's midpoint (then the
 // geometry map is affine and the lambdas are its inverse): the mesh must have straight edges
-// (check_tet10_edges; a curved one is refused naming the cell, refuse_curved_tet10).
+// (check_tet10_edges). A mesh with a curved edge is integrated in its isoparametric
+// interpolation by the own-cells path instead (mesh/cell_traversal.hpp, cells/
+// quadratic_isoparametric.hpp; input/mesh_case_reader.cpp routes it); refuse_curved_tet10 is
+// kept for callers that take the tetrahedral path only.
 // Along a ray x(t) = x_in + t d the lambdas are linear in t, so f is a quadratic in t: its
 // coefficients are the products of the linear factors multiplied out (quadratic_tet_chord; no
 // fitting, no division by the chord length).

@@ -71,7 +71,7 @@ struct TetMesh {
   // -1 for every edge of a linear tet of a mixed mesh (its mid-edge value is then the mean of
   // the edge's ends, which reproduces the linear field exactly). Empty when every tet is linear.
   // The corners stay in `tets`, so traversal walks a tet10 as the tetrahedron of its corners;
-  // the scalar inside is quadratic (mesh/quadratic_tets.hpp). Curved edges are refused there.
+  // the scalar inside is quadratic (mesh/quadratic_tets.hpp). A mesh with curved edges goes to the own-cells path (mesh/cell_traversal.hpp).
   std::vector<std::array<std::int32_t, 6>> edge_nodes;
   MeshFileInfo info;
 };

@@ -44,7 +44,7 @@ namespace {
 using reference_detail::Real;
 using R3 = std::array<Real, 3>;
 
-constexpr int kMaxNodes = 8;
+constexpr int kMaxNodes = 20;
 
 int node_count(int id) {
   switch (id) {
@@ -52,12 +52,96 @@ int node_count(int id) {
     case 11: case 12: return 8;
     case 13: return 6;
     case 14: return 5;
+    case 24: return 10;
+    case 25: return 20;
+    case 26: return 15;
     default: return 0;
+  }
+}
+
+// A value with its gradient in (r, s, t): the quadratic cells' shape functions are written as
+// products of their textbook factors and differentiated by the product rule, here, in 50 digits
+// (not the Vandermonde construction of cells/quadratic_cells.cpp).
+struct Dual {
+  Real v;
+  R3 g{Real(0), Real(0), Real(0)};
+};
+Dual operator+(const Dual& a, const Dual& b) { return {a.v + b.v, {a.g[0] + b.g[0], a.g[1] + b.g[1], a.g[2] + b.g[2]}}; }
+Dual operator-(const Dual& a, const Dual& b) { return {a.v - b.v, {a.g[0] - b.g[0], a.g[1] - b.g[1], a.g[2] - b.g[2]}}; }
+Dual operator*(const Dual& a, const Dual& b) {
+  return {a.v * b.v, {a.g[0] * b.v + a.v * b.g[0], a.g[1] * b.v + a.v * b.g[1], a.g[2] * b.v + a.v * b.g[2]}};
+}
+Dual operator*(const Real& c, const Dual& a) { return {c * a.v, {c * a.g[0], c * a.g[1], c * a.g[2]}}; }
+Dual constant(const Real& c) { return {c}; }
+Dual coordinate(const R3& p, int k) {
+  Dual d{p[static_cast<std::size_t>(k)]};
+  d.g[static_cast<std::size_t>(k)] = 1;
+  return d;
+}
+
+// VTK's quadratic cells (vtkQuadraticTetra, vtkQuadraticHexahedron, vtkQuadraticWedge): the
+// textbook serendipity / P2 shape functions on VTK's parametric nodes, VTK's node order.
+void quadratic_shape(int id, const R3& p, Dual* N) {
+  const Dual one = constant(Real(1)), r = coordinate(p, 0), s = coordinate(p, 1), t = coordinate(p, 2);
+  switch (id) {
+    case 24: {  // barycentric L; corner L (2L - 1), edge 4 La Lb, edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3)
+      const Dual L[4] = {one - r - s - t, r, s, t};
+      static const int edges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+      for (int i = 0; i < 4; ++i) N[i] = L[i] * (Real(2) * L[i] - one);
+      for (int e = 0; e < 6; ++e) N[4 + e] = Real(4) * (L[edges[e][0]] * L[edges[e][1]]);
+      return;
+    }
+    case 25: {  // on (xi, eta, zeta) = 2 p - 1; nodes at xi_i in {-1, 0, 1}
+      static const int node[20][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1},
+                                      {1, 1, 1},    {-1, 1, 1},  {0, -1, -1}, {1, 0, -1},  {0, 1, -1},  {-1, 0, -1},
+                                      {0, -1, 1},   {1, 0, 1},   {0, 1, 1},   {-1, 0, 1},  {-1, -1, 0}, {1, -1, 0},
+                                      {1, 1, 0},    {-1, 1, 0}};
+      const Dual x[3] = {Real(2) * r - one, Real(2) * s - one, Real(2) * t - one};
+      for (int i = 0; i < 20; ++i) {
+        Dual prod = one, sum = constant(Real(-2));
+        int zero = -1;
+        for (int k = 0; k < 3; ++k) {
+          if (node[i][k] == 0) {
+            zero = k;
+            continue;
+          }
+          const Dual a = Real(node[i][k]) * x[k];
+          prod = prod * (one + a);
+          sum = sum + a;
+        }
+        N[i] = zero < 0 ? Real(0.125) * (prod * sum) : Real(0.25) * (prod * (one - x[zero] * x[zero]));
+      }
+      return;
+    }
+    case 26: {  // L = (1 - r - s, r, s), z = 2t - 1
+      const Dual L[3] = {one - r - s, r, s};
+      const Dual z = Real(2) * t - one, bottom = one - z, top = one + z, bubble = one - z * z;
+      for (int i = 0; i < 3; ++i) {
+        const Dual corner = Real(0.5) * (L[i] * (Real(2) * L[i] - one));
+        N[i] = corner * bottom - Real(0.5) * (L[i] * bubble);
+        N[3 + i] = corner * top - Real(0.5) * (L[i] * bubble);
+        const Dual edge = Real(2) * (L[i] * L[(i + 1) % 3]);
+        N[6 + i] = edge * bottom;
+        N[9 + i] = edge * top;
+        N[12 + i] = L[i] * bubble;
+      }
+      return;
+    }
+    default: throw std::invalid_argument("reference_cell_chord: unknown cell type");
   }
 }
 
 // N_i and dN_i/dp_j (dN[j][i]) of VTK's linear cells, from their documented definitions.
 void shape(int id, const R3& p, Real* N, Real (*dN)[kMaxNodes]) {
+  if (id >= 24) {
+    Dual q[kMaxNodes];
+    quadratic_shape(id, p, q);
+    for (int i = 0; i < node_count(id); ++i) {
+      N[i] = q[i].v;
+      for (std::size_t j = 0; j < 3; ++j) dN[j][i] = q[i].g[j];
+    }
+    return;
+  }
   const Real &r = p[0], &s = p[1], &t = p[2];
   const Real one(1);
   const Real rm = one - r, sm = one - s, tm = one - t;
@@ -124,7 +208,7 @@ R3 cramer(const R3& c0, const R3& c1, const R3& c2, const R3& rhs) {  // [c0 c1 
 class Cell {
  public:
   Cell(const CellReferenceInput& in) : id_(in.vtk_id), n_(node_count(in.vtk_id)) {
-    if (n_ == 0) throw std::invalid_argument("reference_cell_chord: vtk_id must be 10..14");
+    if (n_ == 0) throw std::invalid_argument("reference_cell_chord: vtk_id must be 10..14 or 24..26");
     if (static_cast<int>(in.nodes.size()) != n_ || static_cast<int>(in.values.size()) != n_)
       throw std::invalid_argument("reference_cell_chord: node and value counts do not match the type");
     for (int i = 0; i < n_; ++i) {
@@ -147,8 +231,8 @@ class Cell {
     }
     speed_ = sqrt(d_[0] * d_[0] + d_[1] * d_[1] + d_[2] * d_[2]);
     if (scale_ == 0) scale_ = 1;
-    start_ = id_ == 10 ? R3{Real(0.25), Real(0.25), Real(0.25)}
-             : id_ == 13 ? R3{Real(1) / 3, Real(1) / 3, Real(0.5)}
+    start_ = (id_ == 10 || id_ == 24) ? R3{Real(0.25), Real(0.25), Real(0.25)}
+             : (id_ == 13 || id_ == 26) ? R3{Real(1) / 3, Real(1) / 3, Real(0.5)}
              : id_ == 14 ? R3{Real(0.5), Real(0.5), Real(0.25)}
                          : R3{Real(0.5), Real(0.5), Real(0.5)};
   }

@@ -6,7 +6,7 @@
 // reported by cell type, with each type's orientation counts (cell_mesh.hpp) and the line
 // "integrated: with --cells split (VTK's tetrahedralisation, an approximation)". Quadratic
 // tetrahedra: their count and "edges straight" (integrated with their quadratic interpolation) or
-// "edges curved" (refused), with the largest mid-edge offset and its cell.
+// "edges curved" (integrated isoparametrically on the own-cells path), with the largest mid-edge offset and its cell.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -30,7 +30,7 @@ struct MeshInfo {
   std::optional<std::pair<std::size_t, std::size_t>> overlap;  // its finding
   double check_seconds = 0.0;
   // Quadratic tetrahedra (mesh/quadratic_tets.hpp): how many, and whether their edges are
-  // straight (integrated) or curved (refused), with the worst mid-edge node's offset.
+  // straight (integrated exactly) or curved (integrated isoparametrically), with the worst mid-edge node's offset.
   std::optional<Tet10EdgeCheck> tet10;
 };
 

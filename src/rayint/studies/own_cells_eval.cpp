@@ -12,13 +12,25 @@ namespace rayint {
 
 namespace {
 
-CellReferenceInput reference_input(const LinearCell& cell, const CellTrace& trace, double a, double b) {
+// The reference's input for cell c's chord [a, b]: a quadratic cell with all its nodes (ids 24-26),
+// a linear one with its corners.
+CellReferenceInput reference_input(const CellTraversal& mesh, std::size_t c, const CellTrace& trace, double a, double b) {
   CellReferenceInput in;
-  in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < linear_node_count(cell.type); ++i) {
-    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
+  if (const QuadraticCell* q = mesh.quadratic_cell(c)) {
+    in.vtk_id = static_cast<int>(q->type);
+    for (int i = 0; i < quadratic_node_count(q->type); ++i) {
+      const Vec3& x = q->x[static_cast<std::size_t>(i)];
+      in.nodes.push_back({x[0], x[1], x[2]});
+      in.values.push_back(q->value[static_cast<std::size_t>(i)]);
+    }
+  } else {
+    const LinearCell& cell = mesh.cell(c);
+    in.vtk_id = static_cast<int>(cell.type);
+    for (int i = 0; i < linear_node_count(cell.type); ++i) {
+      const Vec3& x = cell.x[static_cast<std::size_t>(i)];
+      in.nodes.push_back({x[0], x[1], x[2]});
+      in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
+    }
   }
   in.origin = {trace.origin[0], trace.origin[1], trace.origin[2]};
   in.direction = {trace.direction[0], trace.direction[1], trace.direction[2]};
@@ -71,7 +83,7 @@ OwnCaseEvaluation evaluate_own_cells(const MeshCase& mc, bool with_reference, un
         const double a = std::max(ch.t_in, trace.t_eye);
         if (!(ch.t_out > a)) continue;
         const CellReference r =
-            reference_cell_chord(mc.transfer, reference_input(mesh.cell(static_cast<std::size_t>(ch.cell)), trace, a, ch.t_out));
+            reference_cell_chord(mc.transfer, reference_input(mesh, static_cast<std::size_t>(ch.cell), trace, a, ch.t_out));
         for (std::size_t q = 0; q < kChannels; ++q) {
           c[q] += std::exp(-d[q]) * static_cast<long double>(r.emission[q]);
           d[q] += static_cast<long double>(r.optical_depth[q]);

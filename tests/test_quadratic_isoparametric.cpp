@@ -1,0 +1,269 @@
+// VTK's quadratic cells in their own isoparametric interpolation, curved ones included
+// (cells/quadratic_isoparametric.hpp, LinearCellIntegrator::integrate(QuadraticCell)): validity,
+// inverse map, ray-patch hits (watertight on shared curved faces), chords, and the integral
+// against the independent 50-digit reference (reference/cell_reference.hpp, ids 24-26).
+#include <algorithm>
+#include <array>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "rayint/cells/cell_integral.hpp"
+#include "rayint/cells/quadratic_isoparametric.hpp"
+#include "rayint/reference/cell_reference.hpp"
+#include "cell_samples.hpp"
+
+using namespace rayint;
+
+namespace {
+
+struct QuadraticCellTolerances {
+  // Inverse map round trip on the curved cells below (|J| >= ~0.2 in every direction, coordinates
+  // <= ~3): Newton stops at 8 eps * 3 in x, so |dp| <= ~1e-14; 1e-12.
+  static constexpr double round_trip_abs = 1e-12;
+  // A ray aimed at a patch point hits it: the hit (Newton on the projected patch to 8 eps of the
+  // patch's size, then t from the patch point) lies within ~1e-15 of the point; 1e-12.
+  static constexpr double patch_hit_abs = 1e-12;
+  // The double path against the 50-digit reference, per channel, relative (the same target as the
+  // linear cells' reference_rel in test_linear_cells.cpp: near machine precision).
+  static constexpr double reference_rel = 1e-13;
+};
+
+const std::array<QuadraticCellType, 3> kTypes = {QuadraticCellType::tetra, QuadraticCellType::hexahedron,
+                                                 QuadraticCellType::wedge};
+
+// VTK's reference nodes times 2, corners perturbed by up to `noise`, every mid-edge node at its
+// edge's midpoint plus a displacement of up to `bend` of the edge length (a curved cell), values
+// random in [0, 1]; mirrored (z -> -z) on request (the other orientation).
+QuadraticCell random_cell(QuadraticCellType type, std::mt19937& rng, double noise, double bend, bool mirror = false) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), v(0.0, 1.0);
+  const std::vector<Vec3>& ref = quadratic_reference_nodes(type);
+  const int corners = linear_node_count(quadratic_corner_type(type));
+  std::vector<Vec3> nodes(ref.size(), Vec3::Zero());
+  std::vector<char> set(ref.size(), 0);
+  for (int i = 0; i < corners; ++i)
+    nodes[static_cast<std::size_t>(i)] = 2.0 * ref[static_cast<std::size_t>(i)] + 2.0 * noise * Vec3(u(rng), u(rng), u(rng));
+  for (int f = 0; f < quadratic_face_count(type); ++f) {
+    const QuadraticFaceNodes q = quadratic_face(type, f);
+    for (int k = 0; k < q.count; ++k) {
+      const Vec3& a = nodes[static_cast<std::size_t>(q.corner[static_cast<std::size_t>(k)])];
+      const Vec3& b = nodes[static_cast<std::size_t>(q.corner[static_cast<std::size_t>((k + 1) % q.count)])];
+      const auto mid = static_cast<std::size_t>(q.mid[static_cast<std::size_t>(k)]);
+      if (set[mid]) continue;  // set from another face
+      set[mid] = 1;
+      nodes[mid] = 0.5 * (a + b) + bend * (b - a).norm() * Vec3(u(rng), u(rng), u(rng));
+    }
+  }
+  std::vector<double> values;
+  for (Vec3& x : nodes) {
+    if (mirror) x[2] = -x[2];
+    values.push_back(v(rng));
+  }
+  return make_quadratic_cell(type, nodes, values);
+}
+
+// random_cell again until the map is one-to-one (a random bend of a tet10 can fold it: at the
+// centroid its Jacobian depends on the mid-edge nodes alone); make_quadratic_cell decides.
+QuadraticCell valid_cell(QuadraticCellType type, std::mt19937& rng, double noise, double bend, bool mirror = false) {
+  for (int attempt = 0;; ++attempt) {
+    try {
+      return random_cell(type, rng, noise, bend, mirror);
+    } catch (const std::invalid_argument&) {
+      if (attempt == 50) throw;
+    }
+  }
+}
+
+Vec3 random_inside(QuadraticCellType type, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (;;) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    if (inside_reference(quadratic_corner_type(type), p)) return p;
+  }
+}
+
+CellReferenceInput reference_input(const QuadraticCell& cell, const ViewRay& ray, double t_near, double t_far) {
+  CellReferenceInput in;
+  in.vtk_id = static_cast<int>(cell.type);
+  for (int i = 0; i < quadratic_node_count(cell.type); ++i) {
+    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
+    in.nodes.push_back({x[0], x[1], x[2]});
+    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
+  }
+  in.origin = {ray.origin[0], ray.origin[1], ray.origin[2]};
+  in.direction = {ray.direction[0], ray.direction[1], ray.direction[2]};
+  in.t_near = t_near;
+  in.t_far = t_far;
+  return in;
+}
+
+}  // namespace
+
+TEST_CASE("quadratic cells: inverse map round trip on curved cells in both orientations", "[cells][quadratic][isoparametric]") {
+  std::mt19937 rng(7);
+  for (QuadraticCellType type : kTypes)
+    for (bool mirror : {false, true})
+      for (int k = 0; k < 5; ++k) {
+        const QuadraticCell cell = valid_cell(type, rng, 0.1, 0.15, mirror);
+        CHECK(cell.orientation == (mirror ? -1 : 1));
+        CHECK_FALSE(cell.affine);
+        for (int j = 0; j < 10; ++j) {
+          const Vec3 p = random_inside(type, rng);
+          const InverseMap m = inverse_map(cell, cell_position(cell, p));
+          INFO(quadratic_cell_name(type) << " mirror " << mirror);
+          REQUIRE(m.converged);
+          CHECK((m.p - p).cwiseAbs().maxCoeff() <= QuadraticCellTolerances::round_trip_abs);
+        }
+      }
+}
+
+TEST_CASE("quadratic cells: a folded cell is refused, an affine one detected", "[cells][quadratic][isoparametric]") {
+  std::mt19937 rng(3);
+  for (QuadraticCellType type : kTypes) {
+    // Straight edges: affine, the exact linear inverse.
+    std::vector<Vec3> nodes;
+    std::vector<double> values;
+    Eigen::Matrix3d A;
+    A << 2.0, 0.3, -0.2, 0.1, 1.5, 0.4, -0.3, 0.2, 1.8;
+    for (const Vec3& r : quadratic_reference_nodes(type)) {
+      nodes.push_back(Vec3(0.5, -1.0, 2.0) + A * r);
+      values.push_back(r.sum());
+    }
+    const QuadraticCell affine = make_quadratic_cell(type, nodes, values);
+    CHECK(affine.affine);
+    // A mid-edge node pulled through the opposite corner folds the map.
+    const QuadraticFaceNodes f = quadratic_face(type, 0);
+    const auto mid = static_cast<std::size_t>(f.mid[0]);
+    const Vec3 a = nodes[static_cast<std::size_t>(f.corner[0])], b = nodes[static_cast<std::size_t>(f.corner[1])];
+    nodes[mid] = a + 1.5 * (b - a);  // beyond b: the edge runs back on itself
+    INFO(quadratic_cell_name(type));
+    CHECK_THROWS_WITH(make_quadratic_cell(type, nodes, values), Catch::Contains("not one-to-one"));
+  }
+}
+
+TEST_CASE("quadratic cells: rays aimed at points of curved faces hit them", "[cells][quadratic][isoparametric]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0), w(-1.0, 1.0);
+  for (QuadraticCellType type : kTypes) {
+    const QuadraticCell cell = valid_cell(type, rng, 0.1, 0.15);
+    for (int f = 0; f < quadratic_face_count(type); ++f) {
+      const QuadraticFacePatch patch = canonical_quadratic_face(cell, f);
+      for (int k = 0; k < 10; ++k) {
+        double a = u(rng), b = u(rng);
+        if (patch.count == 3 && a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+        const Vec3 target = patch_point(patch.node, patch.count, a, b);
+        const Vec3 dir = Vec3(w(rng), w(rng), w(rng)).normalized();
+        const ViewRay ray{target - 5.0 * dir, dir};
+        const std::vector<PatchHit> hits = intersect_quadratic_face(patch.node, patch.count, ray);
+        INFO(quadratic_cell_name(type) << " face " << f << " (u, v) = (" << a << ", " << b << ")");
+        REQUIRE_FALSE(hits.empty());
+        double best = 1e300;
+        for (const PatchHit& h : hits) best = std::min(best, (ray.origin + h.t * ray.direction - target).norm());
+        CHECK(best <= QuadraticCellTolerances::patch_hit_abs);
+      }
+    }
+  }
+}
+
+TEST_CASE("quadratic cells: two curved hexahedra sharing a curved face, the exit of one is the entry of the other bit for bit", "[cells][quadratic][isoparametric]") {
+  // Cell A: [0,2] x [0,2] x [0,2] with curved mid-edge nodes; cell B: A's face x = 2 shared, B
+  // extends to x = 4. The shared face's nodes are the same points in both, listed by each cell
+  // in its own local order.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> w(-0.25, 0.25), v(0.0, 1.0);
+  // Global points: a 3 x 3 x 3 lattice of (0, 1, 2, 3, 4) x (0, 1, 2) x (0, 1, 2), 5 x 3 x 3,
+  // every non-corner lattice point that is a mid-edge node moved.
+  auto gid = [](int i, int j, int k) { return static_cast<std::int64_t>(i + 5 * (j + 3 * k)); };
+  std::vector<Vec3> pts(45);
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 5; ++i) {
+        Vec3 x(i, j, k);
+        if (i % 2 == 1 || j == 1 || k == 1) x += Vec3(w(rng), w(rng), w(rng));
+        pts[static_cast<std::size_t>(gid(i, j, k))] = x;
+      }
+  std::vector<double> values(45);
+  for (double& x : values) x = v(rng);
+  const std::vector<Vec3>& ref = quadratic_reference_nodes(QuadraticCellType::hexahedron);
+  std::vector<QuadraticCell> cells;
+  std::vector<std::array<std::int64_t, 20>> ids(2);
+  for (int c = 0; c < 2; ++c) {
+    std::vector<Vec3> nodes;
+    std::vector<double> vals;
+    for (std::size_t n = 0; n < 20; ++n) {
+      const Vec3& r = ref[n];
+      const std::int64_t g = gid(2 * c + static_cast<int>(2 * r[0]), static_cast<int>(2 * r[1]), static_cast<int>(2 * r[2]));
+      ids[static_cast<std::size_t>(c)][n] = g;
+      nodes.push_back(pts[static_cast<std::size_t>(g)]);
+      vals.push_back(values[static_cast<std::size_t>(g)]);
+    }
+    cells.push_back(make_quadratic_cell(QuadraticCellType::hexahedron, nodes, vals));
+  }
+  int shared = 0;
+  for (int k = 0; k < 60; ++k) {
+    // Rays through random points of the shared face, and through its edges and corners.
+    const double a = k < 8 ? (k % 2) : v(rng), b = k < 8 ? ((k / 2) % 2) : (k < 16 ? 0.5 : v(rng));
+    const Vec3 target(2.0 + 0.2 * w(rng), a * 2.0, b * 2.0);
+    const Vec3 eye(-3.0, 1.0 + 4 * w(rng), 1.0 + 4 * w(rng));
+    const ViewRay ray{eye, (target - eye).normalized()};
+    const Chord A = quadratic_chord(cells[0], ray, ids[0].data());
+    const Chord B = quadratic_chord(cells[1], ray, ids[1].data());
+    REQUIRE_FALSE(A.failed);
+    REQUIRE_FALSE(B.failed);
+    // The face x = 2 is face 1 of A (nodes 1, 2, 6, 5) and face 0 of B (0, 4, 7, 3): hits equal.
+    std::vector<double> ha, hb;
+    for (const ChordFaceHit& h : A.hits)
+      if (h.face == 1) ha.push_back(h.t);
+    for (const ChordFaceHit& h : B.hits)
+      if (h.face == 0) hb.push_back(h.t);
+    CHECK(ha == hb);
+    // A ray that leaves A through the shared face enters B there: A's piece ends exactly
+    // where B's begins.
+    if (!A.intervals.empty() && std::find(ha.begin(), ha.end(), A.intervals.back().t_far) != ha.end()) {
+      REQUIRE_FALSE(B.intervals.empty());
+      CHECK(A.intervals.back().t_far == B.intervals.front().t_near);
+      ++shared;
+    }
+  }
+  CHECK(shared >= 30);
+}
+
+TEST_CASE("quadratic cells: the double path against the 50-digit reference on curved cells", "[cells][quadratic][isoparametric][reference]") {
+  const TransferFunctions tf = test::breakpoint_tf();
+  const LinearCellIntegrator integrator(tf);
+  std::mt19937 rng(2030);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  int chords = 0;
+  for (QuadraticCellType type : kTypes)
+    for (bool mirror : {false, true})
+      for (int k = 0; k < 3; ++k) {
+        const QuadraticCell cell = valid_cell(type, rng, 0.1, 0.1 + 0.1 * u(rng), mirror);
+        const Vec3 target = cell_position(cell, random_inside(type, rng));
+        const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+        const ViewRay ray{target - 8.0 * dir, dir};
+        const Chord ch = quadratic_chord(cell, ray);
+        REQUIRE_FALSE(ch.failed);
+        REQUIRE_FALSE(ch.intervals.empty());
+        for (const ChordInterval& iv : ch.intervals) {
+          const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);
+          INFO(quadratic_cell_name(type) << " mirror " << mirror << ": " << d.failure);
+          REQUIRE(d.converged);
+          CHECK(d.path == CellPath::isoparametric);
+          const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
+          for (std::size_t c = 0; c < kChannels; ++c) {
+            const double e = std::abs(d.emission[c] - ref.emission[c]), o = std::abs(d.optical_depth[c] - ref.optical_depth[c]);
+            worst = std::max({worst, e / ref.emission[c], o / ref.optical_depth[c]});
+            INFO("pieces " << d.pieces << " degree " << d.max_degree << " estimate " << d.error_estimate << " errors "
+                           << e / ref.emission[c] << " " << o / ref.optical_depth[c]);
+            CHECK(e <= QuadraticCellTolerances::reference_rel * ref.emission[c]);
+            CHECK(o <= QuadraticCellTolerances::reference_rel * ref.optical_depth[c]);
+            CHECK(e + o <= d.error_estimate);
+          }
+          ++chords;
+        }
+      }
+  WARN("quadratic cells vs 50-digit reference: worst relative error " << worst << " over " << chords << " chords");
+  CHECK(chords >= 18);
+}
