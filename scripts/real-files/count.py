@@ -401,6 +401,8 @@ REFUSAL_CLASSES = [  # (words in the line, class): whether refusing is right or 
     (("not in $Nodes", "out of range [N, N]"), "the file contradicts itself (gmsh: $NodeData for a node not in $Nodes)"),
     (("not supported", "Direction is not the identity", "cell data only", "not a VTK cell type"),
      "gap: not supported yet"),
+    (("with a curved edge",), "gap: curved quadratic tetrahedra (isoparametric cells: not integrated yet)"),
+    (("all nodes coincide",), "gap: a degenerate cell (all nodes at one point) refused by the own interpolation"),
 ]
 
 

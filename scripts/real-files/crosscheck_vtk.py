@@ -234,7 +234,8 @@ def main():
             rows.append((r, None, "no array %r in VTK's reading" % field, ""))
             continue
         types = {ds.GetCellType(i) for i in range(ds.GetNumberOfCells())} if r["kind"] == "mesh" else set()
-        volume = types & {vtk.VTK_TETRA, vtk.VTK_VOXEL, vtk.VTK_HEXAHEDRON, vtk.VTK_WEDGE, vtk.VTK_PYRAMID}
+        volume = types & {vtk.VTK_TETRA, vtk.VTK_VOXEL, vtk.VTK_HEXAHEDRON, vtk.VTK_WEDGE, vtk.VTK_PYRAMID,
+                           vtk.VTK_QUADRATIC_TETRA}  # tet10: VTK's quadratic interpolation, through the probe
         worst = 0.0
         if r["kind"] == "image":
             src = ds.GetPointData().GetArray(field)
