@@ -463,9 +463,9 @@ class MshReader {
   // a value) has a number past the last one in $Nodes. gmsh reads such entries back and never
   // draws them; rayint skips them and counts them (MeshInfo::skipped_node_data). A tag inside
   // $Nodes' range that is missing is still refused: the file then contradicts itself.
-  bool unsaved_node(long long t) {
+  bool unsaved_node(long long t, MeshFileInfo& info) {
     if (!version4_ || t <= max_node_tag_ || node_index_.count(t)) return false;
-    ++mesh_.info.skipped_node_data;
+    ++info.skipped_node_data;
     return true;
   }
 
@@ -497,7 +497,7 @@ class MshReader {
     std::vector<char> have(mesh_.points.size(), 0);
     if (node_data_.present) {
       for (const auto& [t, v] : node_data_.node_values) {
-        if (unsaved_node(t)) continue;
+        if (unsaved_node(t, mesh_.info)) continue;
         const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
         value[i] = v;
         have[i] = 1;
@@ -585,7 +585,7 @@ class MshReader {
     std::string data_field = "$NodeData";
     if (node_data_.present) {
       for (const auto& [t, v] : node_data_.node_values) {
-        if (unsaved_node(t)) continue;
+        if (unsaved_node(t, m.info)) continue;
         const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
         value[i] = v;
         have[i] = 1;
