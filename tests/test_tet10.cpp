@@ -13,6 +13,7 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <random>
 
 #include "cli_harness.hpp"
@@ -612,4 +613,21 @@ TEST_CASE("bench and gate take tet10 cases: the linear-only methods are failed, 
   }
   CHECK(eq6_seen);
   CHECK(riemann_scored);
+}
+
+TEST_CASE("gate on a tet10 case: exact within its tolerance, a linear-only method fails with the reason", "[tet10][tet10eval][mesh][cli]") {
+  rayint::test::TempDir dir;
+  dir.write("tet10.json", tet10_case(random_rays(4, 12), "tet10-41.msh", "q"));
+  dir.write("gates.json", R"({"corpus": {"cases": ["tet10.json"], "methods": {"exact": {"max_rel_error": 1e-13},
+    "riemann:n=4096": {"max_rel_error": 1e-8}, "eq6": {"max_non_finite": 0}}}})");
+  const auto g = rayint::test::run_cli(dir.path, "gate --config gates.json --json --quiet");
+  CHECK(g.status == 1);  // eq6 failed on the quadratic rays
+  const auto j = nlohmann::json::parse(g.out);
+  std::map<std::string, nlohmann::json> checks;
+  for (const auto& c : j["checks"]) checks[c["name"].get<std::string>()] = c;
+  CHECK(checks.at("corpus.tet10.exact.max_rel_error")["pass"] == true);
+  CHECK(checks.at("corpus.tet10.riemann:n=4096.max_rel_error")["pass"] == true);
+  CHECK(checks.at("corpus.tet10.eq6.failed")["pass"] == false);
+  CHECK(checks.at("corpus.tet10.eq6.failed")["measured"] == 4.0);
+  CHECK(checks.at("corpus.tet10.eq6.failed")["note"].get<std::string>().find("quadratic") != std::string::npos);
 }
