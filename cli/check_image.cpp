@@ -290,8 +290,9 @@ void run_image_check(const ImageCheckOptions& o) {
   const Image variance = read_variance(o, candidate);
   if (mc.cells) return run_own_cells_image_check(o, mc, candidate, variance);
 
+  // Quadratic tetrahedra: render_mesh integrates their chords exactly as polynomials
+  // (mesh/quadratic_tets.hpp, QuadraticTraceIntegrator) and does not use `exact` then.
   const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
-  refuse_quadratic_tets(mc.mesh, mc.mesh_source, "check --candidate-image");
   const TetTraversal mesh(mc.mesh, mc.neighbors, mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = o.threads;
@@ -305,6 +306,10 @@ void run_image_check(const ImageCheckOptions& o) {
     // with the case's transfer functions and background, so `rayint eval` replays it.
     if (mc.shading.enabled) {
       c.note = "the case has surface shading, which a segment case cannot hold: no worst-pixel case files";
+      return;
+    }
+    if (mesh.quadratic()) {
+      c.note = "the mesh has quadratic tetrahedra, whose quadratic chords a segment case cannot hold: no worst-pixel case files";
       return;
     }
     RayTrace trace;

@@ -13,6 +13,7 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <random>
 
 #include "cli_harness.hpp"
@@ -404,7 +405,7 @@ TEST_CASE("tet10 with curved edges: the tetrahedral path's check names a cell, r
   CHECK(j["quadratic_tets"]["edges"] == "curved");
 }
 
-TEST_CASE("CLI: mesh info counts tet10 and says the edges are straight, render integrates, eval refuses", "[tet10][mesh][cli]") {
+TEST_CASE("CLI: mesh info counts tet10 and says the edges are straight, render and eval integrate, render --compare refuses", "[tet10][mesh][cli]") {
   rayint::test::TempDir dir;
   for (const char* file : {"tet10-22.msh", "tet10-gmsh.vtk", "tet10-vtk.vtu", "tet10.1.ele"}) {
     INFO(file);
@@ -424,9 +425,209 @@ TEST_CASE("CLI: mesh info counts tet10 and says the edges are straight, render i
   const auto stats = nlohmann::json::parse(rayint::test::slurp(dir.path / "st.json"));
   CHECK(stats["mesh"]["quadratic_tets"] == 197);
   CHECK(stats["method"] == "exact (quadratic tetrahedra)");
-  const auto e = rayint::test::run_cli(dir.path, "eval c.json --methods exact --no-timing -o out.json");
-  CHECK(e.status == 2);
-  CHECK(e.err.find("197 quadratic tetrahedra") != std::string::npos);
-  CHECK(e.err.find('\n') == e.err.size() - 1);
-  CHECK_FALSE(fs::exists(dir.path / "out.json"));
+  // eval takes tet10 too (its quadratic chords: [tet10eval]); a compared render still refuses.
+  const auto e = rayint::test::run_cli(dir.path, "eval c.json --methods exact --no-timing --no-reference -q -o out.json");
+  CHECK(e.status == 0);
+  CHECK(fs::exists(dir.path / "out.json"));
+  const auto cmp = rayint::test::run_cli(dir.path, "render c.json -o d.png --compare riemann -q");
+  CHECK(cmp.status == 2);
+  CHECK(cmp.err.find("197 quadratic tetrahedra") != std::string::npos);
+  CHECK(cmp.err.find('\n') == cmp.err.size() - 1);
+}
+
+// ---- eval, check, bench and gate on tet10 ([tet10eval]) -------------------------------------
+// A mesh case of straight tet10 becomes a case of quadratic chords (model/ray.hpp,
+// Ray::quadratic; mesh/quadratic_methods.hpp): "exact" and the 50-digit reference integrate them
+// as polynomials, riemann/nerf/rk4 sample the quadratic scalar, the methods that take linear
+// segments fail per ray (null, counted, exit 1). Oracle: the analytic q along the cube's chord in
+// 50 digits (q_chord_50, mesh-free), which a straight tet10 mesh reproduces exactly.
+
+namespace {
+
+std::string tet10_case(const std::vector<ViewRay>& rays, const char* file, const char* field) {
+  const TransferFunctions tf = steep_tf();
+  nlohmann::json density = nlohmann::json::object(), color = nlohmann::json::object();
+  for (int c = 0; c < 3; ++c) {
+    const std::string ch(1, "rgb"[c]);
+    for (auto [f, out] : {std::pair{&tf.density[static_cast<std::size_t>(c)], &density}, std::pair{&tf.color[static_cast<std::size_t>(c)], &color}}) {
+      nlohmann::json pts = nlohmann::json::array();
+      for (std::size_t k = 0; k < f->scalar.size(); ++k) pts.push_back({f->scalar[k], f->value[k]});
+      (*out)[ch] = pts;
+    }
+  }
+  nlohmann::json jr = nlohmann::json::array();
+  for (const ViewRay& r : rays)
+    jr.push_back({{"origin", {r.origin[0], r.origin[1], r.origin[2]}}, {"direction", {r.direction[0], r.direction[1], r.direction[2]}}});
+  const nlohmann::json c = {{"name", "tet10"}, {"mesh_file", kDir + file}, {"scalar_field", field},
+                            {"transfer_function", {{"density", density}, {"color", color}}}, {"rays", jr}};
+  return c.dump(1);
+}
+
+}  // namespace
+
+TEST_CASE("eval of tet10: exact and the reference on quadratic chords, sampling methods sample them, linear-only methods fail per ray", "[tet10][tet10eval][mesh][cli]") {
+  const TransferFunctions tf = steep_tf();
+  const std::vector<ViewRay> rays = random_rays(12, 91);
+  rayint::test::TempDir dir;
+  for (const char* file : {"tet10-41.msh", "tet10-vtk.vtu", "tet10.1.ele"}) {
+    INFO(file);
+    const bool tetgen = std::string(file) == "tet10.1.ele";
+    dir.write("c.json", tet10_case(rays, file, tetgen ? "0" : "q"));
+    const auto e = rayint::test::run_cli(
+        dir.path, "eval c.json --methods exact,riemann:n=4096,nerf:n=4096,rk4:n=64,eq6,preintegrated --no-timing -q -o out.json");
+    CHECK(e.status == 1);  // eq6 and preintegrated failed on the quadratic rays: written, marked
+    CHECK(e.err.empty());
+    const auto j = nlohmann::json::parse(rayint::test::slurp(dir.path / "out.json"));
+    const auto& out = j["cases"][0]["rays"];
+    REQUIRE(out.size() == rays.size());
+    double worst_exact = 0.0, worst_ref = 0.0, worst_riemann = 0.0, worst_nerf = 0.0, worst_rk4 = 0.0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      double t0 = 0.0, t1 = 0.0;
+      REQUIRE(cube_chord(rays[i], t0, t1));
+      PolyRay chord;
+      chord.segments.push_back(q_chord_50(rays[i], t0, t1));
+      const ReferenceRay oracle = reference_poly_ray(tf, chord);  // mesh-free
+      const auto& m = out[i]["methods"];
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double want = oracle.intensity[c].hi;
+        worst_exact = std::max(worst_exact, rel_err(m["exact"]["intensity"][c].get<double>(), want));
+        worst_ref = std::max(worst_ref, rel_err(out[i]["reference"]["intensity"][c].get<double>(), want));
+        worst_riemann = std::max(worst_riemann, rel_err(m["riemann:n=4096"]["intensity"][c].get<double>(), want));
+        worst_nerf = std::max(worst_nerf, rel_err(m["nerf:n=4096"]["intensity"][c].get<double>(), want));
+        worst_rk4 = std::max(worst_rk4, rel_err(m["rk4:n=64"]["intensity"][c].get<double>(), want));
+      }
+      for (const char* linear_only : {"eq6", "preintegrated"}) {
+        INFO(linear_only << " on ray " << i);
+        CHECK(m[linear_only]["failed"] == true);
+        CHECK(m[linear_only]["intensity"].is_null());
+        CHECK(m[linear_only]["failure"].get<std::string>().find("quadratic") != std::string::npos);
+      }
+      CHECK(m["exact"]["failed"] == false);
+    }
+    WARN(file << ": 12 rays vs the mesh-free q reference: exact " << worst_exact << ", eval's reference " << worst_ref
+              << ", riemann:n=4096 " << worst_riemann << ", nerf:n=4096 " << worst_nerf << ", rk4:n=64 " << worst_rk4);
+    // exact and the reference: the mesh reproduces q up to its coordinates' rounding (issue 2's
+    // target for exact). The sampling methods converge to the quadratic's integral, not to the
+    // linear chord's (which is 2.6e-2 away, checked below). Measured (3 files): exact <= 7.8e-16,
+    // eval's reference <= 7.8e-16, riemann:n=4096 and nerf:n=4096 <= 2.3e-9, rk4:n=64 <= 6.1e-7.
+    CHECK(worst_exact <= rayint::test::Tolerances::exact_rel);
+    CHECK(worst_ref <= rayint::test::Tolerances::exact_rel);
+    CHECK(worst_riemann < 1e-8);
+    CHECK(worst_nerf < 1e-8);
+    CHECK(worst_rk4 < 2e-6);
+    CHECK(j["cases"][0]["summary"].is_array());
+  }
+}
+
+TEST_CASE("tet10 chords: the same rays taken as linear segments would be another integral", "[tet10][tet10eval][mesh]") {
+  // What the sampling methods would give if they ignored the quadratic term: the exact integral
+  // of the linear chords (Ray::quadratic cleared) is far from the mesh-free reference, so the
+  // 1e-4 bounds above can only hold when the methods sample the quadratic.
+  const TransferFunctions tf = steep_tf();
+  const std::vector<ViewRay> rays = random_rays(12, 91);
+  TetMesh mesh = read_mesh_file(kDir + std::string("tet10-41.msh"), "q");
+  repair_tet_mesh(mesh, "tet10-41.msh");
+  const TetTraversal traversal(std::move(mesh), "tet10-41.msh");
+  const ExactIntegrator linear(tf);
+  double worst_linear = 0.0;
+  RayTrace trace;
+  for (const ViewRay& r : rays) {
+    double t0 = 0.0, t1 = 0.0;
+    REQUIRE(cube_chord(r, t0, t1));
+    PolyRay chord;
+    chord.segments.push_back(q_chord_50(r, t0, t1));
+    const ReferenceRay oracle = reference_poly_ray(tf, chord);
+    traversal.trace(r, trace);
+    Ray ray = ray_with_quadratic_chords(trace, Rgb{});
+    REQUIRE(has_quadratic_segments(ray));
+    CHECK_THROWS_AS(linear.integrate(ray, nullptr), std::invalid_argument);  // refused, not misread
+    ray.quadratic.clear();
+    const RayResult as_linear = linear.integrate(ray, nullptr);
+    for (std::size_t c = 0; c < 3; ++c) worst_linear = std::max(worst_linear, rel_err(as_linear.intensity[c], oracle.intensity[c].hi));
+  }
+  WARN("linear chords instead of quadratic: worst relative difference " << worst_linear);
+  CHECK(worst_linear > 1e-2);
+}
+
+TEST_CASE("check and check --candidate-image of tet10 against the quadratic chords", "[tet10][tet10eval][mesh][cli]") {
+  const std::vector<ViewRay> rays = random_rays(6, 5);
+  rayint::test::TempDir dir;
+  dir.write("c.json", tet10_case(rays, "tet10-22.msh", "q"));
+  const auto e = rayint::test::run_cli(dir.path, "eval c.json --methods exact --no-timing -q -o out.json");
+  REQUIRE(e.status == 0);
+  const auto j = nlohmann::json::parse(rayint::test::slurp(dir.path / "out.json"));
+  // A candidate holding the mesh-free oracle's values passes; the same off by 1e-6 fails.
+  const TransferFunctions tf = steep_tf();
+  nlohmann::json good = {{"case", "tet10"}, {"renderer", "the analytic q, 50 digits"}, {"rays", nlohmann::json::array()}};
+  nlohmann::json bad = good;
+  for (const ViewRay& r : rays) {
+    double t0 = 0.0, t1 = 0.0;
+    REQUIRE(cube_chord(r, t0, t1));
+    PolyRay chord;
+    chord.segments.push_back(q_chord_50(r, t0, t1));
+    const ReferenceRay oracle = reference_poly_ray(tf, chord);
+    const nlohmann::json v = {oracle.intensity[0].hi, oracle.intensity[1].hi, oracle.intensity[2].hi};
+    good["rays"].push_back({{"intensity", v}});
+    bad["rays"].push_back({{"intensity", {oracle.intensity[0].hi * (1 + 1e-6), oracle.intensity[1].hi, oracle.intensity[2].hi}}});
+  }
+  dir.write("good.json", good.dump());
+  dir.write("bad.json", bad.dump());
+  CHECK(rayint::test::run_cli(dir.path, "check c.json --candidate good.json --rel-tol 1e-12 -q -o g.json").status == 0);
+  CHECK(rayint::test::run_cli(dir.path, "check c.json --candidate bad.json --rel-tol 1e-12 -q -o b.json").status == 1);
+  // --candidate-image: rayint's render of the camera passes; the render of the other field (r)
+  // fails.
+  auto cam = nlohmann::json::parse(tet10_case(rays, "tet10-22.msh", "q"));
+  cam.erase("rays");
+  cam["camera"] = {{"position", {3, 2, 4}}, {"look_at", {0, 0, 0}}, {"fov_deg", 40}, {"width", 8}, {"height", 6}};
+  dir.write("cam.json", cam.dump());
+  cam["scalar_field"] = "r";
+  dir.write("cam-r.json", cam.dump());
+  REQUIRE(rayint::test::run_cli(dir.path, "render cam.json -o img.pfm -q").status == 0);
+  REQUIRE(rayint::test::run_cli(dir.path, "render cam-r.json -o img-r.pfm -q").status == 0);
+  const auto pass = rayint::test::run_cli(dir.path, "check cam.json --candidate-image img.pfm -q -o pass.json");
+  CHECK(pass.status == 0);
+  CHECK(pass.err.empty());
+  const auto fail = rayint::test::run_cli(dir.path, "check cam.json --candidate-image img-r.pfm -q -o fail.json");
+  CHECK(fail.status == 1);
+}
+
+TEST_CASE("bench and gate take tet10 cases: the linear-only methods are failed, never numbers", "[tet10][tet10eval][mesh][cli]") {
+  rayint::test::TempDir dir;
+  std::filesystem::create_directories(dir.path / "cases");
+  dir.write("cases/tet10.json", tet10_case(random_rays(3, 8), "tet10-41.msh", "q"));
+  const auto b = rayint::test::run_cli(dir.path, "bench cases --methods riemann,eq6 --batches 1 --batch-seconds 1e-5 --max-seconds 20 -o bench.json -q");
+  INFO(b.err);
+  CHECK(b.status == 0);  // the report is written; a failed setting is counted in it
+  REQUIRE(std::filesystem::exists(dir.path / "bench.json"));
+  const auto j = nlohmann::json::parse(rayint::test::slurp(dir.path / "bench.json"));
+  bool eq6_seen = false, riemann_scored = false;
+  for (const auto& m : j["methods"]) {
+    for (const auto& setting : m["settings"]) {
+      if (m["method"] == "eq6") {
+        eq6_seen = true;
+        CHECK(setting["failed_rays"] == 3);  // every ray crosses the tet10 cube
+        CHECK(setting["failure"].get<std::string>().find("quadratic") != std::string::npos);
+      }
+      if (m["method"] == "riemann" && setting["failed_rays"] == 0) riemann_scored = true;
+    }
+  }
+  CHECK(eq6_seen);
+  CHECK(riemann_scored);
+}
+
+TEST_CASE("gate on a tet10 case: exact within its tolerance, a linear-only method fails with the reason", "[tet10][tet10eval][mesh][cli]") {
+  rayint::test::TempDir dir;
+  dir.write("tet10.json", tet10_case(random_rays(4, 12), "tet10-41.msh", "q"));
+  dir.write("gates.json", R"({"corpus": {"cases": ["tet10.json"], "methods": {"exact": {"max_rel_error": 1e-13},
+    "riemann:n=4096": {"max_rel_error": 1e-8}, "eq6": {"max_non_finite": 0}}}})");
+  const auto g = rayint::test::run_cli(dir.path, "gate --config gates.json --json --quiet");
+  CHECK(g.status == 1);  // eq6 failed on the quadratic rays
+  const auto j = nlohmann::json::parse(g.out);
+  std::map<std::string, nlohmann::json> checks;
+  for (const auto& c : j["checks"]) checks[c["name"].get<std::string>()] = c;
+  CHECK(checks.at("corpus.tet10.exact.max_rel_error")["pass"] == true);
+  CHECK(checks.at("corpus.tet10.riemann:n=4096.max_rel_error")["pass"] == true);
+  CHECK(checks.at("corpus.tet10.eq6.failed")["pass"] == false);
+  CHECK(checks.at("corpus.tet10.eq6.failed")["measured"] == 4.0);
+  CHECK(checks.at("corpus.tet10.eq6.failed")["note"].get<std::string>().find("quadratic") != std::string::npos);
 }

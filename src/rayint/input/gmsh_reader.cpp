@@ -186,6 +186,7 @@ class MshReader {
   std::int32_t add_node(long long t, const Vec3& p, const std::string& field) {
     const auto index = static_cast<std::int32_t>(mesh_.points.size());
     if (!node_index_.emplace(t, index).second) c_.fail(field, "node tag " + std::to_string(t) + " given twice");
+    max_node_tag_ = std::max(max_node_tag_, t);
     mesh_.points.push_back(p);
     return index;
   }
@@ -455,6 +456,20 @@ class MshReader {
   }
 
   // --- assembling ----------------------------------------------------------------------------
+  // A $NodeData entry of an MSH 4.1 file for a node gmsh did not save (counted, skipped). gmsh's
+  // PViewDataGModel::writeMSH writes each value with its node's number in the model (getNum() for
+  // MSH >= 3; getIndex() for 2.2, which is -1 for a node not saved: the tag -1 case above), and
+  // gmsh numbers the nodes of the saved elements first when it saves a mesh, so a node it did not
+  // write (a built-in-kernel geometry point such as a circle's centre, which Plugin(NewView) gives
+  // a value) has a number past the last one in $Nodes. gmsh reads such entries back and never
+  // draws them; rayint skips them and counts them (MeshInfo::skipped_node_data). A tag inside
+  // $Nodes' range that is missing is still refused: the file then contradicts itself.
+  bool unsaved_node(long long t, MeshFileInfo& info) {
+    if (!version4_ || t <= max_node_tag_ || node_index_.count(t)) return false;
+    ++info.skipped_node_data;
+    return true;
+  }
+
   std::int32_t node(long long t, const std::string& field) {
     const auto it = node_index_.find(t);
     if (it == node_index_.end()) fail_whole(field, "node tag " + std::to_string(t) + " is not in $Nodes");
@@ -483,6 +498,7 @@ class MshReader {
     std::vector<char> have(mesh_.points.size(), 0);
     if (node_data_.present) {
       for (const auto& [t, v] : node_data_.node_values) {
+        if (unsaved_node(t, mesh_.info)) continue;
         const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
         value[i] = v;
         have[i] = 1;
@@ -570,6 +586,7 @@ class MshReader {
     std::string data_field = "$NodeData";
     if (node_data_.present) {
       for (const auto& [t, v] : node_data_.node_values) {
+        if (unsaved_node(t, m.info)) continue;
         const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
         value[i] = v;
         have[i] = 1;
@@ -649,6 +666,7 @@ class MshReader {
   bool keep_cells_ = false;
   std::vector<RawCell> cells_;
   bool version4_ = false, binary_ = false;
+  long long max_node_tag_ = 0;  // the largest tag in $Nodes
   TetMesh mesh_;
   std::unordered_map<long long, std::int32_t> node_index_;
   std::vector<long long> tet_tags_;

@@ -16,20 +16,30 @@ std::vector<unsigned char> flagged(const vtk_xml::Document& d, pugi::xml_node pa
     const std::string f = field + "/DataArray[vtkGhostType]";
     if (d.components(a, f) != 1) d.fail(f, "needs 1 component");
     const std::vector<double> v = d.values(a, f, n);
-    std::vector<unsigned char> out(n, 0);
-    bool any = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(v[i] >= 0.0 && v[i] <= 255.0 && v[i] == std::floor(v[i])))
-        d.fail(f, "value " + std::to_string(i) + " is not a ghost flag (an integer in [0, 255])");
-      out[i] = (static_cast<unsigned>(v[i]) & bit) != 0 ? 1 : 0;
-      any = any || out[i] != 0;
-    }
-    return any ? out : std::vector<unsigned char>{};
+    std::size_t bad = 0;
+    std::vector<unsigned char> out = ghost_flags(v, bit, &bad);
+    if (bad < n) d.fail(f, "value " + std::to_string(bad) + " is not a ghost flag (an integer in [0, 255])");
+    return out;
   }
   return {};
 }
 
 }  // namespace
+
+std::vector<unsigned char> ghost_flags(const std::vector<double>& v, unsigned bit, std::size_t* bad) {
+  *bad = v.size();
+  std::vector<unsigned char> out(v.size(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!(v[i] >= 0.0 && v[i] <= 255.0 && v[i] == std::floor(v[i]))) {
+      *bad = i;
+      return {};
+    }
+    out[i] = (static_cast<unsigned>(v[i]) & bit) != 0 ? 1 : 0;
+    any = any || out[i] != 0;
+  }
+  return any ? out : std::vector<unsigned char>{};
+}
 
 ImageGhosts read_image_ghosts(const vtk_xml::Document& d, pugi::xml_node piece, const std::string& piece_field,
                               const std::array<int, 3>& dims) {

@@ -8,7 +8,10 @@
 // sample (outside its input, value 0 there) beside a vtkValidPointMask; the mask is not read:
 // VTK's visibility uses the ghost arrays only.
 // The result goes to VoxelGrid::set_hidden_cubes (grid/voxel_grid.hpp): hidden cubes are empty.
+// Read from .vti, each piece of a .pvti, and legacy STRUCTURED_POINTS (VTK's legacy writer puts
+// vtkGhostType in a FIELD block of POINT_DATA / CELL_DATA; vtk_legacy_reader.cpp).
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -28,6 +31,11 @@ struct ImageGhosts {
 };
 ImageGhosts read_image_ghosts(const vtk_xml::Document& d, pugi::xml_node piece, const std::string& piece_field,
                               const std::array<int, 3>& dims);
+
+// One byte per value of a vtkGhostType array already read (a legacy file's FIELD array): non-zero
+// where the value has `bit`; empty when none has. A value that is not an integer in [0, 255] sets
+// *bad to its index (and returns empty); *bad = v.size() otherwise.
+std::vector<unsigned char> ghost_flags(const std::vector<double>& v, unsigned bit, std::size_t* bad);
 
 // The hidden cubes of a grid of `dims` points from its hidden points and cells (either may be
 // empty): a cube is hidden if its cell is or any of its 8 points is. Empty if nothing is hidden.

@@ -21,6 +21,7 @@
 #include "rayint/core/format.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_assembly.hpp"
+#include "rayint/input/vtk_image_blanking.hpp"
 
 namespace rayint {
 namespace {
@@ -109,7 +110,8 @@ class VtkCursor {
 
   std::size_t type_width(const std::string& section, const std::string& type) const {
     const std::string t = type;
-    if (t == "unsigned_char" || t == "char" || t == "bit") {
+    // signed_char: VTK_SIGNED_CHAR as vtkDataWriter names it (e.g. ParaView's vtkValidPointMask).
+    if (t == "unsigned_char" || t == "char" || t == "signed_char" || t == "bit") {
       if (t == "bit") fail(section, "data type 'bit' is not supported");
       return 1;
     }
@@ -145,7 +147,7 @@ class VtkCursor {
     const auto* p = reinterpret_cast<const unsigned char*>(b_.data() + pos_);
     if (type == "float") decode_as<float>(p, width, out, count);
     else if (type == "double") decode_as<double>(p, width, out, count);
-    else if (type == "char") decode_as<std::int8_t>(p, width, out, count);
+    else if (type == "char" || type == "signed_char") decode_as<std::int8_t>(p, width, out, count);
     else if (type == "unsigned_char") decode_as<std::uint8_t>(p, width, out, count);
     else if (type == "short") decode_as<std::int16_t>(p, width, out, count);
     else if (type == "unsigned_short") decode_as<std::uint16_t>(p, width, out, count);
@@ -435,8 +437,10 @@ VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& sour
   const RawArray* chosen = nullptr;
   std::vector<MeshArrayInfo> infos;
   for (const RawArray& a : d.raw.arrays) infos.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), false});
+  // Ghost flags and ParaView's valid-point mask are not the scalar (vtk_image_blanking.hpp).
+  const auto bookkeeping = [](const std::string& name) { return name == "vtkGhostType" || name == "vtkValidPointMask"; };
   for (const RawArray& a : d.raw.arrays)
-    if (!a.cell && (scalar_name.empty() ? a.components == 1 : a.name == scalar_name)) {
+    if (!a.cell && (scalar_name.empty() ? a.components == 1 && !bookkeeping(a.name) : a.name == scalar_name)) {
       chosen = &a;
       break;
     }
@@ -452,8 +456,25 @@ VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& sour
   for (std::size_t i = 0; i < chosen->values.size(); ++i)
     if (!std::isfinite(chosen->values[i]))
       c.fail("POINT_DATA[" + std::to_string(i) + "]", "not finite");
-  return VoxelGrid(dims, Vec3(d.origin[0], d.origin[1], d.origin[2]), Vec3(d.spacing[0], d.spacing[1], d.spacing[2]),
-                   chosen->values);
+  VoxelGrid grid(dims, Vec3(d.origin[0], d.origin[1], d.origin[2]), Vec3(d.spacing[0], d.spacing[1], d.spacing[2]),
+                 chosen->values);
+  // Blanking as in a .vti (vtk_image_blanking.hpp): vtkGhostType of the points (HIDDENPOINT) and
+  // of the cells (HIDDENCELL), which VTK's legacy writer puts in FIELD blocks.
+  const auto cells = static_cast<std::size_t>((d.dims[0] - 1) * (d.dims[1] - 1) * (d.dims[2] - 1));
+  std::vector<unsigned char> hidden_points, hidden_cells;
+  for (const RawArray& a : d.raw.arrays) {
+    if (a.name != "vtkGhostType") continue;
+    const std::string f = std::string(a.cell ? "CELL_DATA" : "POINT_DATA") + "/vtkGhostType";
+    const std::size_t n = a.cell ? cells : static_cast<std::size_t>(total);
+    if (a.components != 1) c.fail(f, "needs 1 component");
+    if (a.values.size() != n)
+      c.fail(f, std::to_string(a.values.size()) + " values for " + std::to_string(n) + (a.cell ? " cells" : " points"));
+    std::size_t bad = 0;
+    (a.cell ? hidden_cells : hidden_points) = ghost_flags(a.values, a.cell ? kVtkHiddenCell : kVtkHiddenPoint, &bad);
+    if (bad < n) c.fail(f, "value " + std::to_string(bad) + " is not a ghost flag (an integer in [0, 255])");
+  }
+  grid.set_hidden_cubes(hidden_cubes(dims, hidden_points, hidden_cells));
+  return grid;
 }
 
 VoxelGrid read_vtk_legacy_image(const std::string& path, const std::string& scalar_name) {

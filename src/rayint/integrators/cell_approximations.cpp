@@ -58,7 +58,7 @@ CellIntegrator::CellIntegrator(const TransferFunctions& tf, CellRule rule)
       rule_(rule),
       breakpoints_(rule == CellRule::eq5 ? tf.breakpoints() : std::vector<double>{}) {}
 
-RayResult CellIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult CellIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   RayResult r;
   r.intensity = ray.background;
   r.transmittance = {1.0, 1.0, 1.0};

@@ -14,7 +14,7 @@ const char* cell_rule_name(CellRule rule);
 class CellIntegrator final : public RayIntegrator {
  public:
   CellIntegrator(const TransferFunctions& tf, CellRule rule);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
 
  private:
   const TransferFunctions& tf_;

@@ -166,7 +166,7 @@ PieceOptics exact_piece(const ChannelPiece& p) {
   return out;
 }
 
-RayResult ExactIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult ExactIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   if (path_ == Path::scalar) return integrate_scalar(ray, diag);
   if (splitter_.grey() && !diag) return integrate_grey(ray);
   // Every piece of the ray (far -> near), then one batch over all its piece-channels, results

@@ -40,7 +40,7 @@ class ExactIntegrator final : public PieceIntegrator {
   enum class Path { batch, scalar };
   explicit ExactIntegrator(const TransferFunctions& tf, Path path = Path::batch)
       : PieceIntegrator(tf), path_(path) {}
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
 
  private:
   RayResult integrate_scalar(const Ray& ray, Diagnostics* diag) const;

@@ -36,7 +36,24 @@ class RayIntegrator {
  public:
   virtual ~RayIntegrator() = default;
   // `diag` may be null (timing loops pass null so bookkeeping costs nothing).
-  virtual RayResult integrate(const Ray& ray, Diagnostics* diag) const = 0;
+  // A ray with quadratic segments (Ray::quadratic: chords of quadratic tetrahedra) goes to a
+  // method that takes them (takes_quadratic_segments); any other method throws
+  // std::invalid_argument (kLinearSegmentsOnly) rather than integrate a scalar it cannot see.
+  RayResult integrate(const Ray& ray, Diagnostics* diag) const {
+    if (!ray.quadratic.empty() && !takes_quadratic_segments() && has_quadratic_segments(ray))
+      throw std::invalid_argument(kLinearSegmentsOnly);
+    return integrate_segments(ray, diag);
+  }
+  // True for the methods that evaluate the scalar along a segment where they need it (sampling
+  // methods: riemann, nerf, rk4) and so take quadratic segments as they are.
+  virtual bool takes_quadratic_segments() const { return false; }
+
+  static constexpr const char* kLinearSegmentsOnly =
+      "the scalar is quadratic along this ray's chords (quadratic tetrahedra) and this method takes "
+      "linear segments only (its closed form, table or pieces assume a scalar linear along each segment)";
+
+ protected:
+  virtual RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const = 0;
 };
 
 // A method that works on the pieces of a ray (its segments split at every transfer-function

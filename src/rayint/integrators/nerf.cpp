@@ -117,7 +117,7 @@ NerfIntegrator::NerfIntegrator(const TransferFunctions& tf, const NerfOptions& o
                                bool piecewise_linear)
     : tf_(tf), opt_(options), linear_(piecewise_linear) {}
 
-RayResult NerfIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult NerfIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   const int n = opt_.n;
   double budget = 0.0;
   for (const Segment& seg : ray.segments)
@@ -136,9 +136,12 @@ RayResult NerfIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
     any_length = true;
     const double h = seg.length / n;
     const double ds = seg.scalar_far - seg.scalar_exit;
-    // The scalar k intervals from the segment's exit end (k = n is the far end, exactly).
+    // The scalar k intervals from the segment's exit end (k = n is the far end, exactly); on a
+    // quadratic chord (model/ray.hpp) plus q x (x - L), x = k h from the exit (q = 0: nothing).
+    const double q = idx < ray.quadratic.size() ? ray.quadratic[idx] : 0.0;
     auto scalar_at = [&](double k) {
-      return k == n ? seg.scalar_far : seg.scalar_exit + (k / n) * ds;
+      const double x = k * h;
+      return k == n ? seg.scalar_far : seg.scalar_exit + (k / n) * ds + q * x * (x - seg.length);
     };
     if (!linear_) {
       const double offset = opt_.at == NerfSampleAt::mid ? 0.5 : 0.0;

@@ -74,7 +74,9 @@ NerfOptions pl_nerf_options(const MethodSpec& spec);
 class NerfIntegrator final : public RayIntegrator {
  public:
   NerfIntegrator(const TransferFunctions& tf, const NerfOptions& options, bool piecewise_linear);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
+  // Samples the scalar where it needs it: quadratic chords (model/ray.hpp) are sampled as they are.
+  bool takes_quadratic_segments() const override { return true; }
 
  private:
   const TransferFunctions& tf_;

@@ -70,7 +70,7 @@ OdeOptions ode_options(const MethodSpec& spec) {
 OdeIntegrator::OdeIntegrator(const TransferFunctions& tf, const OdeOptions& options)
     : splitter_(tf), opt_(options) {}
 
-RayResult OdeIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult OdeIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   auto stepper = odeint::make_controlled(opt_.atol, opt_.rtol, odeint::runge_kutta_dopri5<State>());
   State x = eq3::start(ray.background);
   ode_stepping::Counters counts;

@@ -22,7 +22,7 @@ inline constexpr long kOdeStepBudget = 1L << 20;
 class OdeIntegrator final : public RayIntegrator {
  public:
   OdeIntegrator(const TransferFunctions& tf, const OdeOptions& options);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
 
  private:
   PieceSplitter splitter_;

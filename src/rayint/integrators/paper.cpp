@@ -66,7 +66,7 @@ double paper_transmittance(const PaperInterval& iv) {
   return std::exp(-(q1 * tn + q2 * tn * tn / 2 - q1 * ti - q2 * ti * ti / 2));
 }
 
-RayResult PaperIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult PaperIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   RayResult r = RayResult::of_background(ray.background);
   for (const auto& seg : ray.segments) {
     const std::vector<Piece>& pieces = splitter_.pieces(seg);

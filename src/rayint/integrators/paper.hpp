@@ -19,7 +19,7 @@ double paper_transmittance(const PaperInterval& iv);
 class PaperIntegrator final : public PieceIntegrator {
  public:
   using PieceIntegrator::PieceIntegrator;
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
 };
 
 }  // namespace rayint

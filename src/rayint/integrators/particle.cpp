@@ -61,7 +61,7 @@ ParticleIntegrator::ParticleIntegrator(const TransferFunctions& tf)
   for (int c = 0; c < kChannels; ++c) kappa_[c] = tf.color[c].value.front();
 }
 
-RayResult ParticleIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult ParticleIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   double R = 0.0;  // int rho along the whole ray
   long n_pieces = 0;
   for (const auto& seg : ray.segments) {

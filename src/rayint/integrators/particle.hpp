@@ -16,7 +16,7 @@ class ParticleIntegrator final : public PieceIntegrator {
  public:
   // Throws std::invalid_argument("particle: needs a single transfer function: <reason>").
   explicit ParticleIntegrator(const TransferFunctions& tf);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
 
  private:
   Rgb kappa_{};  // the constant particle colour per channel

@@ -246,7 +246,7 @@ double PreintegratedIntegrator::count_lookups(const Ray& ray) const {
   return lookups;
 }
 
-RayResult PreintegratedIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult PreintegratedIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   const double lookups = count_lookups(ray);
   // Emission is composited step by step; the background term uses the total optical depth,
   // summed with Neumaier's compensation (relative error ~ 1 ulp of the total, against

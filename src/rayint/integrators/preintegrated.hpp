@@ -37,7 +37,7 @@ inline constexpr double kPreintegratedMaxTableBytes = 1024.0 * 1024.0 * 1024.0;
 class PreintegratedIntegrator final : public RayIntegrator {
  public:
   PreintegratedIntegrator(const TransferFunctions& tf, const PreintegratedOptions& options);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
   // What automatic differentiation through this renderer computes (issue 28): the derivative of
   // integrate()'s steps, lookups and table build with respect to the background, every segment's
   // length and end scalars, and the value and position of every transfer-function node -- except

@@ -176,7 +176,7 @@ PsiTableIntegrator::PsiTableIntegrator(const TransferFunctions& tf, int size,
       lookup_(lookup),
       table_(PsiTable::shared(size, lookup)) {}
 
-RayResult PsiTableIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult PsiTableIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   RayResult r;
   r.intensity = ray.background;
   r.transmittance = {1.0, 1.0, 1.0};

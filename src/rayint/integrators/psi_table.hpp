@@ -60,7 +60,7 @@ double psi_gamma(double tau_D);
 class PsiTableIntegrator final : public RayIntegrator {
  public:
   PsiTableIntegrator(const TransferFunctions& tf, int size, table::Lookup lookup);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
   const PsiTable& table() const { return *table_; }
 
  private:

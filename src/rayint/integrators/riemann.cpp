@@ -74,7 +74,11 @@ inline SampleOptics sample_optics(const RiemannOptions& opt, double rho, double 
   return {0.0, 1.0};
 }
 
-// Calls visit(scalar, h) for every sample of the ray, far -> near or near -> far.
+// The quadratic coefficient of segment i (model/ray.hpp, Ray::quadratic; 0 for a linear ray).
+double quadratic_at(const Ray& ray, std::size_t i) { return i < ray.quadratic.size() ? ray.quadratic[i] : 0.0; }
+
+// Calls visit(scalar, h) for every sample of the ray, far -> near or near -> far; on a quadratic
+// segment the scalar is the chord's quadratic at the sample (as a renderer samples the field).
 template <class Visit>
 void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near, Visit&& visit) {
   const std::size_t m = ray.segments.size();
@@ -88,13 +92,16 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
           "riemann: n=" + std::to_string(n) + " needs " + std::to_string(samples) +
           " samples on this ray, over the budget of " + std::to_string(kRiemannSampleBudget));
     for (std::size_t idx = 0; idx < m; ++idx) {
-      const Segment& seg = ray.segments[far_to_near ? idx : m - 1 - idx];
+      const std::size_t i = far_to_near ? idx : m - 1 - idx;
+      const Segment& seg = ray.segments[i];
       if (!(seg.length > 0.0)) continue;
       const double h = seg.length / n;
       const double ds = seg.scalar_exit - seg.scalar_far;
+      const double q = quadratic_at(ray, i);  // 0 on a linear segment: the same samples bit for bit
       for (int j = 0; j < n; ++j) {
         const int k = far_to_near ? j : n - 1 - j;
-        visit(seg.scalar_far + ((k + 0.5) / n) * ds, h);
+        const double s = (k + 0.5) * h;  // from the far end
+        visit(seg.scalar_far + ((k + 0.5) / n) * ds + q * s * (s - seg.length), h);
       }
     }
     return;
@@ -133,7 +140,9 @@ void for_each_sample(const Ray& ray, const RiemannOptions& opt, bool far_to_near
     }
     const Segment& seg = ray.segments[i];
     const double u = seg.length > 0.0 ? (mid - exit_offset[i]) / seg.length : 0.0;  // from exit end
-    visit(seg.scalar_exit + u * (seg.scalar_far - seg.scalar_exit), hi - lo);
+    const double from_exit = mid - exit_offset[i];
+    const double bow = quadratic_at(ray, i) * from_exit * (from_exit - seg.length);  // s (s - L), symmetric
+    visit(seg.scalar_exit + u * (seg.scalar_far - seg.scalar_exit) + bow, hi - lo);
   }
 }
 
@@ -180,7 +189,7 @@ RiemannOptions riemann_options(const MethodSpec& spec) {
 RiemannIntegrator::RiemannIntegrator(const TransferFunctions& tf, const RiemannOptions& options)
     : tf_(tf), opt_(options) {}
 
-RayResult RiemannIntegrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult RiemannIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   RayResult r;
   long samples = 0;
   auto optics_at = [&](double scalar, double h, Rgb& colour, Rgb& transparency) {

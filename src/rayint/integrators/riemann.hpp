@@ -60,7 +60,9 @@ inline constexpr double kRiemannSampleBudget = 67108864.0;
 class RiemannIntegrator final : public RayIntegrator {
  public:
   RiemannIntegrator(const TransferFunctions& tf, const RiemannOptions& options);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
+  // Samples the scalar where it needs it: quadratic chords (model/ray.hpp) are sampled as they are.
+  bool takes_quadratic_segments() const override { return true; }
 
  private:
   const TransferFunctions& tf_;

@@ -37,7 +37,7 @@ using State = eq3::State;
 Rk4Integrator::Rk4Integrator(const TransferFunctions& tf, int steps_per_segment)
     : tf_(tf), n_(steps_per_segment) {}
 
-RayResult Rk4Integrator::integrate(const Ray& ray, Diagnostics* diag) const {
+RayResult Rk4Integrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   odeint::runge_kutta4<State> stepper;
   State x = eq3::start(ray.background);
   double planned = 0.0;
@@ -48,13 +48,18 @@ RayResult Rk4Integrator::integrate(const Ray& ray, Diagnostics* diag) const {
                              " steps on this ray, over the budget of " +
                              std::to_string(kRk4StepBudget));
   long steps = 0;
-  for (const auto& seg : ray.segments) {
+  for (std::size_t i = 0; i < ray.segments.size(); ++i) {
+    const Segment& seg = ray.segments[i];
     if (!(seg.length > 0.0)) continue;
     const double h = seg.length / n_;
-    // Eq. 3 along the segment, s the distance from its far end, the scalar linear in s.
+    // Eq. 3 along the segment, s the distance from its far end, the scalar linear in s (plus
+    // q s (s - L) on a quadratic chord, model/ray.hpp; q = 0 adds nothing).
     const double slope = (seg.scalar_exit - seg.scalar_far) / seg.length;
+    const double q = i < ray.quadratic.size() ? ray.quadratic[i] : 0.0;
     const auto system = eq3::scalar_system(
-        tf_, [scalar_far = seg.scalar_far, slope](double s) { return scalar_far + slope * s; });
+        tf_, [scalar_far = seg.scalar_far, slope, q, L = seg.length](double s) {
+          return scalar_far + slope * s + q * s * (s - L);
+        });
     for (int j = 0; j < n_; ++j) stepper.do_step(system, x, j * h, h);
     steps += n_;
   }

@@ -11,7 +11,9 @@ inline constexpr double kRk4StepBudget = 16777216.0;
 class Rk4Integrator final : public RayIntegrator {
  public:
   Rk4Integrator(const TransferFunctions& tf, int steps_per_segment);
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override;
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
+  // Samples the scalar where it needs it: quadratic chords (model/ray.hpp) are sampled as they are.
+  bool takes_quadratic_segments() const override { return true; }
 
  private:
   const TransferFunctions& tf_;

@@ -21,7 +21,7 @@ Case trace_mesh_case(const MeshCase& mc, const TetTraversal& mesh, TraversalStat
   RayTrace trace;
   for (const MeshViewRay& r : evaluation_rays(mc)) {
     mesh.trace(r.ray, trace, stats);
-    c.rays.push_back(ray_from_trace(trace, r.background));
+    c.rays.push_back(ray_with_quadratic_chords(trace, r.background));  // tet10: quadratic chords
   }
   return c;
 }

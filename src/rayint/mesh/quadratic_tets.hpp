@@ -69,8 +69,8 @@ Tet10EdgeCheck check_tet10_edges(const TetMesh& mesh);
 // when check_tet10_edges finds an edge beyond kStraightEdgeTolerance.
 void refuse_curved_tet10(const TetMesh& mesh, const std::string& source);
 
-// For the paths that integrate linear segments only (eval, check, bench, gate: every method
-// takes a Ray of linear segments; shading; gradients; --compare): throws InputError
+// For the paths that integrate linear segments only (shading; gradients; render --compare; eval,
+// check, bench and gate take quadratic chords, mesh/quadratic_methods.hpp): throws InputError
 // "<source>: cells: N quadratic tetrahedra: <what> takes linear tetrahedra only; `rayint render`
 // integrates them with their quadratic interpolation" when the mesh has quadratic tets.
 void refuse_quadratic_tets(const TetMesh& mesh, const std::string& source, const std::string& what);

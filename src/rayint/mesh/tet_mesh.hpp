@@ -50,7 +50,7 @@ struct MeshFileInfo {
   long skipped_cells = 0;                       // their total
   long ghost_cells = 0;                         // vtkGhostType duplicate cells dropped
   long merged_points = 0;                       // points of several pieces merged (equal coordinates)
-  long skipped_node_data = 0;                   // gmsh $NodeData entries with node tag -1 (no mesh node)
+  long skipped_node_data = 0;                   // gmsh $NodeData entries for no saved node (tag -1, or in MSH 4.1 past the last $Nodes tag)
   std::vector<long long> cell_ids;              // per tet: its cell index (gmsh: element tag) in the file
   std::vector<MeshArrayInfo> arrays;            // every data array of the file
   std::string scalar;                           // the array taken as the scalar ("" inline)

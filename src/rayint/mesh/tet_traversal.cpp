@@ -361,6 +361,20 @@ void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& r) {
   }
 }
 
+Ray ray_with_quadratic_chords(const RayTrace& trace, const Rgb& background) {
+  Ray r;
+  r.background = background;
+  r.segments.reserve(trace.crossings.size());
+  bool quadratic = false;
+  for (auto it = trace.crossings.rbegin(); it != trace.crossings.rend(); ++it) {
+    r.segments.push_back(Segment{it->t_out - it->t_in, it->s_out, it->s_in});
+    r.quadratic.push_back(it->q);
+    quadratic = quadratic || it->q != 0.0;
+  }
+  if (!quadratic) r.quadratic.clear();
+  return r;
+}
+
 Ray mesh_ray(const TetTraversal& mesh, const ViewRay& ray, const Rgb& background, TraversalStats* stats) {
   RayTrace trace;
   mesh.trace(ray, trace, stats);

@@ -181,6 +181,12 @@ class TetTraversal {
 Ray ray_from_trace(const RayTrace& trace, const Rgb& background);
 // The same into `out`, reusing its storage (no allocation per ray in a render loop).
 void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& out);
+// The same with quadratic crossings kept: Ray::quadratic holds each crossing's q (model/ray.hpp;
+// the scalar s(t) = s_in + w (t - t_in) + q (t - t_in)^2 keeps its coefficient q of the squared
+// distance from either end), so the methods that take quadratic chords integrate the quadratic
+// scalar and the others refuse the ray (integrators/integrator.hpp). A linear trace gives the
+// Ray of ray_from_trace, with Ray::quadratic empty.
+Ray ray_with_quadratic_chords(const RayTrace& trace, const Rgb& background);
 Ray mesh_ray(const TetTraversal& mesh, const ViewRay& ray, const Rgb& background,
              TraversalStats* stats = nullptr);
 

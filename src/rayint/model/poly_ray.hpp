@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "rayint/model/ray.hpp"
 #include "rayint/model/transfer_function.hpp"
 
 namespace rayint {
@@ -29,5 +30,24 @@ struct PolyRay {
   Rgb background{0.0, 0.0, 0.0};      // intensity entering at the far end
   std::vector<PolySegment> segments;  // far -> near
 };
+
+// A Ray of linear or quadratic segments (model/ray.hpp, Ray::quadratic) as polynomials in the
+// distance s from each segment's far end: scalar_far + (g - q L) s + q s^2 with g the chord's
+// slope (scalar_exit - scalar_far) / L.
+inline PolyRay to_poly_ray(const Ray& ray) {
+  PolyRay out;
+  out.background = ray.background;
+  out.segments.reserve(ray.segments.size());
+  for (std::size_t i = 0; i < ray.segments.size(); ++i) {
+    const Segment& seg = ray.segments[i];
+    const double q = i < ray.quadratic.size() ? ray.quadratic[i] : 0.0;
+    const double g = seg.length > 0.0 ? (seg.scalar_exit - seg.scalar_far) / seg.length : 0.0;
+    if (q == 0.0)
+      out.segments.push_back(PolySegment{seg.length, {seg.scalar_far, g}});
+    else
+      out.segments.push_back(PolySegment{seg.length, {seg.scalar_far, g - q * seg.length, q}});
+  }
+  return out;
+}
 
 }  // namespace rayint

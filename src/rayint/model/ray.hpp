@@ -8,6 +8,7 @@
 //   exit  where light leaves it, toward the eye (scalar_exit, rho_exit, s_exit, ...).
 // Sequences run far -> near, from the background toward the eye. A case file's segment
 // "scalar": [a, b] is [scalar_far, scalar_exit].
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,31 @@ struct Segment {
 struct Ray {
   Rgb background{0.0, 0.0, 0.0};  // intensity entering at the far end
   std::vector<Segment> segments;  // far -> near
+  // Quadratic chords (a straight-edged quadratic tetrahedron's scalar along a ray,
+  // mesh/quadratic_tets.hpp): empty for a ray of linear segments (every case file); otherwise one
+  // coefficient per segment, and the scalar at distance s from segment i's far end is
+  //   scalar_far + (scalar_exit - scalar_far) s / length + quadratic[i] s (s - length)
+  // (segment_scalar): the ends stay scalar_far and scalar_exit. Only the methods that say so
+  // (RayIntegrator::takes_quadratic_segments) integrate such a ray; the others refuse it.
+  std::vector<double> quadratic{};
 };
+
+// True when some segment of `ray` has a non-zero quadratic coefficient.
+inline bool has_quadratic_segments(const Ray& ray) {
+  for (double q : ray.quadratic)
+    if (q != 0.0) return true;
+  return false;
+}
+
+// The scalar of segment i of `ray` at distance s from its far end (linear when the ray has no
+// quadratic coefficients).
+inline double segment_scalar(const Ray& ray, std::size_t i, double s) {
+  const Segment& seg = ray.segments[i];
+  const double q = i < ray.quadratic.size() ? ray.quadratic[i] : 0.0;
+  const double linear = seg.length > 0.0 ? seg.scalar_far + (seg.scalar_exit - seg.scalar_far) * (s / seg.length)
+                                         : seg.scalar_far;
+  return linear + q * s * (s - seg.length);
+}
 
 struct Case {
   std::string name;

@@ -69,6 +69,8 @@
 #include <vector>
 
 #include "rayint/core/parallel.hpp"
+#include "rayint/model/poly_ray.hpp"
+#include "rayint/reference/poly_reference.hpp"
 #include "rayint/reference/reference_detail.hpp"
 
 namespace rayint {
@@ -572,6 +574,13 @@ ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray) {
 }
 
 ReferenceRay reference_ray(const TransferFunctions& tf, const Ray& ray, const ReferenceRun& run) {
+  // Quadratic chords (quadratic tetrahedra, model/ray.hpp): the polynomial reference
+  // (poly_reference.hpp), one thread, the same ray as polynomials in 50 digits.
+  if (has_quadratic_segments(ray)) {
+    ReferenceRay out = reference_poly_ray(tf, to_poly_ray(ray));
+    if (run.progress) run.progress(ray.segments.size(), ray.segments.size());
+    return out;
+  }
   using reference_detail::interpolate;
   std::vector<double> breakpoints;
   for (const auto* group : {&tf.density, &tf.color})

@@ -5,12 +5,22 @@
 // 10^4-segment long ray is 10^4 lines, not 10^5).
 #include "rayint/report/case_writer.hpp"
 
+#include <stdexcept>
+
 #include "rayint/core/atomic_file.hpp"
 
 namespace rayint {
 namespace {
 
 using json = nlohmann::ordered_json;
+
+// A case file holds linear segments only (cases/README.md): a ray with quadratic chords
+// (model/ray.hpp, tet10) would be written as another field, so it is not written at all.
+void refuse_quadratic(const Case& c) {
+  for (const Ray& r : c.rays)
+    if (has_quadratic_segments(r))
+      throw std::invalid_argument(c.name + ": a ray with quadratic chords (quadratic tetrahedra) has no case-file form");
+}
 
 bool same(const PiecewiseLinear& a, const PiecewiseLinear& b) {
   return a.scalar == b.scalar && a.value == b.value;
@@ -49,6 +59,7 @@ std::string channels_text(const std::string& key, const json& j, const std::stri
 }  // namespace
 
 nlohmann::ordered_json case_json(const Case& c) {
+  refuse_quadratic(c);
   json rays = json::array();
   for (const Ray& r : c.rays) {
     json segments = json::array();
@@ -66,6 +77,7 @@ nlohmann::ordered_json case_json(const Case& c) {
 }
 
 std::string case_text(const Case& c) {
+  refuse_quadratic(c);
   std::string out = "{\n";
   out += "  \"name\": " + json(c.name).dump() + ",\n";
   out += "  \"description\": " + json(c.description).dump() + ",\n";

@@ -57,7 +57,7 @@ std::string file_text(const MeshFileInfo& info, const std::vector<Vec3>& points)
   }
   if (info.ghost_cells > 0) out += " ghost cells dropped " + std::to_string(info.ghost_cells) + ";";
   if (info.skipped_node_data > 0)
-    out += " $NodeData entries with node tag -1 skipped " + std::to_string(info.skipped_node_data) + ";";
+    out += " $NodeData entries for nodes gmsh did not save (tag -1 or past the last node) skipped " + std::to_string(info.skipped_node_data) + ";";
   out += "\n  arrays:";
   if (info.arrays.empty()) out += " none";
   for (const MeshArrayInfo& a : info.arrays)

@@ -8,6 +8,7 @@
 
 #include "rayint/core/parallel.hpp"
 #include "rayint/core/statistics.hpp"
+#include "rayint/mesh/quadratic_methods.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 
 namespace rayint {
@@ -141,7 +142,7 @@ CaseEvaluation evaluate_case(const Case& c, const std::vector<MethodSpec>& metho
   std::vector<std::string> build_errors;
   for (const auto& spec : methods) {
     try {
-      integrators.push_back(make_integrator(spec, c.transfer));
+      integrators.push_back(make_case_integrator(spec, c.transfer));  // exact takes quadratic chords
       build_errors.emplace_back();
     } catch (const std::exception& e) {
       integrators.push_back(nullptr);

@@ -18,6 +18,7 @@
 
 #include "rayint/core/parallel.hpp"     // hardware_threads
 #include "rayint/core/statistics.hpp"  // median
+#include "rayint/mesh/quadratic_methods.hpp"
 #include "rayint/metrics/error_metrics.hpp"
 #include "rayint/model/pieces.hpp"
 
@@ -132,7 +133,7 @@ bool measure_samples(const MethodSpec& spec, const std::vector<Case>& cases,
     std::unique_ptr<RayIntegrator> integrator;
     try {
       const auto setup_start = Clock::now();
-      integrator = make_integrator(spec, c.transfer);
+      integrator = make_case_integrator(spec, c.transfer);  // exact takes quadratic chords
       cs.setup_seconds = seconds_since(setup_start);
     } catch (const std::exception& e) {
       cs.setup_failed = true;

@@ -121,7 +121,7 @@ class VtkIntegrator final : public RayIntegrator {
     integrator_->Initialize(volume_, range);
   }
 
-  RayResult integrate(const Ray& ray, Diagnostics* diag) const override {
+  RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override {
     // Per-thread arrays, reset per ray: allocating three vtkDoubleArrays per ray cost more than
     // some of VTK's integrators themselves.
     thread_local const vtkSmartPointer<vtkDoubleArray> lengths = vtkSmartPointer<vtkDoubleArray>::New();
