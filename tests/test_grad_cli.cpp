@@ -9,6 +9,7 @@
 #include "cli_harness.hpp"
 #include "rayint/input/grad_candidate_reader.hpp"
 #include "rayint/render/float_image.hpp"
+#include "tolerances.hpp"
 
 using rayint::test::run_cli;
 using rayint::test::slurp;
@@ -228,14 +229,50 @@ TEST_CASE("grad: a preset case carries the gradient w.r.t. the preset's own poin
   CHECK(pg2["RGBPoints"].is_null());
   CHECK(pg2["RGBPoints_unavailable"].get<std::string>().find("adaptively") != std::string::npos);
   CHECK(pg2["Points"].is_null());  // a constant opacity was given
+}
+
+TEST_CASE("grad: Cool to Warm, imported with jumps at its end nodes, is differentiated and matches the reference",
+          "[grad][grad_cli][grad_jump]") {
+  TempDir dir;
   // "Cool to Warm" (Diverging) imports with jumps of ~3e-5 at its two end nodes, where VTK's
-  // node colour and its Diverging interpolation differ: the gradient refuses it with one line.
+  // node colour and its Diverging interpolation differ. Ray 0 stays inside the range; ray 1
+  // crosses both end jumps (from below 0 to above 1 and back); ray 2 ends exactly on the jump at
+  // 1, where the derivative in that jump's position and in the ray's last scalar does not exist.
   dir.write("cw.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));
-  dir.write("case3.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
-    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
-    {"length": 0.7, "scalar": [0.1, 0.9]}]}]})");
-  r = run_cli(dir.path, "grad case3.json --no-reference -o g3.json");
-  CHECK(r.status == 2);
-  CHECK(r.err.find("jump") != std::string::npos);
-  CHECK_FALSE(std::filesystem::exists(dir.path / "g3.json"));
+  dir.write("case.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
+    "name": "Cool to Warm", "opacity": 0.8}, "rays": [
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [0.1, 0.9]}]},
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [-0.2, 1.3]}, {"length": 0.4, "scalar": [1.3, 0.6]},
+                                                 {"length": 1.1, "scalar": [0.6, -0.1]}]},
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [0.3, 1]}]}]})");
+  const auto r = run_cli(dir.path, "grad case.json -o g.json");
+  REQUIRE(r.status == 0);
+  const json j = json::parse(slurp(dir.path / "g.json"));
+  const json& c = j["cases"][0];
+  REQUIRE(c["transfer_function_nodes"]["imported_from"].get<std::string>().find("Cool to Warm") != std::string::npos);
+  for (int i = 0; i < 3; ++i) {
+    const json& m = c["rays"][i]["methods"]["exact"];
+    INFO("ray " << i);
+    for (const auto& e : m["errors"]["gradient_max_rel_vs_reference"]) {
+      REQUIRE(e.is_number());
+      CHECK(e.get<double>() <= rayint::test::GradTolerances::jump_vs_reference_rel);
+    }
+    // The colour functions jump at their first and last nodes: the tie (second node 0).
+    const json& red = m["gradient"]["color"]["r"];
+    REQUIRE(red.size() >= 4);
+    if (i == 1) {
+      CHECK(red[0][0].get<double>() != 0.0);  // the jump at 0, crossed twice
+      CHECK(red[1][0].get<double>() == 0.0);
+    }
+    // The preset's own points: Diverging is linearised adaptively, so not mapped, with the reason.
+    CHECK(m["preset_gradient"]["RGBPoints"].is_null());
+  }
+  // Ray 2 ends on the jump at 1: null entries with the reason, in exact and in the reference alike.
+  const json& m2 = c["rays"][2]["methods"]["exact"];
+  CHECK(m2["gradient"].contains("undefined"));
+  CHECK(m2["gradient"]["scalar"][0][1][0].is_null());
+  const json& last = m2["gradient"]["color"]["r"];
+  CHECK(last[last.size() - 2][0].is_null());
+  CHECK(c["rays"][2]["reference"]["gradient"]["scalar"][0][1][0].is_null());
+  CHECK_FALSE(c["rays"][0]["methods"]["exact"]["gradient"].contains("undefined"));
 }

@@ -304,6 +304,9 @@ struct GradTolerances {
   // from the rounded end values, which the density slope 3.4e23 multiplied in dI/ds; now it
   // comes from the interval's slope. 2e-14 leaves ~2x; above the 4e-15 of the other regimes.
   static constexpr double narrow_pulse_rel = 2e-14;
+  // Rays crossing transfer-function jumps (tests/test_grad_jumps.cpp, [grad_jump]): the jump
+  // term of add_jump_crossing and the tied positions. MEASURED: see that file's WARN output.
+  static constexpr double jump_vs_reference_rel = 1e-14;
 };
 
 }  // namespace rayint::test
