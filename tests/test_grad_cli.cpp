@@ -281,3 +281,40 @@ TEST_CASE("grad: Cool to Warm, imported with jumps at its end nodes, is differen
   CHECK(last2[last2.size() - 1][0].get<double>() == 0.0);
   CHECK_FALSE(c["rays"][0]["methods"]["exact"]["gradient"].contains("undefined"));
 }
+
+TEST_CASE("gradcheck across a jump: the tie, untested null entries, a candidate without the jump term fails",
+          "[grad][grad_cli][grad_jump]") {
+  TempDir dir;
+  // Density jumps 0.6 -> 2.5 at 0.5 (both nodes at 0.5). Ray 0 crosses it twice; ray 1 ends on it.
+  dir.write("case.json", R"({"name": "jump", "transfer_function": {
+    "density": [[0.2, 0.4], [0.5, 0.6], [0.5, 2.5], [0.9, 1.0]], "color": [[0.0, 0.2], [1.0, 0.9]]},
+    "rays": [{"background": [0.1, 0.2, 0.3], "segments": [{"length": 1.0, "scalar": [0.3, 0.8]}, {"length": 0.6, "scalar": [0.8, 0.35]}]},
+             {"background": [0.1, 0.2, 0.3], "segments": [{"length": 1.0, "scalar": [0.1, 0.5]}]}]})");
+  REQUIRE(run_cli(dir.path, "grad case.json --no-reference -o g.json").status == 0);
+  const json report = json::parse(slurp(dir.path / "g.json"));
+  json cand = json::parse(candidate_from(report, "exact"));
+  // Ray 1's null entries (no derivative exists) get a number: not checked, counted.
+  json& g1 = cand["rays"][1]["gradient"];
+  REQUIRE(g1["density"]["r"][1][0].is_null());
+  for (const char* ch : {"r", "g", "b"}) g1["density"][ch][1][0] = 0.0;
+  for (int c = 0; c < 3; ++c) g1["scalar"][0][1][c] = 0.0;
+  g1.erase("undefined");
+  cand["rays"][0]["gradient"].erase("undefined");
+  dir.write("exact.json", cand.dump());
+  const auto ok = run_cli(dir.path, "gradcheck case.json --candidate exact.json --rel-tol 1e-12");
+  CHECK(ok.status == 0);
+  const json verdict = json::parse(ok.out);
+  CHECK(verdict["undefined"].get<int>() == 6);  // 3 channels x (jump position, ray end scalar)
+  CHECK(ok.err.find("not checked") != std::string::npos);
+  // A candidate with the other tie (the jump's derivative on the second node) fails, by name.
+  json wrong = cand;
+  const double tied = wrong["rays"][0]["gradient"]["density"]["r"][1][0].get<double>();
+  REQUIRE(tied != 0.0);
+  CHECK(wrong["rays"][0]["gradient"]["density"]["r"][2][0].get<double>() == 0.0);  // the tie
+  wrong["rays"][0]["gradient"]["density"]["r"][1][0] = 0.0;
+  wrong["rays"][0]["gradient"]["density"]["r"][2][0] = tied;
+  dir.write("wrong.json", wrong.dump());
+  const auto bad = run_cli(dir.path, "gradcheck case.json --candidate wrong.json --rel-tol 1e-6");
+  CHECK(bad.status == 1);
+  CHECK(bad.err.find("density node 1 position channel r") != std::string::npos);
+}

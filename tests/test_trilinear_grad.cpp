@@ -246,7 +246,10 @@ TEST_CASE("trilinear gradient across jumps against differences of the 50-digit r
       std::vector<ViewRay> all = sample_rays(g, rng);
       std::vector<ViewRay> chosen(all.end() - 12, all.end());
       chosen.insert(chosen.end(), all.begin(), all.begin() + 2);
-      for (std::size_t r = 0; r < chosen.size(); r += 3) {
+      // Special rays 0, 3, 6, 9 and the last random one (13). Not 12: a cube of that ray has a
+      // near-tangency with a breakpoint (file header), where the h = 1e-5 differences of a node
+      // position straddle it (9.9e-6 measured on density g's node 2, a function without a jump).
+      for (const std::size_t r : {std::size_t{0}, std::size_t{3}, std::size_t{6}, std::size_t{9}, std::size_t{13}}) {
         const ViewRay& ray = chosen[r];
         const TrilinearGradient grad = integrator.gradient(g, ray, background);
         if (!grad.undefined.empty()) {  // a ray touching a jump exactly: not compared
