@@ -70,6 +70,9 @@ void set_gradcheck_command(CLI::App& app) {
     emit(gradcheck_report_json(r).dump(2), opt->output);
     std::string line = "gradcheck " + c.name + ": " + (r.passed() ? "PASS" : "FAIL") + ", " +
                        std::to_string(r.failed) + " of " + std::to_string(r.entries) + " entries fail";
+    if (r.undefined > 0)
+      line += " (" + std::to_string(r.undefined) + " entries not checked: no derivative exists there, " +
+              r.undefined_reason + ")";
     if (r.worst) {
       const GradCheckEntry& w = *r.worst;
       std::ostringstream s;

@@ -9,6 +9,7 @@
 #include "cli_harness.hpp"
 #include "rayint/input/grad_candidate_reader.hpp"
 #include "rayint/render/float_image.hpp"
+#include "tolerances.hpp"
 
 using rayint::test::run_cli;
 using rayint::test::slurp;
@@ -228,14 +229,92 @@ TEST_CASE("grad: a preset case carries the gradient w.r.t. the preset's own poin
   CHECK(pg2["RGBPoints"].is_null());
   CHECK(pg2["RGBPoints_unavailable"].get<std::string>().find("adaptively") != std::string::npos);
   CHECK(pg2["Points"].is_null());  // a constant opacity was given
+}
+
+TEST_CASE("grad: Cool to Warm, imported with jumps at its end nodes, is differentiated and matches the reference",
+          "[grad][grad_cli][grad_jump]") {
+  TempDir dir;
   // "Cool to Warm" (Diverging) imports with jumps of ~3e-5 at its two end nodes, where VTK's
-  // node colour and its Diverging interpolation differ: the gradient refuses it with one line.
+  // node colour and its Diverging interpolation differ. Ray 0 stays inside the range; ray 1
+  // crosses the jump at 0 twice, ray 2 the one at 1 once; ray 3 ends exactly on the jump at 1,
+  // where the derivative in that jump's position and in the ray's last scalar does not exist.
+  // (The import has ~1200 nodes per colour function: the rays are kept short in the scalar so
+  // that the 50-digit reference differences a few dozen of them.)
   dir.write("cw.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));
-  dir.write("case3.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
-    "name": "Cool to Warm", "opacity": 0.8}, "rays": [{"background": [0, 0, 0], "segments": [
-    {"length": 0.7, "scalar": [0.1, 0.9]}]}]})");
-  r = run_cli(dir.path, "grad case3.json --no-reference -o g3.json");
-  CHECK(r.status == 2);
-  CHECK(r.err.find("jump") != std::string::npos);
-  CHECK_FALSE(std::filesystem::exists(dir.path / "g3.json"));
+  dir.write("case.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
+    "name": "Cool to Warm", "opacity": 0.8}, "rays": [
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [0.40, 0.42]}]},
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [-0.05, 0.02]}, {"length": 1.4, "scalar": [0.02, -0.03]}]},
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 2.5, "scalar": [0.98, 1.03]}]},
+    {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [0.99, 1]}]}]})");
+  const auto r = run_cli(dir.path, "grad case.json --threads 2 -o g.json");
+  REQUIRE(r.status == 0);
+  const json j = json::parse(slurp(dir.path / "g.json"));
+  const json& c = j["cases"][0];
+  REQUIRE(c["transfer_function_nodes"]["imported_from"].get<std::string>().find("Cool to Warm") != std::string::npos);
+  for (int i = 0; i < 4; ++i) {
+    const json& m = c["rays"][i]["methods"]["exact"];
+    INFO("ray " << i);
+    for (const auto& e : m["errors"]["gradient_max_rel_vs_reference"]) {
+      REQUIRE(e.is_number());
+      CHECK(e.get<double>() <= rayint::test::GradTolerances::jump_vs_reference_rel);
+    }
+    // The colour functions jump at their first and last nodes: the tie (second node 0).
+    const json& red = m["gradient"]["color"]["r"];
+    REQUIRE(red.size() >= 4);
+    if (i == 1) {
+      CHECK(red[0][0].get<double>() != 0.0);  // the jump at 0, crossed twice
+      CHECK(red[1][0].get<double>() == 0.0);
+    }
+    // The preset's own points: Diverging is linearised adaptively, so not mapped, with the reason.
+    CHECK(m["preset_gradient"]["RGBPoints"].is_null());
+  }
+  // Ray 3 ends on the jump at 1: null entries with the reason, in exact and in the reference alike.
+  const json& m2 = c["rays"][3]["methods"]["exact"];
+  CHECK(m2["gradient"].contains("undefined"));
+  CHECK(m2["gradient"]["scalar"][0][1][0].is_null());
+  const json& last = m2["gradient"]["color"]["r"];
+  CHECK(last[last.size() - 2][0].is_null());
+  CHECK(c["rays"][3]["reference"]["gradient"]["scalar"][0][1][0].is_null());
+  const json& last2 = c["rays"][2]["methods"]["exact"]["gradient"]["color"]["r"];
+  CHECK(last2[last2.size() - 2][0].get<double>() != 0.0);  // the jump at 1, crossed
+  CHECK(last2[last2.size() - 1][0].get<double>() == 0.0);
+  CHECK_FALSE(c["rays"][0]["methods"]["exact"]["gradient"].contains("undefined"));
+}
+
+TEST_CASE("gradcheck across a jump: the tie, untested null entries, a candidate without the jump term fails",
+          "[grad][grad_cli][grad_jump]") {
+  TempDir dir;
+  // Density jumps 0.6 -> 2.5 at 0.5 (both nodes at 0.5). Ray 0 crosses it twice; ray 1 ends on it.
+  dir.write("case.json", R"({"name": "jump", "transfer_function": {
+    "density": [[0.2, 0.4], [0.5, 0.6], [0.5, 2.5], [0.9, 1.0]], "color": [[0.0, 0.2], [1.0, 0.9]]},
+    "rays": [{"background": [0.1, 0.2, 0.3], "segments": [{"length": 1.0, "scalar": [0.3, 0.8]}, {"length": 0.6, "scalar": [0.8, 0.35]}]},
+             {"background": [0.1, 0.2, 0.3], "segments": [{"length": 1.0, "scalar": [0.1, 0.5]}]}]})");
+  REQUIRE(run_cli(dir.path, "grad case.json --no-reference -o g.json").status == 0);
+  const json report = json::parse(slurp(dir.path / "g.json"));
+  json cand = json::parse(candidate_from(report, "exact"));
+  // Ray 1's null entries (no derivative exists) get a number: not checked, counted.
+  json& g1 = cand["rays"][1]["gradient"];
+  REQUIRE(g1["density"]["r"][1][0].is_null());
+  for (const char* ch : {"r", "g", "b"}) g1["density"][ch][1][0] = 0.0;
+  for (int c = 0; c < 3; ++c) g1["scalar"][0][1][c] = 0.0;
+  g1.erase("undefined");
+  cand["rays"][0]["gradient"].erase("undefined");
+  dir.write("exact.json", cand.dump());
+  const auto ok = run_cli(dir.path, "gradcheck case.json --candidate exact.json --rel-tol 1e-12");
+  CHECK(ok.status == 0);
+  const json verdict = json::parse(ok.out);
+  CHECK(verdict["undefined"].get<int>() == 6);  // 3 channels x (jump position, ray end scalar)
+  CHECK(ok.err.find("not checked") != std::string::npos);
+  // A candidate with the other tie (the jump's derivative on the second node) fails, by name.
+  json wrong = cand;
+  const double tied = wrong["rays"][0]["gradient"]["density"]["r"][1][0].get<double>();
+  REQUIRE(tied != 0.0);
+  CHECK(wrong["rays"][0]["gradient"]["density"]["r"][2][0].get<double>() == 0.0);  // the tie
+  wrong["rays"][0]["gradient"]["density"]["r"][1][0] = 0.0;
+  wrong["rays"][0]["gradient"]["density"]["r"][2][0] = tied;
+  dir.write("wrong.json", wrong.dump());
+  const auto bad = run_cli(dir.path, "gradcheck case.json --candidate wrong.json --rel-tol 1e-6");
+  CHECK(bad.status == 1);
+  CHECK(bad.err.find("density node 1 position channel r") != std::string::npos);
 }

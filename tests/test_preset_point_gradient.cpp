@@ -16,8 +16,7 @@ using namespace rayint;
 namespace {
 
 // RGB with a two-piece interval (midpoint 0.3) and, with `step`, a step (sharpness 1: imported as
-// a true jump since the jump change, which the gradient refuses); opacity with a two-piece
-// interval (midpoint 0.7).
+// a true jump); opacity with a two-piece interval (midpoint 0.7).
 PresetCurves test_curves(OpacityConvention convention = OpacityConvention::unit_distance, bool step = false) {
   PresetCurves p;
   p.color.space = VtkColorSpace::rgb;
@@ -48,8 +47,11 @@ Rgb intensity(const PresetCurves& p, const Ray& ray) {
 TEST_CASE("preset point gradient: the chain rule through the import matches differences of the pipeline",
           "[grad][preset_grad]") {
   const Ray ray = test_ray();
+  // With `step`, interval 2 is a step (a true jump at 0.8, which the ray crosses three times):
+  // its position and its two values reach the points through the jump's gradient.
+  for (const bool step : {false, true})
   for (const bool rescaled : {false, true}) {
-    PresetCurves p = test_curves();
+    PresetCurves p = test_curves(OpacityConvention::unit_distance, step);
     PresetCurves base = p;  // the points before any rescaling (what the differences perturb)
     if (rescaled) {  // to [2, 5]: X' = 2 + 3 X
       p.rescale = std::array<double, 4>{0.0, 1.0, 2.0, 5.0};
@@ -60,6 +62,7 @@ TEST_CASE("preset point gradient: the chain rule through the import matches diff
     if (rescaled)
       for (auto& s : r.segments) s.scalar_far = 2.0 + 3.0 * s.scalar_far, s.scalar_exit = 2.0 + 3.0 * s.scalar_exit;
     const TfImport imp = import_vtk_transfer_function(p.color, p.opacity, p.options);
+    REQUIRE(imp.transfer.has_jump() == step);
     REQUIRE(imp.color.exact());
     REQUIRE(imp.density.exact());
     const PresetPointGradient pg = preset_point_gradient(p, imp, exact_ray_gradient(imp.transfer, r));
@@ -123,8 +126,8 @@ TEST_CASE("preset point gradient: the chain rule through the import matches diff
         }
       }
     }
-    WARN("preset point gradient vs central differences (h = 1e-6) of the import + exact pipeline, rescaled "
-         << rescaled << ": worst " << worst << " of the channel's largest entry");
+    WARN("preset point gradient vs central differences (h = 1e-6) of the import + exact pipeline, step "
+         << step << ", rescaled " << rescaled << ": worst " << worst << " of the channel's largest entry");
   }
 }
 
@@ -159,9 +162,20 @@ TEST_CASE("preset point gradient: where the import is not differentiable it says
   }
 }
 
-TEST_CASE("preset point gradient: a preset step is a jump and its gradient is refused, not guessed", "[grad][preset_grad]") {
+TEST_CASE("preset point gradient: a preset step is a jump, differentiated with the tie convention", "[grad][preset_grad]") {
   const PresetCurves p = test_curves(OpacityConvention::unit_distance, true);
   const TfImport imp = import_vtk_transfer_function(p.color, p.opacity, p.options);
   REQUIRE(imp.transfer.has_jump());
-  CHECK_THROWS_WITH(exact_ray_gradient(imp.transfer, test_ray()), Catch::Contains("jump"));
+  const RayGradient g = exact_ray_gradient(imp.transfer, test_ray());
+  CHECK(g.undefined.empty());
+  // The jump's two imported nodes: the first carries the position derivative, the second 0.
+  const PiecewiseLinear& f = imp.transfer.color[0];
+  int jumps = 0;
+  for (std::size_t i = 0; i + 1 < f.scalar.size(); ++i)
+    if (f.scalar[i] == f.scalar[i + 1]) {
+      ++jumps;
+      CHECK(g.color[0][i].position != 0.0);
+      CHECK(g.color[0][i + 1].position == 0.0);
+    }
+  CHECK(jumps == 1);
 }

@@ -12,6 +12,7 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -269,19 +270,23 @@ void TrilinearIntegrator::add_piece(const Cubic& g, double h, double f_mid, Tril
 
 double TrilinearGradient::channel_scale(int c) const {
   double m = 0.0;
-  for (const Rgb& d : d_value) m = std::max(m, std::fabs(d[c]));
+  const bool skip_nan = !undefined.empty();
+  const auto take = [&m, skip_nan](double v) {
+    if (std::isnan(v) && skip_nan) return;
+    m = std::isnan(v) || std::isnan(m) ? std::nan("") : std::max(m, std::fabs(v));
+  };
+  for (const Rgb& d : d_value) take(d[c]);
   for (const auto* block : {&density, &color})
-    for (const NodeDerivative& n : (*block)[static_cast<std::size_t>(c)])
-      m = std::max({m, std::fabs(n.value), std::fabs(n.position)});
+    for (const NodeDerivative& n : (*block)[static_cast<std::size_t>(c)]) {
+      take(n.value);
+      take(n.position);
+    }
   return m;
 }
 
 TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const ViewRay& ray,
                                                 const Rgb& background) const {
-  // As RayGradient::reset: a jump's derivative w.r.t. its position is a Dirac term not carried here.
-  if (tf_->has_jump())
-    throw std::invalid_argument(
-        "gradient: a transfer function with a jump (a scalar repeated) is not differentiated");
+  const bool jumps = tf_->has_jump();
   TrilinearGradient out;
   for (int c = 0; c < kChannels; ++c) {
     const std::size_t ch = static_cast<std::size_t>(c);
@@ -303,6 +308,9 @@ TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const Vie
   struct PieceRecord {
     std::size_t cube = 0;
     double knot = 0.0;
+    double f_mid = 0.0, f_far = 0.0, f_exit = 0.0;  // scalar at its middle and ends
+    double slope_far = 0.0;                          // dG/du at its far end (G: the cube's cubic)
+    Rgb light_in{};                                  // light entering it
     Local ch[kChannels];
   };
   std::vector<PieceRecord> pieces;
@@ -314,6 +322,11 @@ TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const Vie
       PieceRecord rec;
       rec.cube = m;
       rec.knot = knot;
+      rec.f_mid = f_mid;
+      rec.f_far = g[0];
+      rec.f_exit = horner(g, h);
+      rec.slope_far = g[1];
+      rec.light_in = light;
       double f_lo = 0.0, f_hi = 0.0;
       hull(g, h, f_lo, f_hi);
       for (int c = 0; c < kChannels; ++c) {
@@ -384,6 +397,39 @@ TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const Vie
     nodes[line.node].position += bar_x0 + per_position;
     nodes[line.node + 1].position -= per_position;
   };
+  // A jump crossed inside a cube, between pieces `before` and `after` (adjacent, same cube), at
+  // u* with G(u*) = x_j: as for segments (integrators/ray_gradient_chain.hpp, add_jump_crossing),
+  // dI/du* = A [rho_b (kappa_b - I*) - rho_a (kappa_a - I*)] with the one-sided values from each
+  // piece's branch at x_j, I* the light at u*, A the transmittance from u* to the eye. u* moves
+  // with x_j (du*/dx_j = 1/G'(u*)) and with a corner value v (G = sum v B_v: du*/dv =
+  // -B_v(u*)/G'(u*)). The cut points of continuous breakpoints move too, but there the two sides
+  // agree and the term is 0 (Leibniz, above). Where G touches x_j (a cut at a critical point, or
+  // G'(u*) = 0, or a cube face or ray end exactly at x_j) the derivatives in x_j and in that
+  // cube's corner values do not exist: NaN, with the reason.
+  static const char* const kChannelName[kChannels] = {"r", "g", "b"};
+  const auto mark = [&out](const std::string& why) {
+    if (!out.undefined.empty()) out.undefined += "; ";
+    out.undefined += why;
+  };
+  // The first node of a jump of f strictly between a and b (either order), or kNoJump.
+  const auto jump_between = [](const PiecewiseLinear& f, double a, double b) {
+    const double lo = std::min(a, b), hi = std::max(a, b);
+    for (std::size_t i = 0; i + 1 < f.scalar.size(); ++i)
+      if (f.scalar[i] == f.scalar[i + 1] && lo < f.scalar[i] && f.scalar[i] < hi) return i;
+    return kNoJump;
+  };
+  std::vector<std::pair<std::size_t, int>> nan_cubes;  // (cube, channel) whose corners have no derivative
+  const auto touch = [&](std::size_t cube, int c, double x, const char* where) {
+    for (const bool is_density : {true, false}) {
+      const PiecewiseLinear& f = is_density ? tf_->density[static_cast<std::size_t>(c)] : tf_->color[static_cast<std::size_t>(c)];
+      const std::size_t i = jump_node(f, x);
+      if (i == kNoJump) continue;
+      (is_density ? out.density : out.color)[static_cast<std::size_t>(c)][i].position = std::nan("");
+      nan_cubes.emplace_back(cube, c);
+      mark(std::string("the ray touches the jump of ") + (is_density ? "density " : "color ") + kChannelName[c] +
+           " at " + where);
+    }
+  };
   Rgb adjoint{1.0, 1.0, 1.0};
   std::size_t corners_of = cubics.size();
   std::array<std::array<double, 4>, 8> corners{};
@@ -410,8 +456,47 @@ TrilinearGradient TrilinearIntegrator::gradient(const VoxelGrid& grid, const Vie
       to_nodes(L.rho_line, a * L.rho_v0, a * L.rho_beta, a * L.rho_x0, out.density[ch]);
       to_nodes(L.kappa_line, a * L.kappa_v0, a * L.kappa_beta, a * L.kappa_x0, out.color[ch]);
       adjoint[c] *= L.trans;
+      if (!jumps) continue;
+      // The far end of this piece: a cut inside the cube, a cube face, or the ray's far end.
+      const bool inside = k > 0 && pieces[k - 1].cube == rec.cube && rec.knot > 0.0;
+      if (!inside) {
+        touch(rec.cube, c, rec.f_far, "a cube face or the ray's end");
+        if (k > 0) touch(pieces[k - 1].cube, c, pieces[k - 1].f_exit, "a cube face");
+        if (k + 1 == pieces.size()) touch(rec.cube, c, rec.f_exit, "the ray's end");
+        continue;
+      }
+      const PieceRecord& before = pieces[k - 1];
+      const std::size_t jd = jump_between(tf_->density[ch], before.f_mid, rec.f_mid);
+      const std::size_t jc = jump_between(tf_->color[ch], before.f_mid, rec.f_mid);
+      if (jd == kNoJump && jc == kNoJump) {
+        touch(rec.cube, c, rec.f_far, "a critical point of the cubic");
+        continue;
+      }
+      const double x = jd != kNoJump ? tf_->density[ch].scalar[jd] : tf_->color[ch].scalar[jc];
+      if (rec.slope_far == 0.0) {
+        touch(rec.cube, c, x, "a point where the cubic is flat");
+        continue;
+      }
+      const Local& B = before.ch[ch];
+      const double I_star = rec.light_in[c];
+      const double dI_du = adjoint[c] * (B.rho_line.at(x) * (B.kappa_line.at(x) - I_star) -
+                                           L.rho_line.at(x) * (L.kappa_line.at(x) - I_star));
+      const double per_x = dI_du / rec.slope_far;
+      for (int corner = 0; corner < 8; ++corner)
+        voxel[trilinear_corner_index(grid, cubics[rec.cube].cube, corner)][c] -=
+            per_x * horner(corners[static_cast<std::size_t>(corner)], rec.knot);
+      if (jd != kNoJump && jc != kNoJump) {
+        out.density[ch][jd].position = out.color[ch][jc].position = std::nan("");
+        mark("density and color of one channel jump at one scalar: moving one alone is not differentiable");
+        continue;
+      }
+      (jd != kNoJump ? out.density[ch][jd] : out.color[ch][jc]).position += per_x;
     }
   }
+  if (jumps) tie_jump_positions(*tf_, out.density, out.color);
+  for (const auto& [cube, c] : nan_cubes)
+    for (int corner = 0; corner < 8; ++corner)
+      voxel[trilinear_corner_index(grid, cubics[cube].cube, corner)][c] = std::nan("");
   out.background = adjoint;
   for (const auto& [i, d] : voxel) {
     out.index.push_back(i);

@@ -28,6 +28,7 @@
 // reference (reference/poly_reference.hpp) on the same cubics: worst relative error 7.4e-16 of
 // the intensity, 1.5e-14 of the transmittance (eps * T at T ~ 100).
 #include <array>
+#include <string>
 #include <vector>
 
 #include "rayint/grid/voxel_grid.hpp"
@@ -48,14 +49,18 @@ struct TrilinearRayResult {
 // The gradient of one ray's trilinear integral (TrilinearIntegrator::gradient): per channel c,
 // dI_c with respect to the background, every grid point value the ray's cubes touch (sparse,
 // ascending index; the others are 0), and every transfer-function node's position and value
-// (density[c] and color[c], like model/ray_gradient.hpp's node blocks).
+// (density[c] and color[c], like model/ray_gradient.hpp's node blocks, with its convention at a
+// jump: the first node of a jump carries dI/d(jump position), the second 0; NaN where the
+// derivative does not exist, with the reason in `undefined`).
 struct TrilinearGradient {
   Rgb intensity{};   // the forward intensity (integrate()'s, bit for bit)
   Rgb background{};  // dI_c / d background_c = transmittance
   std::vector<std::size_t> index;  // grid points with a derivative (ascending)
   std::vector<Rgb> d_value;        // [i][c] dI_c / d value of point index[i]
   std::array<std::vector<NodeDerivative>, kChannels> density, color;
-  // Largest |entry| of channel c over the voxel and node blocks.
+  std::string undefined;  // empty, or why some entries are NaN (the ray touches a jump)
+  // Largest |entry| of channel c over the voxel and node blocks (NaN entries skipped when
+  // `undefined` explains them).
   double channel_scale(int c) const;
 };
 

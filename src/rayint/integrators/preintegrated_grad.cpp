@@ -142,6 +142,7 @@ void add_node_derivative(const PiecewiseLinear& f, double lo, double s, double b
 }  // namespace
 
 RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const Ray& ray) const {
+  refuse_jumps(tf, "preintegrated");
   count_lookups(ray);
   const int n = opt_.size;
   const bool linear = opt_.lookup == table::Lookup::linear;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,6 +48,73 @@ enum class PieceEnds {
   // RayGradient has no place for: that derivative is left out (documented in psi_table_grad.hpp).
   moving,
 };
+
+// The crossing of a jump between piece `before` (farther) and piece `after` (nearer the eye) of
+// one segment, at e = after.s_far, an interior breakpoint where density[c] or color[c] jumps.
+// With l the distance of the crossing from the segment's far end, l = L (x_j - s_far)/(s_exit -
+// s_far), moving the crossing by dl turns a slab of length dl from `after`'s values into
+// `before`'s, so (Williams & Max Eq. 1: a slab of length dl emits kappa rho dl and absorbs
+// rho I dl of the light I entering it, then is attenuated by the transmittance A to the eye)
+//   dI/dl = A [rho_b (kappa_b - I*) - rho_a (kappa_a - I*)],
+// b/a the one-sided limits at the crossing from `before`'s and `after`'s side, I* the light at
+// the crossing (entering `after`), A the transmittance from it to the eye (`adjoint`, after
+// `after`'s). Then dl/dx_j = L/span, dl/ds_far = -(L/span)(1 - phi), dl/ds_exit = -(L/span) phi,
+// span = s_exit - s_far, phi = (x_j - s_far)/span (signed: a decreasing scalar works the same).
+// The length moves nothing here (the crossing stays at the same fraction, as the pieces do).
+// When density[c] and color[c] both jump at x_j, moving one jump alone is not differentiable
+// (the slab takes the other function's value from the side it moves into): that position is
+// marked NaN, the scalar entries (moving both together) keep the term.
+inline void add_jump_crossing(const TransferFunctions& tf, const Ray& ray, const PieceRecord& before,
+                              const PieceRecord& after, int c, double light, double adjoint, RayGradient& grad) {
+  const double e = after.s_far;
+  if (before.segment != after.segment || before.s_exit != e) return;
+  const PiecewiseLinear& rho = tf.density[c];
+  const PiecewiseLinear& kappa = tf.color[c];
+  const std::size_t jd = jump_node(rho, e), jc = jump_node(kappa, e);
+  if (jd == kNoJump && jc == kNoJump) return;
+  const bool before_above = e < before.s_far, after_above = e < after.s_exit;
+  const double rho_b = rho.limit(e, before_above), kappa_b = kappa.limit(e, before_above);
+  const double rho_a = rho.limit(e, after_above), kappa_a = kappa.limit(e, after_above);
+  const double dI_dl = adjoint * (rho_b * (kappa_b - light) - rho_a * (kappa_a - light));
+  const double l_per_x = ray.segments[after.segment].length / after.span;
+  const double phi = after.phi_far;
+  grad.scalar_far[after.segment][c] -= dI_dl * l_per_x * (1.0 - phi);
+  grad.scalar_exit[after.segment][c] -= dI_dl * l_per_x * phi;
+  if (jd != kNoJump && jc != kNoJump) {
+    grad.density[c][jd].position = std::nan("");
+    grad.color[c][jc].position = std::nan("");
+    if (!grad.undefined.empty()) grad.undefined += "; ";
+    grad.undefined += "density and color of channel " + std::to_string(c) + " both jump at " + std::to_string(e) +
+                      ": moving one of the two jumps alone is not differentiable";
+    return;
+  }
+  (jd != kNoJump ? grad.density[c][jd] : grad.color[c][jc]).position += dI_dl * l_per_x;
+}
+
+// NaN (no derivative) where the ray touches a jump at a segment end (see model/ray_gradient.hpp):
+// the jump's position entry and that end's scalar entry, in the channel of the function that jumps.
+inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, RayGradient& grad) {
+  static const char* const kChannel[kChannels] = {"r", "g", "b"};
+  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
+    const Segment& seg = ray.segments[j];
+    if (!(seg.length > 0.0)) continue;
+    for (int c = 0; c < kChannels; ++c)
+      for (const bool density : {true, false}) {
+        const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
+        for (const bool far : {true, false}) {
+          const double s = far ? seg.scalar_far : seg.scalar_exit;
+          const std::size_t i = jump_node(f, s);
+          if (i == kNoJump) continue;
+          (density ? grad.density : grad.color)[c][i].position = std::nan("");
+          (far ? grad.scalar_far : grad.scalar_exit)[j][c] = std::nan("");
+          if (!grad.undefined.empty()) grad.undefined += "; ";
+          grad.undefined += "segment " + std::to_string(j) + "'s " + (far ? "far" : "exit") + " scalar lies on the jump of " +
+                            (density ? "density " : "color ") + kChannel[c] + " at " + std::to_string(s) +
+                            " (the ray touches it: one-sided derivatives differ)";
+        }
+      }
+  }
+}
 
 // piece_grad(const ChannelPiece&, double kappa_far_minus_exit) -> PieceOpticsGrad: the optics of
 // one channel of one piece and their derivatives. Throws std::invalid_argument for a non-finite
@@ -119,8 +187,12 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   for (std::size_t k = 0; k < n; ++k) {
     const PieceRecord& pr = pieces[k];
     for (int c = 0; c < kChannels; ++c) {
-      const ChannelPiece cp{pr.length, tf.density[c](pr.s_far), tf.density[c](pr.s_exit),
-                            tf.color[c](pr.s_far), tf.color[c](pr.s_exit)};
+      // Each end takes the limit from inside the piece (append_pieces': at a jump the value on
+      // the piece's side; a constant piece takes operator()'s, the left value at a jump).
+      const bool far_above = pr.s_far < pr.s_exit, exit_above = pr.s_exit < pr.s_far;
+      const ChannelPiece cp{pr.length, tf.density[c].limit(pr.s_far, far_above),
+                            tf.density[c].limit(pr.s_exit, exit_above), tf.color[c].limit(pr.s_far, far_above),
+                            tf.color[c].limit(pr.s_exit, exit_above)};
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
       // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
       // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
@@ -136,10 +208,18 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   grad.intensity = intensity;
 
   // Reverse: adjoint = transmittance of everything nearer than the piece.
+  const bool jumps = tf.has_jump();
   Rgb adjoint{1.0, 1.0, 1.0};
   for (std::size_t k = n; k-- > 0;) {
     const PieceRecord& pr = pieces[k];
     const double lo = std::min(pr.s_far, pr.s_exit);
+    // The interval a piece's values come from, per function: the one above lo, except for a
+    // constant piece on a jump, which takes the left value (operator()): the interval below.
+    const auto interval_lo = [&](const PiecewiseLinear& f) {
+      return jumps && pr.s_far == pr.s_exit && jump_node(f, lo) != kNoJump
+                 ? std::nextafter(lo, -std::numeric_limits<double>::infinity())
+                 : lo;
+    };
     for (int c = 0; c < kChannels; ++c) {
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
       const PieceOpticsGrad& g = optics[i];
@@ -185,7 +265,7 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       const auto through = [&](const PiecewiseLinear& f, std::vector<NodeDerivative>& nodes,
                                double s, double bar, double phi) {
         if (bar == 0.0) return;
-        const NodeWeights nw = node_weights(f, lo, s);
+        const NodeWeights nw = node_weights(f, interval_lo(f), s);
         for (int q = 0; q < nw.count; ++q) {
           nodes[nw.node[q]].value += bar * nw.w[q];
           nodes[nw.node[q]].position += bar * nw.dp[q];
@@ -204,9 +284,14 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       through(tf.color[c], grad.color[c], pr.s_far, kappa_far_bar, pr.phi_far);
       through(tf.color[c], grad.color[c], pr.s_exit, kappa_exit_bar, pr.phi_exit);
       adjoint[c] *= g.optics.transmittance;
+      if (jumps && !pr.far_is_end && k > 0) add_jump_crossing(tf, ray, pieces[k - 1], pr, c, incoming[i], adjoint[c], grad);
     }
   }
   grad.background = adjoint;
+  if (jumps) {
+    tie_jump_positions(tf, grad.density, grad.color);
+    mark_jump_tangencies(tf, ray, grad);
+  }
 }
 
 }  // namespace rayint::detail

@@ -37,6 +37,7 @@ struct Step {
 };
 
 RayGradient march_gradient(const TransferFunctions& tf, const Ray& ray, const std::vector<Step>& steps) {
+  refuse_jumps(tf, "a sampled renderer (riemann, nerf, pl_nerf)");
   RayGradient g = RayGradient::zeros(tf, ray);
   const std::size_t n = steps.size();
   // Forward: per step and channel the optics and the light entering.

@@ -56,8 +56,12 @@ bool chain_to_points(const CurvePoints& curve, const PiecewiseLinear& f, const s
       continue;
     }
     if (curve.shape[i] == IntervalShape::step && (p == curve.step[i].below || p == curve.step[i].above)) {
+      // The step is a jump: two nodes at step.below, the left value V_i then the right value
+      // V_i+1. Its position entry is the jump's, on the first node (the second carries 0: the
+      // tie of model/ray_gradient.hpp), so each point gets it once.
+      const bool right_node = j > 0 && f.scalar[j - 1] == p;
       through_place(pos_bar);
-      (p == curve.step[i].below ? dv[i] : dv[i + 1]) += val_bar;
+      (right_node || p == curve.step[i].above ? dv[i + 1] : dv[i]) += val_bar;
       continue;
     }
     why = "interval " + std::to_string(i) + " (x " + format_number(curve.x[i]) + " to " + format_number(curve.x[i + 1]) +

@@ -9,8 +9,8 @@
 //   - a preset point k itself: position X_k, value V_k (colour channel c, or rho = y, y / D);
 //   - the kink of a two-piece interval (midpoint m != 1/2): position X_k + m (X_k+1 - X_k), value
 //     (V_k + V_k+1)/2 (m clamped to [1e-5, 1 - 1e-5] as VTK does);
-//   - the two nodes of a step (sharpness > 0.99), one double apart at the same place: values V_k
-//     and V_k+1;
+//   - the two nodes of a step (sharpness > 0.99), a jump at the same place: values V_k and V_k+1
+//     (its position entry, the jump's, on the first node: model/ray_gradient.hpp's tie);
 // and the chain rule is linear in those forms. With a range (the preset rescaled to [b0, b1]),
 // X' = b0 + (X - X_0)(b1 - b0)/(X_n - X_0) is differentiated too, so the x entries are with
 // respect to the preset file's own scalars.
@@ -19,7 +19,8 @@
 //     in [0.01, 0.99], the sample_distance convention's -ln(1 - y)/d): the imported node count
 //     and positions come from a bisection on a tolerance, a piecewise-constant function of the
 //     points; the node values are samples of the curve, but their positions are not;
-//   - repeated x (colour jumps): their representation is changing (duplicate-x nodes);
+//   - repeated x in the preset's own points (a colour jump written as two points at one x): the
+//     chain to two points that share one x is not written;
 //   - the midpoint and sharpness of a point are not differentiated: on a linear interval
 //     (sharpness < 0.01, m = 1/2) the derivative in m moves a node the import does not have,
 //     and sharpness has derivative 0 inside the linear (< 0.01) and step (> 0.99) branches.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace rayint {
 
@@ -13,13 +15,9 @@ RayGradient RayGradient::zeros(const TransferFunctions& tf, const Ray& ray) {
 }
 
 void RayGradient::reset(const TransferFunctions& tf, const Ray& ray) {
-  // A jump's two nodes share one scalar: the derivative with respect to its position is a Dirac
-  // term the piece chain does not carry, and the pieces' end values would be credited to one node.
-  if (tf.has_jump())
-    throw std::invalid_argument(
-        "gradient: a transfer function with a jump (a scalar repeated) is not differentiated");
   const std::size_t m = ray.segments.size();
   intensity = background = Rgb{};
+  undefined.clear();
   length.assign(m, Rgb{});
   scalar_far.assign(m, Rgb{});
   scalar_exit.assign(m, Rgb{});
@@ -31,7 +29,9 @@ void RayGradient::reset(const TransferFunctions& tf, const Ray& ray) {
 
 double RayGradient::channel_scale(int c) const {
   double m = 0.0;
-  for_each(c, [&m](double v, const char*, std::size_t, const char*) {
+  const bool skip_nan = !undefined.empty();
+  for_each(c, [&m, skip_nan](double v, const char*, std::size_t, const char*) {
+    if (skip_nan && std::isnan(v)) return;
     if (std::isnan(v) || std::fabs(v) > m) m = std::isnan(v) ? v : std::max(m, std::fabs(v));
   });
   return m;
@@ -63,6 +63,30 @@ NodeWeights node_weights(const PiecewiseLinear& f, double lo, double s) {
   nw.dp[0] = -slope * w0;  // d/dp0 of v0 + (s - p0) slope
   nw.dp[1] = -slope * w1;  // d/dp1 of v1 - (p1 - s) slope
   return nw;
+}
+
+std::size_t jump_node(const PiecewiseLinear& f, double x) {
+  const auto it = std::lower_bound(f.scalar.begin(), f.scalar.end(), x);
+  if (it == f.scalar.end() || *it != x || it + 1 == f.scalar.end() || *(it + 1) != x) return kNoJump;
+  return static_cast<std::size_t>(it - f.scalar.begin());
+}
+
+void refuse_jumps(const TransferFunctions& tf, const char* who) {
+  if (tf.has_jump())
+    throw std::invalid_argument(std::string("gradient of ") + who +
+                                ": a transfer function with a jump (a scalar repeated) is differentiated only by "
+                                "exact and the trilinear grid gradient");
+}
+
+void tie_jump_positions(const TransferFunctions& tf, std::array<std::vector<NodeDerivative>, kChannels>& density,
+                        std::array<std::vector<NodeDerivative>, kChannels>& color) {
+  for (int c = 0; c < kChannels; ++c)
+    for (const auto& [f, nodes] : {std::pair{&tf.density[c], &density[c]}, std::pair{&tf.color[c], &color[c]}})
+      for (std::size_t i = 0; i + 1 < f->scalar.size(); ++i)
+        if (f->scalar[i] == f->scalar[i + 1]) {
+          (*nodes)[i].position += (*nodes)[i + 1].position;
+          (*nodes)[i + 1].position = 0.0;
+        }
 }
 
 }  // namespace rayint

@@ -13,8 +13,24 @@
 // right-hand derivative in that segment's scalar, d/dp the left-hand one in the node position.
 // Every other coincidence (a segment end on a node, two functions' nodes at one position) is a
 // point where I is differentiable, and the reported derivative is the two-sided one.
+//
+// Jumps (a node scalar stored twice: left value, right value; docs/gradients.md, "Jumps").
+// I is differentiable in both values of a jump (each is a node value of the linear piece beside
+// it) and in the jump's position x_j, which moves the points where the ray's scalar crosses x_j.
+// The two nodes of a jump share one position; their position entries are TIED: the first
+// (left-value) node's entry holds dI/dx_j, the derivative for moving both nodes together (the
+// only motion that keeps the jump a jump), and the second node's entry is 0. So the chain rule
+// sum_k dI/dp_k dp_k/dtheta over any parameterisation that keeps the jump (both nodes follow the
+// same theta, as a preset's point does) is right; a candidate for `rayint gradcheck` reports the
+// same. Where the derivative does not exist the entry is NaN (null in JSON) and `undefined` says
+// why: a segment end (of a segment with non-zero length and non-constant scalar) exactly on x_j,
+// or a segment of constant scalar x_j (the ray touches the jump tangentially: moving x_j or that
+// scalar one way changes I to first order, the other way not), for x_j's position entry and that
+// segment end's scalar entry, in the channel whose function jumps; and x_j's position entry where
+// density[c] and color[c] both jump at x_j (moving one of the two jumps alone is not differentiable).
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "rayint/model/ray.hpp"
@@ -34,13 +50,16 @@ struct RayGradient {
   std::vector<Rgb> scalar_exit;          // [segment][c] dI_c / d scalar_exit
   std::array<std::vector<NodeDerivative>, kChannels> density;  // [c][node] of density[c]
   std::array<std::vector<NodeDerivative>, kChannels> color;    // [c][node] of color[c]
+  // Empty, or why some entries are NaN (derivatives that do not exist, at a jump: see above).
+  std::string undefined;
 
   // Zeroed blocks shaped for `tf` and `ray`.
   static RayGradient zeros(const TransferFunctions& tf, const Ray& ray);
   // Makes this zeros(tf, ray), keeping the storage.
   void reset(const TransferFunctions& tf, const Ray& ray);
   // The largest |entry| of channel c over every block (the scale of the pass rule and of the
-  // relative errors).
+  // relative errors); NaN if an entry is NaN, except the entries `undefined` explains, which are
+  // skipped when it is non-empty.
   double channel_scale(int c) const;
   // Calls f(entry_c, block, index, parameter) over channel c's entries in a fixed order:
   // background; length, scalar_far, scalar_exit per segment; density, color per node
@@ -75,5 +94,19 @@ struct NodeWeights {
   int count = 0;  // 1 (constant: below the first node, above the last, one node) or 2
 };
 NodeWeights node_weights(const PiecewiseLinear& f, double lo, double s);
+
+// The first node of f's jump at scalar x (nodes i, i + 1 both at x), or kNoJump.
+inline constexpr std::size_t kNoJump = static_cast<std::size_t>(-1);
+std::size_t jump_node(const PiecewiseLinear& f, double x);
+
+// For the gradients that do not differentiate across a jump (riemann, nerf, pl_nerf, psi_table,
+// preintegrated, the mesh and voxel-grid pixel Jacobians): throws std::invalid_argument with one
+// line naming `who` when a function of `tf` jumps. The one place that refusal is worded.
+void refuse_jumps(const TransferFunctions& tf, const char* who);
+
+// The tie of a jump's two position entries (see above): for every jump (nodes i, i+1 at one
+// scalar) of each function, position[i] += position[i+1] and position[i+1] = 0.
+void tie_jump_positions(const TransferFunctions& tf, std::array<std::vector<NodeDerivative>, kChannels>& density,
+                        std::array<std::vector<NodeDerivative>, kChannels>& color);
 
 }  // namespace rayint

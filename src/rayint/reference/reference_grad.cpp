@@ -29,16 +29,28 @@ struct RealInputs {
   std::vector<Real> length, s_far, s_exit;
 };
 
-Real interp(const RealFn& f, const Real& s) {
-  if (s <= f.scalar.front()) return f.value.front();
-  if (s >= f.scalar.back()) return f.value.back();
-  const auto it = std::upper_bound(f.scalar.begin(), f.scalar.end(), s);
-  const auto k = static_cast<std::size_t>(it - f.scalar.begin());
-  if (s == f.scalar[k - 1]) return f.value[k - 1];
-  const Real& s0 = f.scalar[k - 1];
-  const Real& s1 = f.scalar[k];
+// f's one-sided limit at s, from above or below (they differ only at a jump: a scalar stored
+// twice, left value then right value); a constant segment takes the limit from below, the value
+// at the scalar itself (model/transfer_function.hpp).
+Real interp(const RealFn& f, const Real& s, bool from_above) {
+  const std::vector<Real>& x = f.scalar;
+  if (s < x.front() || (s == x.front() && !from_above)) return f.value.front();
+  if (s > x.back() || (s == x.back() && from_above)) return f.value.back();
+  std::size_t k = 0;  // the line between nodes k - 1 and k
+  if (from_above) {   // x[k-1] <= s < x[k]: at a jump the right value (the last node at s)
+    k = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), s) - x.begin());
+    if (s == x[k - 1]) return f.value[k - 1];
+  } else {  // x[k-1] < s <= x[k]: at a jump the left value (the first node at s)
+    k = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), s) - x.begin());
+    if (s == x[k]) return f.value[k];
+  }
+  const Real& s0 = x[k - 1];
+  const Real& s1 = x[k];
   return (f.value[k - 1] * (s1 - s) + f.value[k] * (s - s0)) / (s1 - s0);
 }
+
+// Whether f jumps at x (x stored twice).
+bool jumps_at(const PiecewiseLinear& f, double x) { return jump_node(f, x) != kNoJump; }
 
 std::vector<Real> breakpoints_of(const RealInputs& in) {
   std::vector<Real> bp;
@@ -72,10 +84,12 @@ SegmentOptics segment_optics(const RealInputs& in, const std::vector<Real>& bp, 
   const Real span = s1 - s0;
   for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
     const Real len = s0 == s1 ? L : L * (ends[k + 1] - ends[k]) / span;
-    const reference_detail::PieceData piece{len, interp(in.density[c], ends[k]),
-                                            interp(in.density[c], ends[k + 1]),
-                                            interp(in.color[c], ends[k]),
-                                            interp(in.color[c], ends[k + 1])};
+    // Each end from inside the piece: the end with the smaller scalar takes the limit from above.
+    const bool far_above = ends[k] < ends[k + 1], exit_above = ends[k + 1] < ends[k];
+    const reference_detail::PieceData piece{len, interp(in.density[c], ends[k], far_above),
+                                            interp(in.density[c], ends[k + 1], exit_above),
+                                            interp(in.color[c], ends[k], far_above),
+                                            interp(in.color[c], ends[k + 1], exit_above)};
     const reference_detail::PieceQuadrature q = reference_detail::integrate_piece(piece);
     out.emission = out.emission * q.transmittance + q.emission;
     out.transmittance *= q.transmittance;
@@ -94,6 +108,7 @@ struct Parameter {
   std::size_t node = 0;
   Side side = Side::central;
   Real h;
+  bool tied = false;  // node_position of a jump's first node: node + 1 (same scalar) moves with it
 };
 
 Real& slot(RealInputs& in, const Parameter& p) {
@@ -218,11 +233,31 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
       params.push_back({kind, j, true, 0, 0, side, h});
     }
   }
+  // The scalars the ray reaches (segments of non-zero length). A node's position and value change
+  // f only on [scalar[k-1], scalar[k+1]] (from -inf for the first node, to +inf for the last):
+  // a node whose interval the ray never reaches has derivative exactly 0 and is not differenced
+  // (an imported ParaView colour map has ~1200 nodes per function). Closed intervals: a node the
+  // ray's scalar only touches is differenced.
+  double ray_lo = std::numeric_limits<double>::infinity(), ray_hi = -ray_lo;
+  for (const Segment& s : ray.segments)
+    if (s.length > 0.0) {
+      ray_lo = std::min({ray_lo, s.scalar_far, s.scalar_exit});
+      ray_hi = std::max({ray_hi, s.scalar_far, s.scalar_exit});
+    }
   for (int c = 0; c < kChannels; ++c) {
     for (const bool density : {true, false}) {
       const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
       for (std::size_t k = 0; k < f.scalar.size(); ++k) {
         const double x = f.scalar[k];
+        const double support_lo = k == 0 ? -std::numeric_limits<double>::infinity() : f.scalar[k - 1];
+        // (A jump's first node: its position moves the interval above the jump too.)
+        const std::size_t above = k + 1 < f.scalar.size() && f.scalar[k + 1] == x ? k + 2 : k + 1;
+        const double support_hi = above >= f.scalar.size() ? std::numeric_limits<double>::infinity() : f.scalar[above];
+        if (support_hi < ray_lo || ray_hi < support_lo) continue;
+        // A jump's two nodes: the first's position is the jump's (both move: `tied`), the
+        // second's entry stays 0 (model/ray_gradient.hpp); their values are ordinary.
+        const bool jump_first = k + 1 < f.scalar.size() && f.scalar[k + 1] == x;
+        const bool jump_second = k > 0 && f.scalar[k - 1] == x;
         // On another function's node or a segment end: one-sided, backward (for a constant
         // segment there, the kink convention: the interval to the node's right is kept).
         bool coincides = false;
@@ -233,7 +268,7 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
             if (g != &f) coincides = coincides || std::binary_search(g->scalar.begin(), g->scalar.end(), x);
         Side side = Side::central;
         const Real h = stencil(step_for(x), x, position_kinks, coincides ? Side::backward : Side::central, side);
-        params.push_back({Parameter::node_position, 0, density, c, k, side, h});
+        if (!jump_second) params.push_back({Parameter::node_position, 0, density, c, k, side, h, jump_first});
         const Real hv = step_for(f.value[k]);
         params.push_back({Parameter::node_value, 0, density, c, k,
                           Real(f.value[k]) < 2 * hv ? Side::forward : Side::central, hv});
@@ -263,6 +298,7 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
         if (offset == 0) return compose(c, nullptr, 0);
         RealInputs in = base;
         slot(in, p) += p.h * offset;
+        if (p.tied) (p.density ? in.density : in.color)[p.channel].scalar[p.node + 1] += p.h * offset;
         const std::vector<Real> bp2 = segment_param ? bp : breakpoints_of(in);
         std::vector<SegmentOptics> rep(count);
         for (std::size_t q = 0; q < count; ++q) {
@@ -303,6 +339,41 @@ ReferenceGradient reference_gradient(const TransferFunctions& tf, const Ray& ray
       case Parameter::node_value:
         (p.density ? g.density : g.color)[p.channel][p.node].value = r.d[p.channel];
         break;
+    }
+  }
+  // Derivatives that do not exist (model/ray_gradient.hpp), decided from the inputs: where a
+  // segment end (of non-zero length) lies on a jump of density[c] or color[c], that end's scalar
+  // and the jump's position, in channel c; where density[c] and color[c] jump at one scalar that
+  // a segment reaches, both positions.
+  RayGradient& g = out.gradient;
+  const auto mark = [&g](const std::string& why) {
+    if (!g.undefined.empty()) g.undefined += "; ";
+    g.undefined += why;
+  };
+  for (int c = 0; c < kChannels; ++c) {
+    const auto cs = static_cast<std::size_t>(c);
+    for (std::size_t j = 0; j < m; ++j) {
+      const Segment& s = ray.segments[j];
+      if (!(s.length > 0.0)) continue;
+      for (const bool density : {true, false}) {
+        const PiecewiseLinear& f = density ? tf.density[cs] : tf.color[cs];
+        for (const bool far : {true, false}) {
+          const double x = far ? s.scalar_far : s.scalar_exit;
+          if (!jumps_at(f, x)) continue;
+          (far ? g.scalar_far : g.scalar_exit)[j][cs] = std::nan("");
+          (density ? g.density : g.color)[cs][jump_node(f, x)].position = std::nan("");
+          mark("segment " + std::to_string(j) + " ends on a jump");
+        }
+      }
+      for (std::size_t k = 0; k + 1 < tf.density[cs].scalar.size(); ++k) {
+        const double x = tf.density[cs].scalar[k];
+        if (tf.density[cs].scalar[k + 1] != x || !jumps_at(tf.color[cs], x)) continue;
+        if (std::min(s.scalar_far, s.scalar_exit) <= x && x <= std::max(s.scalar_far, s.scalar_exit)) {
+          g.density[cs][k].position = std::nan("");
+          g.color[cs][jump_node(tf.color[cs], x)].position = std::nan("");
+          mark("density and color jump at one scalar");
+        }
+      }
     }
   }
   out.evaluations = evaluations.load();

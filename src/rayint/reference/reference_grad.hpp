@@ -15,6 +15,12 @@
 // steps of 0 (values stay >= 0); for a segment scalar on a node, into the segment (forward for a
 // constant-scalar segment: the kink convention of model/ray_gradient.hpp); for a node position on
 // another node or a segment end, backward (the convention again for a constant segment there).
+//
+// Jumps (model/ray_gradient.hpp): piece ends take one-sided limits in 50 digits; a jump's
+// position entry differences the integral with both of its nodes moved (the second node's entry
+// is 0, the tie); the entries that do not exist (a segment end on a jump, density and colour
+// jumping together) are NaN, decided from the inputs. A node whose interval [scalar[k-1],
+// scalar[k+1]] the ray's scalars never reach has derivative exactly 0 and is not differenced.
 #include "rayint/model/ray_gradient.hpp"
 
 namespace rayint {

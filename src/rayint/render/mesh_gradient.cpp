@@ -147,6 +147,7 @@ PixelJacobian pixel_jacobian(const TetTraversal& mesh, const TransferFunctions& 
   RayTrace trace;
   mesh.trace(view, trace);
   const Ray ray = ray_from_trace(trace, background);
+  refuse_jumps(tf, "a mesh pixel");
   const RayGradient g = exact_ray_gradient(tf, ray);
   SparseSink sink;
   PixelJacobian out;
@@ -169,6 +170,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: required for an image loss");
   if (mc.shading.enabled)
     throw std::invalid_argument(mc.source + ": shading: a shaded render is not differentiated");
+  refuse_jumps(mc.transfer, "a mesh image loss");
   const Camera& cam = *mc.camera;
   if (target.width != cam.width || target.height != cam.height)
     throw std::invalid_argument("target image is " + std::to_string(target.width) + " x " +

@@ -63,11 +63,14 @@ ojson gradient_json(const RayGradient& g) {
     length.push_back(rgb(g.length[j]));
     scalar.push_back(ojson::array({rgb(g.scalar_far[j]), rgb(g.scalar_exit[j])}));
   }
-  return {{"background", rgb(g.background)},
-          {"length", length},
-          {"scalar", scalar},
-          {"density", nodes(g.density)},
-          {"color", nodes(g.color)}};
+  ojson out = {{"background", rgb(g.background)},
+                {"length", length},
+                {"scalar", scalar},
+                {"density", nodes(g.density)},
+                {"color", nodes(g.color)}};
+  // Entries whose derivative does not exist are null; say why.
+  if (!g.undefined.empty()) out["undefined"] = g.undefined;
+  return out;
 }
 
 ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
@@ -150,6 +153,8 @@ ojson gradcheck_report_json(const GradCheckResult& r) {
           {"abs_tol", r.abs_tol},
           {"entries", r.entries},
           {"failed", r.failed},
+          {"undefined", r.undefined},
+          {"undefined_reason", r.undefined_reason.empty() ? ojson(nullptr) : ojson(r.undefined_reason)},
           {"worst", worst}};
 }
 

@@ -28,7 +28,9 @@ RayGradient method_gradient(const MethodSpec& spec, const TransferFunctions& tf,
 bool has_gradient(const MethodSpec& spec);
 
 // max over channel c's entries of |got - want| / (largest |want| entry of channel c); NaN if
-// either has a NaN entry or the shapes differ. A channel whose reference is all zero uses 1.
+// either has a NaN entry or the shapes differ, except entries that do not exist (`want.undefined`
+// non-empty, want NaN), which must be NaN in `got` too and are skipped. A channel whose reference
+// is all zero uses 1.
 double gradient_relative_error(const RayGradient& got, const RayGradient& want, int c);
 
 struct GradMethodResult {
@@ -89,6 +91,8 @@ struct GradCheckResult {
   std::string renderer;
   double rel_tol = 0.0, abs_tol = 0.0;
   std::size_t entries = 0, failed = 0;
+  std::size_t undefined = 0;  // entries whose exact derivative does not exist (at a jump): not checked
+  std::string undefined_reason;  // the first such ray's RayGradient::undefined
   std::vector<Rgb> channel_scale;  // [ray][c]: the largest |exact| entry
   std::optional<GradCheckEntry> worst;  // the entry with the largest excess
   bool passed() const { return failed == 0; }
