@@ -10,9 +10,8 @@
 
 namespace rayint {
 
-namespace {
-
-CellReferenceInput reference_input(const LinearCell& cell, const CellTrace& trace, double a, double b) {
+CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& origin, const Vec3& direction,
+                                        double t_near, double t_far) {
   CellReferenceInput in;
   in.vtk_id = static_cast<int>(cell.type);
   for (int i = 0; i < linear_node_count(cell.type); ++i) {
@@ -20,14 +19,12 @@ CellReferenceInput reference_input(const LinearCell& cell, const CellTrace& trac
     in.nodes.push_back({x[0], x[1], x[2]});
     in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
   }
-  in.origin = {trace.origin[0], trace.origin[1], trace.origin[2]};
-  in.direction = {trace.direction[0], trace.direction[1], trace.direction[2]};
-  in.t_near = a;
-  in.t_far = b;
+  in.origin = {origin[0], origin[1], origin[2]};
+  in.direction = {direction[0], direction[1], direction[2]};
+  in.t_near = t_near;
+  in.t_far = t_far;
   return in;
 }
-
-}  // namespace
 
 OwnCaseEvaluation evaluate_own_cells(const MeshCase& mc, bool with_reference, unsigned threads) {
   if (!mc.cells) throw std::invalid_argument(mc.source + ": not a mesh case of cells in their own interpolation");
@@ -71,7 +68,7 @@ OwnCaseEvaluation evaluate_own_cells(const MeshCase& mc, bool with_reference, un
         const double a = std::max(ch.t_in, trace.t_eye);
         if (!(ch.t_out > a)) continue;
         const CellReference r =
-            reference_cell_chord(mc.transfer, reference_input(mesh.cell(static_cast<std::size_t>(ch.cell)), trace, a, ch.t_out));
+            reference_cell_chord(mc.transfer, cell_reference_input(mesh.cell(static_cast<std::size_t>(ch.cell)), trace.origin, trace.direction, a, ch.t_out));
         for (std::size_t q = 0; q < kChannels; ++q) {
           c[q] += std::exp(-d[q]) * static_cast<long double>(r.emission[q]);
           d[q] += static_cast<long double>(r.optical_depth[q]);
