@@ -82,9 +82,10 @@ void write_sparse_image(const rayint::test::fs::path& path, const std::string& h
   rayint::test::fs::resize_file(path, header.size() + data_bytes);
 }
 
-// A version-1 .npy header for float64 data of `shape`, padded as NumPy pads it (64-byte multiple).
-std::string npy_header(const std::string& shape) {
-  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " + shape + ", }";
+// A version-1 .npy header for data of type `descr` and `shape`, padded as NumPy pads it (to a
+// 64-byte multiple).
+std::string npy_header(const std::string& descr, const std::string& shape) {
+  std::string dict = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': " + shape + ", }";
   while ((10 + dict.size() + 1) % 64 != 0) dict += ' ';
   dict += '\n';
   const std::size_t n = dict.size();
@@ -97,22 +98,23 @@ TEST_CASE("A float image's size is checked from its header before its pixels are
           "[reliability][input-limits]") {
   // 16384 x 16384 is the largest side a reader accepts; its pixels need 16 GB here (the file,
   // the decoded doubles, alpha and float slices): above the 8 GiB image-memory limit. Before
-  // this check, read_image read the whole file into memory first (3.2 GB and 6.4 GB here).
+  // this check, read_image read the whole 3.2 GB file into memory first. (Float32 data in both:
+  // a float64 .npy of that size, 6.4 GB, is refused by the 4 GiB input byte limit before this.)
   const TempDir dir;
   const unsigned long long pixels = 16384ull * 16384ull;
   write_sparse_image(dir.path / "big.pfm", "PF\n16384 16384\n-1.0\n", pixels * 12);
-  write_sparse_image(dir.path / "big.npy", npy_header("(16384, 16384, 3)"), pixels * 24);
+  write_sparse_image(dir.path / "big.npy", npy_header("<f4", "(16384, 16384, 3)"), pixels * 12);
   for (const std::string name : {"big.pfm", "big.npy"}) {
     const std::string path = (dir.path / name).string();
     INFO(path);
     const std::string what = rayint::test::input_error_of([&] { rayint::read_image(path); });
     CHECK(what.rfind(path + ": (image): 16384 x 16384 pixels: ", 0) == 0);
-    CHECK(what.find("bytes of image memory is above the limit of 8.59e+09 (RAYINT_MAX_IMAGE_BYTES=N raises it; "
+    CHECK(what.find("bytes of image memory is above the limit of 8589934592 (RAYINT_MAX_IMAGE_BYTES=N raises it; "
                     "docs/limits.md)") != std::string::npos);
     CHECK(what.find('\n') == std::string::npos);
   }
   // Through the CLI, under a 2 GB address-space limit: the refusal is the one line, no
-  // std::bad_alloc (reading the .npy alone would need 6.4 GB), and nothing is written.
+  // std::bad_alloc (reading either file would need 3.2 GB), and nothing is written.
   const std::string mesh_case = "'" RAYINT_SOURCE_DIR "/cases/mesh-linear-field.json'";
   for (const std::string name : {"big.pfm", "big.npy"}) {
     const std::string cmd = "cd '" + dir.path.string() + "' && (ulimit -v 2000000; '" RAYINT_CLI_PATH "' render " +
