@@ -3,7 +3,8 @@
 // grid of hexahedra on [0, 1]^3, each k-layer turned about the z axis by 3 degrees more than the
 // one below (every hexahedron twisted, faces bilinear patches, not planes), the field of the
 // reader fixtures s = 0.5 + 0.3 sin(2x) cos(y) + 0.25 z + 0.2 xyz, the transfer functions of
-// bench_cells.cpp. 256 rays (16 x 16 parallel rays across the box, tilted), single-threaded:
+// bench_cells.cpp (tests/cell_samples.hpp breakpoint_tf). 256 rays (16 x 16 parallel rays across
+// the box, tilted), single-threaded:
 //   BM_mesh/own    CellTraversal: trace + LinearCellIntegrator on every chord, composited
 //   BM_mesh/own_trace_only  the traversal alone (its share of BM_mesh/own)
 //   BM_mesh/split  the same CellMesh through split_cells (VTK's structured 5-tet rule), then
@@ -20,21 +21,11 @@
 #include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/cell_traversal.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
+#include "cell_samples.hpp"  // test::breakpoint_tf
 
 namespace {
 
 using namespace rayint;
-
-TransferFunctions mesh_tf() {
-  TransferFunctions tf;
-  tf.density[0] = {{0.1, 0.3, 0.45, 0.7, 0.9}, {0.5, 4.0, 1.0, 6.0, 2.0}};
-  tf.density[1] = {{0.2, 0.5, 0.8}, {0.0, 3.0, 0.5}};
-  tf.density[2] = {{0.0, 0.35, 0.6, 1.0}, {1.0, 0.2, 5.0, 1.5}};
-  tf.color[0] = {{0.0, 0.5, 1.0}, {1.0, 0.1, 0.8}};
-  tf.color[1] = {{0.25, 0.55, 0.75}, {0.2, 1.0, 0.0}};
-  tf.color[2] = {{0.4, 0.65}, {0.9, 0.3}};
-  return tf;
-}
 
 CellMesh twisted_grid(int n) {
   CellMesh m;
@@ -73,7 +64,7 @@ std::vector<ViewRay> bench_rays() {
 }
 
 void BM_mesh_own(benchmark::State& state) {
-  const TransferFunctions tf = mesh_tf();
+  const TransferFunctions tf = test::breakpoint_tf();
   const CellTraversal mesh(twisted_grid(12), "bench");
   const LinearCellIntegrator integrator(tf);
   const std::vector<ViewRay> rays = bench_rays();
@@ -112,7 +103,7 @@ void BM_mesh_own_trace(benchmark::State& state) {
 BENCHMARK(BM_mesh_own_trace)->Name("BM_mesh/own_trace_only")->Unit(benchmark::kMillisecond);
 
 void BM_mesh_split(benchmark::State& state) {
-  const TransferFunctions tf = mesh_tf();
+  const TransferFunctions tf = test::breakpoint_tf();
   const TetTraversal mesh(split_cells(twisted_grid(12)), "bench");
   const auto exact = make_integrator(parse_method_spec("exact"), tf);
   const std::vector<ViewRay> rays = bench_rays();

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "float_range.hpp"
 #include "options.hpp"
 #include "shard.hpp"
 #include "rayint/input/shard_reader.hpp"
@@ -43,7 +44,7 @@ void set_cells_command(CLI::App& app) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--ode-rtol", opt->study.ode_rtol, "rtol of the ODE method")
-      ->check(CLI::Range(1e-15, 0.5))
+      ->check(float_range(1e-15, 0.5))
       ->capture_default_str();
   cmd->add_option("--voxel-sizes", opt->study.voxel_sizes,
                   "Points per axis of the smooth-field grids (comma-separated)")

@@ -8,6 +8,7 @@
 
 #include "check_image.hpp"
 #include "commands.hpp"
+#include "float_range.hpp"
 #include "options.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/report/junit.hpp"
@@ -18,19 +19,6 @@
 #include "rayint/input/case_reader.hpp"
 
 namespace rayint::cli {
-namespace {
-
-// A tolerance: a finite number >= 0 (CLI11's NonNegativeNumber lets "nan" through).
-const CLI::Validator kTolerance(
-    [](std::string& text) -> std::string {
-      double x = 0.0;
-      if (!CLI::detail::lexical_cast(text, x) || !std::isfinite(x) || x < 0.0)
-        return "must be a finite number >= 0, got " + text;
-      return {};
-    },
-    "TOL>=0");
-
-}  // namespace
 
 void set_check_command(CLI::App& app) {
   struct Options {
@@ -81,11 +69,11 @@ void set_check_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--alpha", opt->image.alpha,
                   "z-test: family-wise significance level (Holm-Bonferroni)")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(float_range(1e-12, 0.5))
       ->capture_default_str();
   cmd->add_option("--min-fraction", opt->image.min_fraction,
                   "z-test: pass when at least this fraction of pixel channels pass (Mitsuba 3: 0.9975)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(float_range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--rel-tol", opt->check.rel_tol,
                   "Relative tolerance: a channel passes if "

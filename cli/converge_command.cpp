@@ -23,6 +23,7 @@
 #include "rayint/render/npy_array.hpp"
 #include "options.hpp"
 #include "rayint/core/error.hpp"
+#include "rayint/core/format.hpp"
 #include "rayint/input/scene_reader.hpp"
 #include "rayint/render/float_image.hpp"
 #include "rayint/report/convergence_json.hpp"
@@ -122,14 +123,20 @@ void set_converge_command(CLI::App& app) {
   cmd->add_option("--out-ext", opt->out_ext, "extension of {out} (.pfm, .exr, .npy)");
   cmd->add_option("--metric", opt->metric, "statistic the order is gated on: median, p95, max")
       ->check(CLI::IsMember({"median", "p95", "max"}));
-  cmd->add_option("--expect-order", opt->expect_order, "exit 1 when the observed order is below this minus the tolerance");
-  cmd->add_option("--order-tolerance", opt->order_tolerance, "allowed shortfall of the order (default 0.2)");
+  // Domains (docs/limits.md, "Domains of numeric options"): each checked before the scene is read,
+  // one line naming the option, exit 2.
+  cmd->add_option("--expect-order", opt->expect_order,
+                  "exit 1 when the observed order is below this minus the tolerance (in (0, 100])");
+  cmd->add_option("--order-tolerance", opt->order_tolerance,
+                  "allowed shortfall of the order (default 0.2; >= 0 and below --expect-order)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--invariance-tolerance", opt->invariance_tolerance,
-                  "images within this fraction of the exact peak of the finest are 'invariant to the step'");
-  cmd->add_option("--worst", opt->worst, "list each step's N worst pixels (error, values, ray) in the JSON");
+                  "images within this fraction of the exact peak of the finest are 'invariant to the step' (in [0, 1])");
+  cmd->add_option("--worst", opt->worst,
+                  "list each step's N worst pixels (error, values, ray) in the JSON (0 .. 100000)");
   cmd->add_option("--error-map-dir", opt->error_map_dir,
                   "write each step's per-pixel error (H x W float64) as DIR/step-<i>.npy");
-  cmd->add_option("--threads", opt->threads, "worker threads (0: all cores)");
+  add_threads_option(cmd, opt->threads, "worker threads (0: all cores)");
   cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
   add_quiet_flag(cmd, opt->quiet);
   cmd->callback([opt] {
@@ -151,7 +158,7 @@ void set_converge_command(CLI::App& app) {
       }
       if (trial.has("n")) throw InputError("--methods " + opt->methods + ": n is set by converge from each step");
     }
-    if (opt->worst > 100000) throw InputError("--worst: at most 100000 pixels");
+    if (opt->worst > 100000) throw InputError("--worst: at most 100000 pixels, got " + std::to_string(opt->worst));
     if (!opt->error_map_dir.empty() && std::filesystem::exists(opt->error_map_dir) &&
         !std::filesystem::is_directory(opt->error_map_dir))
       throw InputError("--error-map-dir " + opt->error_map_dir + ": exists and is not a directory");
@@ -163,8 +170,17 @@ void set_converge_command(CLI::App& app) {
     if (std::adjacent_find(steps.begin(), steps.end()) != steps.end()) throw InputError("--steps: repeated step");
     if (!opt->command.empty() && opt->command.find("{out}") == std::string::npos)
       throw InputError("--command: the template must contain {out} (where the image is written)");
-    if (std::isfinite(opt->expect_order) && !(opt->order_tolerance >= 0.0))
-      throw InputError("--order-tolerance: must be >= 0");
+    // An order of convergence is > 0 (riemann's is 1, nerf:at=mid's 2); above 100 a value can
+    // only be a typo (every renderer would fail). A tolerance as large as the order would pass a
+    // renderer whose error does not fall at all (observed order 0).
+    if (std::isfinite(opt->expect_order) && !(opt->expect_order > 0.0 && opt->expect_order <= 100.0))
+      throw InputError("--expect-order: must be in (0, 100], got " + format_number(opt->expect_order));
+    if (std::isfinite(opt->expect_order) && !(opt->order_tolerance < opt->expect_order))
+      throw InputError("--order-tolerance: " + format_number(opt->order_tolerance) + " must be below --expect-order " +
+                       format_number(opt->expect_order) + " (else an error that does not fall passes)");
+    if (!(opt->invariance_tolerance >= 0.0 && opt->invariance_tolerance <= 1.0))
+      throw InputError("--invariance-tolerance: must be in [0, 1] (a fraction of the exact image's peak), got " +
+                       format_number(opt->invariance_tolerance));
 
     const Scene scene = read_scene_file(opt->input);
     if (!exact_along_rays(scene.medium.field()))

@@ -21,14 +21,6 @@
 namespace rayint::cli {
 namespace {
 
-const CLI::Validator kTolerance(
-    [](std::string& text) -> std::string {
-      double x = 0.0;
-      if (!CLI::detail::lexical_cast(text, x) || !std::isfinite(x) || x < 0.0)
-        return "must be a finite number >= 0, got " + text;
-      return {};
-    },
-    "TOL>=0");
 
 std::string entry_name(const GradCheckEntry& w) {
   static const char* kChannel[3] = {"r", "g", "b"};

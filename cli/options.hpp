@@ -43,6 +43,17 @@ inline CLI::Option* add_cells_option(CLI::App* cmd, bool& split) {
   return o;
 }
 
+// A tolerance (check and gradcheck --rel-tol, --abs-tol): a finite number >= 0 (CLI11's
+// NonNegativeNumber lets "nan" through).
+inline const CLI::Validator kTolerance(
+    [](std::string& text) -> std::string {
+      double x = 0.0;
+      if (!CLI::detail::lexical_cast(text, x) || !std::isfinite(x) || x < 0.0)
+        return "must be a finite number >= 0, got " + text;
+      return {};
+    },
+    "TOL>=0");
+
 }  // namespace rayint::cli
 
 namespace rayint::cli {

@@ -60,7 +60,10 @@ std::string heat_map_path(const std::string& output) {
 const std::vector<Vec3>& case_points(const MeshCase& mc) { return mc.cells ? mc.cells->points : mc.mesh.points; }
 
 // --fit: the case's camera (or a 256 x 256 one looking down -z) moved to frame the mesh's bounds.
-void fit_camera_to_mesh(MeshCase& mc) {
+// Returns the line that states the camera used (a result, printed with -q too), which the caller
+// prints once the outputs are written: a render or merge that fails after the fit prints its
+// error alone ("one line, once", issue 30).
+std::string fit_camera_to_mesh(MeshCase& mc) {
   const std::vector<Vec3>& points = case_points(mc);
   if (points.empty()) throw InputError(mc.mesh_source + ": points: --fit needs a mesh with points");
   Vec3 lo = points.front(), hi = lo;
@@ -80,18 +83,15 @@ void fit_camera_to_mesh(MeshCase& mc) {
   } catch (const std::invalid_argument& e) {
     throw InputError(mc.source + ": camera: --fit: " + e.what());
   }
-  {  // the camera used is a result, not progress: printed with -q too
-    const Camera& c = *mc.camera;
-    const auto v = [](const Vec3& x) {
-      return "[" + format_number(x.x()) + ", " + format_number(x.y()) + ", " + format_number(x.z()) + "]";
-    };
-    std::fprintf(stderr, "rayint render: --fit: \"camera\": {\"position\": %s, \"look_at\": %s, \"up\": %s, %s, "
-                 "\"width\": %d, \"height\": %d}\n", v(c.position).c_str(), v(c.look_at).c_str(), v(c.up).c_str(),
-                 c.projection == Camera::Projection::perspective
-                     ? ("\"fov_deg\": " + format_number(c.fov_deg)).c_str()
-                     : ("\"ortho_height\": " + format_number(c.ortho_height)).c_str(),
-                 c.width, c.height);
-  }
+  const Camera& c = *mc.camera;
+  const auto v = [](const Vec3& x) {
+    return "[" + format_number(x.x()) + ", " + format_number(x.y()) + ", " + format_number(x.z()) + "]";
+  };
+  return "rayint render: --fit: \"camera\": {\"position\": " + v(c.position) + ", \"look_at\": " + v(c.look_at) +
+         ", \"up\": " + v(c.up) + ", " +
+         (c.projection == Camera::Projection::perspective ? "\"fov_deg\": " + format_number(c.fov_deg)
+                                                          : "\"ortho_height\": " + format_number(c.ortho_height)) +
+         ", \"width\": " + std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}\n";
 }
 
 // The own mode (mesh/cell_traversal.hpp): cells other than tetrahedra in their own interpolation.
@@ -146,7 +146,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
                  "vtkDataSetTriangleFilter does (an approximation of the cells' own interpolation)\n",
                  cells, mc.mesh.tets.size());
   }
-  if (options.fit) fit_camera_to_mesh(mc);
+  const std::string fitted = options.fit ? fit_camera_to_mesh(mc) : std::string();
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   check_camera_reaches_mesh(mc, options.input);
   // The image, with --compare the compared image and the per-pixel error: before any is taken.
@@ -177,6 +177,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   if (in_shard) {
     const MeshRender part = render_mesh(mc, mesh, *exact, compare.get(), settings);
     write_shard(options.output, "render", settings.shard, inputs, to_json(mesh_render_part(part, settings.shard)));
+    std::fputs(fitted.c_str(), stderr);
     return;
   }
   MeshRender r;
@@ -201,6 +202,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   if (!options.stats_path.empty())
     write_file_atomically(options.stats_path,
                           mesh_render_json(mc, mesh, r, compare ? &comparison : nullptr).dump(2) + "\n");
+  std::fputs(fitted.c_str(), stderr);
   if (!options.quiet) std::fputs(mesh_render_summary(r, compare ? &comparison : nullptr).c_str(), stderr);
 }
 
@@ -217,7 +219,7 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options) {
     throw InputError(options.input + ": --shard: not available in the own mode of cells other than tetrahedra");
   if (mc.shading.enabled)
     throw InputError(options.input + ": shading: not available in the own mode of cells other than tetrahedra");
-  if (options.fit) fit_camera_to_mesh(mc);
+  const std::string fitted = options.fit ? fit_camera_to_mesh(mc) : std::string();
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   check_camera_reaches_mesh(mc, options.input);
   check_camera_memory(*mc.camera, 1, false, options.input + ": camera");
@@ -237,6 +239,7 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options) {
   write_image(options.output, r.image, png);
   if (!options.stats_path.empty())
     write_file_atomically(options.stats_path, cell_mesh_render_json(mc, mesh, r).dump(2) + "\n");
+  std::fputs(fitted.c_str(), stderr);
   if (!options.quiet) std::fputs(cell_mesh_render_summary(r).c_str(), stderr);
   if (r.failed_pixels > 0) {
     std::fprintf(stderr, "rayint render: %ld pixels failed (a cell chord not located or not integrated): NaN in the image\n",

@@ -1,5 +1,6 @@
 #pragma once
-// What every mesh-reader fuzz target checks (vtk_legacy, tetgen, gmsh): an accepted mesh keeps
+// What every mesh-reader fuzz target checks (vtk_legacy, tetgen, gmsh; structured_grid and
+// vti_reader: check_structured_cells): an accepted mesh keeps
 // the readers' guarantees (tet_mesh.hpp, validate_tet_mesh_structure) and then goes through what a
 // mesh case does with it — repair_tet_mesh, the curved-tet10 refusal and, when small, the
 // traversal of one ray (quadratic crossings for tet10) — and every
@@ -73,6 +74,25 @@ inline void check_cells(const CellMesh& mesh, const std::string& source) {
   } catch (const InputError& e) {
     check_message(e.what(), source);  // e.g. every split tetrahedron degenerate
   }
+}
+
+// A structured grid's cells (.vts, .vtr, the cells of a .vti): at least one cell, node counts per
+// cell type, indices in range, finite points and scalars, one scalar per point or cell, and
+// structured dimensions that match the points.
+inline void check_structured_cells(const CellMesh& m) {
+  require(m.cell_count() > 0 && m.offsets.size() == m.cell_count() + 1);
+  require(m.cell_scalars.empty() ? m.scalars.size() == m.points.size() : m.cell_scalars.size() == m.cell_count());
+  for (const auto& p : m.points) require(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
+  for (double s : m.scalars) require(std::isfinite(s));
+  for (double s : m.cell_scalars) require(std::isfinite(s));
+  for (std::size_t c = 0; c < m.cell_count(); ++c) {
+    require(m.nodes_of(c) == static_cast<std::size_t>(mesh_cell_nodes(static_cast<int>(m.types[c]))));
+    for (std::size_t k = 0; k < m.nodes_of(c); ++k)
+      require(m.cell(c)[k] >= 0 && static_cast<std::size_t>(m.cell(c)[k]) < m.points.size());
+  }
+  require(m.structured.has_value());
+  const auto& d = *m.structured;
+  require(static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]) == m.points.size());
 }
 
 }  // namespace rayint::fuzz

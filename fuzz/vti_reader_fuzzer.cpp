@@ -19,7 +19,7 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
-#include "fuzz_checks.hpp"
+#include "mesh_fuzz_checks.hpp"
 
 namespace {
 
@@ -39,24 +39,10 @@ void check_grid(const rayint::VoxelGrid& g) {
   require(rayint::check_direction(g.placement().direction).empty() && g.placement().pivot.allFinite());
 }
 
-void check_cells(const rayint::CellMesh& m) {
-  require(m.cell_count() > 0 && m.offsets.size() == m.cell_count() + 1);
-  require(m.cell_scalars.empty() ? m.scalars.size() == m.points.size() : m.cell_scalars.size() == m.cell_count());
-  for (const auto& p : m.points) require(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
-  for (double s : m.scalars) require(std::isfinite(s));
-  for (double s : m.cell_scalars) require(std::isfinite(s));
-  for (std::size_t c = 0; c < m.cell_count(); ++c)
-    for (std::size_t k = 0; k < m.nodes_of(c); ++k)
-      require(m.cell(c)[k] >= 0 && static_cast<std::size_t>(m.cell(c)[k]) < m.points.size());
-  require(m.structured.has_value());
-  const auto& d = *m.structured;
-  require(static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]) == m.points.size());
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   rayint::fuzz::refusals_are_one_line(kSource, [&] { check_grid(rayint::parse_vti(bytes, kSource)); });
-  return rayint::fuzz::refusals_are_one_line(kSource, [&] { check_cells(rayint::parse_vti_cells(bytes, kSource)); });
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] { rayint::fuzz::check_structured_cells(rayint::parse_vti_cells(bytes, kSource)); });
 }

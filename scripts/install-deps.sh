@@ -30,13 +30,5 @@ packages=(build-essential cmake pkg-config
 if [ "${1:-}" = "--test" ]; then
   packages+=(python3-torch)  # rayint.torch's autograd.Function is checked with torch.autograd.gradcheck
 fi                           #   (tests/python/test_grad.py); the module itself works without torch
-missing=()
-for p in "${packages[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "installing: ${missing[*]}" >&2
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
-fi
+. "$(dirname "$0")/script-setup.sh"
+apt_install_missing "${packages[@]}"

@@ -18,11 +18,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 out="$root/tests/fixtures/images"
-for p in netpbm openimageio-tools python3-numpy; do
-  dpkg -s "$p" >/dev/null 2>&1 && continue
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "$p" >&2
-done
+. "$root/scripts/script-setup.sh"
+apt_install_missing netpbm openimageio-tools python3-numpy
 mkdir -p "$out"
 cd "$out"
 {

@@ -1,6 +1,6 @@
 """What the report scripts under reports/ start with, once: the repository root, the build
 directory (argv[1], default build/), the rayint executable in it, matplotlib without a display,
-and `rayint slab` runs read as JSON.
+`rayint slab` runs read as JSON, and the P1 error map both P_N reports draw.
 
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
     from report_env import BUILD, RAYINT, ROOT, plt, slab  # noqa: E402
@@ -24,3 +24,31 @@ def slab(args, method):
     """`rayint slab --method METHOD --no-integral-equation ARGS`, its JSON report."""
     cmd = [RAYINT, "slab", "--method", method, "--no-integral-equation"] + args
     return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+
+
+def plot_p1_map(records, light, suptitle, path):
+    """The P1 map of reports/scattering/pn_report.py (beam) and pn_p1_isotropic_report.py (diffuse
+    light): per phase function (isotropic, hg:0.75) and quantity (reflectance, transmittance), the
+    relative error of P1 (solid) and P3 (dotted) against the doubling over the optical thickness,
+    a line per albedo. `records`: {"phase", "albedo", "tau", "P1": {q: err}, "P3": {q: err}}."""
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    fig, ax = plt.subplots(2, 2, figsize=(12, 8.5), sharex=True)
+    albedos = sorted({r["albedo"] for r in records})
+    for col, phase in enumerate(("isotropic", "hg:0.75")):
+        for row, q in enumerate(("reflectance", "transmittance")):
+            a = ax[row][col]
+            for i, al in enumerate(albedos):
+                pts = [r for r in records if r["phase"] == phase and r["albedo"] == al]
+                a.loglog([r["tau"] for r in pts], [max(r["P1"][q], 1e-17) for r in pts], "o-",
+                         color=colors[i % len(colors)], label=f"ω = {al:g}")
+                a.loglog([r["tau"] for r in pts], [max(r["P3"][q], 1e-17) for r in pts], ":",
+                         color=colors[i % len(colors)])
+            a.set_title(f"P1 (diffusion), {phase}, {light}: {q}")
+            a.set_ylabel("relative error vs doubling")
+            a.grid(True, which="both", alpha=0.3)
+            if row == 1:
+                a.set_xlabel("optical thickness τ")
+            a.legend(fontsize=7, ncol=2)
+    fig.suptitle(suptitle)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)

@@ -13,16 +13,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 WORK=${SCALING_WORK:-/tmp/rayint-scaling}
 
-missing=()
-for pkg in python3-vtk9 xvfb python3-meshio python3-matplotlib; do
-  dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "installing: ${missing[*]}" >&2
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
-fi
+. scripts/script-setup.sh
+apt_install_missing python3-vtk9 xvfb python3-meshio python3-matplotlib
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >&2
 cmake --build build -j2 --target rayint_cli >&2

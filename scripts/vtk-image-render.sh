@@ -10,20 +10,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-./scripts/install-deps.sh
-missing=()
-for pkg in python3-vtk9 xvfb python3-matplotlib; do
-  dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "installing: ${missing[*]}" >&2
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
-fi
-
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >&2
-cmake --build build -j2 --target rayint_cli >&2
+. scripts/script-setup.sh
+vtk_report_setup rayint_cli
 
 /usr/bin/python3 scripts/vtk/vtk_image_render.py self-check
 # One X server for the whole run: rayint converge's --command renders inherit its DISPLAY.

@@ -9,12 +9,8 @@ count=${1:-40000}   # split evenly over the 4 regimes: 10,000 pieces each
 seed=${2:-8}
 
 ./scripts/install-deps.sh
-if ! dpkg -s libvtk9-dev >/dev/null 2>&1; then
-  echo "installing: libvtk9-dev" >&2
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends libvtk9-dev >&2
-fi
+. scripts/script-setup.sh
+apt_install_missing libvtk9-dev
 
 cmake -S . -B build-vtk -DRAYINT_WITH_VTK=ON -DRAYINT_BUILD_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=Release >&2
 cmake --build build-vtk -j2 >&2

@@ -251,6 +251,59 @@ def vtk_transfer(case, colour_nodes_at_density=True):
     return opacity, colour, unit
 
 
+def volume_property(opacity, colour, unit):
+    """The translated transfer function as a vtkVolumeProperty: linear interpolation, no shading
+    (shared by this script, scripts/scaling.py and scripts/vtk/vtk_image_render.py)."""
+    import vtk
+    prop = vtk.vtkVolumeProperty()
+    prop.SetScalarOpacity(opacity)
+    prop.SetColor(colour)
+    prop.SetScalarOpacityUnitDistance(unit)
+    prop.SetInterpolationTypeToLinear()
+    prop.ShadeOff()
+    return prop
+
+
+def tet_mapper(mapper, integrator):
+    """An unstructured-grid mapper: "raycast" (the ray integrator `integrator`, one ray a pixel,
+    2 threads), "zsweep" (one ray a pixel) or else projected tetrahedra."""
+    import vtk
+    if mapper == "raycast":
+        m = vtk.vtkUnstructuredGridVolumeRayCastMapper()
+        m.SetRayIntegrator(getattr(vtk, INTEGRATORS[integrator])())
+        m.AutoAdjustSampleDistancesOff()
+        m.SetImageSampleDistance(1.0)
+        m.SetNumberOfThreads(2)
+    elif mapper == "zsweep":
+        m = vtk.vtkUnstructuredGridVolumeZSweepMapper()
+        m.AutoAdjustSampleDistancesOff()
+        m.SetImageSampleDistance(1.0)
+    else:
+        m = vtk.vtkProjectedTetrahedraMapper()
+    return m
+
+
+def offscreen_volume(m, data, prop, w, h, alpha_planes=False):
+    """`data` through the mapper `m` with `prop`, as a volume in a w x h off-screen window without
+    multisampling (with alpha bit planes when asked): (window, renderer, volume), the renderer in
+    the window and the volume in the renderer."""
+    import vtk
+    m.SetInputData(data)
+    vol = vtk.vtkVolume()
+    vol.SetMapper(m)
+    vol.SetProperty(prop)
+    win = vtk.vtkRenderWindow()
+    win.SetOffScreenRendering(1)
+    win.SetMultiSamples(0)
+    if alpha_planes:
+        win.SetAlphaBitPlanes(1)
+    win.SetSize(w, h)
+    ren = vtk.vtkRenderer()
+    win.AddRenderer(ren)
+    ren.AddVolume(vol)
+    return win, ren, vol
+
+
 def vtk_camera_settings(cam, mapper, camera_mode):
     """(view angle or parallel scale, window centre) for a VTK camera equivalent to rayint's."""
     w, h = cam["width"], cam["height"]
@@ -313,37 +366,13 @@ def render(case, case_path, mapper, integrator, camera_mode, colour_nodes_at_den
     w, h = cam["width"], cam["height"]
     grid = vtk_grid(case, case_path)
     opacity, colour, unit = vtk_transfer(case, colour_nodes_at_density)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetScalarOpacity(opacity)
-    prop.SetColor(colour)
-    prop.SetScalarOpacityUnitDistance(unit)
-    prop.SetInterpolationTypeToLinear()
-    prop.ShadeOff()
-    if mapper == "raycast":
-        m = vtk.vtkUnstructuredGridVolumeRayCastMapper()
-        m.SetRayIntegrator(getattr(vtk, INTEGRATORS[integrator])())
-        m.AutoAdjustSampleDistancesOff()
-        m.SetImageSampleDistance(1.0)
-        m.SetNumberOfThreads(2)
-    else:
-        m = vtk.vtkProjectedTetrahedraMapper()
-    m.SetInputData(grid)
-    vol = vtk.vtkVolume()
-    vol.SetMapper(m)
-    vol.SetProperty(prop)
-    win = vtk.vtkRenderWindow()
-    win.SetOffScreenRendering(1)
-    win.SetMultiSamples(0)
-    win.SetSize(w, h)
-    ren = vtk.vtkRenderer()
-    win.AddRenderer(ren)
+    prop = volume_property(opacity, colour, unit)
+    win, ren, _ = offscreen_volume(tet_mapper(mapper, integrator), grid, prop, w, h, alpha_planes=transparent)
     if transparent:
-        win.SetAlphaBitPlanes(1)
         ren.SetBackground(0.0, 0.0, 0.0)
         ren.SetBackgroundAlpha(0.0)
     else:
         ren.SetBackground(*case.get("background", [0.0, 0.0, 0.0]))
-    ren.AddVolume(vol)
     settings = vtk_camera_settings(cam, mapper, camera_mode)
     ren.SetActiveCamera(make_vtk_camera(cam, settings))
     ren.ResetCameraClippingRange()

@@ -4,10 +4,9 @@
 // transfer functions they measure with, and of the 50-digit reference's input for a cell's
 // chord. Header-only test support: it adds nothing to the library's layers (tools and bench put
 // tests/ on their include path for it).
-#include <cstddef>
-
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/reference/cell_reference.hpp"
+#include "rayint/studies/own_cells_eval.hpp"
 
 namespace rayint::test {
 
@@ -25,20 +24,9 @@ inline TransferFunctions breakpoint_tf() {
 }
 
 // The reference's input (reference/cell_reference.hpp) for the chord [t_near, t_far] of `ray`
-// through `cell`: its VTK type, nodes and values, as doubles.
+// through `cell`: studies/own_cells_eval.hpp's, which `rayint eval` uses.
 inline CellReferenceInput reference_input(const LinearCell& cell, const ViewRay& ray, double t_near, double t_far) {
-  CellReferenceInput in;
-  in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < linear_node_count(cell.type); ++i) {
-    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-  }
-  in.origin = {ray.origin[0], ray.origin[1], ray.origin[2]};
-  in.direction = {ray.direction[0], ray.direction[1], ray.direction[2]};
-  in.t_near = t_near;
-  in.t_far = t_far;
-  return in;
+  return cell_reference_input(cell, ray.origin, ray.direction, t_near, t_far);
 }
 
 }  // namespace rayint::test

@@ -183,7 +183,34 @@ refuse scatter_width "--width/--height: must be in \[1, 4096\]" "$rayint" scatte
 refuse slab_albedo "albedo must be in \[0, 1\]" "$rayint" slab --tau 1 --albedo 2 --mu-up 0.5 -o out.json -q
 refuse slab_streams "--streams: must be in \[2, 1024\]" "$rayint" slab --tau 1 --albedo 0.5 --mu-up 0.5 --streams 1 -o out.json -q
 refuse cells_count "--count" "$rayint" cells --count 0 -o out.json -q
-refuse check_alpha "--alpha" "$rayint" check small.json --candidate-image huge.npy --alpha 0.9 -o out.json
+refuse cells_ode_rtol "--ode-rtol: must be in \[1e-15, 0.5\], got 1e-20" "$rayint" cells --ode-rtol 1e-20 -o out.json -q
+refuse check_alpha "--alpha: must be in \[1e-12, 0.5\], got 0.9" "$rayint" check small.json --candidate-image huge.npy --alpha 0.9 -o out.json
+
+# converge: every numeric option's domain (docs/limits.md), checked before the scene is read.
+conv() { "$rayint" converge "$src/docs/examples/grid-scene.json" --methods riemann -o out.json -q "$@"; }
+refuse converge_steps_nan "--steps: must be a finite number, got nan" conv --steps 0.1,nan
+refuse converge_steps_inf "--steps: must be a finite number, got 1e400" conv --steps 0.1,1e400
+refuse converge_steps_zero "--steps: 0 is not a distance > 0" conv --steps 0.1,0
+refuse converge_steps_negative "--steps: -1 is not a distance > 0" conv --steps 0.1,-1
+refuse converge_steps_one "--steps: give at least 2 sample distances" conv --steps 0.1
+refuse converge_expect_order_nan "--expect-order: must be a finite number, got nan" conv --steps 0.2,0.1 --expect-order nan
+refuse converge_expect_order_negative "--expect-order: must be in (0, 100\], got -1" conv --steps 0.2,0.1 --expect-order -1
+refuse converge_expect_order_zero "--expect-order: must be in (0, 100\], got 0" conv --steps 0.2,0.1 --expect-order 0
+refuse converge_expect_order_huge "--expect-order: must be in (0, 100\], got 1e+09" conv --steps 0.2,0.1 --expect-order 1e9
+refuse converge_order_tolerance_nan "--order-tolerance: must be >= 0, got nan" conv --steps 0.2,0.1 --order-tolerance nan
+refuse converge_order_tolerance_negative "--order-tolerance: must be >= 0, got -0.1" conv --steps 0.2,0.1 --order-tolerance -0.1
+refuse converge_order_tolerance_order "--order-tolerance: 1 must be below --expect-order 1" \
+  conv --steps 0.2,0.1 --expect-order 1 --order-tolerance 1
+refuse converge_invariance_nan "--invariance-tolerance: must be a finite number, got nan" conv --steps 0.2,0.1 --invariance-tolerance nan
+refuse converge_invariance_negative "--invariance-tolerance: must be in \[0, 1\] (a fraction of the exact image's peak), got -1" \
+  conv --steps 0.2,0.1 --invariance-tolerance -1
+refuse converge_invariance_huge "--invariance-tolerance: must be in \[0, 1\] (a fraction of the exact image's peak), got 1e+300" \
+  conv --steps 0.2,0.1 --invariance-tolerance 1e300
+refuse converge_worst_negative "--worst" conv --steps 0.2,0.1 --worst -1
+refuse converge_worst_huge "--worst: at most 100000 pixels, got 100001" conv --steps 0.2,0.1 --worst 100001
+refuse converge_threads_negative "--threads: must be >= 0, got -1" conv --steps 0.2,0.1 --threads -1
+refuse scene_sweep_threads_negative "--threads: must be >= 0, got -1" \
+  "$rayint" scene-sweep "$src/docs/examples/grid-scene.json" --threads -1 -o out.json -q
 
 # HSV colour maps: colours outside [0, 1] (the cause of the 456 MB import) are refused at the
 # field; extreme scalars, log scales and ranges in HSV import at once.

@@ -136,6 +136,8 @@ PY
  "camera": {"position": [2.5, 2, 3.5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 40, "width": 8, "height": 8}}
 JSON
     for i in 0 1; do "$rayint" render "$work/tetgen-cam.json" --shard $i/2 -o "$work/r.$i.json" --quiet; done
+    # the same run with --fit (the camera it used is a result line, printed once the output is written)
+    for i in 0 1; do "$rayint" render "$work/tetgen-cam.json" --fit --shard $i/2 -o "$work/f.$i.json" --quiet 2>/dev/null; done
     "$rayint" merge "$work"/r.{0,1}.json -o "$work/r.png" 2>/dev/null  # unchanged inputs: merges
     # A shard whose rows were edited (row 4 left out: shard 1/2 claims rows [5, 8)) is refused:
     # every shard must hold exactly its band of the image.
@@ -146,6 +148,8 @@ JSON
     sed -i 's/^   1    -0.146254 /   1    -0.146255 /' "$work/cube.1.node"
     rm -f "$work/out.png"
     expect_fail "input files changed" "$rayint" merge "$work"/r.{0,1}.json -o "$work/out.png"
+    # --fit: the merge's error is its only line (the fit's camera line was printed before it)
+    expect_fail "input files changed" "$rayint" merge "$work"/f.{0,1}.json -o "$work/out.png"
     [ ! -e "$work/out.png" ] || { echo "a refused merge wrote its image"; exit 1; }
     "$rayint" merge --allow-partial "$work"/s.{0,1,3}.json -o "$work/partial.json" 2>"$work/err"
     grep -q "partial: 3 of 4 shards (missing 2/4)" "$work/err"

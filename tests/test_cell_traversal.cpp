@@ -34,18 +34,6 @@ namespace {
 
 const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
 
-// Breakpoints inside the fixtures' field range (0 .. ~1.3): every chord has crossings.
-TransferFunctions rough_tf() {
-  TransferFunctions tf;
-  tf.density[0] = {{0.1, 0.3, 0.45, 0.7, 0.9}, {0.5, 4.0, 1.0, 6.0, 2.0}};
-  tf.density[1] = {{0.2, 0.5, 0.8}, {0.0, 3.0, 0.5}};
-  tf.density[2] = {{0.0, 0.35, 0.6, 1.0}, {1.0, 0.2, 5.0, 1.5}};
-  tf.color[0] = {{0.0, 0.5, 1.0}, {1.0, 0.1, 0.8}};
-  tf.color[1] = {{0.25, 0.55, 0.75}, {0.2, 1.0, 0.0}};
-  tf.color[2] = {{0.4, 0.65}, {0.9, 0.3}};
-  return tf;
-}
-
 struct BruteChord {
   std::int32_t cell;
   double t_in, t_out;
@@ -148,7 +136,7 @@ TEST_CASE("own traversal: whole rays through curved hexahedra equal every cell's
   // cells-twisted.vts (VTK 9.1: 4 x 3 x 2 twisted hexahedra) and cells-hex-41.msh (gmsh 4.8: two
   // recombined blocks of 27 hexahedra, the second twisted): random rays through the box, and rays
   // through interior vertices (shared by 8 hexahedra).
-  const TransferFunctions tf = rough_tf();
+  const TransferFunctions tf = test::breakpoint_tf();  // breakpoints inside the fixtures' field range (0 .. ~1.3)
   const LinearCellIntegrator integrator(tf);
   for (const std::string f : {"cells-twisted.vts", "cells-hex-41.msh"}) {
     INFO(f);
@@ -228,7 +216,7 @@ TEST_CASE("own traversal: a field linear in space gives the split path's answer 
   // this same linear function (sum N_i = 1, sum N_i x_i = x), and so is each split tetrahedron's;
   // the boundaries are planar, so both integrate the same exact integral. gmsh's mixed hex/pyramid/
   // tet file, gmsh's prisms, VTK's rectilinear voxels.
-  const TransferFunctions tf = rough_tf();
+  const TransferFunctions tf = test::breakpoint_tf();  // breakpoints inside the fixtures' field range (0 .. ~1.3)
   const LinearCellIntegrator integrator(tf);
   const auto exact = make_integrator(parse_method_spec("exact"), tf);
   for (const std::string f : {"cells-mixed-41.msh", "cells-prism-41.msh", "cells-odd.vtr"}) {
@@ -281,7 +269,7 @@ TEST_CASE("own traversal: a ray leaves a non-convex mesh and re-enters it", "[ce
   for (const Vec3& p : m.points) m.scalars.push_back(0.3 + 0.2 * p.x() + 0.1 * p.y() * p.z());
   const CellTraversal t(m, "u");
   CHECK(t.boundary_face_count() == 5 * 6 - 2 * 4);
-  const TransferFunctions tf = rough_tf();
+  const TransferFunctions tf = test::breakpoint_tf();  // breakpoints inside the fixtures' field range (0 .. ~1.3)
   const LinearCellIntegrator integrator(tf);
   for (double y : {0.5, 0.25, 1.0 /* along the shared faces' edge row */}) {
     INFO("y " << y);

@@ -11,6 +11,7 @@
 #include "rayint/integrators/exact_grad.hpp"
 #include "rayint/reference/reference.hpp"
 #include "rayint/scene/grid_gradient.hpp"
+#include "transfer_builders.hpp"
 
 using namespace rayint;
 
@@ -26,18 +27,6 @@ VoxelGrid small_grid(std::uint64_t seed) {
   std::vector<double> v(4 * 3 * 3);
   for (double& x : v) x = u(rng);
   return VoxelGrid({4, 3, 3}, Vec3(-1.0, -0.5, -0.7), Vec3(0.6, 0.55, 0.7), v);
-}
-
-TransferFunctions kinked_tf() {
-  TransferFunctions tf;
-  const std::vector<double> s = {-0.4, 0.0, 0.3, 0.8};
-  tf.density[0] = {s, {0.5, 2.0, 0.7, 1.5}};
-  tf.density[1] = {s, {1.0, 0.2, 2.5, 0.1}};
-  tf.density[2] = {{-0.2, 0.5}, {0.3, 3.0}};
-  tf.color[0] = {s, {0.1, 0.9, 0.4, 1.0}};
-  tf.color[1] = {{0.1, 0.6}, {1.0, 0.2}};
-  tf.color[2] = {s, {0.6, 0.3, 1.2, 0.5}};
-  return tf;
 }
 
 Rgb reference_pixel(const VoxelGrid& grid, const TransferFunctions& tf, const ViewRay& view, const Rgb& bg) {
@@ -107,7 +96,7 @@ TEST_CASE("grid gradient: Kuhn weights reproduce kuhn_value", "[grad][grid]") {
 
 TEST_CASE("grid gradient: point values against differences of the 50-digit render", "[grad][grid]") {
   const VoxelGrid grid = small_grid(28);
-  const TransferFunctions tf = kinked_tf();
+  const TransferFunctions tf = test::kinked_tf();
   const Rgb bg{0.2, 0.1, 0.4};
   double worst = 0.0;
   for (const ViewRay& view : rays(grid)) {
@@ -124,7 +113,7 @@ TEST_CASE("grid gradient: trilinear weights in place of Kuhn's are caught", "[gr
   // A plausible mistake: a voxel adjoint that spreads dI/ds with the trilinear weights of the cube
   // while the forward render interpolates on Kuhn tetrahedra.
   const VoxelGrid grid = small_grid(28);
-  const TransferFunctions tf = kinked_tf();
+  const TransferFunctions tf = test::kinked_tf();
   const Rgb bg{0.2, 0.1, 0.4};
   const ViewRay view = rays(grid)[0];
   const Ray ray = ray_segments(grid, view, bg);

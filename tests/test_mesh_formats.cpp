@@ -21,6 +21,7 @@
 #include "rayint/mesh/mesh_generators.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "tolerances.hpp"
+#include "mesh_case_fixtures.hpp"
 
 using namespace rayint;
 using rayint::test::TempDir;
@@ -29,42 +30,13 @@ namespace {
 
 const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/meshes/";
 
-double linear_field(const Vec3& p) { return 0.5 + 0.3 * p.x() - 0.2 * p.y() + 0.4 * p.z(); }
+using rayint::test::linear_field;
 
 std::string slurp_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-TransferFunctions test_tf() {
-  TransferFunctions tf;
-  tf.density = {PiecewiseLinear{{-0.5, 0.4, 1.5}, {0.2, 1.6, 0.4}},
-                PiecewiseLinear{{-0.5, 1.5}, {0.9, 0.3}}, PiecewiseLinear{{0.0}, {0.7}}};
-  tf.color = {PiecewiseLinear{{-0.5, 1.5}, {0.1, 0.9}}, PiecewiseLinear{{0.0, 1.0}, {0.8, 0.2}},
-              PiecewiseLinear{{0.0}, {0.5}}};
-  return tf;
-}
-
-// The analytic ray: one segment through [-1,1]^3 (slab clip), the field's values at its ends.
-Ray analytic_ray(const ViewRay& r, const Rgb& background) {
-  const Vec3 d = r.direction.normalized();
-  double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    if (d[k] == 0.0) {
-      if (std::fabs(r.origin[k]) > 1.0) t1 = -1.0;
-      continue;
-    }
-    double a = (-1.0 - r.origin[k]) / d[k], b = (1.0 - r.origin[k]) / d[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  Ray ray;
-  ray.background = background;
-  if (t1 > t0) ray.segments.push_back({t1 - t0, linear_field(r.origin + t1 * d), linear_field(r.origin + t0 * d)});
-  return ray;
 }
 
 struct Agreement {
@@ -79,7 +51,7 @@ Agreement agree_with_analytic(const TetMesh& mesh_as_read, const std::string& na
   TetMesh mesh = mesh_as_read;
   repair_tet_mesh(mesh, name);
   const TetTraversal m(mesh, name);
-  const TransferFunctions tf = test_tf();  // the integrator keeps a reference to it
+  const TransferFunctions tf = rayint::test::mesh_field_tf();  // the integrator keeps a reference to it
   const auto exact = make_integrator(parse_method_spec("exact"), tf);
   std::mt19937_64 rng(14);
   std::normal_distribution<double> g;
@@ -93,7 +65,7 @@ Agreement agree_with_analytic(const TetMesh& mesh_as_read, const std::string& na
     const Ray traced = mesh_ray(m, r, bg, &stats);
     a.segments += static_cast<long>(traced.segments.size());
     const RayResult got = exact->integrate(traced, nullptr);
-    const RayResult want = exact->integrate(analytic_ray(r, bg), nullptr);
+    const RayResult want = exact->integrate(rayint::test::analytic_linear_ray(r, bg), nullptr);
     ++a.hits;
     for (int c = 0; c < kChannels; ++c)
       a.max_rel = std::max(a.max_rel, std::fabs(got.intensity[c] - want.intensity[c]) / std::fabs(want.intensity[c]));

@@ -15,6 +15,7 @@
 #include "rayint/mesh/mesh_generators.hpp"
 #include "rayint/reference/reference.hpp"
 #include "rayint/render/mesh_gradient.hpp"
+#include "transfer_builders.hpp"
 
 using namespace rayint;
 
@@ -26,18 +27,6 @@ namespace {
 // Measured worst (WARN lines): 2.7e-12 scalars, 6.4e-12 positions, 1.6e-11 the image loss.
 constexpr double kScalarTol = 1e-10;
 constexpr double kPositionTol = 1e-10;
-
-TransferFunctions kinked_tf() {
-  TransferFunctions tf;
-  const std::vector<double> s = {-0.4, 0.0, 0.3, 0.8};
-  tf.density[0] = {s, {0.5, 2.0, 0.7, 1.5}};
-  tf.density[1] = {s, {1.0, 0.2, 2.5, 0.1}};
-  tf.density[2] = {{-0.2, 0.5}, {0.3, 3.0}};
-  tf.color[0] = {s, {0.1, 0.9, 0.4, 1.0}};
-  tf.color[1] = {{0.1, 0.6}, {1.0, 0.2}};
-  tf.color[2] = {s, {0.6, 0.3, 1.2, 0.5}};
-  return tf;
-}
 
 TetMesh small_mesh(std::uint64_t seed) {
   const Vec3 lo(-1, -1, -1), hi(1, 1, 1);
@@ -138,7 +127,7 @@ std::vector<ViewRay> generic_rays() {
 }  // namespace
 
 TEST_CASE("mesh gradient: vertex scalars against differences of the 50-digit render", "[grad][mesh]") {
-  const TransferFunctions tf = kinked_tf();
+  const TransferFunctions tf = test::kinked_tf();
   const TetMesh m = small_mesh(28);
   const TetTraversal t(m);
   const Rgb bg{0.2, 0.1, 0.4};
@@ -162,7 +151,7 @@ TEST_CASE("mesh gradient: vertex scalars against differences of the 50-digit ren
 }
 
 TEST_CASE("mesh gradient: vertex positions against differences of the 50-digit render", "[grad][mesh]") {
-  const TransferFunctions tf = kinked_tf();
+  const TransferFunctions tf = test::kinked_tf();
   const TetMesh m = small_mesh(29);
   const TetTraversal t(m);
   const Rgb bg{0.2, 0.1, 0.4};
@@ -182,7 +171,7 @@ TEST_CASE("mesh gradient: vertex positions against differences of the 50-digit r
 }
 
 TEST_CASE("mesh gradient: cell data scalars and positions", "[grad][mesh]") {
-  const TransferFunctions tf = kinked_tf();
+  const TransferFunctions tf = test::kinked_tf();
   TetMesh m = small_mesh(30);
   std::mt19937_64 rng(30);
   std::uniform_real_distribution<double> u(-0.6, 1.0);
@@ -207,7 +196,7 @@ TEST_CASE("mesh gradient: a wrong candidate is caught by the same comparison", "
   // Two plausible mistakes of a hand-written adjoint: (a) each segment end's dI/ds shared equally
   // among the cell's 4 vertices instead of by barycentric weights; (b) positions moving only the
   // scalar at a fixed crossing (the crossing's motion, hence dI/dL, left out).
-  const TransferFunctions tf = kinked_tf();
+  const TransferFunctions tf = test::kinked_tf();
   const TetMesh m = small_mesh(28);
   const TetTraversal t(m);
   const Rgb bg{0.2, 0.1, 0.4};
@@ -253,7 +242,7 @@ TEST_CASE("mesh gradient: a wrong candidate is caught by the same comparison", "
 TEST_CASE("mesh gradient: image loss against differences of the 50-digit loss", "[grad][mesh]") {
   MeshCase mc;
   mc.source = "test";
-  mc.transfer = kinked_tf();
+  mc.transfer = test::kinked_tf();
   mc.mesh = small_mesh(31);
   mc.background = {0.2, 0.1, 0.4};
   Camera cam;

@@ -29,6 +29,8 @@
 #include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "tolerances.hpp"
+#include "input_text.hpp"
+#include "mesh_case_fixtures.hpp"
 
 using namespace rayint;
 namespace fs = std::filesystem;
@@ -40,16 +42,6 @@ const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
 const nlohmann::json& oracle() {
   static const nlohmann::json j = nlohmann::json::parse(rayint::test::slurp(fs::path(kDir) / "expected.json"));
   return j;
-}
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // Any mesh file by extension, as a mesh case reads it.
@@ -65,7 +57,7 @@ TetMesh read_any(const std::string& file, const std::string& name = "", bool cel
   return {};
 }
 
-double linear_field(const Vec3& p) { return 0.5 + 0.3 * p.x() - 0.2 * p.y() + 0.4 * p.z(); }
+using rayint::test::linear_field;
 
 TransferFunctions test_tf() {
   TransferFunctions tf;
@@ -76,35 +68,11 @@ TransferFunctions test_tf() {
   return tf;
 }
 
-// The chord of [-1,1]^3 along the ray: [t0, t1] (t1 <= t0 when the ray misses).
-std::pair<double, double> cube_chord(const ViewRay& r) {
-  const Vec3 d = r.direction.normalized();
-  double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    if (d[k] == 0.0) {
-      if (std::fabs(r.origin[k]) > 1.0) t1 = -1.0;
-      continue;
-    }
-    double a = (-1.0 - r.origin[k]) / d[k], b = (1.0 - r.origin[k]) / d[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  return {t0, t1};
-}
-
-// Analytic rays: the linear field (one segment), or the cell field c (constant pieces split at x = 0).
-Ray analytic_linear(const ViewRay& r, const Rgb& bg) {
-  const Vec3 d = r.direction.normalized();
-  const auto [t0, t1] = cube_chord(r);
-  Ray ray;
-  ray.background = bg;
-  if (t1 > t0) ray.segments.push_back({t1 - t0, linear_field(r.origin + t1 * d), linear_field(r.origin + t0 * d)});
-  return ray;
-}
+// Analytic rays: the linear field (one segment: test::analytic_linear_ray), or the cell field c
+// (constant pieces split at x = 0).
 Ray analytic_cells(const ViewRay& r, const Rgb& bg) {
   const Vec3 d = r.direction.normalized();
-  const auto [t0, t1] = cube_chord(r);
+  const auto [t0, t1] = rayint::test::cube_chord(r);
   Ray ray;
   ray.background = bg;
   if (!(t1 > t0)) return ray;
@@ -179,7 +147,7 @@ TEST_CASE("boundary cells beside the tets are skipped and counted alike by every
     CHECK(m.info.scalar == "s");
     for (const MeshArrayInfo& a : m.info.arrays)
       if (a.association == "cell") CHECK(a.marker);  // gmsh:physical, gmsh:geometrical, CellEntityIds
-    const double rel = max_rel_vs(m, file, analytic_linear);
+    const double rel = max_rel_vs(m, file, rayint::test::analytic_linear_ray);
     WARN(file << ": " << m.tets.size() << " tets, " << m.info.skipped_cells
               << " boundary cells skipped; max rel |I - I_analytic| over 500 rays = " << rel);
     // The ASCII files hold the coordinates and the field rounded as their writers print them
@@ -206,7 +174,7 @@ TEST_CASE("LZ4 and LZMA compressed .vtu with UInt32 and UInt64 headers read to V
     REQUIRE(m.scalars.size() == s.size());
     for (std::size_t i = 0; i < s.size(); ++i) differ += m.scalars[i] != s[i].get<double>();
     CHECK(differ == 0);
-    CHECK(max_rel_vs(m, file, analytic_linear) <= test::Tolerances::exact_rel);
+    CHECK(max_rel_vs(m, file, rayint::test::analytic_linear_ray) <= test::Tolerances::exact_rel);
   }
 }
 
@@ -223,11 +191,11 @@ TEST_CASE("a .pvtu with ghost cells: pieces joined, duplicated cells dropped and
   CHECK(m.tets.size() == whole.tets.size());
   CHECK(m.points.size() == whole.points.size());  // the points repeated on the cut are merged
   CHECK(m.info.merged_points > 0);
-  CHECK(max_rel_vs(m, "ghost.pvtu", analytic_linear) <= test::Tolerances::exact_rel);
+  CHECK(max_rel_vs(m, "ghost.pvtu", rayint::test::analytic_linear_ray) <= test::Tolerances::exact_rel);
 }
 
 TEST_CASE("markers are not fields: a file with tags only gets one line listing its arrays", "[mesh][readers]") {
-  const std::string msg = error_of([] { read_any("markers-only.vtu"); });
+  const std::string msg = rayint::test::input_error_of([] { read_any("markers-only.vtu"); });
   CHECK(msg == kDir + "markers-only.vtu: UnstructuredGrid/Piece/PointData: no field to integrate: no one-component "
                       "point or cell array that is not a region marker (arrays: \"gmsh:physical\" (cell, 1 component, "
                       "a marker))");
@@ -269,9 +237,9 @@ TEST_CASE("choosing the array: the active scalars by default, any point or cell 
   REQUIRE(t.scalars.size() == tv.size());
   for (std::size_t i = 0; i < tv.size(); ++i) CHECK(t.scalars[i] == tv[i].get<double>());
   CHECK(read_any("several.vtu", "c").info.scalar_association == "cell");
-  CHECK(error_of([] { read_any("several.vtu", "v"); }) ==
+  CHECK(rayint::test::input_error_of([] { read_any("several.vtu", "v"); }) ==
         kDir + "several.vtu: UnstructuredGrid/Piece/PointData: array \"v\" has 3 components; the scalar needs 1");
-  const std::string none = error_of([] { read_any("several.vtu", "nope"); });
+  const std::string none = rayint::test::input_error_of([] { read_any("several.vtu", "nope"); });
   CHECK(none == kDir + "several.vtu: UnstructuredGrid/Piece/PointData: no array named \"nope\" (arrays: \"s\" (point, 1 "
                        "component), \"t\" (point, 1 component), \"v\" (point, 3 components), \"c\" (cell, 1 component))");
   // A mesh case names it with "scalar_field".
@@ -341,11 +309,11 @@ TEST_CASE("legacy STRUCTURED_POINTS and .pvti pieces read as VTK's image", "[mes
     for (std::size_t i = 0; i < v.size(); ++i) differ += g.values()[i] != v[i].get<double>();
     CHECK(differ == 0);
   }
-  CHECK(error_of([] { read_voxel_grid_file(kDir + "wavelet-ascii.vtk", "nope"); }) ==
+  CHECK(rayint::test::input_error_of([] { read_voxel_grid_file(kDir + "wavelet-ascii.vtk", "nope"); }) ==
         kDir + "wavelet-ascii.vtk: POINT_DATA: no point array named \"nope\" (arrays: \"RTData\" (point, 1 component))");
-  CHECK(error_of([] { read_vtk_legacy(kDir + "wavelet-ascii.vtk"); }).find("STRUCTURED_POINTS is image data, not a mesh") !=
+  CHECK(rayint::test::input_error_of([] { read_vtk_legacy(kDir + "wavelet-ascii.vtk"); }).find("STRUCTURED_POINTS is image data, not a mesh") !=
         std::string::npos);
-  CHECK(error_of([] { read_voxel_grid_file(kDir + "cell-data.vtk"); }).find("UNSTRUCTURED_GRID is a mesh, not an image") !=
+  CHECK(rayint::test::input_error_of([] { read_voxel_grid_file(kDir + "cell-data.vtk"); }).find("UNSTRUCTURED_GRID is a mesh, not an image") !=
         std::string::npos);
 }
 
@@ -380,7 +348,7 @@ TEST_CASE("overlapping tetrahedra: VTK's Append of two shifted boxes is found, c
   CHECK(pair->second >= 162);
   CHECK(tets_overlap(overlap, pair->first, pair->second));
   CHECK(find_overlapping_tets(overlap, OverlapScope::disjoint_pairs).has_value());
-  const std::string msg = error_of([&] { refuse_overlapping_tets(overlap, "overlap.vtu", "Cells"); });
+  const std::string msg = rayint::test::input_error_of([&] { refuse_overlapping_tets(overlap, "overlap.vtu", "Cells"); });
   CHECK(msg.rfind("overlap.vtu: Cells: tetrahedra 0 (cell 0 of the file) and ", 0) == 0);
   CHECK(msg.find(" overlap (their interiors intersect") != std::string::npos);
   // Conforming meshes written by gmsh, TetGen, VTK (with pieces and ghosts): nothing found, with
@@ -430,8 +398,8 @@ TEST_CASE("CLI: mesh info lists cells by type, arrays and the scalar, --check ex
 TEST_CASE("fuzz regression: huge cell counts and cell types in a legacy file are one-line refusals", "[mesh][readers][fuzz]") {
   const std::string head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n"
                            "0 0 0 1 0 0 0 1 0 0 0 1\n";
-  const std::string count = error_of([&] { parse_vtk_legacy(head + "CELLS 1 5\n2e62 0 1 2 3\nCELL_TYPES 1\n10\n", "f.vtk"); });
+  const std::string count = rayint::test::input_error_of([&] { parse_vtk_legacy(head + "CELLS 1 5\n2e62 0 1 2 3\nCELL_TYPES 1\n10\n", "f.vtk"); });
   CHECK(count.rfind("f.vtk: CELLS[0]: point count 2", 0) == 0);
-  const std::string type = error_of([&] { parse_vtk_legacy(head + "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n1.7e60\n", "f.vtk"); });
+  const std::string type = rayint::test::input_error_of([&] { parse_vtk_legacy(head + "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n1.7e60\n", "f.vtk"); });
   CHECK(type.rfind("f.vtk: CELL_TYPES[0]: not a cell type: ", 0) == 0);
 }

@@ -13,21 +13,12 @@
 #include "rayint/mesh/tet_mesh.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "tolerances.hpp"
+#include "mesh_case_fixtures.hpp"
 #include "transfer_builders.hpp"
 
 using namespace rayint;
 
 namespace {
-
-// A transfer function with breakpoints inside the field's range, so rays cross several pieces.
-TransferFunctions test_tf() {
-  TransferFunctions tf;
-  tf.density = {PiecewiseLinear{{-0.5, 0.4, 1.5}, {0.2, 1.6, 0.4}},
-                PiecewiseLinear{{-0.5, 1.5}, {0.9, 0.3}}, PiecewiseLinear{{0.0}, {0.7}}};
-  tf.color = {PiecewiseLinear{{-0.5, 1.5}, {0.1, 0.9}}, PiecewiseLinear{{0.0, 1.0}, {0.8, 0.2}},
-              PiecewiseLinear{{0.0}, {0.5}}};
-  return tf;
-}
 
 // Rays from random points on a sphere of radius 4 toward random points in [-1.2, 1.2]^3.
 std::vector<ViewRay> random_rays(int n, unsigned seed) {
@@ -114,7 +105,7 @@ TEST_CASE("Mixed orientation: the mesh as written and reoriented give the same i
   CHECK(r.reoriented == static_cast<long>((g.mesh.tets.size() + 1) / 2 + g.mesh.tets.size() / 4));
   validate_tet_mesh(mixed, "m");  // now passes the strict check
   const TetTraversal original(g.mesh, "original"), repaired(mixed, "repaired");
-  const TransferFunctions tf = test_tf();  // the integrator keeps a reference to it
+  const TransferFunctions tf = rayint::test::mesh_field_tf();  // the integrator keeps a reference to it
   const auto exact = make_integrator(parse_method_spec("exact"), tf);
   long segments = 0;
   const double worst = max_abs_difference(original, repaired, random_rays(3000, 2026), *exact, &segments);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rayint/studies/mesh_agreement.hpp"
+#include "mesh_case_fixtures.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/mesh/gradients.hpp"
 #include "rayint/mesh/mesh_case.hpp"
@@ -309,21 +310,7 @@ TEST_CASE("Isosurface shading of flagged intervals", "[mesh]") {
 }
 
 TEST_CASE("Rendering a mesh case: threads do not change the image, comparison and progress", "[mesh]") {
-  MeshCase mc;
-  mc.name = "t";
-  mc.source = "t.json";
-  mc.transfer = agreement_transfer_functions();
-  mc.mesh = generate_mesh("ball", 2, 1).mesh;
-  Camera cam;
-  cam.position = Vec3(0.3, 0.2, 4);
-  cam.width = 20;
-  cam.height = 16;
-  cam.fov_deg = 35;
-  mc.camera = cam;
-  mc.background = {0.1, 0.1, 0.2};
-  const TetTraversal mesh(mc.mesh, "ball");
-  const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
-  const auto riemann = make_integrator(parse_method_spec("riemann:n=4"), mc.transfer);
+  const rayint::test::BallRender ball(16);
   MeshRenderSettings one;
   one.threads = 1;
   int last_done = -1, last_total = -1;
@@ -333,8 +320,8 @@ TEST_CASE("Rendering a mesh case: threads do not change the image, comparison an
     last_done = done;
     last_total = total;
   };
-  const MeshRender a = render_mesh(mc, mesh, *exact, exact.get(), one);
-  const MeshRender b = render_mesh(mc, mesh, *exact, riemann.get(), two);
+  const MeshRender a = render_mesh(ball.mc, ball.mesh, *ball.exact, ball.exact.get(), one);
+  const MeshRender b = render_mesh(ball.mc, ball.mesh, *ball.exact, ball.riemann.get(), two);
   CHECK(a.image.pixels == b.image.pixels);
   CHECK(last_done == 16);
   CHECK(last_total == 16);
@@ -343,7 +330,7 @@ TEST_CASE("Rendering a mesh case: threads do not change the image, comparison an
   CHECK(a.cost.rays == 320);
   CHECK(a.cost.pieces >= a.cost.segments);
   // Each pixel equals the Ray path used by `rayint eval`.
-  const Ray r = mesh_ray(mesh, cam.ray_for_pixel(7, 9), mc.background);
-  CHECK(exact->integrate(r, nullptr).intensity == a.image.at(7, 9));
-  CHECK(a.image.at(0, 0) == mc.background);  // a corner pixel misses the ball
+  const Ray r = mesh_ray(ball.mesh, ball.mc.camera->ray_for_pixel(7, 9), ball.mc.background);
+  CHECK(ball.exact->integrate(r, nullptr).intensity == a.image.at(7, 9));
+  CHECK(a.image.at(0, 0) == ball.mc.background);  // a corner pixel misses the ball
 }

@@ -21,6 +21,7 @@
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/reference/reference.hpp"
 #include "tolerances.hpp"
+#include "smooth_ray.hpp"
 #include "transfer_builders.hpp"
 
 using namespace rayint;
@@ -32,6 +33,8 @@ namespace {
 using rayint::test::constant;
 using rayint::test::constant_tf;
 using rayint::test::line;
+using rayint::test::max_rel;
+using rayint::test::SmoothCase;
 
 std::unique_ptr<RayIntegrator> make(const std::string& spec, const TransferFunctions& tf) {
   return make_integrator(parse_method_spec(spec), tf);
@@ -41,34 +44,12 @@ RayResult run(const std::string& spec, const TransferFunctions& tf, const Ray& r
   return make(spec, tf)->integrate(ray, nullptr);
 }
 
-// Largest relative error over the three channels of the intensity.
-double max_rel(const RayResult& r, const RayResult& ref) {
-  double e = 0.0;
-  for (int c = 0; c < kChannels; ++c)
-    e = std::max(e, relative_error(r.intensity[c], ref.intensity[c]));
-  return e;
-}
 double max_rel_transmittance(const RayResult& r, const RayResult& ref) {
   double e = 0.0;
   for (int c = 0; c < kChannels; ++c)
     e = std::max(e, relative_error(r.transmittance[c], ref.transmittance[c]));
   return e;
 }
-
-// The smooth case: per-channel densities and colours linear on [0, 1], every segment strictly
-// inside (0, 1) -- no breakpoint inside any segment, so rho and kappa are linear on each segment
-// and the integrand is smooth there; the scalar turns at segment joins (kinks only). Optical
-// depth ~2.3 (r), ~1.9 (g), ~2.0 (b); non-black background.
-struct SmoothCase {
-  TransferFunctions tf;
-  Ray ray;
-  SmoothCase() {
-    tf.density = {line(0, 0.3, 1, 1.5), line(0, 1.2, 1, 0.4), line(0, 0.8, 1, 0.9)};
-    tf.color = {line(0, 0.9, 1, 0.2), line(0, 0.3, 1, 1.1), line(0, 0.6, 1, 0.6)};
-    ray.background = {0.2, 0.5, 0.1};
-    ray.segments = {{0.7, 0.1, 0.6}, {0.5, 0.6, 0.95}, {0.9, 0.95, 0.3}, {0.4, 0.3, 0.35}};
-  }
-};
 
 const RayResult& smooth_exact() {
   static const SmoothCase sc;

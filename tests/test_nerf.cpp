@@ -17,11 +17,14 @@
 #include "rayint/metrics/error_metrics.hpp"
 #include "rayint/reference/reference.hpp"
 #include "tolerances.hpp"
+#include "smooth_ray.hpp"
 #include "transfer_builders.hpp"
 
 using namespace rayint;
 using rayint::test::constant;
 using rayint::test::line;
+using rayint::test::max_rel;
+using rayint::test::SmoothCase;
 using rayint::test::Tolerances;
 
 namespace {
@@ -48,26 +51,6 @@ struct NerfTolerances {
 RayResult run(const std::string& spec, const TransferFunctions& tf, const Ray& ray) {
   return make_integrator(parse_method_spec(spec), tf)->integrate(ray, nullptr);
 }
-
-double max_rel(const RayResult& r, const RayResult& ref) {
-  double e = 0.0;
-  for (int c = 0; c < kChannels; ++c)
-    e = std::max(e, relative_error(r.intensity[c], ref.intensity[c]));
-  return e;
-}
-
-// Per-channel densities and colours linear on [0, 1], every segment inside (0, 1): smooth within
-// segments, kinks at the joins (the smooth case of test_methods.cpp).
-struct SmoothCase {
-  TransferFunctions tf;
-  Ray ray;
-  SmoothCase() {
-    tf.density = {line(0, 0.3, 1, 1.5), line(0, 1.2, 1, 0.4), line(0, 0.8, 1, 0.9)};
-    tf.color = {line(0, 0.9, 1, 0.2), line(0, 0.3, 1, 1.1), line(0, 0.6, 1, 0.6)};
-    ray.background = {0.2, 0.5, 0.1};
-    ray.segments = {{0.7, 0.1, 0.6}, {0.5, 0.6, 0.95}, {0.9, 0.95, 0.3}, {0.4, 0.3, 0.35}};
-  }
-};
 
 // Orders from the errors at n and 2n, n = 8 .. 64.
 std::vector<double> doubling_orders(const std::string& prefix) {

@@ -18,6 +18,7 @@
 #include "rayint/scattering/pn.hpp"
 #include "rayint/scattering/slab_single_scattering.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
+#include "scatter_fixtures.hpp"
 #include "tolerances_ground_table_diffusion.hpp"
 
 using namespace rayint;
@@ -27,24 +28,7 @@ namespace {
 
 // A homogeneous unit cube [0,1]^3 of extinction sigma, lit obliquely from above.
 ScatteringVolume cube(double sigma, double albedo, PhaseFunction phase) {
-  ScatteringVolume v;
-  v.density = VoxelGrid({2, 2, 2}, Vec3::Zero(), Vec3::Ones(), std::vector<double>(8, 1.0));
-  v.extinction_per_density = sigma;
-  v.albedo = albedo;
-  v.phase = phase;
-  v.light.direction = Vec3(0.3, 0.2, -1).normalized();
-  v.light.irradiance = 1.0;
-  return v;
-}
-
-Camera view(int pixels) {
-  Camera cam;
-  cam.position = Vec3(0.5, 2.5, 3.5);
-  cam.look_at = Vec3(0.5, 0.5, 0.5);
-  cam.fov_deg = 30;
-  cam.width = pixels;
-  cam.height = pixels;
-  return cam;
+  return test::unit_cube(sigma, albedo, phase, Vec3(0.3, 0.2, -1), 1.0);
 }
 
 struct Comparison {
@@ -56,7 +40,7 @@ struct Comparison {
 
 // Multiple scattering only, 10 x 10 pixels, the MC at spp paths per pixel (seed 3).
 Comparison compare(const ScatteringVolume& v, int grid, int spp) {
-  const Camera cam = view(10);
+  const Camera cam = test::oblique_cube_view(10);
   PathTracerOptions mc;
   mc.samples_per_pixel = spp;
   mc.seed = 3;

@@ -16,6 +16,7 @@
 #include "rayint/scattering/azimuthal_phase.hpp"
 #include "rayint/scattering/pn.hpp"
 #include "rayint/scattering/slab_doubling.hpp"
+#include "scatter_fixtures.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
@@ -234,13 +235,7 @@ TEST_CASE("P_N with Mark's boundary conditions converges to the doubling too", "
 
 TEST_CASE("P_N: a tabulated phase function as Legendre coefficients", "[pn]") {
   // A table g^l (long enough that g^L is below rounding) is Henyey-Greenstein: same solution.
-  SlabProblem p;
-  p.tau = 2;
-  p.albedo = 0.95;
-  p.mu0 = 0.6;
-  p.phase = PhaseFunction::henyey_greenstein(0.75);
-  p.mu_up = {0.2, 1.0};
-  p.mu_down = {0.2, 1.0};
+  SlabProblem p = test::hg_slab(0.75);
   PnOptions o;
   o.order = 15;
   const PnSolution hg = solve_slab_pn(p, o);

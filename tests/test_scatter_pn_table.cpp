@@ -16,6 +16,7 @@
 #include "cli_harness.hpp"
 #include "rayint/core/math.hpp"
 #include "rayint/scattering/pn.hpp"
+#include "scatter_fixtures.hpp"
 #include "tolerances_ground_table_diffusion.hpp"
 
 using namespace rayint;
@@ -76,13 +77,7 @@ TEST_CASE("Legendre coefficients of a linear phase table are exact", "[pn][table
 }
 
 TEST_CASE("P_N on a tabulated Henyey-Greenstein phase function gives the analytic HG answer", "[pn][table]") {
-  SlabProblem p;
-  p.tau = 2;
-  p.albedo = 0.95;
-  p.mu0 = 0.6;
-  p.phase = PhaseFunction::henyey_greenstein(0.75);
-  p.mu_up = {0.2, 1.0};
-  p.mu_down = {0.2, 1.0};
+  SlabProblem p = test::hg_slab(0.75);
   PnOptions o;
   o.order = 31;
   const PnSolution exact = solve_slab_pn(p, o);

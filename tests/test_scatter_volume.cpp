@@ -13,6 +13,7 @@
 #include "rayint/scattering/volume_comparison.hpp"
 #include "rayint/scattering/volume_path_tracer.hpp"
 #include "rayint/scattering/zonal.hpp"
+#include "scatter_fixtures.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
@@ -23,14 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // A homogeneous unit cube [0,1]^3 of extinction sigma, lit from straight above.
 ScatteringVolume box(double sigma, double albedo, PhaseFunction phase) {
-  ScatteringVolume v;
-  v.density = VoxelGrid({2, 2, 2}, Vec3::Zero(), Vec3::Ones(), std::vector<double>(8, 1.0));
-  v.extinction_per_density = sigma;
-  v.albedo = albedo;
-  v.phase = phase;
-  v.light.direction = Vec3(0, 0, -1);
-  v.light.irradiance = 2.0;
-  return v;
+  return test::unit_cube(sigma, albedo, phase, Vec3(0, 0, -1), 2.0);
 }
 
 // The cube seen obliquely from above (fov 30, pixels x pixels) and compare_volume_methods on it:
@@ -39,12 +33,7 @@ ScatteringVolume box(double sigma, double albedo, PhaseFunction phase) {
 VolumeComparison compare_on_cube(const ScatteringVolume& v, int pixels, int spp,
                                  std::vector<int> do_grids, std::vector<int> do_bins,
                                  std::vector<int> zonal_grids) {
-  Camera cam;
-  cam.position = Vec3(0.5, 2.5, 3.5);
-  cam.look_at = Vec3(0.5, 0.5, 0.5);
-  cam.fov_deg = 30;
-  cam.width = pixels;
-  cam.height = pixels;
+  const Camera cam = test::oblique_cube_view(pixels);
   ComparisonOptions o;
   o.reference.samples_per_pixel = spp;
   o.reference.seed = 2;

@@ -16,6 +16,7 @@
 #include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/slab_monte_carlo.hpp"
 #include "rayint/studies/mesh_agreement.hpp"
+#include "mesh_case_fixtures.hpp"
 #include "rayint/studies/stress.hpp"
 
 using namespace rayint;
@@ -156,27 +157,13 @@ TEST_CASE("stress: 3 shards finished together equal the single run's report", "[
 }
 
 TEST_CASE("mesh render: bands of rows assembled equal the single render", "[shard][mesh]") {
-  MeshCase mc;
-  mc.name = "t";
-  mc.source = "t.json";
-  mc.transfer = agreement_transfer_functions();
-  mc.mesh = generate_mesh("ball", 2, 1).mesh;
-  Camera cam;
-  cam.position = Vec3(0.3, 0.2, 4);
-  cam.width = 20;
-  cam.height = 17;
-  cam.fov_deg = 35;
-  mc.camera = cam;
-  mc.background = {0.1, 0.1, 0.2};
-  const TetTraversal mesh(mc.mesh, "ball");
-  const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
-  const auto riemann = make_integrator(parse_method_spec("riemann:n=4"), mc.transfer);
+  const rayint::test::BallRender ball(17);
   MeshRenderSettings settings;
-  const MeshRender single = render_mesh(mc, mesh, *exact, riemann.get(), settings);
+  const MeshRender single = render_mesh(ball.mc, ball.mesh, *ball.exact, ball.riemann.get(), settings);
   std::vector<MeshRenderPart> parts;
   for (long i = 0; i < 4; ++i) {
     settings.shard = ShardSpec{i, 4};
-    parts.push_back(mesh_render_part(render_mesh(mc, mesh, *exact, riemann.get(), settings), settings.shard));
+    parts.push_back(mesh_render_part(render_mesh(ball.mc, ball.mesh, *ball.exact, ball.riemann.get(), settings), settings.shard));
   }
   const MeshRender merged = assemble_mesh_render(parts);
   CHECK(merged.image.pixels == single.image.pixels);

@@ -25,6 +25,7 @@
 #include "rayint/mesh/tet_traversal.hpp"
 #include "rayint/reference/poly_reference.hpp"
 #include "tolerances.hpp"
+#include "input_text.hpp"
 
 using namespace rayint;
 namespace fs = std::filesystem;
@@ -177,16 +178,6 @@ PolyRay reference_poly_of_trace(const TetMesh& mesh, const RayTrace& trace) {
                                        {static_cast<double>(v[0]), static_cast<double>(b), static_cast<double>(c)}});
   }
   return out;
-}
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace
@@ -386,7 +377,7 @@ TEST_CASE("tet10 with curved edges: the tetrahedral path's check names a cell, r
   const Tet10EdgeCheck c = check_tet10_edges(mesh);
   CHECK_FALSE(c.straight());
   CHECK(c.worst_offset > 1e-3);
-  const std::string msg = error_of([&] { refuse_curved_tet10(mesh, sphere); });
+  const std::string msg = rayint::test::input_error_of([&] { refuse_curved_tet10(mesh, sphere); });
   CHECK(msg.rfind(sphere + ": cells[", 0) == 0);
   CHECK(msg.find("quadratic tetra with a curved edge") != std::string::npos);
   CHECK(msg.find('\n') == std::string::npos);

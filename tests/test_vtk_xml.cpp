@@ -19,6 +19,7 @@
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/input/voxel_grid_reader.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
+#include "input_text.hpp"
 
 using namespace rayint;
 using rayint::test::run_cli;
@@ -48,17 +49,6 @@ std::string replace_once(std::string s, const std::string& from, const std::stri
   return s.replace(at, from.size(), to);
 }
 
-// The message of the InputError `f` throws (or "" if none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 void expect_error(const std::string& message, const std::string& prefix, const std::string& contains = "") {
   INFO(message);
   CHECK(message.rfind(prefix, 0) == 0);
@@ -78,7 +68,7 @@ TEST_CASE("every .vtu VTK and meshio wrote reads to what VTK's own reader read, 
     std::size_t arrays_read = 0;
     for (const auto& [name, array] : want["point_arrays"].items()) {
       if (array["components"] != 1) {
-        expect_error(error_of([&] { read_vtu(path, name); }), path + ": UnstructuredGrid/Piece/PointData: array \"" + name + "\" has 3 components; the scalar needs 1");
+        expect_error(rayint::test::input_error_of([&] { read_vtu(path, name); }), path + ": UnstructuredGrid/Piece/PointData: array \"" + name + "\" has 3 components; the scalar needs 1");
         continue;
       }
       INFO(name);
@@ -195,7 +185,7 @@ TEST_CASE("a scene's grid_file may be a .vti", "[vtkxml][grid]") {
 TEST_CASE("bad VTK XML input: one line naming the file and the field", "[vtkxml][bad_input]") {
   const std::string src = "bad.vtu";
   const auto vtu = [&](const std::string& text, const std::string& name = "") {
-    return error_of([&] { parse_vtu(text, src, name); });
+    return rayint::test::input_error_of([&] { parse_vtu(text, src, name); });
   };
   const std::string pts = src + ": UnstructuredGrid/Piece/Points/DataArray: ";
   const std::string binary = slurp(kDir / "mesh-binary.vtu");
@@ -284,7 +274,7 @@ TEST_CASE("bad VTK XML input: one line naming the file and the field", "[vtkxml]
   }
   SECTION("image data") {
     const std::string vti = slurp(kDir / "image-ascii.vti");
-    const auto img = [&](const std::string& text) { return error_of([&] { parse_vti(text, "bad.vti"); }); };
+    const auto img = [&](const std::string& text) { return rayint::test::input_error_of([&] { parse_vti(text, "bad.vti"); }); };
     expect_error(img(replace_once(vti, "Spacing=\"0.5", "Spacing=\"-0.5")), "bad.vti: ImageData: Spacing must be > 0");
     expect_error(img(replace_once(vti, "WholeExtent=\"1 5", "WholeExtent=\"1 1")), "bad.vti: ImageData: WholeExtent");
     expect_error(img(replace_once(vti, "<Piece Extent=\"1 5 0 3 2 4\"", "<Piece Extent=\"1 4 0 3 2 4\"")),

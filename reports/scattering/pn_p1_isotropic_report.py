@@ -12,7 +12,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from report_env import ROOT, plt, slab  # noqa: E402
+from report_env import ROOT, plot_p1_map, slab  # noqa: E402
 
 OUT = os.path.join(ROOT, "reports", "scattering")
 TAUS = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
@@ -41,27 +41,9 @@ def main():
         print("P1 isotropic light map", phase, file=sys.stderr)
     with open(os.path.join(OUT, "pn_p1_isotropic.json"), "w") as f:
         json.dump({"source": "isotropic incident intensity 1", "p1": out}, f, indent=1)
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    fig, ax = plt.subplots(2, 2, figsize=(12, 8.5), sharex=True)
-    for col, phase in enumerate(("isotropic", "hg:0.75")):
-        for row, q in enumerate(("reflectance", "transmittance")):
-            a = ax[row][col]
-            for i, al in enumerate(ALBEDOS):
-                pts = [r for r in out if r["phase"] == phase and r["albedo"] == al]
-                a.loglog([r["tau"] for r in pts], [max(r["P1"][q], 1e-17) for r in pts], "o-",
-                         color=colors[i % len(colors)], label=f"ω = {al:g}")
-                a.loglog([r["tau"] for r in pts], [max(r["P3"][q], 1e-17) for r in pts], ":",
-                         color=colors[i % len(colors)])
-            a.set_title(f"P1 (diffusion), {phase}, isotropic light: {q}")
-            a.set_ylabel("relative error vs doubling")
-            a.grid(True, which="both", alpha=0.3)
-            if row == 1:
-                a.set_xlabel("optical thickness τ")
-            a.legend(fontsize=7, ncol=2)
-    fig.suptitle("The diffusion approximation (P1, Marshak boundary) under diffuse light; dotted: P3")
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "pn_p1_isotropic.png"), dpi=110)
-
+    plot_p1_map(out, "isotropic light",
+                "The diffusion approximation (P1, Marshak boundary) under diffuse light; dotted: P3",
+                os.path.join(OUT, "pn_p1_isotropic.png"))
 
 if __name__ == "__main__":
     main()

@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from report_env import BUILD, ROOT, plt, slab  # noqa: E402
+from report_env import BUILD, ROOT, plot_p1_map, plt, slab  # noqa: E402
 
 BENCH = os.path.join(BUILD, "bench", "rayint_bench")
 OUT = os.path.join(ROOT, "reports", "scattering")
@@ -226,26 +226,9 @@ def figures(rows, costs, p1):
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, "pn_convergence.png"), dpi=110)
 
-    fig, ax = plt.subplots(2, 2, figsize=(12, 8.5), sharex=True)
-    for col, phase in enumerate(("isotropic", "hg:0.75")):
-        for row, q in enumerate(("reflectance", "transmittance")):
-            a = ax[row][col]
-            albedos = sorted({r["albedo"] for r in p1})
-            for i, al in enumerate(albedos):
-                pts = [r for r in p1 if r["phase"] == phase and r["albedo"] == al]
-                a.loglog([r["tau"] for r in pts], [max(r["P1"][q], 1e-17) for r in pts], "o-",
-                         color=colors[i % len(colors)], label=f"ω = {al:g}")
-                a.loglog([r["tau"] for r in pts], [max(r["P3"][q], 1e-17) for r in pts], ":",
-                         color=colors[i % len(colors)])
-            a.set_title(f"P1 (diffusion), {phase}, beam μ0 = 1: {q}")
-            a.set_ylabel("relative error vs doubling")
-            a.grid(True, which="both", alpha=0.3)
-            if row == 1:
-                a.set_xlabel("optical thickness τ")
-            a.legend(fontsize=7, ncol=2)
-    fig.suptitle("The diffusion approximation (P1, Marshak boundary) across albedo and thickness; dotted: P3")
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "pn_p1_diffusion.png"), dpi=110)
+    plot_p1_map(p1, "beam μ0 = 1",
+                "The diffusion approximation (P1, Marshak boundary) across albedo and thickness; dotted: P3",
+                os.path.join(OUT, "pn_p1_diffusion.png"))
 
 
 def main():

@@ -312,12 +312,7 @@ def build(scene, scene_path, mapper, step):
     w, h = cam["width"], cam["height"]
     image = read_vti(os.path.join(os.path.dirname(os.path.abspath(scene_path)), scene["medium"]["grid_file"]))
     opacity, colour, unit, _ = vtk_transfer(scene)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetScalarOpacity(opacity)
-    prop.SetColor(colour)
-    prop.SetScalarOpacityUnitDistance(unit)
-    prop.SetInterpolationTypeToLinear()
-    prop.ShadeOff()
+    prop = vr.volume_property(opacity, colour, unit)
     prop.DisableGradientOpacityOn()
     info = {"mapper": mapper, "requested_step": step, "unit_distance": unit}
     if mapper.startswith("fixedpoint"):
@@ -348,18 +343,7 @@ def build(scene, scene_path, mapper, step):
     else:
         raise SystemExit("--mapper: one of " + ", ".join(MAPPERS))
     m.SetBlendModeToComposite()
-    m.SetInputData(image)
-    vol = vtk.vtkVolume()
-    vol.SetMapper(m)
-    vol.SetProperty(prop)
-    win = vtk.vtkRenderWindow()
-    win.SetOffScreenRendering(1)
-    win.SetMultiSamples(0)
-    win.SetAlphaBitPlanes(1)
-    win.SetSize(w, h)
-    ren = vtk.vtkRenderer()
-    win.AddRenderer(ren)
-    ren.AddVolume(vol)
+    win, ren, vol = vr.offscreen_volume(m, image, prop, w, h, alpha_planes=True)
     ren.SetActiveCamera(vr.make_vtk_camera(cam, vr.vtk_camera_settings(cam, "projected", "exact")))
     ren.ResetCameraClippingRange()
     return win, ren, vol, m, info

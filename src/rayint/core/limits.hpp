@@ -28,6 +28,9 @@ inline constexpr Limit kPhotons{"photons", "RAYINT_MAX_PHOTONS", 10'000'000'000u
 inline constexpr Limit kStressSamples{"samples", "RAYINT_MAX_STRESS_COUNT", 100'000'000ull};
 // Shards of one run (--shard I/N, a shard file's shard.count): merge keeps a slot per shard.
 inline constexpr Limit kShards{"shards", "RAYINT_MAX_SHARDS", 100'000ull};
+// Bytes of one input file (a case, scene, mesh, grid, preset, candidate image, ...): a 10M-tet
+// binary .vtu is ~0.6 GB, its ASCII legacy .vtk ~1.5 GB; 4 GiB holds them with room.
+inline constexpr Limit kInputBytes{"bytes", "RAYINT_MAX_INPUT_BYTES", 4ull << 30};
 // Nodes of one imported transfer function (tf import, a case's preset): 32 bytes a node.
 inline constexpr Limit kTransferNodes{"nodes", "RAYINT_MAX_TF_NODES", 1'000'000ull};
 

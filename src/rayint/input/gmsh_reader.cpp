@@ -207,8 +207,9 @@ class MshReader {
     }
   }
 
-  void nodes4() {
-    const std::string f = "$Nodes";
+  // The head of a v4.1 $Nodes or $Elements section (`layout`): its entity-block count and its
+  // count of nodes or elements (`what`), the latter at most kMaxCount; the tag range is skipped.
+  std::pair<long long, long long> section4_header(const std::string& f, const char* layout, const char* what) {
     long long blocks = 0, n = 0;
     if (binary_) {
       blocks = bin_size(f);
@@ -216,11 +217,17 @@ class MshReader {
       bin_size(f);
       bin_size(f);
     } else {
-      const auto h = c_.need_words(f, 4, "numEntityBlocks numNodes minNodeTag maxNodeTag");
+      const auto h = c_.need_words(f, 4, layout);
       blocks = count(h[0], f);
       n = count(h[1], f);
     }
-    if (n > kMaxCount) c_.fail(f, "too many nodes");
+    if (n > kMaxCount) c_.fail(f, std::string("too many ") + what);
+    return {blocks, n};
+  }
+
+  void nodes4() {
+    const std::string f = "$Nodes";
+    const auto [blocks, n] = section4_header(f, "numEntityBlocks numNodes minNodeTag maxNodeTag", "nodes");
     mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
     long long seen = 0;
     for (long long b = 0; b < blocks; ++b) {
@@ -336,18 +343,7 @@ class MshReader {
 
   void elements4() {
     const std::string f = "$Elements";
-    long long blocks = 0, n = 0;
-    if (binary_) {
-      blocks = bin_size(f);
-      n = bin_size(f);
-      bin_size(f);
-      bin_size(f);
-    } else {
-      const auto h = c_.need_words(f, 4, "numEntityBlocks numElements minElementTag maxElementTag");
-      blocks = count(h[0], f);
-      n = count(h[1], f);
-    }
-    if (n > kMaxCount) c_.fail(f, "too many elements");
+    const auto [blocks, n] = section4_header(f, "numEntityBlocks numElements minElementTag maxElementTag", "elements");
     tet_nodes_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
     long long seen = 0;
     std::vector<long long> nodes;

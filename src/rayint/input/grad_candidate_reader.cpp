@@ -2,39 +2,24 @@
 // (input/json_schema.hpp), as input/candidate_reader.cpp does for intensities.
 #include "rayint/input/grad_candidate_reader.hpp"
 
-#include <cmath>
-
+#include "rayint/input/candidate_schema.hpp"
 #include "rayint/input/json_schema.hpp"
 #include "rayint/input/json_source.hpp"
 
 namespace rayint {
 
 using json_source::fail;
-using json_source::quoted;
 
 namespace {
 
 using nlohmann::json;
-using json_source::format_number;
 using json_source::index_path;
 using json_source::member_path;
 
 constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
 
-double number(const JsonSchema& s, const json& x, const std::string& path) {
-  if (x.is_null()) s.fail(path, "must be a finite number, got null (JSON has no NaN or Inf)");
-  if (!x.is_number()) s.fail(path, "must be a finite number, got " + std::string(x.type_name()));
-  const double v = x.get<double>();
-  if (!std::isfinite(v)) s.fail(path, "must be a finite number, got " + format_number(v));
-  return v;
-}
-
-Rgb triple(const JsonSchema& s, const json& v, const std::string& path) {
-  s.array_of_size(v, path, kChannels, "an array of 3 numbers [r, g, b]");
-  Rgb out{};
-  for (std::size_t k = 0; k < kChannels; ++k) out[k] = number(s, v[k], index_path(path, k));
-  return out;
-}
+using candidate_schema::triple;
+using candidate_schema::finite;
 
 void node_blocks(const JsonSchema& s, const json& j, const std::string& path,
                  std::array<std::vector<NodeDerivative>, kChannels>& out) {
@@ -47,7 +32,7 @@ void node_blocks(const JsonSchema& s, const json& j, const std::string& path,
     for (std::size_t k = 0; k < list.size(); ++k) {
       const std::string npath = index_path(cpath, k);
       s.array_of_size(list[k], npath, 2, "an array of 2 numbers [d position, d value]");
-      out[c].push_back({number(s, list[k][0], index_path(npath, 0)), number(s, list[k][1], index_path(npath, 1))});
+      out[c].push_back({finite(s, list[k][0], index_path(npath, 0)), finite(s, list[k][1], index_path(npath, 1))});
     }
   }
 }
@@ -77,44 +62,23 @@ RayGradient gradient(const JsonSchema& s, const json& j, const std::string& path
   return g;
 }
 
-GradCandidate read(const JsonSchema& s, const json& root) {
-  s.require_object(root, "");
-  s.check_fields(root, "", {"case", "renderer", "rays"});
-  GradCandidate c;
-  c.source = s.source();
-  c.case_name = s.non_empty_string(s.required(root, "", "case"), "case");
-  if (const json* r = s.optional(root, "renderer")) c.renderer = s.string_value(*r, "renderer");
-  const json& rays = s.required(root, "", "rays");
-  s.non_empty_array(rays, "rays", " of {\"gradient\": {...}}, one per ray of the case");
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    const std::string path = index_path("rays", i);
-    s.require_object(rays[i], path);
-    s.check_fields(rays[i], path, {"index", "gradient"});
-    if (const json* index = s.optional(rays[i], "index")) {
-      if (!(index->is_number_unsigned() && index->get<std::size_t>() == i))
-        s.fail(member_path(path, "index"),
-               "must be " + std::to_string(i) + " (entries follow the case's rays in order), got " +
-                   index->dump());
-    }
-    c.rays.push_back(gradient(s, s.required(rays[i], path, "gradient"), member_path(path, "gradient")));
-  }
-  return c;
-}
-
 }  // namespace
 
 GradCandidate parse_grad_candidate_text(std::string_view text, const std::string& source) {
-  return read(JsonSchema(source), json_source::parse(text, source));
+  const JsonSchema s(source);
+  GradCandidate c;
+  c.source = source;
+  // rays[i]: {"index"?: i, "gradient": GRADIENT}.
+  const candidate_schema::Root root = candidate_schema::walk(
+      s, json_source::parse(text, source), "gradient", " of {\"gradient\": {...}}, one per ray of the case",
+      [&](std::size_t, const json& g, const std::string& path) { c.rays.push_back(gradient(s, g, path)); });
+  c.case_name = root.case_name;
+  c.renderer = root.renderer;
+  return c;
 }
 
 void require_grad_candidate_matches(const GradCandidate& cand, const Case& c) {
-  if (cand.case_name != c.name)
-    fail(cand.source, "case",
-         "is " + quoted(cand.case_name) + " but the case file " + c.source + " is named " + quoted(c.name));
-  if (cand.rays.size() != c.rays.size())
-    fail(cand.source, "rays",
-         "has " + std::to_string(cand.rays.size()) + " entries but the case file " + c.source + " has " +
-             std::to_string(c.rays.size()) + " rays (one entry per ray, in order)");
+  candidate_schema::require_case_matches(cand.source, cand.case_name, cand.rays.size(), c);
   for (std::size_t i = 0; i < c.rays.size(); ++i) {
     const std::string path = member_path(index_path("rays", i), "gradient");
     const RayGradient& g = cand.rays[i];

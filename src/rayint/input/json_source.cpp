@@ -1,5 +1,7 @@
 #include "rayint/input/json_source.hpp"
 
+#include "rayint/core/limits.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -221,17 +223,10 @@ void InputFileLog::note(const std::string& path) {
   if (std::find(files.begin(), files.end(), path) == files.end()) files.push_back(path);
 }
 
-std::size_t max_input_bytes() {
-  const char* env = std::getenv("RAYINT_MAX_INPUT_BYTES");
-  if (env == nullptr || *env == '\0') return kDefaultMaxInputBytes;
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(env, &end, 10);
-  if (end == env || *end != '\0' || errno != 0 || v == 0 || env[0] == '-')
-    throw InputError(one_line(std::string("RAYINT_MAX_INPUT_BYTES: must be a whole number of bytes >= 1, got '") +
-                              env + "'"));
-  return static_cast<std::size_t>(v);
-}
+// The input byte limit is core/limits.hpp's kInputBytes (float images are read under it too).
+static_assert(kDefaultMaxInputBytes == limits::kInputBytes.default_value, "one input byte limit");
+
+std::size_t max_input_bytes() { return static_cast<std::size_t>(limits::value(limits::kInputBytes)); }
 
 std::string read_file_bytes(const std::string& file,
                             const std::function<void(const std::string& reason)>& fail) {

@@ -10,6 +10,7 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/geometry/bounds.hpp"
+#include "rayint/mesh/embree_ray.hpp"
 #include "rayint/core/format.hpp"
 
 namespace rayint {
@@ -164,22 +165,9 @@ void CellBoundaryFirstHit::first(CellTraversal::Walk& w, double t_near, double t
   w.best_t = std::numeric_limits<double>::infinity();
   w.best_face = -1;
   RTCRayHit rh;
-  rh.ray.org_x = static_cast<float>(w.o.x());
-  rh.ray.org_y = static_cast<float>(w.o.y());
-  rh.ray.org_z = static_cast<float>(w.o.z());
-  rh.ray.dir_x = static_cast<float>(w.d.x());
-  rh.ray.dir_y = static_cast<float>(w.d.y());
-  rh.ray.dir_z = static_cast<float>(w.d.z());
-  rh.ray.tnear = static_cast<float>(std::max(0.0, t_near));
-  rh.ray.tfar = std::isfinite(t_far) && t_far < 3e38 ? std::nextafter(static_cast<float>(t_far), HUGE_VALF)
-                                                      : std::numeric_limits<float>::infinity();
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  init_ray_hit(rh, w.o, w.d, t_near,
+               std::isfinite(t_far) && t_far < 3e38 ? std::nextafter(static_cast<float>(t_far), HUGE_VALF)
+                                                    : std::numeric_limits<float>::infinity());
   rtcIntersect1(scene_, &ctx.base, &rh);
 }
 

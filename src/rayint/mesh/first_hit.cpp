@@ -1,8 +1,11 @@
 // Embree-backed first hit on the mesh boundary (see first_hit.hpp).
 #include "rayint/mesh/first_hit.hpp"
 
+#include "rayint/mesh/embree_ray.hpp"
+
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -74,13 +77,7 @@ BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
 
 BoundaryFirstHit::~BoundaryFirstHit() = default;
 
-std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, double t_near,
-                                     double t_far, Filter filter, const void* user) const {
-  FilterContext ctx;
-  rtcInitIntersectContext(&ctx.base);
-  ctx.filter = filter;
-  ctx.user = user;
-  RTCRayHit rh;
+void init_ray_hit(RTCRayHit& rh, const Vec3& origin, const Vec3& direction, double t_near, float t_far) {
   rh.ray.org_x = static_cast<float>(origin.x());
   rh.ray.org_y = static_cast<float>(origin.y());
   rh.ray.org_z = static_cast<float>(origin.z());
@@ -88,8 +85,7 @@ std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, 
   rh.ray.dir_y = static_cast<float>(direction.y());
   rh.ray.dir_z = static_cast<float>(direction.z());
   rh.ray.tnear = static_cast<float>(std::max(0.0, t_near));
-  rh.ray.tfar = std::isfinite(t_far) && t_far < 3e38 ? static_cast<float>(t_far)
-                                                      : std::numeric_limits<float>::infinity();
+  rh.ray.tfar = t_far;
   rh.ray.time = 0.0f;
   rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.id = 0;
@@ -97,6 +93,17 @@ std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, 
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, double t_near,
+                                     double t_far, Filter filter, const void* user) const {
+  FilterContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.filter = filter;
+  ctx.user = user;
+  RTCRayHit rh;
+  init_ray_hit(rh, origin, direction, t_near,
+               std::isfinite(t_far) && t_far < 3e38 ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity());
   rtcIntersect1(impl_->scene, &ctx.base, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
   return static_cast<std::int64_t>(rh.hit.primID);

@@ -41,6 +41,8 @@
 namespace rayint {
 namespace {
 
+using reference_detail::LinearPart;
+using reference_detail::linear_part;
 using reference_detail::Real;
 using R3 = std::array<Real, 3>;
 
@@ -360,20 +362,6 @@ Series piece_series(Cell& cell, const Real& a, const Real& b, int& max_degree) {
     return s;
   }
   throw std::runtime_error("reference_cell_chord: Chebyshev series missed 1e-42 at degree 512");
-}
-
-struct LinearPart {
-  Real v0, beta, s0, max_value;
-};
-
-LinearPart linear_part(const PiecewiseLinear& f, const Real& f_mid) {
-  const std::size_t n = f.scalar.size();
-  if (n == 1 || f_mid <= f.scalar.front()) return {Real(f.value.front()), 0, 0, Real(f.value.front())};
-  if (f_mid >= f.scalar.back()) return {Real(f.value.back()), 0, 0, Real(f.value.back())};
-  std::size_t k = 1;
-  while (Real(f.scalar[k]) <= f_mid) ++k;
-  const Real s0 = f.scalar[k - 1], s1 = f.scalar[k], v0 = f.value[k - 1], v1 = f.value[k];
-  return {v0, (v1 - v0) / (s1 - s0), s0, std::max(v0, v1)};
 }
 
 template <class F>

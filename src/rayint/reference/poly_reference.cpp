@@ -49,6 +49,8 @@
 namespace rayint {
 namespace {
 
+using reference_detail::LinearPart;
+using reference_detail::linear_part;
 using reference_detail::Real;
 using Poly = std::vector<Real>;
 
@@ -58,22 +60,6 @@ constexpr double kMaxIncrement = 18.0;     // optical depth per 61-point subinte
 constexpr int kRule = 61;
 constexpr int kMaxDoublings = 8;
 constexpr int kMaxTruncationPasses = 4;
-
-// A transfer function on the scalar interval containing f_mid: v0 + beta (f - s0), and its
-// largest value on that interval (for tail bounds).
-struct LinearPart {
-  Real v0, beta, s0, max_value;
-};
-
-LinearPart linear_part(const PiecewiseLinear& f, const Real& f_mid) {
-  const std::size_t n = f.scalar.size();
-  if (n == 1 || f_mid <= f.scalar.front()) return {Real(f.value.front()), 0, 0, Real(f.value.front())};
-  if (f_mid >= f.scalar.back()) return {Real(f.value.back()), 0, 0, Real(f.value.back())};
-  std::size_t k = 1;
-  while (Real(f.scalar[k]) <= f_mid) ++k;  // scalar[k-1] <= f_mid < scalar[k]
-  const Real s0 = f.scalar[k - 1], s1 = f.scalar[k], v0 = f.value[k - 1], v1 = f.value[k];
-  return {v0, (v1 - v0) / (s1 - s0), s0, std::max(v0, v1)};
-}
 
 // v0 + beta (g(u) - s0) as a polynomial in u.
 Poly compose(const LinearPart& part, const Poly& g) {

@@ -514,6 +514,16 @@ Real interpolate(const PiecewiseLinear& f, double s, bool from_above) {
   return (Real(f.value[k - 1]) * (s1 - x) + Real(f.value[k]) * (x - s0)) / (s1 - s0);
 }
 
+LinearPart linear_part(const PiecewiseLinear& f, const Real& f_mid) {
+  const std::size_t n = f.scalar.size();
+  if (n == 1 || f_mid <= f.scalar.front()) return {Real(f.value.front()), 0, 0, Real(f.value.front())};
+  if (f_mid >= f.scalar.back()) return {Real(f.value.back()), 0, 0, Real(f.value.back())};
+  std::size_t k = 1;
+  while (Real(f.scalar[k]) <= f_mid) ++k;  // scalar[k-1] <= f_mid < scalar[k]
+  const Real s0 = f.scalar[k - 1], s1 = f.scalar[k], v0 = f.value[k - 1], v1 = f.value[k];
+  return {v0, (v1 - v0) / (s1 - s0), s0, std::max(v0, v1)};
+}
+
 ExtendedValue to_extended(const Real& x) {
   ExtendedValue v;
   v.hi = nearest_double(x);

@@ -61,6 +61,15 @@ Real exp_series(const Real& z, double* relative_error = nullptr);
 // non-negative, so the result has a few ulps relative error.
 Real interpolate(const PiecewiseLinear& f, double s, bool from_above);
 
+// A transfer function on the scalar interval containing f_mid: v0 + beta (f - s0), and its
+// largest value on that interval (for tail bounds); the end value (beta 0) beyond the ends. The
+// cell and polynomial references (cell_reference.cpp, poly_reference.cpp) integrate each piece
+// of a chord with it.
+struct LinearPart {
+  Real v0, beta, s0, max_value;
+};
+LinearPart linear_part(const PiecewiseLinear& f, const Real& f_mid);
+
 // A Gauss-Kronrod rule on [-1, 1] with Boost.Math's nodes and weights in 50 digits, as the
 // quadrature above uses it (shared with reference/poly_reference.cpp): x[0] = 0 < x[1] < ... <
 // x[size - 1], each x[j] > 0 standing for the pair -+x[j]; Kronrod weights; Gauss weights, 0 at

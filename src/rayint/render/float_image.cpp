@@ -11,6 +11,7 @@
 #include <ImfOutputFile.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -22,8 +23,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/core/error.hpp"
+#include "rayint/core/limits.hpp"
 
 namespace rayint {
 namespace {
@@ -342,6 +346,12 @@ ImageWithAlpha decode_exr_with_alpha(std::string_view bytes, const std::string& 
     const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
     const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
     check_size(w, h, source, "exr");
+    // A small compressed file can declare a huge image: its memory (the four float slices, the
+    // decoded doubles) is checked against the limit before any of it is taken.
+    limits::check(limits::kImageBytes,
+                  static_cast<double>(bytes.size()) + static_cast<double>(w) * static_cast<double>(h) *
+                                                          (sizeof(Rgb) + sizeof(double) + 4 * sizeof(float)),
+                  source + ": (image): " + std::to_string(w) + " x " + std::to_string(h) + " pixels");
     const Imf::ChannelList& channels = file.header().channels();
     const bool rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     const bool grey = channels.findChannel("Y") != nullptr;
@@ -491,10 +501,28 @@ void write_image(const std::string& path, const Image& image, const PngOptions& 
 ImageWithAlpha read_image_with_alpha(const std::string& path) {
   const ImageFormat format = image_format_of(path);
   if (format == ImageFormat::png) return {read_png(path), {}};
+  // As read_png does for a PNG, the size comes from the header first and the memory it needs is
+  // checked before any pixel is read: the file's bytes (under the input byte limit) plus the
+  // decoded image (Rgb doubles, an alpha double, and OpenEXR's four float slices a pixel). A
+  // .pfm or .npy header declaring 16384 x 16384 over a multi-GB file is refused in one line
+  // here, not after the whole file has been read into memory.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) fail(path, std::string("cannot open file (") + std::strerror(errno) + ")");
+  if (!S_ISREG(st.st_mode))
+    fail(path, "not a regular file (an image's header is read before its pixels)");
+  limits::check(limits::kInputBytes, static_cast<double>(st.st_size), path + ": (file)");
+  const ImageSize size = read_image_size(path);
+  limits::check(limits::kImageBytes,
+                static_cast<double>(st.st_size) + static_cast<double>(size.width) * size.height *
+                                                      (sizeof(Rgb) + sizeof(double) + 4 * sizeof(float)),
+                path + ": (image): " + std::to_string(size.width) + " x " + std::to_string(size.height) +
+                    " pixels");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open file");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes(static_cast<std::size_t>(st.st_size), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   if (in.bad()) fail(path, "cannot read file");
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
   switch (format) {
     case ImageFormat::pfm: return {decode_pfm(bytes, path), {}};
     case ImageFormat::exr: return decode_exr_with_alpha(bytes, path);
@@ -508,6 +536,19 @@ ImageSize read_image_size(const std::string& path) {
   const ImageFormat format = image_format_of(path);
   if (format == ImageFormat::png) return read_png_size(path);
   if (format == ImageFormat::exr) {
+    {  // the attribute sizes first (check_exr_header_sizes: OpenEXR allocates what they declare),
+       // on the file's first 64 MiB, which hold the header of any real file
+      std::ifstream in(path, std::ios::binary);
+      if (!in) fail(path, "cannot open file");
+      std::string head;
+      char buf[1 << 16];
+      while (head.size() < (std::size_t{64} << 20) && in.read(buf, sizeof buf).gcount() > 0)
+        head.append(buf, static_cast<std::size_t>(in.gcount()));
+      if (head.size() < 4 || static_cast<unsigned char>(head[0]) != 0x76 || static_cast<unsigned char>(head[1]) != 0x2f ||
+          static_cast<unsigned char>(head[2]) != 0x31 || static_cast<unsigned char>(head[3]) != 0x01)
+        fail(path, "exr: not an OpenEXR file (bad magic number)");
+      check_exr_header_sizes(head, path);
+    }
     try {
       const Imf::InputFile file(path.c_str());  // reads the header only
       const Imath::Box2i dw = file.header().dataWindow();

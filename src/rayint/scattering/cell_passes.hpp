@@ -4,7 +4,8 @@
 //     irradiance there (steps 1-2);
 //   gather_march: the final gathering (step 5), the midpoint rule along the viewing ray with steps
 //     of at most h/4 (h the smallest cell size), trilinear sigma_t, and the in-scattered source
-//     J(x, sigma_t) that each method computes from its solution.
+//     J(x, sigma_t) that each method computes from its solution; gather_along, the same from a
+//     viewing ray for the methods whose J needs only the sun's phase value (diffusion, zonal).
 #include <algorithm>
 #include <cmath>
 
@@ -41,6 +42,23 @@ double gather_march(const ScatteringVolume& v, const CellGrid& g, const Vec3& or
     T *= 1 - sigma * a1;
   }
   return L + T * background;
+}
+
+// The final gathering of a method whose source needs only the sun's phase value (diffusion,
+// zonal): the ray's unit direction d and its span through the volume's box, the background it
+// sees (0 without the single-scattered part, include_single false) and p_sun = p(light . -d)
+// toward the eye (0 without it); source(x, sigma, d, p_sun) is the method's J. A ray that misses
+// the box sees the background.
+template <class Source>
+double gather_along(const ScatteringVolume& v, const CellGrid& g, const ViewRay& ray, bool include_single,
+                    Source&& source) {
+  const Vec3 d = ray.direction.normalized();
+  const RaySpan iv = v.density.clip(ViewRay{ray.origin, d});
+  const double background = include_single ? v.background : 0.0;
+  if (!iv.hit) return background;
+  const double p_sun = include_single ? v.phase.eval(v.light.direction.dot(-d)) : 0.0;
+  return gather_march(v, g, ray.origin, d, iv, background,
+                      [&](const Vec3& x, double sigma) { return source(x, sigma, d, p_sun); });
 }
 
 }  // namespace rayint

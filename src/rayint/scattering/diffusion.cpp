@@ -131,14 +131,9 @@ DiffusionSolution solve_diffusion(const ScatteringVolume& v, const DiffusionOpti
 
 double gather_diffusion(const ScatteringVolume& v, const DiffusionSolution& sol, const ViewRay& ray,
                         bool include_single) {
-  const Vec3 d = ray.direction.normalized();
-  const RaySpan iv = v.density.clip(ViewRay{ray.origin, d});
-  const double background = include_single ? v.background : 0.0;
-  if (!iv.hit) return background;
   const CellGrid& g = sol.cells;
-  const double p_sun = include_single ? v.phase.eval(v.light.direction.dot(-d)) : 0.0;
   const double gbar = v.phase.mean_cosine();
-  return gather_march(v, g, ray.origin, d, iv, background, [&](const Vec3& x, double sigma) {
+  return gather_along(v, g, ray, include_single, [&](const Vec3& x, double sigma, const Vec3& d, double p_sun) {
     const double E = include_single ? g.interpolate(sol.irradiance, x) : 0.0;
     const double Fd = g.interpolate(sol.flux_x, x) * d[0] + g.interpolate(sol.flux_y, x) * d[1] +
                       g.interpolate(sol.flux_z, x) * d[2];

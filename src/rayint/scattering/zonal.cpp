@@ -160,13 +160,8 @@ ZonalSolution solve_zonal(const ScatteringVolume& v, const ZonalOptions& o) {
 }
 
 double gather_zonal(const ScatteringVolume& v, const ZonalSolution& sol, const ViewRay& ray, bool include_single) {
-  const Vec3 d = ray.direction.normalized();
-  const RaySpan iv = v.density.clip(ViewRay{ray.origin, d});
-  const double background = include_single ? v.background : 0.0;
-  if (!iv.hit) return background;
   const CellGrid& g = sol.cells;
-  const double p_sun = include_single ? v.phase.eval(v.light.direction.dot(-d)) : 0.0;
-  return gather_march(v, g, ray.origin, d, iv, background, [&](const Vec3& x, double sigma) {
+  return gather_along(v, g, ray, include_single, [&](const Vec3& x, double sigma, const Vec3&, double p_sun) {
     const double E = g.interpolate(sol.irradiance, x);
     // The zone emission is per unit volume of the zone; spread by sigma_t(x)/sigma_zone so that
     // it follows the medium inside the zone (sigma_zone from the interpolated cell values).

@@ -10,27 +10,35 @@
 
 namespace rayint {
 
+CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& origin, const Vec3& direction,
+                                        double t_near, double t_far) {
+  CellReferenceInput in;
+  in.vtk_id = static_cast<int>(cell.type);
+  for (int i = 0; i < linear_node_count(cell.type); ++i) {
+    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
+    in.nodes.push_back({x[0], x[1], x[2]});
+    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
+  }
+  in.origin = {origin[0], origin[1], origin[2]};
+  in.direction = {direction[0], direction[1], direction[2]};
+  in.t_near = t_near;
+  in.t_far = t_far;
+  return in;
+}
+
 namespace {
 
 // The reference's input for cell c's chord [a, b]: a quadratic cell with all its nodes (ids 24-26),
 // a linear one with its corners.
 CellReferenceInput reference_input(const CellTraversal& mesh, std::size_t c, const CellTrace& trace, double a, double b) {
+  const QuadraticCell* q = mesh.quadratic_cell(c);
+  if (!q) return cell_reference_input(mesh.cell(c), trace.origin, trace.direction, a, b);
   CellReferenceInput in;
-  if (const QuadraticCell* q = mesh.quadratic_cell(c)) {
-    in.vtk_id = static_cast<int>(q->type);
-    for (int i = 0; i < quadratic_node_count(q->type); ++i) {
-      const Vec3& x = q->x[static_cast<std::size_t>(i)];
-      in.nodes.push_back({x[0], x[1], x[2]});
-      in.values.push_back(q->value[static_cast<std::size_t>(i)]);
-    }
-  } else {
-    const LinearCell& cell = mesh.cell(c);
-    in.vtk_id = static_cast<int>(cell.type);
-    for (int i = 0; i < linear_node_count(cell.type); ++i) {
-      const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-      in.nodes.push_back({x[0], x[1], x[2]});
-      in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-    }
+  in.vtk_id = static_cast<int>(q->type);
+  for (int i = 0; i < quadratic_node_count(q->type); ++i) {
+    const Vec3& x = q->x[static_cast<std::size_t>(i)];
+    in.nodes.push_back({x[0], x[1], x[2]});
+    in.values.push_back(q->value[static_cast<std::size_t>(i)]);
   }
   in.origin = {trace.origin[0], trace.origin[1], trace.origin[2]};
   in.direction = {trace.direction[0], trace.direction[1], trace.direction[2]};

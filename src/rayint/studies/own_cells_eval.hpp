@@ -14,6 +14,7 @@
 
 #include "rayint/mesh/cell_traversal.hpp"
 #include "rayint/mesh/mesh_case.hpp"
+#include "rayint/reference/cell_reference.hpp"
 
 namespace rayint {
 
@@ -40,6 +41,12 @@ struct OwnCaseEvaluation {
   double seconds_per_ray = 0.0;    // traversal + integration, mean (no reference)
   CellTraversalStats traversal;
 };
+
+// The 50-digit cell reference's input (reference/cell_reference.hpp) for the chord [t_near, t_far]
+// of the ray origin + t direction through `cell`: its VTK type, nodes and values, as doubles.
+// (The cell tests, tools/cell_accuracy and bench/bench_cells build theirs with it too.)
+CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& origin, const Vec3& direction,
+                                        double t_near, double t_far);
 
 // `mesh_case.cells` must be set. threads: for the reference (0 = all cores).
 OwnCaseEvaluation evaluate_own_cells(const MeshCase& mesh_case, bool with_reference, unsigned threads = 0);
