@@ -5,10 +5,12 @@
 //
 // Multilinear form. Every linear cell's shape functions (VTK's tetra, voxel, hexahedron, wedge,
 // pyramid) are multilinear in p = (r, s, t): their span lies in {1, r, s, t, rs, rt, st, rst}.
-// So x(p) = sum_m X_m mono_m(p) and f(p) = sum_m F_m mono_m(p), the coefficients by Moebius
-// inversion of x and f at the eight corners of the unit cube (for a hexahedron X_4 = x0 - x1 +
-// x2 - x3, the rs term, ...; exact sums and differences of node coordinates, a few ulps each).
-// One evaluation of x, J and f is then ~60 flops, without the per-type shape-function tables.
+// So x(p) = sum_m X_m mono_m(p), the coefficients by Moebius inversion of x at the eight corners
+// of the unit cube (for a hexahedron X_4 = x0 - x1 + x2 - x3, the rs term, ...; sums and
+// differences of node coordinates, a few ulps each). One evaluation of x and J is then ~50
+// flops, without the per-type shape-function tables. The scalar at the accepted point is taken
+// from the nodal form (cell_scalar): its monomial coefficients would carry ~8 eps max|f_i| of
+// rounding, and on 200 warped pyramids that put one chord's error above its estimate.
 //
 // Taylor predictor. About the centre t_c of an interval [a, b] (half-length h), p(t_c + tau) =
 // sum_k P_k tau^k: P_0 by Newton, and since x is multilinear the coefficient of tau^k of
@@ -22,12 +24,14 @@
 // Acceptance is Newton's own (linear_cells.hpp inverse_map): a point is converged when the world
 // residual |x(p) - x_target| is <= 8 eps * max(|x_target|, |x_i|), or after a Newton step of at
 // most kNewtonStepTolerance; budget kNewtonMaxIterations, steps clamped to kNewtonMaxStep. The
-// predicted point is only Newton's start: where the series has not converged (a strongly
-// distorted cell, a long chord) Newton runs from it; if the prediction is not finite or lies
-// more than 0.25 outside the domain, from the previous converged point instead, then from the
-// cell's centre (as cell_integral did before). So every sample meets the same residual test as
-// before; the predictor changes the cost, not the criterion. Measured on the bench's twisted
-// 12^3 mesh (bench/bench_cell_mesh.cpp): see reports/cells/bench.md.
+// predicted point is only Newton's start, and from it at least one step is always taken (so a
+// sample ends, as inverse_map's usually do, on a step of <= 4e-15: quadratic convergence leaves
+// it exact to rounding; accepting a prediction on the residual alone put one warped pyramid's
+// chord error above its estimate, tools/cell_accuracy). Where the series has not converged (a
+// strongly distorted cell, a long chord) Newton runs on from it; if the prediction is not finite
+// or lies more than 0.25 outside the domain, Newton starts from the previous converged point
+// instead, then from the cell's centre (as cell_integral did before). Measured on the bench's
+// twisted 12^3 mesh (bench/bench_cell_mesh.cpp): see reports/cells/bench.md.
 #include <array>
 
 #include "rayint/cells/linear_cells.hpp"
@@ -37,10 +41,9 @@ namespace rayint {
 inline constexpr int kTaylorMaxOrder = 24;
 inline constexpr double kTaylorNegligible = 1e-17;
 
-// x(p) = sum_m x[m] mono_m(p), f(p) = sum_m f[m] mono_m(p), mono = 1, r, s, t, rs, rt, st, rst.
+// x(p) = sum_m x[m] mono_m(p), mono = 1, r, s, t, rs, rt, st, rst.
 struct MultilinearCell {
   std::array<Vec3, 8> x{};
-  std::array<double, 8> f{};
   double magnitude = 0.0;  // largest |node coordinate| (Newton's residual scale)
   LinearCellType type = LinearCellType::hexahedron;
 };
@@ -57,10 +60,10 @@ class ChordScalar {
 
   int samples = 0;           // sample() calls
   int newton_steps = 0;      // Newton steps taken (0 when every prediction was accepted)
-  int predicted = 0;         // samples whose predicted point passed the residual test unchanged
+  int predicted = 0;         // samples converged by the one Newton step from their predicted point
 
  private:
-  bool newton(const Vec3& target, Vec3& p);
+  bool newton(const Vec3& target, Vec3& p, bool step_first);
   MultilinearCell m_;
   const LinearCell* cell_;
   Vec3 o_, d_;
