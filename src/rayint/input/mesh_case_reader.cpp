@@ -49,6 +49,8 @@ const std::map<std::string, BuiltinReader>& builtin_mesh_readers() {
       {".pvtu", &read_pvtu},        // its parallel pieces (vtk_xml_reader.hpp)
       {".vts", &read_structured_as_tets<&read_vts>},  // structured grids: refused without --cells split
       {".vtr", &read_structured_as_tets<&read_vtr>},
+      {".pvts", &read_structured_as_tets<&read_pvts>},  // parallel structured grids: their pieces joined
+      {".pvtr", &read_structured_as_tets<&read_pvtr>},
       {".vti", &read_structured_as_tets<&read_vti_cells>},  // an image as its voxels (cell data)
   };
   return readers;
@@ -169,7 +171,7 @@ const std::map<std::string, CellReader>& cell_readers() {
   static const std::map<std::string, CellReader> readers = {
       {".vtk", &read_vtk_legacy_cells}, {".vtu", &read_vtu_cells}, {".pvtu", &read_pvtu_cells},
       {".msh", &read_gmsh_cells},       {".vts", &read_vts},       {".vtr", &read_vtr},
-      {".vti", &read_vti_cells},
+      {".vti", &read_vti_cells},        {".pvts", &read_pvts},     {".pvtr", &read_pvtr},
   };
   return readers;
 }
