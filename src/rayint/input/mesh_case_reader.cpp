@@ -267,8 +267,17 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     names = file_field_names(p.extension().string());
   }
   if (mc.cells) {
-    // Own interpolation: no tetrahedra to repair or check; the traversal refuses a face shared by
-    // more than two cells when it is built.
+    // Own interpolation: no tetrahedra to repair; zero-volume cells refused (strict) or dropped
+    // and counted (mesh/cell_mesh.hpp), like degenerate tetrahedra; the traversal refuses a face
+    // shared by more than two cells when it is built.
+    if (options.strict) {
+      refuse_zero_volume_cells(*mc.cells, mc.mesh_source);
+    } else {
+      for (const auto& [type, n] : drop_zero_volume_cells(*mc.cells, mc.mesh_source)) {
+        mc.repairs.zero_volume += n;
+        mc.repairs.zero_volume_by_type[type] += n;
+      }
+    }
   } else if (options.strict)
     validate_tet_mesh(mc.mesh, mc.mesh_source, names);
   else
