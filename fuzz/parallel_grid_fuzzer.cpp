@@ -9,8 +9,9 @@
 // tests/fixtures/readers/parallel/ joined this way). A finding is any of:
 //   - a crash, sanitizer report, hang, leak or out-of-memory;
 //   - an exception other than rayint::InputError escaping the reader;
-//   - an InputError whose message is not one line starting with "<source>: " or, for a piece's
-//     own refusals, "<the piece path the reader resolved>: ";
+//   - an InputError whose message is not one line starting with "<source>: ", "<source> (N
+//     pieces): " (the joined grid's assembly) or, for a piece's own refusals, "<the piece path
+//     the reader resolved>: ";
 //   - a mesh accepted although it breaks the reader's guarantees: at least one cell, node counts
 //     per cell type, indices in range, finite points and scalars, one scalar per point or cell,
 //     structured dimensions that match the points and the cells.
@@ -75,7 +76,8 @@ void run(const std::vector<std::string_view>& parts, Parse parse) {
   } catch (const rayint::InputError& e) {
     // One line naming the parallel file or a piece it named.
     const std::string what = e.what();
-    bool named = what.rfind(std::string(kSource) + ": ", 0) == 0;
+    // (the joined grid's own refusals name it "<source> (N pieces): ", as a .pvtu's do)
+    bool named = what.rfind(std::string(kSource) + ": ", 0) == 0 || what.rfind(std::string(kSource) + " (", 0) == 0;
     for (const std::string& a : asked) named = named || what.rfind(a + ": ", 0) == 0;
     require(named);
     require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
