@@ -64,7 +64,7 @@
 // value is itself tiny (absolute 8e-17 there). Tests [cells][isoparametric] re-check 30 chords.
 // Cost (reports/cells/bench.md): on the bench's twisted 12^3 hexahedral mesh
 // (bench/bench_cell_mesh.cpp, BM_mesh) the own render was 18-20x the split one before the
-// Taylor-predicted samples, the chop and the monotonicity proof, ~10-11x after (target 3x).
+// Taylor-predicted samples, the chop and the monotonicity proof, 11.5-13x after (target 3x).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
