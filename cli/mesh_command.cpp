@@ -27,7 +27,7 @@ void set_mesh_command(CLI::App& app) {
   CLI::App* mesh = app.add_subcommand("mesh", "Mesh files as rayint reads them");
   mesh->require_subcommand(1);
   CLI::App* cmd = mesh->add_subcommand("info", "Bounds, cells by type, arrays, the scalar, orientation (--check: overlaps)");
-  cmd->add_option("file", opt->file, "A mesh file: .vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, .vti (an image as its voxels)")->required();
+  cmd->add_option("file", opt->file, "A mesh file: .vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, .pvts, .pvtr, .vti (an image as its voxels)")->required();
   cmd->add_option("--array", opt->array, "The array to take as the scalar (default: the rule of docs/meshes.md)");
   cmd->add_flag("--point-average", opt->point_average, "A cell field becomes point data as ParaView's Cell Data to Point Data");
   cmd->add_flag("--check", opt->check, "Look for overlapping tetrahedra, every candidate pair (exit 1 naming two when found)");

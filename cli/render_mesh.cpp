@@ -23,6 +23,7 @@
 #include "rayint/core/format.hpp"
 #include "rayint/core/limits.hpp"
 #include "rayint/geometry/camera_fit.hpp"
+#include "rayint/mesh/cell_split.hpp"
 #include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
@@ -95,7 +96,7 @@ std::string fit_camera_to_mesh(MeshCase& mc) {
 }
 
 // The own mode (mesh/cell_traversal.hpp): cells other than tetrahedra in their own interpolation.
-void render_own_cells(MeshCase& mc, const RenderOptions& options);
+void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_source::InputFileLog& read);
 
 }  // namespace
 
@@ -135,7 +136,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   MeshCase mc = parse_mesh_case(root, options.input, MeshReadOptions{options.strict_mesh, options.split_cells});
   if (mc.cells) {
     reading.done(std::to_string(mc.cells->cell_count()) + " cells, " + std::to_string(mc.cells->points.size()) + " points");
-    render_own_cells(mc, options);
+    render_own_cells(mc, options, read);
     return;
   }
   reading.done(std::to_string(mc.mesh.tets.size()) + " tets, " + std::to_string(mc.mesh.points.size()) + " points");
@@ -211,36 +212,91 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
 namespace rayint::cli {
 namespace {
 
-void render_own_cells(MeshCase& mc, const RenderOptions& options) {
-  if (!options.compare.empty())
-    throw InputError(options.input + ": --compare: not available in the own mode of cells other than tetrahedra "
-                     "(the methods take linear segments); use --cells split to compare methods on VTK's split");
-  if (!options.shard.empty())
-    throw InputError(options.input + ": --shard: not available in the own mode of cells other than tetrahedra");
+void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_source::InputFileLog& read) {
   if (mc.shading.enabled)
     throw InputError(options.input + ": shading: not available in the own mode of cells other than tetrahedra");
   const std::string fitted = options.fit ? fit_camera_to_mesh(mc) : std::string();
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   check_camera_reaches_mesh(mc, options.input);
-  check_camera_memory(*mc.camera, 1, false, options.input + ": camera");
+  const bool comparing = !options.compare.empty();
+  check_camera_memory(*mc.camera, comparing ? 2 : 1, comparing, options.input + ": camera");
+  // --compare METHOD: the method on VTK's split of the same cells (what `--cells split` renders)
+  // against the own interpolation: the per-pixel error of the split and the method together.
+  std::unique_ptr<RayIntegrator> compare;
+  MeshRenderComparison comparison;
+  std::unique_ptr<TetTraversal> split;
+  if (comparing) {
+    const MethodSpec spec = parse_method_spec(options.compare);
+    compare = make_integrator(spec, mc.transfer);
+    comparison = {spec.label() + " on --cells split", heat_map_path(options.output)};
+  }
+  const std::vector<std::string> inputs = run_inputs({options.input}, read);
+  MeshRenderSettings settings = render_settings(options);
+  const bool in_shard = !options.shard.empty();
+  settings.shard = begin_shard(options.shard, options.output);
   SlowStage building("rayint render: building the cell traversal", options.quiet);
+  if (comparing && !merging()) {
+    TetMesh tets = split_cells(*mc.cells);
+    repair_tet_mesh(tets, mc.mesh_source);
+    split = std::make_unique<TetTraversal>(std::move(tets), mc.mesh_source);
+  }
   const CellTraversal mesh(std::move(*mc.cells), mc.mesh_source);
   building.done(std::to_string(mesh.face_count()) + " faces, " + std::to_string(mesh.boundary_face_count()) + " on the boundary");
-  if (!options.quiet) {
+  if (!options.quiet && !merging()) {
     std::string types;
     for (const auto& [type, n] : cell_counts(mesh.mesh())) types += (types.empty() ? "" : ", ") + std::to_string(n) + " " + type;
     std::fprintf(stderr, "rayint render: mode own: %s integrated in their own (isoparametric) interpolation "
                  "(--cells split: VTK's tetrahedralisation instead)\n", types.c_str());
+    if (mc.repairs.zero_volume > 0)
+      std::fprintf(stderr, "rayint render: mode own: %ld zero-volume cells dropped (no volume, no length along any ray; "
+                   "--strict-mesh refuses them)\n", mc.repairs.zero_volume);
   }
-  MeshRenderSettings settings = render_settings(options);
-  const CellMeshRender r = render_cell_mesh(mc, mesh, settings);
+  // One band (--shard), the merged bands (rayint merge), or the whole image.
+  const auto render_band = [&] {
+    CellMeshRender band = render_cell_mesh(mc, mesh, settings);
+    if (compare) {
+      MeshRenderSettings quiet = settings;
+      quiet.progress = nullptr;
+      const MeshRender other = render_mesh(mc, *split, *compare, nullptr, quiet);
+      compare_cell_mesh_render(band, other.image, settings.shard);
+    }
+    return band;
+  };
+  if (in_shard) {
+    const CellMeshRender part = render_band();
+    write_shard(options.output, "render", settings.shard, inputs, to_json(cell_mesh_render_part(part, settings.shard)));
+    return;
+  }
+  CellMeshRender r;
+  if (merging()) {
+    check_merge_inputs("render", inputs);
+    const ShardContext& c = shard_context();
+    std::vector<CellMeshRenderPart> parts;
+    for (std::size_t i = 0; i < c.data.size(); ++i) {
+      if (c.data[i].is_null()) continue;
+      parts.push_back(cell_mesh_render_part_from_json(c.data[i], c.files[i], "data"));
+      check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
+                       parts.back().row_end, "data.row_begin");
+    }
+    try {
+      r = assemble_cell_mesh_render(parts);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(c.files.front() + ": data: " + e.what());
+    }
+    if (r.image.width != mc.camera->width || r.image.height != mc.camera->height || r.compared.pixels.empty() == comparing)
+      throw InputError(c.files.front() + ": data: the shards were rendered with another camera or --compare");
+  } else {
+    r = render_band();
+  }
   PngOptions png;
   png.exposure = options.exposure;
   write_image(options.output, r.image, png);
+  if (comparing) write_png(comparison.heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
   if (!options.stats_path.empty())
-    write_file_atomically(options.stats_path, cell_mesh_render_json(mc, mesh, r).dump(2) + "\n");
+    write_file_atomically(options.stats_path,
+                          cell_mesh_render_json(mc, mesh, r, comparing ? &comparison : nullptr).dump(2) + "\n");
   std::fputs(fitted.c_str(), stderr);
-  if (!options.quiet) std::fputs(cell_mesh_render_summary(r).c_str(), stderr);
+  if (!options.quiet) std::fputs(cell_mesh_render_summary(r, comparing ? &comparison : nullptr).c_str(), stderr);
   if (r.failed_pixels > 0) {
     std::fprintf(stderr, "rayint render: %ld pixels failed (a cell chord not located or not integrated): NaN in the image\n",
                  r.failed_pixels);

@@ -1,6 +1,7 @@
 // libFuzzer target for the shard-data readers of `rayint merge` (input/shard_reader.hpp) on
 // arbitrary bytes parsed as JSON, followed by what the merge does with what they accept
-// (finish a Monte Carlo tree, assemble a mesh render, a scatter comparison, a cells report).
+// (finish a Monte Carlo tree, assemble a mesh render or an own-mode cell render, a scatter
+// comparison, a cells report).
 // Seeds: fuzz/seeds/shard/ (the data of small shard files of every kind). Run it with
 // `RAYINT_FUZZ_TARGET=shard_reader scripts/fuzz.sh`. A finding is any of:
 //   - a crash, sanitizer report, hang or leak;
@@ -54,6 +55,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const rayint::MeshRenderPart p = rayint::mesh_render_part_from_json(j, kSource, "data");
     (void)rayint::assemble_mesh_render({p});
+  } catch (const rayint::InputError& e) {
+    check_message(e.what(), kSource);
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    const rayint::CellMeshRenderPart p = rayint::cell_mesh_render_part_from_json(j, kSource, "data");
+    (void)rayint::assemble_cell_mesh_render({p});
   } catch (const rayint::InputError& e) {
     check_message(e.what(), kSource);
   } catch (const std::invalid_argument&) {

@@ -21,7 +21,9 @@
 # seeds from fuzz/seeds/preset/; method_spec (parse_method_spec) from fuzz/seeds/method_spec/.
 # The image readers pfm_reader, exr_reader, npy_reader seed from fuzz/seeds/<format>/;
 # shard_reader (the shard data `rayint merge` reads) from fuzz/seeds/shard/; slab_scene_parser
-# (rayint::parse_slab_scene) from cases/scenes/slab-*.json and fuzz/seeds/slab_scene/.
+# (rayint::parse_slab_scene) from cases/scenes/slab-*.json and fuzz/seeds/slab_scene/;
+# parallel_grid (rayint::parse_pvts / parse_pvtr: a parallel file and its pieces joined by
+# "--piece--" lines, fuzz/parallel_grid_fuzzer.cpp) from fuzz/seeds/parallel_grid/.
 # One fuzzing process. Artifacts (crash-*, leak-*, timeout-*, oom-*) and the full log go to
 # <build>/artifacts/<target>-<date>/; reproduce one with `<build>/fuzz/<target>_fuzzer <artifact>`.
 # Exit status: 0 no findings, 1 findings, 2 usage or build error.
@@ -41,6 +43,7 @@ case "$target" in
   vtu_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vtu "$root"/tests/fixtures/readers/*.vtu); what="rayint::parse_vtu" ;;
   vti_reader) seed_files=("$root"/tests/fixtures/vtkxml/*.vti "$root"/tests/fixtures/readers/*.vti); what="rayint::parse_vti" ;;
   structured_grid) seed_files=("$root"/tests/fixtures/readers/*.vts "$root"/tests/fixtures/readers/*.vtr); what="rayint::parse_vts / parse_vtr" ;;
+  parallel_grid) seed_files=("$root"/fuzz/seeds/parallel_grid/*); what="rayint::parse_pvts / parse_pvtr" ;;
   scene_parser) seed_files=("$root"/cases/scenes/*.json); what="rayint::parse_scene_text" ;;
   slab_scene_parser) seed_files=("$root"/cases/scenes/slab-*.json "$root"/fuzz/seeds/slab_scene/*.json); what="rayint::parse_slab_scene" ;;
   vtk_legacy) seed_files=("$root"/fuzz/seeds/vtk_legacy/* "$root"/cases/meshes/linear-box.vtk
@@ -53,7 +56,7 @@ case "$target" in
   shard_reader) seed_files=("$root"/fuzz/seeds/shard/*.json); what="rayint shard data readers (rayint merge)" ;;
   pfm_reader|exr_reader|npy_reader)  # float image readers of check --candidate-image; no dictionary
     fmt="${target%_reader}"; seed_files=("$root"/fuzz/seeds/"$fmt"/*); what="rayint::decode_$fmt" ;;
-  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, grad_candidate_parser, vtu_reader, vti_reader, structured_grid, scene_parser, slab_scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, method_spec, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
+  *) echo "fuzz.sh: RAYINT_FUZZ_TARGET must be case_parser, candidate_parser, grad_candidate_parser, vtu_reader, vti_reader, structured_grid, parallel_grid, scene_parser, slab_scene_parser, vtk_legacy, gmsh, tetgen, preset_parser, method_spec, pfm_reader, exr_reader, npy_reader or shard_reader" >&2; exit 2 ;;
 esac
 build="${RAYINT_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 corpus="${RAYINT_FUZZ_CORPUS:-$root/fuzz-corpus/$target}"

@@ -315,7 +315,10 @@ TEST_CASE("CLI: bad TetGen and gmsh files exit 2 with one line and no output", "
     std::string args, prefix;
   } runs[] = {
       {"eval t.json -o out.json", "t.node: node[1], line 4: expected index x y z [attributes] [marker] (5 numbers), got 4"},
-      {"eval g.json --methods exact -o out.json", "g.json: --methods: the own interpolation of cells other than tetrahedra is one method"},
+      // g.msh's one hexahedron repeats its bottom face as its top: zero volume, nothing to
+      // integrate in the own mode (mesh/cell_mesh.hpp drop_zero_volume_cells); --methods on a
+      // real hexahedral mesh is refused in [cellmesh][cli].
+      {"eval g.json --methods exact -o out.json", "g.msh: cells: every cell has zero volume"},
   };
   for (const auto& run : runs) {
     const auto before = dir.entries();

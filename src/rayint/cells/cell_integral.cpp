@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 
+#include "rayint/cells/chord_scalar.hpp"
 #include "rayint/integrators/exact.hpp"
 
 namespace rayint {
@@ -106,15 +108,38 @@ double clenshaw(const std::vector<double>& c, double x) {
   return x * b1 - b2 + (c.empty() ? 0.0 : c[0]);
 }
 
+// cos(pi m / n) for m = 0 .. 2n - 1 and the degrees used (n = 8 .. kMaxDegree, powers of 2),
+// computed once: the DCT and the Chebyshev points read them instead of calling cos.
+const double* cosine_table(int n) {
+  struct Tables {
+    std::array<std::vector<double>, 8> by_log2;
+    Tables() {
+      for (int l = 0; l < 8; ++l) {
+        const int m = 1 << l;
+        by_log2[static_cast<std::size_t>(l)].resize(2 * static_cast<std::size_t>(m));
+        for (int j = 0; j < 2 * m; ++j) by_log2[static_cast<std::size_t>(l)][static_cast<std::size_t>(j)] = std::cos(kPi * j / m);
+      }
+    }
+  };
+  static const Tables tables;
+  int l = 0;
+  while ((1 << l) < n) ++l;
+  if ((1 << l) != n || l >= 8) throw std::logic_error("cosine_table: degree not a power of two <= 128");
+  return tables.by_log2[static_cast<std::size_t>(l)].data();
+}
+
 // Coefficients from values v[j] at x_j = cos(pi j / n), j = 0..n (DCT-I).
 void chebyshev_coefficients(const std::vector<double>& v, int n, std::vector<double>& c) {
   c.assign(static_cast<std::size_t>(n) + 1, 0.0);
-  std::vector<double> cosine(2 * static_cast<std::size_t>(n));
-  for (int m = 0; m < 2 * n; ++m) cosine[static_cast<std::size_t>(m)] = std::cos(kPi * m / n);
+  const double* cosine = cosine_table(n);
   for (int k = 0; k <= n; ++k) {
     double sum = 0.5 * (v[0] + ((k % 2 == 0) ? 1.0 : -1.0) * v[static_cast<std::size_t>(n)]);
-    for (int j = 1; j < n; ++j)
-      sum += v[static_cast<std::size_t>(j)] * cosine[static_cast<std::size_t>((j * k) % (2 * n))];
+    int index = 0;  // (j k) mod 2n, stepped (an integer division per term cost more than the sum)
+    for (int j = 1; j < n; ++j) {
+      index += k;
+      if (index >= 2 * n) index -= 2 * n;
+      sum += v[static_cast<std::size_t>(j)] * cosine[index];
+    }
     c[static_cast<std::size_t>(k)] = 2.0 * sum / n;
   }
   c[0] *= 0.5;
@@ -164,21 +189,23 @@ struct Sampler {
   const LinearCell* cell;
   const ViewRay* ray;
   bool use_newton;
-  Vec3 start;
+  ChordScalar scalar;  // the isoparametric samples (chord_scalar.hpp)
   int samples = 0;
   bool ok = true;
+  // Before the samples of one interpolant on [a, b]: the Taylor predictor about its centre.
+  void begin(double a, double b) {
+    if (use_newton) scalar.expand(a, b);
+  }
   double operator()(double t) {
     ++samples;
     const Vec3 x = ray->origin + t * ray->direction;
     if (!use_newton) return cell_scalar(*cell, cell->affine_inverse * (x - cell->affine_origin));
-    InverseMap m = inverse_map(*cell, x, start);
-    if (!m.converged) m = inverse_map(*cell, x);  // from the centre
-    if (!m.converged) {
+    double f = 0.0;
+    if (!scalar.sample(t, f)) {
       ok = false;
       return 0.0;
     }
-    start = m.p;
-    return cell_scalar(*cell, m.p);
+    return f;
   }
 };
 
@@ -187,7 +214,8 @@ template <class F>
 bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target,
                  std::vector<Interpolant>& out, int& max_degree) {
   std::vector<double> v(static_cast<std::size_t>(n0) + 1);
-  auto node = [&](int j, int n) { return 0.5 * (a + b) + 0.5 * (b - a) * std::cos(kPi * j / n); };
+  auto node = [&](int j, int n) { return 0.5 * (a + b) + 0.5 * (b - a) * cosine_table(n)[j]; };
+  f.begin(a, b);
   for (int j = 0; j <= n0; ++j) v[static_cast<std::size_t>(j)] = f(node(j, n0));
   if (!f.ok) return false;
   Interpolant I{a, b, {}, 0.0};
@@ -196,6 +224,14 @@ bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target
     I.tail = std::abs(I.c[static_cast<std::size_t>(n) - 1]) + std::abs(I.c[static_cast<std::size_t>(n)]);
     if (I.tail <= tail_target) {
       max_degree = std::max(max_degree, n);
+      // Chop: trailing coefficients whose absolute sum is <= kChopFraction of the tail target
+      // are dropped and their sum added to the tail (|T_k| <= 1, so the bound stays a bound);
+      // a nearly cubic scalar then costs a short Clenshaw sum at every quadrature node.
+      double dropped = 0.0;
+      std::size_t keep = I.c.size();
+      while (keep > 2 && dropped + std::abs(I.c[keep - 1]) <= kChopFraction * tail_target) dropped += std::abs(I.c[--keep]);
+      I.c.resize(keep);
+      I.tail += dropped;
       out.push_back(std::move(I));
       return true;
     }
@@ -222,13 +258,20 @@ double root(const std::vector<double>& c, double level, double lo, double hi, do
 
 // Knots in x of one interpolant: -1, critical points, breakpoint crossings, 1.
 std::vector<double> knots(const Interpolant& I, const std::vector<double>& breakpoints) {
-  const std::vector<double> d = derivative(I.c);
   const int n = static_cast<int>(I.c.size()) - 1;
-  const int M = std::max(8, 2 * n);
+  // Monotone without search when |c_1| > sum_{k >= 2} k^2 |c_k| (|T_k'| <= k^2 on [-1, 1], so f'
+  // keeps the sign of c_1): the usual case of a short chord in a mildly distorted cell.
+  double bound = 0.0;
+  for (int k = 2; k <= n; ++k) bound += static_cast<double>(k) * k * std::abs(I.c[static_cast<std::size_t>(k)]);
+  const bool proven_monotone = n >= 1 && bound < std::abs(I.c[1]);
+  const std::vector<double> d = proven_monotone ? std::vector<double>{} : derivative(I.c);
+  int M = 8;  // sign samples of f': a power of two >= 2n (the cosine table's degrees)
+  while (M < 2 * n) M *= 2;
+  if (proven_monotone) M = 0;
   std::vector<double> monotone{-1.0};
-  double x_prev = -1.0, d_prev = clenshaw(d, -1.0);
+  double x_prev = -1.0, d_prev = proven_monotone ? 0.0 : clenshaw(d, -1.0);
   for (int m = M - 1; m >= 0; --m) {
-    const double x = (m == 0) ? 1.0 : std::cos(kPi * m / M);
+    const double x = (m == 0) ? 1.0 : cosine_table(M)[m];
     const double dx = clenshaw(d, x);
     if (dx == 0.0 && m != 0) {
       monotone.push_back(x);
@@ -325,7 +368,7 @@ CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell,
   double value_scale = 0.0;
   for (int i = 0; i < linear_node_count(cell.type); ++i)
     value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
-  Sampler sampler{&cell, &ray, use_newton, linear_reference_centre(cell.type)};
+  Sampler sampler{&cell, &ray, use_newton, ChordScalar(cell, ray)};
   return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton ? 16 : 8,
                            use_newton ? CellPath::isoparametric : CellPath::polynomial);
 }
@@ -441,6 +484,8 @@ struct QuadraticSampler {
   Vec3 start;
   int samples = 0;
   bool ok = true;
+  // The Newton start carries over from the previous sample (no predictor for quadratic maps).
+  void begin(double, double) {}
   double operator()(double t) {
     ++samples;
     const Vec3 x = ray->origin + t * ray->direction;

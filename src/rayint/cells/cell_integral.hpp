@@ -13,8 +13,10 @@
 //                  p(t) is the exact linear inverse, so f(t) is a polynomial of degree <= 3 in t;
 //                  it is sampled at 9 Chebyshev-Lobatto points (exact up to rounding for degree
 //                  <= 8) and integrated below. No Newton solves.
-//   isoparametric  any other cell: f(t) sampled through Newton inverse maps (warm-started from
-//                  the previous point) at the Chebyshev-Lobatto points of [t_near, t_far].
+//   isoparametric  any other cell: f(t) sampled at the Chebyshev-Lobatto points of [t_near,
+//                  t_far] through inverse maps (cells/chord_scalar.hpp: the cell's multilinear
+//                  form, Newton started from a Taylor expansion of p(t) about the interval's
+//                  centre, accepted by inverse_map's own residual test, then one polishing step).
 // Quadratic cells (cells/quadratic_isoparametric.hpp: tet10, hex20, wedge15, curved too) take the
 // isoparametric path with their own inverse map, or the polynomial path when affine (a
 // straight-edged tet10: f is a quadratic in t); the steps below are the same code
@@ -26,8 +28,12 @@
 //      reused) until the last two coefficients are below kChebyshevTail = 64 eps * max|f_i|
 //      (rounding noise of f is ~eps max|f_i|); otherwise the interval is halved (depth
 //      budget kMaxBisections = 6) and each half interpolated alone. The tail (|c_{n-1}| + |c_n|)
-//      is kept as the interpolant's error estimate e_f.
-//   2. Critical points: sign changes of f' at 2n + 1 points, refined by TOMS 748 on the
+//      is kept as the interpolant's error estimate e_f. Trailing coefficients whose absolute sum
+//      is <= kChopFraction = 1/64 of the tail target (so <= eps max|f_i|) are then dropped and
+//      their sum added to e_f (|T_k| <= 1): a nearly cubic f costs a short Clenshaw sum.
+//   2. Critical points: none when |c_1| > sum_{k>=2} k^2 |c_k| (|T_k'| <= k^2 on [-1, 1]: f' keeps
+//      the sign of c_1, a proof, no search); otherwise sign changes of f' at M + 1 points (M the
+//      power of two >= max(8, 2n)), refined by TOMS 748 on the
 //      interpolant's derivative; between them f is monotone. Breakpoint crossings: every
 //      breakpoint strictly between the values at the ends of a monotone stretch is bracketed
 //      there and refined by TOMS 748 (Boost.Math, to full double precision). Limitation: two
@@ -62,9 +68,9 @@
 // error (emission + depth, values O(0.01-1)) <= 1.07e-14 in every family, median relative ~1e-15;
 // no chord's error above its error_estimate. Relative errors reach 2.2e-11 only where a channel's
 // value is itself tiny (absolute 8e-17 there). Tests [cells][isoparametric] re-check 30 chords.
-// Cost (bench/bench_cells.cpp, BM_cell, CPU time, median of 3, loaded machine; see
-// reports/cells/bench.md): 23.0 us per distorted hexahedron (chord + integral) against 3.9 us
-// for its 5-tet split by the closed form: 5.9x per cell (the mesh target is 3x).
+// Cost (reports/cells/bench.md): on the bench's twisted 12^3 hexahedral mesh
+// (bench/bench_cell_mesh.cpp, BM_mesh) the own render was 18-20x the split one before the
+// Taylor-predicted samples, the chop and the monotonicity proof, 11.5-13x after (target 3x).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
@@ -77,6 +83,7 @@ namespace rayint {
 inline constexpr double kChebyshevTail = 64 * 2.220446049250313e-16;
 inline constexpr int kMaxBisections = 6;
 inline constexpr double kQuadratureTolerance = 1e-14;
+inline constexpr double kChopFraction = 1.0 / 64;  // trailing coefficients dropped: <= eps max|f_i|
 
 enum class CellPath { linear_exact, polynomial, isoparametric };
 const char* cell_path_name(CellPath path);  // "linear_exact", "polynomial", "isoparametric"

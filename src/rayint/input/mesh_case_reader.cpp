@@ -49,6 +49,8 @@ const std::map<std::string, BuiltinReader>& builtin_mesh_readers() {
       {".pvtu", &read_pvtu},        // its parallel pieces (vtk_xml_reader.hpp)
       {".vts", &read_structured_as_tets<&read_vts>},  // structured grids: refused without --cells split
       {".vtr", &read_structured_as_tets<&read_vtr>},
+      {".pvts", &read_structured_as_tets<&read_pvts>},  // parallel structured grids: their pieces joined
+      {".pvtr", &read_structured_as_tets<&read_pvtr>},
       {".vti", &read_structured_as_tets<&read_vti_cells>},  // an image as its voxels (cell data)
   };
   return readers;
@@ -169,7 +171,7 @@ const std::map<std::string, CellReader>& cell_readers() {
   static const std::map<std::string, CellReader> readers = {
       {".vtk", &read_vtk_legacy_cells}, {".vtu", &read_vtu_cells}, {".pvtu", &read_pvtu_cells},
       {".msh", &read_gmsh_cells},       {".vts", &read_vts},       {".vtr", &read_vtr},
-      {".vti", &read_vti_cells},
+      {".vti", &read_vti_cells},        {".pvts", &read_pvts},     {".pvtr", &read_pvtr},
   };
   return readers;
 }
@@ -266,8 +268,17 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     names = file_field_names(p.extension().string());
   }
   if (mc.cells) {
-    // Own interpolation: no tetrahedra to repair or check; the traversal refuses a face shared by
-    // more than two cells when it is built.
+    // Own interpolation: no tetrahedra to repair; zero-volume cells refused (strict) or dropped
+    // and counted (mesh/cell_mesh.hpp), like degenerate tetrahedra; the traversal refuses a face
+    // shared by more than two cells when it is built.
+    if (options.strict) {
+      refuse_zero_volume_cells(*mc.cells, mc.mesh_source);
+    } else {
+      for (const auto& [type, n] : drop_zero_volume_cells(*mc.cells, mc.mesh_source)) {
+        mc.repairs.zero_volume += n;
+        mc.repairs.zero_volume_by_type[type] += n;
+      }
+    }
   } else if (options.strict)
     validate_tet_mesh(mc.mesh, mc.mesh_source, names);
   else

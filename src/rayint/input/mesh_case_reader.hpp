@@ -29,11 +29,11 @@ struct MeshReadOptions {
   bool split_cells = false;
 };
 
-// A mesh file alone, by extension (.vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, .vti, or a registered one), as a
+// A mesh file alone, by extension (.vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, .pvts, .pvtr, .vti, or a registered one), as a
 // mesh case's "mesh_file" reads it, before repair and checks (for `rayint mesh info`).
 TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
-// Any mesh file as a CellMesh (mesh/cell_mesh.hpp): .vtk, .vtu, .pvtu, .msh, .vts, .vtr, .vti keep every
+// Any mesh file as a CellMesh (mesh/cell_mesh.hpp): .vtk, .vtu, .pvtu, .msh, .vts, .vtr, .pvts, .pvtr, .vti keep every
 // linear volume cell; formats of tetrahedra only (.ele, registered readers) give their tetrahedra.
 CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 

@@ -225,6 +225,59 @@ MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::st
   return p;
 }
 
+CellMeshRenderPart cell_mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
+                                                   const std::string& path) {
+  const Reader r{source};
+  if (!(r.at(j, path, "mode") == "own")) r.fail(field::member_path(path, "mode"), "must be \"own\" (an own-mode render's band)");
+  CellMeshRenderPart p;
+  p.width = static_cast<int>(r.nonneg(j, path, "width"));
+  p.height = static_cast<int>(r.nonneg(j, path, "height"));
+  p.row_begin = static_cast<int>(r.nonneg(j, path, "row_begin"));
+  p.row_end = static_cast<int>(r.nonneg(j, path, "row_end"));
+  if (p.width > 65536 || p.height > 65536 || static_cast<long long>(p.width) * p.height > (1LL << 26) ||
+      p.row_end > p.height || p.row_begin > p.row_end)
+    r.fail(path, "needs width, height <= 65536, at most 2^26 pixels and 0 <= row_begin <= row_end <= height");
+  p.compared = r.boolean(j, path, "compared");
+  const std::size_t n = static_cast<std::size_t>(p.row_end - p.row_begin) * static_cast<std::size_t>(p.width);
+  p.image = r.pixels(j, path, "image", n);
+  const nlohmann::json& failed = r.array(j, path, "failed");
+  const std::string fp = field::member_path(path, "failed");
+  if (failed.size() != n) r.fail(fp, "must hold one 0 or 1 per pixel");
+  for (std::size_t i = 0; i < n; ++i) {
+    const long long f = r.integer(failed[i], field::index_path(fp, i));
+    if (f != 0 && f != 1) r.fail(field::index_path(fp, i), "must be 0 or 1");
+    p.failed.push_back(static_cast<std::uint8_t>(f));
+  }
+  if (p.compared) {
+    p.compared_image = r.pixels(j, path, "compared_image", n);
+    p.rel_error = r.numbers(j, path, "rel_error");
+    if (p.rel_error.size() != n) r.fail(field::member_path(path, "rel_error"), "must hold one number per pixel");
+  }
+  const nlohmann::json& counts = r.array(j, path, "counts");
+  const std::string cp = field::member_path(path, "counts");
+  if (counts.size() != 3) r.fail(cp, "must hold 3 counts (failed pixels, rays, chords)");
+  long* cf[] = {&p.failed_pixels, &p.rays, &p.chords};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const long long v = r.integer(counts[i], field::index_path(cp, i));
+    if (v < 0) r.fail(field::index_path(cp, i), "must be >= 0");
+    *cf[i] = static_cast<long>(v);
+  }
+  p.max_error_estimate = r.number(j, path, "max_error_estimate");
+  const std::vector<double> sec = r.numbers(j, path, "seconds");
+  if (sec.size() != 3) r.fail(field::member_path(path, "seconds"), "must hold 3 numbers (wall, traversal, integration)");
+  p.wall_seconds = sec[0];
+  p.traversal_seconds = sec[1];
+  p.integration_seconds = sec[2];
+  p.threads = static_cast<unsigned>(r.nonneg(j, path, "threads"));
+  const nlohmann::json& t = r.array(j, path, "traversal");
+  const std::string tp = field::member_path(path, "traversal");
+  if (t.size() != 7) r.fail(tp, "must hold 7 counts");
+  CellTraversalStats& s = p.traversal;
+  long* tf[] = {&s.rays, &s.chords, &s.face_steps, &s.star_steps, &s.first_hit_queries, &s.failed_chords, &s.budget_exhausted};
+  for (std::size_t i = 0; i < 7; ++i) *tf[i] = static_cast<long>(r.integer(t[i], field::index_path(tp, i)));
+  return p;
+}
+
 SceneRenderPart scene_render_part_from_json(const nlohmann::json& j, const std::string& source,
                                             const std::string& path) {
   const Reader r{source};

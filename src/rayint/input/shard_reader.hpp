@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rayint/render/cell_mesh_render.hpp"
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/volume_comparison.hpp"
@@ -20,6 +21,8 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
                                        const std::string& path);
 MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
                                           const std::string& path);
+CellMeshRenderPart cell_mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
+                                                   const std::string& path);
 SceneRenderPart scene_render_part_from_json(const nlohmann::json& j, const std::string& source,
                                             const std::string& path);
 SweepPart sweep_part_from_json(const nlohmann::json& j, const std::string& source,

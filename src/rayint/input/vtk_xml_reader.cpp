@@ -442,7 +442,7 @@ std::array<int, 3> structured_dims(const Document& d, const std::string& type, p
   piece = d.only_child(d.dataset(), "Piece", type);
   const std::vector<double> extent = d.numbers_attribute(piece, "Extent", piece_field, 6, whole);
   if (extent != whole)
-    d.fail(piece_field, "Extent differs from the WholeExtent (a piece of a larger grid: read the .pvts/.pvtr is not supported)");
+    d.fail(piece_field, "Extent differs from the WholeExtent (a piece of a larger grid: read the .pvts / .pvtr that names it)");
   std::array<int, 3> dims{};
   double total = 1;
   for (std::size_t a = 0; a < 3; ++a) {
@@ -497,14 +497,11 @@ std::size_t cell_total(const std::array<int, 3>& n) {
   return static_cast<std::size_t>(n[0] - 1) * static_cast<std::size_t>(n[1] - 1) * static_cast<std::size_t>(n[2] - 1);
 }
 
-// The part every structured reader shares once its points are placed: the n[0] x n[1] x n[2]
-// cells (voxels, or hexahedra when not axis-aligned), the point and cell arrays, the assembly.
-CellMesh structured_mesh(const Document& d, pugi::xml_node piece, const std::string& type,
-                         const std::array<int, 3>& n, bool voxels, RawMesh raw, const std::string& source,
-                         const std::string& scalar_name, bool cell_to_point, const RawMeshFields& fields) {
-  const std::size_t points = raw.points.size();
+// The cells of the n[0] x n[1] x n[2] points (voxels, or hexahedra when not axis-aligned) and
+// the assembly, once points and arrays are in `raw` (the serial readers and the parallel ones).
+CellMesh assemble_structured(const std::array<int, 3>& n, bool voxels, RawMesh raw, const std::string& source,
+                             const std::string& scalar_name, bool cell_to_point, const RawMeshFields& fields) {
   structured_cells(n, voxels, raw);
-  structured_arrays(d, piece, type, points, cell_total(n), raw);
   AssemblyOptions o;
   o.scalar_name = scalar_name;
   o.cell_to_point = cell_to_point;
@@ -513,35 +510,36 @@ CellMesh structured_mesh(const Document& d, pugi::xml_node piece, const std::str
   return mesh;
 }
 
-}  // namespace
+// The part every serial structured reader shares once its points are placed: the piece's point
+// and cell arrays, then assemble_structured.
+CellMesh structured_mesh(const Document& d, pugi::xml_node piece, const std::string& type,
+                         const std::array<int, 3>& n, bool voxels, RawMesh raw, const std::string& source,
+                         const std::string& scalar_name, bool cell_to_point, const RawMeshFields& fields) {
+  const std::size_t points = raw.points.size();
+  structured_arrays(d, piece, type, points, cell_total(n), raw);
+  return assemble_structured(n, voxels, std::move(raw), source, scalar_name, cell_to_point, fields);
+}
 
-CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                   bool cell_to_point) {
-  const std::string type = "StructuredGrid";
-  const Document d(bytes, source, type);
-  pugi::xml_node piece;
-  const std::array<int, 3> n = structured_dims(d, type, piece);
+// A StructuredGrid piece's points (Points: one three-component DataArray, finite).
+std::vector<Vec3> structured_points(const Document& d, pugi::xml_node piece, const std::string& type,
+                                    const std::array<int, 3>& n) {
   const std::size_t points = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
   const std::string points_field = type + "/Piece/Points/DataArray";
   const pugi::xml_node pts = d.only_child(d.only_child(piece, "Points", type + "/Piece"), "DataArray", type + "/Piece/Points");
   if (d.components(pts, points_field) != 3)
     d.fail(points_field, "NumberOfComponents must be 3, got " + std::to_string(d.components(pts, points_field)));
   const std::vector<double> xyz = finite_values(d, pts, points_field, 3 * points);
-  RawMesh raw;
-  raw.points.reserve(points);
-  for (std::size_t i = 0; i < points; ++i) raw.points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  return structured_mesh(d, piece, type, n, false, std::move(raw), source, scalar_name, cell_to_point,
-                         structured_fields(type));
+  std::vector<Vec3> out;
+  out.reserve(points);
+  for (std::size_t i = 0; i < points; ++i) out.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  return out;
 }
 
-CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                   bool cell_to_point) {
-  const std::string type = "RectilinearGrid";
-  const Document d(bytes, source, type);
-  pugi::xml_node piece;
-  const std::array<int, 3> n = structured_dims(d, type, piece);
-  // Coordinates: three DataArrays, x, y, z in that order, whatever their names (VTK's writer
-  // calls them after the input's arrays; ParaView writes "Array 0x..." or "x_coordinates").
+// A RectilinearGrid piece's Coordinates: three DataArrays, x, y, z in that order, whatever their
+// names (VTK's writer calls them after the input's arrays; ParaView writes "Array 0x..." or
+// "x_coordinates"), one component, finite, strictly increasing.
+std::array<std::vector<double>, 3> rectilinear_axes(const Document& d, pugi::xml_node piece, const std::string& type,
+                                                    const std::array<int, 3>& n) {
   const std::string coords_field = type + "/Piece/Coordinates";
   const pugi::xml_node coords = d.only_child(piece, "Coordinates", type + "/Piece");
   std::array<std::vector<double>, 3> axis;
@@ -556,14 +554,41 @@ CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std:
         d.fail(f, "coordinates must increase (value " + std::to_string(i) + " is not above the one before)");
   }
   if (a != 3) d.fail(coords_field, "needs three DataArrays (x, y, z), got " + std::to_string(a));
+  return axis;
+}
+
+// The points of a rectilinear grid, x fastest (vtkRectilinearGrid's order).
+std::vector<Vec3> rectilinear_points(const std::array<std::vector<double>, 3>& axis) {
+  std::vector<Vec3> out;
+  out.reserve(axis[0].size() * axis[1].size() * axis[2].size());
+  for (double z : axis[2])
+    for (double y : axis[1])
+      for (double x : axis[0]) out.emplace_back(x, y, z);
+  return out;
+}
+
+}  // namespace
+
+CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                   bool cell_to_point) {
+  const std::string type = "StructuredGrid";
+  const Document d(bytes, source, type);
+  pugi::xml_node piece;
+  const std::array<int, 3> n = structured_dims(d, type, piece);
   RawMesh raw;
-  const std::size_t points = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
-  raw.points.reserve(points);
-  for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i)
-        raw.points.emplace_back(axis[0][static_cast<std::size_t>(i)], axis[1][static_cast<std::size_t>(j)],
-                                axis[2][static_cast<std::size_t>(k)]);
+  raw.points = structured_points(d, piece, type, n);
+  return structured_mesh(d, piece, type, n, false, std::move(raw), source, scalar_name, cell_to_point,
+                         structured_fields(type));
+}
+
+CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                   bool cell_to_point) {
+  const std::string type = "RectilinearGrid";
+  const Document d(bytes, source, type);
+  pugi::xml_node piece;
+  const std::array<int, 3> n = structured_dims(d, type, piece);
+  RawMesh raw;
+  raw.points = rectilinear_points(rectilinear_axes(d, piece, type, n));
   return structured_mesh(d, piece, type, n, true, std::move(raw), source, scalar_name, cell_to_point,
                          structured_fields(type));
 }
@@ -612,6 +637,221 @@ CellMesh read_vts(const std::string& path, const std::string& scalar_name, bool 
 
 CellMesh read_vtr(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
   return parse_vtr(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+}
+
+// ---- Parallel structured grids (.pvts, .pvtr) ----------------------------------------------------
+
+namespace {
+
+constexpr unsigned kDuplicateBit = 1;  // vtkDataSetAttributes::DUPLICATEPOINT / DUPLICATECELL
+
+bool is_ghost_array(const RawArray& a) { return a.name == "vtkGhostType"; }
+
+bool same_value(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+// One piece of a parallel structured file, read whole before anything is placed (so the whole
+// grid is only allocated once the pieces have shown that they hold its points).
+struct StructuredPiece {
+  std::string file;
+  std::array<long long, 3> lo{};  // its Extent's lower bounds, relative to the WholeExtent's
+  std::array<int, 3> n{};         // its point dimensions
+  std::vector<Vec3> points;                 // StructuredGrid
+  std::array<std::vector<double>, 3> axis;  // RectilinearGrid
+  std::vector<RawArray> arrays;
+};
+
+CellMesh parse_parallel_structured(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
+                                   bool rectilinear, const std::string& scalar_name, bool cell_to_point) {
+  const std::string type = rectilinear ? "RectilinearGrid" : "StructuredGrid";
+  const std::string ptype = "P" + type;
+  const Document d(bytes, source, ptype);
+  const std::vector<double> whole = d.numbers_attribute(d.dataset(), "WholeExtent", ptype, 6);
+  std::array<int, 3> N{};
+  std::array<long long, 3> lo{};
+  double total = 1;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double w0 = whole[2 * a], w1 = whole[2 * a + 1];
+    if (w0 != std::floor(w0) || w1 != std::floor(w1) || !(w1 >= w0) || w1 - w0 > 1e7 || std::fabs(w0) > 1e9)
+      d.fail(ptype, "WholeExtent is not an integer range on axis " + std::to_string(a));
+    if (w1 == w0)
+      d.fail(ptype, std::string("WholeExtent is flat on axis ") + "xyz"[a] + " (a 2-D grid has no volume cells; rayint integrates volumes)");
+    N[a] = static_cast<int>(w1 - w0) + 1;
+    lo[a] = static_cast<long long>(w0);
+    total *= N[a];
+  }
+  if (total > static_cast<double>(kMaxIndex) / 8) d.fail(ptype, "more points than rayint's meshes hold (2^31 / 8)");
+
+  // The pieces, each a serial file of the same type whose Extent lies in the WholeExtent.
+  const std::filesystem::path dir = std::filesystem::path(source).parent_path();
+  std::vector<StructuredPiece> pieces;
+  double covered = 0;
+  for (pugi::xml_node p = d.dataset().child("Piece"); p; p = p.next_sibling("Piece")) {
+    const std::string field = ptype + "/Piece[" + std::to_string(pieces.size()) + "]";
+    const std::vector<double> e = d.numbers_attribute(p, "Extent", field, 6);
+    bool empty = false;
+    for (std::size_t a = 0; a < 3; ++a) empty = empty || e[2 * a + 1] < e[2 * a];
+    if (empty) continue;  // VTK writes an empty extent for a piece with no cells
+    const std::string src = p.attribute("Source").as_string();
+    if (src.empty()) d.fail(field, "missing attribute Source");
+    for (char c : src)
+      if (static_cast<unsigned char>(c) < 0x20) d.fail(field, "Source contains a control character");
+    const std::filesystem::path sp(src);
+    StructuredPiece piece;
+    piece.file = (sp.is_absolute() ? sp : dir / sp).string();
+    const std::string text = load(piece.file);
+    const Document pd(text, piece.file, type);
+    pugi::xml_node node;
+    piece.n = structured_dims(pd, type, node);
+    const std::vector<double> pe = pd.numbers_attribute(node, "Extent", type + "/Piece", 6);
+    if (pe != e) pd.fail(type + "/Piece", "Extent differs from the one " + source + " gives this piece");
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (pe[2 * a] < whole[2 * a] || pe[2 * a + 1] > whole[2 * a + 1])
+        pd.fail(type + "/Piece", "Extent lies outside the WholeExtent of " + source);
+      piece.lo[a] = static_cast<long long>(pe[2 * a]) - lo[a];
+    }
+    if (rectilinear) piece.axis = rectilinear_axes(pd, node, type, piece.n);
+    else piece.points = structured_points(pd, node, type, piece.n);
+    const std::size_t points = static_cast<std::size_t>(piece.n[0]) * static_cast<std::size_t>(piece.n[1]) * static_cast<std::size_t>(piece.n[2]);
+    if (const pugi::xml_node pdata = node.child("PointData")) data_arrays(pd, pdata, false, points, type + "/Piece/PointData", piece.arrays);
+    if (const pugi::xml_node cdata = node.child("CellData")) data_arrays(pd, cdata, true, cell_total(piece.n), type + "/Piece/CellData", piece.arrays);
+    covered += static_cast<double>(points);
+    pieces.push_back(std::move(piece));
+  }
+  if (pieces.empty()) d.fail(ptype + "/Piece", "missing (a parallel file names its pieces)");
+  if (covered < total) d.fail(ptype, "the pieces do not cover the WholeExtent (" + std::to_string(static_cast<long long>(covered)) + " points for " + std::to_string(static_cast<long long>(total)) + ")");
+
+  // The whole grid: every point and cell once. Points (or coordinates) and array values that two
+  // pieces share must be equal; ghost flags (vtkGhostType) come from the piece that owns the
+  // point or cell, and lose their duplicate bit: the joined grid holds no copies.
+  const auto points = static_cast<std::size_t>(total);
+  const std::size_t cells = cell_total(N);
+  std::vector<Vec3> xyz(rectilinear ? 0 : points);
+  std::array<std::vector<double>, 3> axis;
+  std::array<std::vector<char>, 3> axis_set;
+  for (std::size_t a = 0; a < 3; ++a) {
+    axis[a].assign(static_cast<std::size_t>(N[a]), 0.0);
+    axis_set[a].assign(static_cast<std::size_t>(N[a]), 0);
+  }
+  std::vector<char> point_set(points, 0), cell_set(cells, 0);
+  std::vector<RawArray> arrays;
+  for (const RawArray& r : pieces.front().arrays) {
+    RawArray g = r;
+    g.values.assign(r.components == 1 ? (r.cell ? cells : points) : 0, 0.0);
+    arrays.push_back(std::move(g));
+  }
+  for (const StructuredPiece& piece : pieces) {
+    const std::string field = type + "/Piece";
+    const auto fail = [&](const std::string& f, const std::string& what) {
+      throw InputError(piece.file + ": " + f + ": " + what);
+    };
+    // Local (i, j, k) -> whole index, for points and cells.
+    const auto whole_point = [&](long long i, long long j, long long k) {
+      return static_cast<std::size_t>((piece.lo[0] + i) + N[0] * ((piece.lo[1] + j) + static_cast<long long>(N[1]) * (piece.lo[2] + k)));
+    };
+    const auto whole_cell = [&](long long i, long long j, long long k) {
+      return static_cast<std::size_t>((piece.lo[0] + i) + (N[0] - 1) * ((piece.lo[1] + j) + static_cast<long long>(N[1] - 1) * (piece.lo[2] + k)));
+    };
+    std::vector<std::size_t> pmap, cmap;
+    for (long long k = 0; k < piece.n[2]; ++k)
+      for (long long j = 0; j < piece.n[1]; ++j)
+        for (long long i = 0; i < piece.n[0]; ++i) {
+          pmap.push_back(whole_point(i, j, k));
+          if (i + 1 < piece.n[0] && j + 1 < piece.n[1] && k + 1 < piece.n[2]) cmap.push_back(whole_cell(i, j, k));
+        }
+    if (rectilinear) {
+      for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t i = 0; i < piece.axis[a].size(); ++i) {
+          const auto g = static_cast<std::size_t>(piece.lo[a]) + i;
+          if (axis_set[a][g] && !(axis[a][g] == piece.axis[a][i]))
+            fail(field + "/Coordinates/DataArray[" + std::to_string(a) + "]", "coordinate " + std::to_string(i) +
+                                                                                 " differs from the piece before that shares it");
+          axis[a][g] = piece.axis[a][i];
+          axis_set[a][g] = 1;
+        }
+    } else {
+      for (std::size_t q = 0; q < pmap.size(); ++q) {
+        if (point_set[pmap[q]] && !(xyz[pmap[q]] == piece.points[q]))
+          fail(field + "/Points/DataArray", "point " + std::to_string(q) + " differs from the piece before that shares it");
+        xyz[pmap[q]] = piece.points[q];
+      }
+    }
+    for (RawArray& g : arrays) {
+      const RawArray* match = nullptr;
+      for (const RawArray& a : piece.arrays)
+        if (a.name == g.name && a.cell == g.cell) match = &a;
+      const std::string af = field + (g.cell ? "/CellData" : "/PointData");
+      if (match == nullptr || match->components != g.components)
+        fail(af, "array \"" + g.name + "\" is missing or has another component count in this piece");
+      if (g.components != 1) continue;
+      const std::vector<std::size_t>& map = g.cell ? cmap : pmap;
+      const std::vector<char>& set = g.cell ? cell_set : point_set;
+      for (std::size_t q = 0; q < map.size(); ++q) {
+        const std::size_t at = map[q];
+        const double v = match->values[q];
+        if (is_ghost_array(g)) {
+          // The owner's flags win over a copy's (a copy carries the duplicate bit).
+          const bool copy = (static_cast<unsigned>(v) & kDuplicateBit) != 0;
+          if (!set[at] || ((static_cast<unsigned>(g.values[at]) & kDuplicateBit) != 0 && !copy)) g.values[at] = v;
+          continue;
+        }
+        if (set[at] && !same_value(g.values[at], v))
+          fail(af + "/DataArray[" + g.name + "]", std::string(g.cell ? "cell " : "point ") + std::to_string(q) +
+                                                       " is shared with a piece before and has another value there");
+        g.values[at] = v;
+      }
+    }
+    for (std::size_t at : pmap) point_set[at] = 1;
+    for (std::size_t at : cmap) cell_set[at] = 1;
+  }
+  for (std::size_t i = 0; i < points; ++i)
+    if (!point_set[i]) d.fail(ptype, "the pieces do not cover the WholeExtent (point " + std::to_string(i) + " missing)");
+  for (std::size_t i = 0; i < cells; ++i)
+    if (!cell_set[i]) d.fail(ptype, "the pieces do not cover the WholeExtent (cell " + std::to_string(i) + " missing)");
+  for (RawArray& g : arrays)
+    if (is_ghost_array(g))
+      for (double& v : g.values) v = static_cast<double>(static_cast<unsigned>(v) & ~kDuplicateBit);
+  RawMesh raw;
+  if (rectilinear) {
+    for (std::size_t a = 0; a < 3; ++a)
+      for (std::size_t i = 1; i < axis[a].size(); ++i)
+        if (!(axis[a][i] > axis[a][i - 1]))
+          d.fail(ptype, std::string("the pieces' coordinates do not increase along ") + "xyz"[a]);
+    raw.points = rectilinear_points(axis);
+  } else {
+    raw.points = std::move(xyz);
+  }
+  raw.arrays = std::move(arrays);
+  return assemble_structured(N, rectilinear, std::move(raw), source + " (" + std::to_string(pieces.size()) + " pieces)",
+                             scalar_name, cell_to_point, structured_fields(type));
+}
+
+std::string read_piece_file(const std::string& source, const std::string& type, const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(source + ": P" + type + "/Piece: the piece " + file + " does not exist");
+  return json_source::read_text_file(file);
+}
+
+}  // namespace
+
+CellMesh parse_pvts(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
+                    const std::string& scalar_name, bool cell_to_point) {
+  return parse_parallel_structured(bytes, source, load, false, scalar_name, cell_to_point);
+}
+
+CellMesh parse_pvtr(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
+                    const std::string& scalar_name, bool cell_to_point) {
+  return parse_parallel_structured(bytes, source, load, true, scalar_name, cell_to_point);
+}
+
+CellMesh read_pvts(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  const auto load = [&](const std::string& file) { return read_piece_file(path, "StructuredGrid", file); };
+  return parse_pvts(json_source::read_text_file(path), path, load, scalar_name, cell_to_point);
+}
+
+CellMesh read_pvtr(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+  const auto load = [&](const std::string& file) { return read_piece_file(path, "RectilinearGrid", file); };
+  return parse_pvtr(json_source::read_text_file(path), path, load, scalar_name, cell_to_point);
 }
 
 }  // namespace rayint

@@ -22,6 +22,7 @@
 // array. It must have one component.
 // Every problem is one InputError "<file>: <field>: <what>", e.g.
 //   "mesh.vtu: UnstructuredGrid/Piece/Points/DataArray: header says 96 bytes, expected 1536 (...)".
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -64,6 +65,27 @@ CellMesh read_vts(const std::string& path, const std::string& scalar_name = "", 
 CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
                    bool cell_to_point = false);
 CellMesh read_vtr(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+
+// Parallel structured grids, .pvts (VTKFile type="PStructuredGrid") and .pvtr
+// ("PRectilinearGrid"), as vtkXMLPStructuredGridWriter / vtkXMLPRectilinearGridWriter write
+// them: a WholeExtent and Pieces, each an Extent and the Source of a serial .vts / .vtr holding
+// that extent (relative to the parallel file's folder; pieces with an empty extent are skipped).
+// Read as ONE structured grid of the WholeExtent, equal to the serial file of the same grid:
+// pieces share their boundary points (and, with GhostLevel > 0, layers of ghost cells), and every
+// point and cell is kept once. Shared points must have bitwise-equal coordinates (.pvtr: equal
+// coordinate values) and equal values in every one-component array; vtkGhostType flags come
+// from the owning piece with the duplicate bit cleared (no copies remain). Refused, naming the
+// file and field: a piece outside the WholeExtent, a piece whose own Extent differs from the
+// parallel file's, pieces that leave a point or cell uncovered, a missing piece file, an array
+// missing in a piece. `load` returns a piece file's bytes given its resolved path (the readers:
+// the file, an InputError when missing; the fuzzer: its input's parts).
+using PieceFileLoader = std::function<std::string(const std::string& path)>;
+CellMesh parse_pvts(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
+                    const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh parse_pvtr(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
+                    const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh read_pvts(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh read_pvtr(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
 
 // A .vti as a mesh of its voxels (CellMesh, like .vtr): points at Origin + Direction (index *
 // spacing), voxel cells (hexahedra of the same corners when Direction rotates them), point and

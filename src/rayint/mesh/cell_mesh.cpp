@@ -1,9 +1,12 @@
 // Meshes of linear cells (see cell_mesh.hpp).
 #include "rayint/mesh/cell_mesh.hpp"
 
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
+#include "rayint/cells/linear_cells.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
 
@@ -181,6 +184,67 @@ int cell_orientation(const CellMesh& mesh, std::size_t c) {
     case MeshCellType::quadratic_wedge: return corner_signs(mesh, p, kWedgeCorners);
   }
   return 0;
+}
+
+bool zero_volume_cell(const CellMesh& mesh, std::size_t c) {
+  const auto type = static_cast<LinearCellType>(static_cast<int>(mesh.types[c]));
+  const int n = linear_node_count(type);
+  const std::int32_t* ids = mesh.cell(c);
+  double longest = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      longest = std::max(longest, (mesh.points[static_cast<std::size_t>(ids[i])] - mesh.points[static_cast<std::size_t>(ids[j])]).norm());
+  const double limit = kDegenerateTetRatio * longest * longest * longest;
+  double dN[3 * kMaxLinearNodes];
+  for (int k = 0; k < 27; ++k) {
+    const Vec3 p(0.5 * (k % 3), 0.5 * ((k / 3) % 3), 0.5 * (k / 9));
+    linear_shape_derivatives(type, p, dN);
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < n; ++i) J.col(a) += dN[a * n + i] * mesh.points[static_cast<std::size_t>(ids[i])];
+    if (!(std::fabs(J.determinant()) <= limit)) return false;  // NaN (never: points are finite) counts as volume
+  }
+  return true;
+}
+
+std::map<std::string, long> drop_zero_volume_cells(CellMesh& mesh, const std::string& source) {
+  std::map<std::string, long> dropped;
+  std::vector<char> drop(mesh.cell_count(), 0);
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c)
+    if (zero_volume_cell(mesh, c)) {
+      drop[c] = 1;
+      ++dropped[mesh_cell_name(mesh.types[c])];
+    }
+  if (dropped.empty()) return dropped;
+  if (static_cast<std::size_t>(std::count(drop.begin(), drop.end(), 1)) == mesh.cell_count())
+    throw InputError(source + ": cells: every cell has zero volume (|det J| <= 1e-12 l^3 throughout): nothing to integrate");
+  CellMesh kept;
+  kept.points = std::move(mesh.points);
+  kept.scalars = std::move(mesh.scalars);
+  kept.info = std::move(mesh.info);
+  kept.info.cell_ids.clear();
+  for (std::size_t c = 0; c < drop.size(); ++c) {
+    if (drop[c]) continue;
+    kept.types.push_back(mesh.types[c]);
+    kept.connectivity.insert(kept.connectivity.end(), mesh.cell(c), mesh.cell(c) + mesh.nodes_of(c));
+    kept.offsets.push_back(static_cast<std::uint32_t>(kept.connectivity.size()));
+    if (!mesh.cell_scalars.empty()) kept.cell_scalars.push_back(mesh.cell_scalars[c]);
+    if (c < mesh.info.cell_ids.size()) kept.info.cell_ids.push_back(mesh.info.cell_ids[c]);
+    else kept.info.cell_ids.push_back(static_cast<long long>(c));
+  }
+  // A structured grid with cells missing is no longer the full (i, j, k) block: its cells are
+  // then split as unstructured cells (mesh/cell_split.hpp) where a split is asked for.
+  kept.structured.reset();
+  mesh = std::move(kept);
+  return dropped;
+}
+
+void refuse_zero_volume_cells(const CellMesh& mesh, const std::string& source) {
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c)
+    if (zero_volume_cell(mesh, c))
+      throw InputError(source + ": " + at("cells", c < mesh.info.cell_ids.size() ? static_cast<std::size_t>(mesh.info.cell_ids[c]) : c) +
+                       ": a " + mesh_cell_name(mesh.types[c]) +
+                       " of zero volume (|det J| <= 1e-12 l^3 throughout; the default drops and counts it, --strict-mesh refuses it)");
 }
 
 }  // namespace rayint

@@ -13,6 +13,7 @@
 // (i, j, k) cells in VTK's order (i fastest), and vtkDataSetTriangleFilter splits them with a
 // different rule than unstructured cells (cell_split.hpp), so `structured` says which.
 #include <array>
+#include <map>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -80,5 +81,23 @@ struct CellOrientationCounts {
 };
 // For cell c: +1 all corners positive, -1 all negative, 0 mixed or zero.
 int cell_orientation(const CellMesh& mesh, std::size_t c);
+
+// Zero-volume cells. Cell c has zero volume when its Jacobian determinant |det J| is at most
+// kDegenerateTetRatio l^3 (tet_mesh.hpp: 1e-12; l the cell's longest node-node distance) at
+// every point of the grid {0, 1/2, 1}^3 of parametric space. For every linear type det J is a
+// polynomial of degree <= 2 in each of r, s, t (the columns of J are each free of one variable
+// and at most linear in the others), so it vanishes on that grid if and only if it vanishes
+// everywhere; with the tolerance, |det J| <= ~2e-12 l^3 everywhere (the grid's Lebesgue
+// constant is 1.25 per axis). For a tetrahedron det J = 6V: the tetrahedral path's "zero volume"
+// and "sliver" together. A collapsed cell that still has volume (a hexahedron with two nodes
+// merged, as meshers write wedges) is not one. Such a cell covers no volume and has no length
+// along any ray: the own mode drops it (drop_zero_volume_cells), counts it, and its neighbours
+// across it see boundary faces, as for a dropped tetrahedron (tet_mesh.hpp).
+bool zero_volume_cell(const CellMesh& mesh, std::size_t c);
+// Removes the zero-volume cells (cell data kept for the others, in order); returns how many,
+// by type name. Throws InputError "<source>: cells: ..." when no cell is left.
+std::map<std::string, long> drop_zero_volume_cells(CellMesh& mesh, const std::string& source);
+// Strict (--strict-mesh): InputError "<source>: cells[i]: ... zero volume ..." for the first one.
+void refuse_zero_volume_cells(const CellMesh& mesh, const std::string& source);
 
 }  // namespace rayint

@@ -113,7 +113,9 @@ struct TetRepairs {
   std::map<std::string, long> skipped_by_type;  // by cell-type name
   long ghost_cells = 0;                         // vtkGhostType duplicate cells dropped
   long reoriented = 0;   // inverted, reordered (points 2 and 3 swapped)
-  long zero_volume = 0;  // dropped: repeated point index or 6V == 0 exactly
+  long zero_volume = 0;  // dropped: repeated point index or 6V == 0 exactly (own mode: zero-volume
+                         // cells of any type, mesh/cell_mesh.hpp zero_volume_cell)
+  std::map<std::string, long> zero_volume_by_type;  // own mode: the dropped cells by type name
   long slivers = 0;      // dropped: 0 < |6V| <= kDegenerateTetRatio l^3
   // `--cells split` (mesh/cell_split.hpp): the file's cells by type that were tetrahedralised as
   // VTK's vtkDataSetTriangleFilter does, an approximation; empty when the file was not split.

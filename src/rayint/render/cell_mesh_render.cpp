@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rayint/core/parallel.hpp"
+#include "rayint/core/shard.hpp"
 
 namespace rayint {
 
@@ -17,7 +18,9 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: a mesh case needs a \"camera\" to render");
   const Camera& cam = *mc.camera;
   const int width = cam.width, height = cam.height;
-  const unsigned threads = parallel_workers(height, settings.threads);
+  const IndexRange rows = shard_range(static_cast<std::size_t>(height), settings.shard);
+  const int band = static_cast<int>(rows.size());
+  const unsigned threads = parallel_workers(band, settings.threads);
   CellMeshRender out;
   out.image = Image(width, height);
   out.failed.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
@@ -31,7 +34,7 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
   std::vector<Worker> workers(threads);
   std::atomic<int> rows_done{0};
   const auto render_row = [&](long long row, unsigned id) {
-    const int y = static_cast<int>(row);
+    const int y = static_cast<int>(rows.begin) + static_cast<int>(row);
     Worker& w = workers[id];
     for (int x = 0; x < width; ++x) {
       const auto t0 = Clock::now();
@@ -56,11 +59,11 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
     rows_done.fetch_add(1);
   };
   const auto start = Clock::now();
-  parallel_for(height, settings.threads, render_row, 0.2, [&] {
+  parallel_for(band, settings.threads, render_row, 0.2, [&] {
     const int reported = rows_done.load();
-    if (settings.progress && reported < height) settings.progress(reported, height);
+    if (settings.progress && reported < band) settings.progress(reported, band);
   });
-  if (settings.progress) settings.progress(height, height);
+  if (settings.progress) settings.progress(band, band);
   out.wall_seconds = seconds(Clock::now() - start);
   out.threads = threads;
   for (const Worker& w : workers) {
@@ -72,6 +75,122 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
     out.integration_seconds += w.integration_seconds;
     out.traversal.add(w.stats);
   }
+  return out;
+}
+
+namespace {
+
+// The error summary over `pixel`: a pixel whose own ray failed has no error (NaN in rel_error);
+// it is counted among the non-finite ones and left out of the statistics.
+ErrorSummary own_error_summary(const CellMeshRender& r, const std::vector<std::size_t>& pixel) {
+  std::vector<std::size_t> ok;
+  std::vector<double> rel;
+  long failed = 0;
+  for (std::size_t i : pixel) {
+    if (r.failed[i]) {
+      ++failed;
+      continue;
+    }
+    ok.push_back(i);
+    rel.push_back(r.rel_error[i]);
+  }
+  ErrorSummary s;
+  if (!ok.empty()) s = error_summary(r.image, r.compared, rel, ok);
+  s.pixels += failed;
+  s.non_finite += failed;
+  return s;
+}
+
+}  // namespace
+
+void compare_cell_mesh_render(CellMeshRender& own, const Image& compared, const ShardSpec& shard) {
+  const int width = own.image.width, height = own.image.height;
+  if (compared.width != width || compared.height != height)
+    throw std::invalid_argument("compare_cell_mesh_render: images of different sizes");
+  own.compared = compared;
+  own.rel_error.assign(own.image.pixels.size(), 0.0);
+  const IndexRange rows = shard_range(static_cast<std::size_t>(height), shard);
+  std::vector<std::size_t> pixel;
+  for (std::size_t y = rows.begin; y < rows.end; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = y * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+      own.rel_error[i] = own.failed[i] ? std::numeric_limits<double>::quiet_NaN()
+                                       : relative_pixel_error(own.image.pixels[i], compared.pixels[i]);
+      pixel.push_back(i);
+    }
+  own.error = own_error_summary(own, pixel);
+}
+
+CellMeshRenderPart cell_mesh_render_part(const CellMeshRender& r, const ShardSpec& shard) {
+  CellMeshRenderPart p;
+  p.width = r.image.width;
+  p.height = r.image.height;
+  const IndexRange rows = shard_range(static_cast<std::size_t>(p.height), shard);
+  p.row_begin = static_cast<int>(rows.begin);
+  p.row_end = static_cast<int>(rows.end);
+  p.compared = !r.rel_error.empty();
+  const auto first = static_cast<long>(rows.begin) * p.width, last = static_cast<long>(rows.end) * p.width;
+  p.image.assign(r.image.pixels.begin() + first, r.image.pixels.begin() + last);
+  p.failed.assign(r.failed.begin() + first, r.failed.begin() + last);
+  if (p.compared) {
+    p.compared_image.assign(r.compared.pixels.begin() + first, r.compared.pixels.begin() + last);
+    p.rel_error.assign(r.rel_error.begin() + first, r.rel_error.begin() + last);
+  }
+  p.failed_pixels = r.failed_pixels;
+  p.rays = r.rays;
+  p.chords = r.chords;
+  p.max_error_estimate = r.max_error_estimate;
+  p.wall_seconds = r.wall_seconds;
+  p.traversal_seconds = r.traversal_seconds;
+  p.integration_seconds = r.integration_seconds;
+  p.threads = r.threads;
+  p.traversal = r.traversal;
+  return p;
+}
+
+CellMeshRender assemble_cell_mesh_render(const std::vector<CellMeshRenderPart>& parts) {
+  if (parts.empty()) throw std::invalid_argument("cell mesh render: no parts to assemble");
+  const int width = parts.front().width, height = parts.front().height;
+  const bool compared = parts.front().compared;
+  CellMeshRender out;
+  out.image = Image(width, height);
+  out.failed.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+  if (compared) {
+    out.compared = Image(width, height);
+    out.rel_error.assign(out.failed.size(), 0.0);
+  }
+  std::vector<const CellMeshRenderPart*> ordered;
+  for (const auto& p : parts) ordered.push_back(&p);
+  std::sort(ordered.begin(), ordered.end(), [](auto* a, auto* b) { return a->row_begin < b->row_begin; });
+  std::vector<std::size_t> pixel;
+  int covered_to = 0;
+  out.threads = 0;
+  for (const CellMeshRenderPart* p : ordered) {
+    const std::size_t n = static_cast<std::size_t>(p->row_end - p->row_begin) * static_cast<std::size_t>(width);
+    if (p->width != width || p->height != height || p->compared != compared || p->row_begin < covered_to ||
+        p->row_end > height || p->image.size() != n || p->failed.size() != n ||
+        (compared && (p->compared_image.size() != n || p->rel_error.size() != n)))
+      throw std::invalid_argument("cell mesh render: parts of different renders, or overlapping");
+    covered_to = p->row_end;
+    const auto first = static_cast<long>(p->row_begin) * width;
+    std::copy(p->image.begin(), p->image.end(), out.image.pixels.begin() + first);
+    std::copy(p->failed.begin(), p->failed.end(), out.failed.begin() + first);
+    if (compared) {
+      std::copy(p->compared_image.begin(), p->compared_image.end(), out.compared.pixels.begin() + first);
+      std::copy(p->rel_error.begin(), p->rel_error.end(), out.rel_error.begin() + first);
+      for (std::size_t i = 0; i < n; ++i) pixel.push_back(static_cast<std::size_t>(first) + i);
+    }
+    out.failed_pixels += p->failed_pixels;
+    out.rays += p->rays;
+    out.chords += p->chords;
+    out.max_error_estimate = std::max(out.max_error_estimate, p->max_error_estimate);
+    out.wall_seconds += p->wall_seconds;
+    out.traversal_seconds += p->traversal_seconds;
+    out.integration_seconds += p->integration_seconds;
+    out.threads = std::max(out.threads, p->threads);
+    out.traversal.add(p->traversal);
+  }
+  if (compared && !pixel.empty()) out.error = own_error_summary(out, pixel);
   return out;
 }
 

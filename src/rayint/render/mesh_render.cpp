@@ -51,33 +51,49 @@ class PieceCounter {
   std::array<double, 8> padded_{};
 };
 
-// The error summary of `rel`, the errors of the pixels `pixel` (all pixels when empty).
 void summarize_errors(MeshRender& out, const std::vector<double>& rel, std::vector<std::size_t> pixel = {}) {
-  if (pixel.empty())
-    for (std::size_t i = 0; i < rel.size(); ++i) pixel.push_back(i);
-  {
-    ErrorSummary& s = out.error;
-    s.pixels = static_cast<long>(rel.size());
-    double sum = 0.0;
-    for (std::size_t i = 0; i < rel.size(); ++i) {
-      if (!std::isfinite(rel[i])) ++s.non_finite;
-      else sum += rel[i];
-      const Rgb& a = out.image.pixels[pixel[i]];
-      const Rgb& b = out.compared.pixels[pixel[i]];
-      for (int ch = 0; ch < kChannels; ++ch) s.max_abs = std::max(s.max_abs, std::fabs(a[ch] - b[ch]));
-    }
-    if (!rel.empty()) {
-      const ErrorStats st = error_stats(rel);
-      s.max_rel = st.max;
-      s.median_rel = st.median;
-      s.p99_rel = st.p99;
-      const long finite = s.pixels - s.non_finite;
-      s.mean_rel = finite > 0 ? sum / static_cast<double>(finite) : 0.0;
-    }
-  }
+  out.error = error_summary(out.image, out.compared, rel, std::move(pixel));
 }
 
 }  // namespace
+
+double relative_pixel_error(const Rgb& ref_pixel, const Rgb& got_pixel) {
+  double e = 0.0;
+  for (int ch = 0; ch < kChannels; ++ch) {
+    const double ref = ref_pixel[ch], got = got_pixel[ch];
+    double rel;
+    if (!std::isfinite(got)) rel = std::numeric_limits<double>::infinity();
+    else if (ref == 0.0) rel = got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+    else rel = std::fabs(got - ref) / std::fabs(ref);
+    e = std::max(e, rel);
+  }
+  return e;
+}
+
+ErrorSummary error_summary(const Image& image, const Image& compared, const std::vector<double>& rel,
+                           std::vector<std::size_t> pixel) {
+  if (pixel.empty())
+    for (std::size_t i = 0; i < rel.size(); ++i) pixel.push_back(i);
+  ErrorSummary s;
+  s.pixels = static_cast<long>(rel.size());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < rel.size(); ++i) {
+    if (!std::isfinite(rel[i])) ++s.non_finite;
+    else sum += rel[i];
+    const Rgb& a = image.pixels[pixel[i]];
+    const Rgb& b = compared.pixels[pixel[i]];
+    for (int ch = 0; ch < kChannels; ++ch) s.max_abs = std::max(s.max_abs, std::fabs(a[ch] - b[ch]));
+  }
+  if (!rel.empty()) {
+    const ErrorStats st = error_stats(rel);
+    s.max_rel = st.max;
+    s.median_rel = st.median;
+    s.p99_rel = st.p99;
+    const long finite = s.pixels - s.non_finite;
+    s.mean_rel = finite > 0 ? sum / static_cast<double>(finite) : 0.0;
+  }
+  return s;
+}
 
 MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIntegrator& method,
                        const RayIntegrator* compare, const MeshRenderSettings& settings) {
@@ -140,15 +156,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
                                 ? integrate_shaded(*compare, trace, mc.background, mc.shading, *gradients)
                                 : compare->integrate(ray, nullptr);
         out.compared.at(x, y) = c.intensity;
-        double e = 0.0;
-        for (int ch = 0; ch < kChannels; ++ch) {
-          const double ref = r.intensity[ch], got = c.intensity[ch];
-          double rel;
-          if (!std::isfinite(got)) rel = std::numeric_limits<double>::infinity();
-          else if (ref == 0.0) rel = got == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-          else rel = std::fabs(got - ref) / std::fabs(ref);
-          e = std::max(e, rel);
-        }
+        const double e = relative_pixel_error(r.intensity, c.intensity);
         out.rel_error[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = e;
       }
     }

@@ -53,6 +53,15 @@ struct MeshRender {
   ErrorSummary error;
 };
 
+// The relative error of a compared pixel: the largest over channels of |got - ref| / |ref|
+// (0 / 0 = 0; x / 0 and a non-finite `got` = infinity).
+double relative_pixel_error(const Rgb& ref, const Rgb& got);
+// The summary of the relative errors `rel` of the pixels `pixel` of two images (all pixels when
+// `pixel` is empty): max, mean (of the finite ones), median, p99, max absolute difference,
+// non-finite count.
+ErrorSummary error_summary(const Image& image, const Image& compared, const std::vector<double>& rel,
+                           std::vector<std::size_t> pixel = {});
+
 // Renders mesh_case.camera (which must be set). `compare` may be null. With mesh_case.shading
 // enabled, both methods go through integrate_shaded (mesh/surface_shading.hpp).
 MeshRender render_mesh(const MeshCase& mesh_case, const TetTraversal& mesh,

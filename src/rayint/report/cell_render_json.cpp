@@ -25,11 +25,13 @@ nlohmann::json to_json(const CellTraversalStats& s) {
           {"budget_exhausted", s.budget_exhausted}};
 }
 
-nlohmann::json cell_mesh_render_json(const MeshCase& mc, const CellTraversal& mesh, const CellMeshRender& r) {
+nlohmann::json cell_mesh_render_json(const MeshCase& mc, const CellTraversal& mesh, const CellMeshRender& r,
+                                     const MeshRenderComparison* compare) {
   const double busy = r.traversal_seconds + r.integration_seconds;
-  return {{"case", mc.name},
+  nlohmann::json stats = {{"case", mc.name},
           {"source", mc.source},
-          {"mesh", {{"source", mc.mesh_source}, {"cells", own_cells_json(mesh)}}},
+          {"mesh", {{"source", mc.mesh_source}, {"cells", own_cells_json(mesh)},
+                    {"repairs", zero_volume_json(mc.repairs.zero_volume, mc.repairs.zero_volume_by_type)}}},
           {"width", mc.camera->width},
           {"height", mc.camera->height},
           {"method", "own"},
@@ -44,9 +46,24 @@ nlohmann::json cell_mesh_render_json(const MeshCase& mc, const CellTraversal& me
                     {"integration_seconds", r.integration_seconds},
                     {"traversal_share", busy > 0 ? r.traversal_seconds / busy : 0.0},
                     {"traversal", to_json(r.traversal)}}}};
+  if (compare) {
+    // The method on VTK's split against the own interpolation; pixels whose own ray failed have
+    // no error and are counted in non_finite.
+    const ErrorSummary& e = r.error;
+    stats["compare"] = {{"method", compare->label},
+                        {"heat_map", compare->heat_map},
+                        {"pixels", e.pixels},
+                        {"max_rel_error", e.max_rel},
+                        {"mean_rel_error", e.mean_rel},
+                        {"median_rel_error", e.median_rel},
+                        {"p99_rel_error", e.p99_rel},
+                        {"max_abs_error", e.max_abs},
+                        {"non_finite", e.non_finite}};
+  }
+  return stats;
 }
 
-std::string cell_mesh_render_summary(const CellMeshRender& r) {
+std::string cell_mesh_render_summary(const CellMeshRender& r, const MeshRenderComparison* compare) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "rayint render: mode own: %ld rays, %ld cell chords in %.3f s on %u threads (%.3g rays/s); "
@@ -54,12 +71,24 @@ std::string cell_mesh_render_summary(const CellMeshRender& r) {
                 r.rays, r.chords, r.wall_seconds, r.threads,
                 r.wall_seconds > 0 ? static_cast<double>(r.rays) / r.wall_seconds : 0.0, r.max_error_estimate,
                 r.failed_pixels, r.failed_pixels > 0 ? " (NaN in the image, not a result)" : "");
-  return line;
+  std::string out = line;
+  if (compare) {
+    std::snprintf(line, sizeof line, "rayint render: %s vs own: max rel %.3g, median %.3g, p99 %.3g -> %s\n",
+                  compare->label.c_str(), r.error.max_rel, r.error.median_rel, r.error.p99_rel, compare->heat_map.c_str());
+    out += line;
+  }
+  return out;
 }
 
 namespace {
 nlohmann::json rgb(const Rgb& c) { return nlohmann::json::array({c[0], c[1], c[2]}); }
 }  // namespace
+
+nlohmann::json zero_volume_json(long dropped, const std::map<std::string, long>& by_type) {
+  nlohmann::json types = nlohmann::json::object();
+  for (const auto& [name, n] : by_type) types[name] = n;
+  return {{"dropped_zero_volume", dropped}, {"dropped_zero_volume_by_type", types}};
+}
 
 nlohmann::json own_eval_json(const std::vector<OwnCaseEvaluation>& cases, bool with_reference) {
   nlohmann::json out = {{"mode", "own"}, {"cases", nlohmann::json::array()}};
@@ -93,6 +122,7 @@ nlohmann::json own_eval_json(const std::vector<OwnCaseEvaluation>& cases, bool w
                          {"mesh_file", c.mesh_source},
                          {"mode", "own"},
                          {"cells", counts},
+                         {"mesh_repairs", zero_volume_json(c.dropped_zero_volume, c.dropped_zero_volume_by_type)},
                          {"faces", c.faces},
                          {"boundary_faces", c.boundary_faces},
                          {"rays", rays},
@@ -135,6 +165,7 @@ std::string own_eval_table(const std::vector<OwnCaseEvaluation>& cases, bool wit
       s << "\n";
     }
     s << "  failed rays: " << c.failed << "\n";
+    if (c.dropped_zero_volume > 0) s << "  zero-volume cells dropped: " << c.dropped_zero_volume << "\n";
   }
   return s.str();
 }

@@ -77,6 +77,14 @@ std::map<std::string, CellOrientationCounts> orientation_by_type(const CellMesh&
   return out;
 }
 
+// Zero-volume cells by type (mesh/cell_mesh.hpp zero_volume_cell): the own mode drops them.
+std::map<std::string, long> zero_volume_by_type(const CellMesh& m) {
+  std::map<std::string, long> out;
+  for (std::size_t c = 0; c < m.cell_count(); ++c)
+    if (zero_volume_cell(m, c)) ++out[mesh_cell_name(m.types[c])];
+  return out;
+}
+
 constexpr const char* kCellsIntegrated =
     "in each cell's own interpolation (default, \"mode\": \"own\"); --cells split integrates VTK's "
     "vtkDataSetTriangleFilter tetrahedralisation instead (an approximation of it)";
@@ -100,6 +108,11 @@ nlohmann::json cells_json(const MeshInfo& in) {
   nlohmann::json j = {{"file", in.file}, {"points", m.points.size()}, {"cells", m.cell_count()}, {"tets", nullptr}};
   j.update(file_json(m.info, m.points));
   j["cell_orientation"] = orient;
+  nlohmann::json zero = nlohmann::json::object();
+  long zero_total = 0;
+  for (const auto& [type, n] : zero_volume_by_type(m)) zero[type] = n, zero_total += n;
+  j["zero_volume_cells"] = {{"total", zero_total}, {"by_type", zero},
+                            {"own_mode", "dropped and counted (--strict-mesh: refused)"}};
   j["integrated"] = cells_integrated(m);
   j["check"] = "not run (--check covers tetrahedral meshes)";
   if (m.structured) j["structured_dimensions"] = {(*m.structured)[0], (*m.structured)[1], (*m.structured)[2]};
@@ -118,6 +131,10 @@ std::string cells_text(const MeshInfo& in) {
   for (const auto& [type, o] : orientation_by_type(m))
     out += " " + type + " positive " + std::to_string(o.positive) + ", negative " + std::to_string(o.negative) +
            ", mixed " + std::to_string(o.mixed) + ";";
+  long zero_total = 0;
+  std::string zero_types;
+  for (const auto& [type, n] : zero_volume_by_type(m)) zero_total += n, zero_types += " " + type + " " + std::to_string(n) + ";";
+  out += "\n  zero volume: " + std::to_string(zero_total) + (zero_total > 0 ? " (" + zero_types.substr(1) + " dropped in the own mode)" : "");
   out += std::string("\n  integrated: ") + cells_integrated(m) + "\n";
   return out;
 }

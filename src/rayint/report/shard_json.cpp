@@ -110,6 +110,31 @@ nlohmann::json to_json(const MeshRenderPart& p) {
   return j;
 }
 
+nlohmann::json to_json(const CellMeshRenderPart& p) {
+  const CellTraversalStats& t = p.traversal;
+  nlohmann::json failed = nlohmann::json::array();
+  for (std::uint8_t f : p.failed) failed.push_back(f != 0 ? 1 : 0);
+  nlohmann::json j = {{"mode", "own"},
+                      {"width", p.width},
+                      {"height", p.height},
+                      {"row_begin", p.row_begin},
+                      {"row_end", p.row_end},
+                      {"compared", p.compared},
+                      {"image", pixels(p.image)},
+                      {"failed", failed},
+                      {"counts", {p.failed_pixels, p.rays, p.chords}},
+                      {"max_error_estimate", exact_json(p.max_error_estimate)},
+                      {"seconds", {exact_json(p.wall_seconds), exact_json(p.traversal_seconds), exact_json(p.integration_seconds)}},
+                      {"threads", p.threads},
+                      {"traversal", {t.rays, t.chords, t.face_steps, t.star_steps, t.first_hit_queries, t.failed_chords,
+                                     t.budget_exhausted}}};
+  if (p.compared) {
+    j["compared_image"] = pixels(p.compared_image);
+    j["rel_error"] = numbers(p.rel_error);
+  }
+  return j;
+}
+
 nlohmann::json to_json(const SweepPart& part) {
   nlohmann::json methods = nlohmann::json::array();
   for (const auto& axis : part.methods) {

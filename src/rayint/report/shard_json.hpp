@@ -5,6 +5,7 @@
 // strings "inf", "-inf", "nan".
 #include <nlohmann/json.hpp>
 
+#include "rayint/render/cell_mesh_render.hpp"
 #include "rayint/render/mesh_render.hpp"
 #include "rayint/scattering/sample_blocks.hpp"
 #include "rayint/scattering/volume_comparison.hpp"
@@ -21,6 +22,11 @@ nlohmann::json exact_json(double x);
 nlohmann::json to_json(const MonteCarloPart& part);
 nlohmann::json to_json(const StressPartial& partial);
 nlohmann::json to_json(const MeshRenderPart& part);
+// The own mode's band: {"mode": "own", "width", "height", "row_begin", "row_end", "compared",
+// "image", "failed" (0/1 per pixel), ["compared_image", "rel_error"], "counts": [failed_pixels,
+// rays, chords], "max_error_estimate", "seconds": [wall, traversal, integration], "threads",
+// "traversal": [7 counts of CellTraversalStats]}
+nlohmann::json to_json(const CellMeshRenderPart& part);
 // {"width", "height", "lines", "line_begin", "line_end", "terms", "pixels", "ray_terms",
 // "line_sums" (flat RGB triples), "work": [[seconds, cpu_seconds, setup_seconds,
 // setup_cpu_seconds, rays, samples, shadow_rays, shadow_samples, lookups] per term, then

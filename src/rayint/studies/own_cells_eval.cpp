@@ -55,6 +55,8 @@ OwnCaseEvaluation evaluate_own_cells(const MeshCase& mc, bool with_reference, un
   out.name = mc.name;
   out.source = mc.source;
   out.mesh_source = mc.mesh_source;
+  out.dropped_zero_volume = mc.repairs.zero_volume;
+  out.dropped_zero_volume_by_type = mc.repairs.zero_volume_by_type;
   const CellTraversal mesh(*mc.cells, mc.mesh_source);
   out.cells = cell_counts(mesh.mesh());
   out.faces = mesh.face_count();

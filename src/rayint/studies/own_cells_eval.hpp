@@ -8,6 +8,7 @@
 // numbers (null in JSON) and it is counted. The reference checks the integration along the
 // traversal's chords; the chords themselves are checked against every cell's own chord in the
 // tests ([celltraversal]).
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,9 @@ struct OwnCaseEvaluation {
   std::string name, source, mesh_source;
   std::vector<std::pair<std::string, long>> cells;  // by type
   std::size_t faces = 0, boundary_faces = 0;
+  // Zero-volume cells the reader dropped (mesh/cell_mesh.hpp drop_zero_volume_cells), by type.
+  long dropped_zero_volume = 0;
+  std::map<std::string, long> dropped_zero_volume_by_type;
   std::vector<OwnRayEvaluation> rays;
   long failed = 0;                 // rays not converged
   long reference_failed = 0;

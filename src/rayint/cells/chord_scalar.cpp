@@ -1,0 +1,176 @@
+// The scalar of a linear cell along a ray: multilinear form, Taylor predictor, Newton (see
+// chord_scalar.hpp for the method, the acceptance test and the thresholds).
+#include "rayint/cells/chord_scalar.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rayint {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+struct Monomials {
+  double r, s, t, rs, rt, st, rst;
+  explicit Monomials(const Vec3& p)
+      : r(p[0]), s(p[1]), t(p[2]), rs(p[0] * p[1]), rt(p[0] * p[2]), st(p[1] * p[2]), rst(p[0] * p[1] * p[2]) {}
+};
+
+Vec3 position(const MultilinearCell& m, const Monomials& q) {
+  return m.x[0] + q.r * m.x[1] + q.s * m.x[2] + q.t * m.x[3] + q.rs * m.x[4] + q.rt * m.x[5] + q.st * m.x[6] +
+         q.rst * m.x[7];
+}
+
+Eigen::Matrix3d jacobian(const MultilinearCell& m, const Monomials& q) {
+  Eigen::Matrix3d J;
+  J.col(0) = m.x[1] + q.s * m.x[4] + q.t * m.x[5] + q.st * m.x[7];
+  J.col(1) = m.x[2] + q.r * m.x[4] + q.t * m.x[6] + q.rt * m.x[7];
+  J.col(2) = m.x[3] + q.r * m.x[5] + q.s * m.x[6] + q.rs * m.x[7];
+  return J;
+}
+
+}  // namespace
+
+MultilinearCell multilinear_form(const LinearCell& cell) {
+  MultilinearCell m;
+  m.type = cell.type;
+  const int n = linear_node_count(cell.type);
+  for (int i = 0; i < n; ++i) m.magnitude = std::max(m.magnitude, cell.x[static_cast<std::size_t>(i)].cwiseAbs().maxCoeff());
+  // Positions at the corners q of the unit cube (bit 0: r, bit 1: s, bit 2: t) from the nodal form;
+  // the shape functions are polynomials, so corners outside a wedge's or tetra's domain are fine.
+  std::array<Vec3, 8> xc;
+  double N[kMaxLinearNodes];
+  for (int q = 0; q < 8; ++q) {
+    const Vec3 p((q & 1) ? 1.0 : 0.0, (q & 2) ? 1.0 : 0.0, (q & 4) ? 1.0 : 0.0);
+    linear_shape_functions(cell.type, p, N);
+    Vec3 x = Vec3::Zero();
+    for (int i = 0; i < n; ++i) x += N[i] * cell.x[static_cast<std::size_t>(i)];
+    xc[static_cast<std::size_t>(q)] = x;
+  }
+  // Moebius inversion: the coefficient of the monomial with exponent bits m is the alternating
+  // sum over the corners q contained in m. Monomial slots: 1, r, s, t, rs, rt, st, rst.
+  constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};
+  for (int slot = 0; slot < 8; ++slot) {
+    const int bits = kBits[slot];
+    Vec3 x = Vec3::Zero();
+    for (int q = 0; q < 8; ++q) {
+      if ((q & ~bits) != 0) continue;
+      const int parity = __builtin_popcount(static_cast<unsigned>(bits ^ q)) % 2;
+      x += (parity == 0 ? 1.0 : -1.0) * xc[static_cast<std::size_t>(q)];
+    }
+    m.x[static_cast<std::size_t>(slot)] = x;
+  }
+  return m;
+}
+
+ChordScalar::ChordScalar(const LinearCell& cell, const ViewRay& ray)
+    : m_(multilinear_form(cell)), cell_(&cell), o_(ray.origin), d_(ray.direction),
+      start_(linear_reference_centre(cell.type)) {}
+
+// linear_cells.cpp's inverse_map on the multilinear form: the same tolerances and budget.
+// With `step_first` the residual test is skipped before the first step: a point that passes it
+// by a hair (a Taylor prediction) still takes one step, and near a singular Jacobian (a
+// pyramid's apex) the residual bound alone leaves the point off by |J^-1| 8 eps |x|.
+bool ChordScalar::newton(const Vec3& target, Vec3& p, bool step_first) {
+  const double residual_tolerance = 8 * kEps * std::max(m_.magnitude, target.cwiseAbs().maxCoeff());
+  for (int it = 0; it < kNewtonMaxIterations; ++it) {
+    const Monomials q(p);
+    const Vec3 residual = target - position(m_, q);
+    if (!(step_first && it == 0) && residual.cwiseAbs().maxCoeff() <= residual_tolerance) return true;
+    Vec3 step = jacobian(m_, q).inverse() * residual;
+    ++newton_steps;
+    if (!step.allFinite()) return false;
+    const double size = step.cwiseAbs().maxCoeff();
+    if (size > kNewtonMaxStep) step *= kNewtonMaxStep / size;
+    p += step;
+    if (size <= kNewtonStepTolerance) return true;
+  }
+  return false;
+}
+
+bool ChordScalar::expand(double a, double b) {
+  order_ = -1;
+  t_c_ = 0.5 * (a + b);
+  const double h = 0.5 * (b - a);
+  Vec3 p0 = start_;
+  if (!newton(o_ + t_c_ * d_, p0, false)) {
+    p0 = linear_reference_centre(cell_->type);
+    if (!newton(o_ + t_c_ * d_, p0, false)) return false;
+  }
+  start_ = p0;
+  P_[0] = p0;
+  const Monomials q0(p0);
+  const Eigen::Matrix3d Jinv = jacobian(m_, q0).inverse();
+  if (!Jinv.allFinite()) return false;
+  // Series of the products: U = rs, V = rt, W = st (full coefficients once P_k is known).
+  std::array<double, kTaylorMaxOrder + 1> U{}, V{}, W{};
+  U[0] = q0.rs, V[0] = q0.rt, W[0] = q0.st;
+  const double r0 = p0[0], s0 = p0[1], t0 = p0[2];
+  int small = 0;
+  double hk = 1.0;
+  order_ = 0;
+  for (int k = 1; k <= kTaylorMaxOrder; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    double Uk = 0.0, Vk = 0.0, Wk = 0.0, Xk = 0.0;  // the parts without order-k unknowns
+    for (std::size_t i = 1; i < K; ++i) {
+      const Vec3& a_i = P_[i];
+      const Vec3& b_j = P_[K - i];
+      Uk += a_i[0] * b_j[1];
+      Vk += a_i[0] * b_j[2];
+      Wk += a_i[1] * b_j[2];
+      Xk += U[i] * P_[K - i][2];
+    }
+    Xk += Uk * t0;
+    const Vec3 Q = Uk * m_.x[4] + Vk * m_.x[5] + Wk * m_.x[6] + Xk * m_.x[7];
+    const Vec3 rhs = (k == 1 ? d_ : Vec3::Zero()) - Q;
+    const Vec3 Pk = Jinv * rhs;
+    if (!Pk.allFinite()) break;
+    P_[K] = Pk;
+    U[K] = Uk + r0 * Pk[1] + Pk[0] * s0;
+    V[K] = Vk + r0 * Pk[2] + Pk[0] * t0;
+    W[K] = Wk + s0 * Pk[2] + Pk[1] * t0;
+    order_ = k;
+    hk *= h;
+    small = (Pk.cwiseAbs().maxCoeff() * hk <= kTaylorNegligible) ? small + 1 : 0;
+    if (small >= 2) break;
+  }
+  return true;
+}
+
+bool ChordScalar::sample(double t, double& f) {
+  ++samples;
+  const Vec3 target = o_ + t * d_;
+  Vec3 p = start_;
+  bool from_prediction = false;
+  if (order_ >= 0) {
+    const double tau = t - t_c_;
+    Vec3 pred = P_[static_cast<std::size_t>(order_)];
+    for (int k = order_ - 1; k >= 0; --k) pred = pred * tau + P_[static_cast<std::size_t>(k)];
+    if (pred.allFinite() && inside_reference(cell_->type, pred, 0.25)) {
+      p = pred;
+      from_prediction = true;
+    }
+  }
+  const int steps_before = newton_steps;
+  bool ok = newton(target, p, from_prediction);
+  if (ok && from_prediction && newton_steps == steps_before + 1) ++predicted;
+  if (!ok && from_prediction) {
+    p = start_;
+    ok = newton(target, p, false);
+  }
+  if (!ok) {
+    p = linear_reference_centre(cell_->type);
+    ok = newton(target, p, false);
+  }
+  if (!ok) return false;
+  start_ = p;
+  // The scalar from the nodal form (sum N_i f_i, as cell_scalar): the monomial coefficients are
+  // alternating sums of up to eight node values, whose rounding (~8 eps max|f_i|) would bias f;
+  // measured on 200 warped pyramids: one chord's error above its estimate with the monomial f.
+  f = cell_scalar(*cell_, p);
+  return true;
+}
+
+}  // namespace rayint

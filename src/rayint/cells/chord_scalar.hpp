@@ -1,0 +1,76 @@
+#pragma once
+// The scalar of a linear cell along a ray, f(t) = sum_i N_i(p(t)) f_i with p(t) the inverse map
+// of x = origin + t direction (cells/linear_cells.hpp), evaluated at the Chebyshev points of
+// cells/cell_integral.hpp's isoparametric path: the cost of that path is these inverse maps.
+//
+// Multilinear form. Every linear cell's shape functions (VTK's tetra, voxel, hexahedron, wedge,
+// pyramid) are multilinear in p = (r, s, t): their span lies in {1, r, s, t, rs, rt, st, rst}.
+// So x(p) = sum_m X_m mono_m(p), the coefficients by Moebius inversion of x at the eight corners
+// of the unit cube (for a hexahedron X_4 = x0 - x1 + x2 - x3, the rs term, ...; sums and
+// differences of node coordinates, a few ulps each). One evaluation of x and J is then ~50
+// flops, without the per-type shape-function tables. The scalar at the accepted point is taken
+// from the nodal form (cell_scalar): its monomial coefficients would carry ~8 eps max|f_i| of
+// rounding, and on 200 warped pyramids that put one chord's error above its estimate.
+//
+// Taylor predictor. About the centre t_c of an interval [a, b] (half-length h), p(t_c + tau) =
+// sum_k P_k tau^k: P_0 by Newton, and since x is multilinear the coefficient of tau^k of
+// x(p(tau)) is J(P_0) P_k + Q_k(P_1 .. P_{k-1}) (Cauchy products of the r, s, t series, Taylor-
+// mode differentiation), so J(P_0) P_k = direction [k = 1] - Q_k: one 3x3 inverse for all orders.
+// Terms are added until |P_k| h^k <= kTaylorNegligible = 1e-17 twice in a row (far below the
+// Newton step tolerance 4e-15) or k = kTaylorMaxOrder = 24. The series converges for |tau| below
+// the distance to the nearest complex point where J is singular; on a nearly affine cell that is
+// many chord lengths away and the prediction is exact to rounding.
+//
+// Acceptance is Newton's own (linear_cells.hpp inverse_map): a point is converged when the world
+// residual |x(p) - x_target| is <= 8 eps * max(|x_target|, |x_i|), or after a Newton step of at
+// most kNewtonStepTolerance; budget kNewtonMaxIterations, steps clamped to kNewtonMaxStep. The
+// predicted point is only Newton's start, and from it at least one step is always taken (so a
+// sample ends, as inverse_map's usually do, on a step of <= 4e-15: quadratic convergence leaves
+// it exact to rounding; accepting a prediction on the residual alone put one warped pyramid's
+// chord error above its estimate, tools/cell_accuracy). Where the series has not converged (a
+// strongly distorted cell, a long chord) Newton runs on from it; if the prediction is not finite
+// or lies more than 0.25 outside the domain, Newton starts from the previous converged point
+// instead, then from the cell's centre (as cell_integral did before). Measured on the bench's
+// twisted 12^3 mesh (bench/bench_cell_mesh.cpp): see reports/cells/bench.md.
+#include <array>
+
+#include "rayint/cells/linear_cells.hpp"
+
+namespace rayint {
+
+inline constexpr int kTaylorMaxOrder = 24;
+inline constexpr double kTaylorNegligible = 1e-17;
+
+// x(p) = sum_m x[m] mono_m(p), mono = 1, r, s, t, rs, rt, st, rst.
+struct MultilinearCell {
+  std::array<Vec3, 8> x{};
+  double magnitude = 0.0;  // largest |node coordinate| (Newton's residual scale)
+  LinearCellType type = LinearCellType::hexahedron;
+};
+MultilinearCell multilinear_form(const LinearCell& cell);
+
+class ChordScalar {
+ public:
+  ChordScalar(const LinearCell& cell, const ViewRay& ray);
+  // Sets the Taylor predictor about the centre of [a, b] (a Newton solve there). Returns false
+  // when that solve did not converge (sampling still works, from warm starts only).
+  bool expand(double a, double b);
+  // f(t); false when the inverse map did not converge (from every start).
+  bool sample(double t, double& f);
+
+  int samples = 0;           // sample() calls
+  int newton_steps = 0;      // Newton steps taken (0 when every prediction was accepted)
+  int predicted = 0;         // samples converged by the one Newton step from their predicted point
+
+ private:
+  bool newton(const Vec3& target, Vec3& p, bool step_first);
+  MultilinearCell m_;
+  const LinearCell* cell_;
+  Vec3 o_, d_;
+  Vec3 start_;  // last converged point
+  double t_c_ = 0.0;
+  int order_ = -1;  // -1: no expansion
+  std::array<Vec3, kTaylorMaxOrder + 1> P_{};
+};
+
+}  // namespace rayint
