@@ -95,10 +95,19 @@ echo "ok full_disk: $(cat err)"
 /usr/bin/python3 -c "
 import json; c = json.load(open('small.json')); c['camera']['width'] = c['camera']['height'] = 8192
 json.dump(c, open('big.json', 'w'))"
-( ulimit -v 600000; "$rayint" render big.json -o out.png -q 2>err; echo $? >rc )
-[ "$(cat rc)" = 2 ] || fail "ulimit -v: exit $(cat rc)"
-[ "$(wc -l <err)" = 1 ] || { fail "ulimit -v: not one line"; cat err; }
-echo "ok ulimit_v: $(cat err)"
+# Under ASan (RAYINT_SANITIZED=1, set by CMake for the sanitizer build) no process starts under
+# ulimit -v: ASan reserves terabytes of shadow address space first. The case is skipped there, by
+# name; every ordinary build runs it.
+if [ -n "${RAYINT_SANITIZED:-}" ]; then
+  echo "skipped ulimit_v: an ASan build cannot start under ulimit -v"
+else
+  ( ulimit -v 600000; "$rayint" render big.json -o out.png -q 2>err; echo $? >rc )
+  [ "$(cat rc)" = 2 ] || fail "ulimit -v: exit $(cat rc)"
+  [ "$(wc -l <err)" = 1 ] || { fail "ulimit -v: not one line"; cat err; }
+  echo "ok ulimit_v: $(cat err)"
+fi
+# The address-space limit of the commands below (none under ASan, see above).
+vlimit() { if [ -n "${RAYINT_SANITIZED:-}" ]; then echo "ulimit -v unlimited"; else echo "ulimit -v $1"; fi; }
 
 # Shard coverage: every kind's merge proves its shards cover the work exactly once. A shard
 # whose data were edited to leave items out (a gap) or hold another shard's (an overlap) is one
@@ -162,7 +171,7 @@ header += " " * (63 - (len(header) + 10) % 64) + "\n"
 open("huge.npy", "wb").write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode())
 PY
 refuse png_candidate_header "huge.png: (image): 16384 x 16384 pixels, the camera of small.json has 16 x 16" \
-  bash -c "ulimit -v 2000000; exec \"$rayint\" check small.json --candidate-image huge.png -o out.json"
+  bash -c "$(vlimit 2000000); exec \"$rayint\" check small.json --candidate-image huge.png -o out.json"
 refuse npy_candidate_header "huge.npy: (image): 16384 x 16384 pixels, the camera of small.json has 16 x 16" \
   "$rayint" check small.json --candidate-image huge.npy -o out.json
 
@@ -218,7 +227,7 @@ echo '{"Name": "h", "ColorSpace": "HSV", "RGBPoints": [0, 1e300, 0, 0, 1, 0, 0, 
 refuse hsv_huge_colour "hsv_huge.json: RGBPoints\[1\]: colour components must be in \[0, 1\]" \
   "$rayint" tf import hsv_huge.json -o out.json -q
 echo '{"Name": "h", "ColorSpace": "HSV", "UseLogScale": true, "RGBPoints": [1e-300, 1, 0, 0, 1e300, 0, 0, 1]}' >hsv_wide.json
-if timeout 30 bash -c "ulimit -v 1000000; exec \"$rayint\" tf import hsv_wide.json --range 1e-300 1e300 -o hsv_wide.out.json -q"; then
+if timeout 30 bash -c "$(vlimit 1000000); exec \"$rayint\" tf import hsv_wide.json --range 1e-300 1e300 -o hsv_wide.out.json -q"; then
   echo "ok hsv_wide: an HSV log-scale preset over [1e-300, 1e300] imports within 30 s and 1 GB"
 else
   fail "hsv_wide: HSV import over [1e-300, 1e300] failed or took > 30 s / 1 GB"

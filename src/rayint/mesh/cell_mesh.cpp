@@ -187,6 +187,9 @@ int cell_orientation(const CellMesh& mesh, std::size_t c) {
 }
 
 bool zero_volume_cell(const CellMesh& mesh, std::size_t c) {
+  // A quadratic cell's map is checked by its own validity test (cells/quadratic_isoparametric:
+  // det J sampled, a folded or flat cell refused naming it); this test knows linear cells only.
+  if (is_quadratic(mesh.types[c])) return false;
   const auto type = static_cast<LinearCellType>(static_cast<int>(mesh.types[c]));
   const int n = linear_node_count(type);
   const std::int32_t* ids = mesh.cell(c);
