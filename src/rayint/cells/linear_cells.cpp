@@ -300,44 +300,11 @@ InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& st
     out.converged = out.p.allFinite();
     return out;
   }
-  const int n = linear_node_count(cell.type);
-  double magnitude = world.cwiseAbs().maxCoeff();
-  for (int i = 0; i < n; ++i) magnitude = std::max(magnitude, cell.x[static_cast<std::size_t>(i)].cwiseAbs().maxCoeff());
-  const double residual_tolerance = 8 * kEps * magnitude;
-  Vec3 p = start;
-  double N[kMaxLinearNodes], dN[3 * kMaxLinearNodes];
-  for (int it = 0; it < kNewtonMaxIterations; ++it) {
-    // x(p) and J(p) from one evaluation of the shape functions and their derivatives.
-    linear_shape_functions(cell.type, p, N);
-    linear_shape_derivatives(cell.type, p, dN);
-    Vec3 residual = world;
-    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-    for (int i = 0; i < n; ++i) {
-      const Vec3& xi = cell.x[static_cast<std::size_t>(i)];
-      residual -= N[i] * xi;
-      J.col(0) += dN[i] * xi;
-      J.col(1) += dN[n + i] * xi;
-      J.col(2) += dN[2 * n + i] * xi;
-    }
-    if (residual.cwiseAbs().maxCoeff() <= residual_tolerance) {
-      out.p = p, out.iterations = it, out.converged = true;
-      return out;
-    }
-    // 3x3 solve by the adjugate (Eigen's closed-form inverse); a singular J gives non-finite steps.
-    Vec3 step = J.inverse() * residual;
-    if (!step.allFinite()) break;
-    const double size = step.cwiseAbs().maxCoeff();
-    if (size > kNewtonMaxStep) step *= kNewtonMaxStep / size;
-    p += step;
-    if (size <= kNewtonStepTolerance) {
-      out.p = p, out.iterations = it + 1, out.converged = true;
-      return out;
-    }
-  }
-  out.p = p;
-  out.iterations = kNewtonMaxIterations;
-  out.converged = false;
-  return out;
+  return newton_inverse_map(cell.x.data(), linear_node_count(cell.type), world, start,
+                            [&](const Vec3& p, double* N, double* dN) {
+                              linear_shape_functions(cell.type, p, N);
+                              linear_shape_derivatives(cell.type, p, dN);
+                            });
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world) {

@@ -48,8 +48,11 @@
 // 4 terms, a few ulps each; 64 leaves a factor 8 margin). An affine cell's inverse map is the
 // exact linear inverse, so along a ray the scalar is a polynomial of degree <= 3 in t, computed
 // without Newton (cells/cell_integral.hpp routes it accordingly).
+#include <Eigen/LU>
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "rayint/geometry/vec3.hpp"
@@ -117,6 +120,51 @@ struct InverseMap {
 };
 // p with x(p) = world, Newton from `start` (affine cells: the linear inverse, 0 iterations).
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& start);
+
+// The Newton iteration of every isoparametric inverse map (linear cells here, quadratic ones in
+// quadratic_isoparametric.hpp), as described at the top of this file: n <= kMaxNewtonNodes
+// node positions x, shapes(p, N, dN) fills the n shape functions and their derivatives in VTK's
+// layout. A header template so that each cell kind's shape functions are inlined into it.
+inline constexpr int kMaxNewtonNodes = 20;
+template <class Shapes>
+InverseMap newton_inverse_map(const Vec3* x, int n, const Vec3& world, const Vec3& start, Shapes&& shapes) {
+  InverseMap out;
+  double magnitude = world.cwiseAbs().maxCoeff();
+  for (int i = 0; i < n; ++i) magnitude = std::max(magnitude, x[i].cwiseAbs().maxCoeff());
+  const double residual_tolerance = 8 * std::numeric_limits<double>::epsilon() * magnitude;
+  Vec3 p = start;
+  double N[kMaxNewtonNodes], dN[3 * kMaxNewtonNodes];
+  for (int it = 0; it < kNewtonMaxIterations; ++it) {
+    // x(p) and J(p) from one evaluation of the shape functions and their derivatives.
+    shapes(p, N, dN);
+    Vec3 residual = world;
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < n; ++i) {
+      residual -= N[i] * x[i];
+      J.col(0) += dN[i] * x[i];
+      J.col(1) += dN[n + i] * x[i];
+      J.col(2) += dN[2 * n + i] * x[i];
+    }
+    if (residual.cwiseAbs().maxCoeff() <= residual_tolerance) {
+      out.p = p, out.iterations = it, out.converged = true;
+      return out;
+    }
+    // 3x3 solve by the adjugate (Eigen's closed-form inverse); a singular J gives non-finite steps.
+    Vec3 step = J.inverse() * residual;
+    if (!step.allFinite()) break;
+    const double size = step.cwiseAbs().maxCoeff();
+    if (size > kNewtonMaxStep) step *= kNewtonMaxStep / size;
+    p += step;
+    if (size <= kNewtonStepTolerance) {
+      out.p = p, out.iterations = it + 1, out.converged = true;
+      return out;
+    }
+  }
+  out.p = p;
+  out.iterations = kNewtonMaxIterations;
+  out.converged = false;
+  return out;
+}
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world);
 
 // ---- Ray and faces -------------------------------------------------------------------------

@@ -326,42 +326,11 @@ InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world, const Vec3&
     out.converged = out.p.allFinite();
     return out;
   }
-  const int n = quadratic_node_count(cell.type);
-  double magnitude = world.cwiseAbs().maxCoeff();
-  for (int i = 0; i < n; ++i) magnitude = std::max(magnitude, cell.x[static_cast<std::size_t>(i)].cwiseAbs().maxCoeff());
-  const double residual_tolerance = 8 * kEps * magnitude;
-  Vec3 p = start;
-  double N[kMaxQuadraticNodes], dN[3 * kMaxQuadraticNodes];
-  for (int it = 0; it < kNewtonMaxIterations; ++it) {
-    quadratic_shape_functions(cell.type, p, N);
-    quadratic_shape_derivatives(cell.type, p, dN);
-    Vec3 residual = world;
-    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-    for (int i = 0; i < n; ++i) {
-      const Vec3& xi = cell.x[static_cast<std::size_t>(i)];
-      residual -= N[i] * xi;
-      J.col(0) += dN[i] * xi;
-      J.col(1) += dN[n + i] * xi;
-      J.col(2) += dN[2 * n + i] * xi;
-    }
-    if (residual.cwiseAbs().maxCoeff() <= residual_tolerance) {
-      out.p = p, out.iterations = it, out.converged = true;
-      return out;
-    }
-    Vec3 step = J.inverse() * residual;
-    if (!step.allFinite()) break;
-    const double size = step.cwiseAbs().maxCoeff();
-    if (size > kNewtonMaxStep) step *= kNewtonMaxStep / size;
-    p += step;
-    if (size <= kNewtonStepTolerance) {
-      out.p = p, out.iterations = it + 1, out.converged = true;
-      return out;
-    }
-  }
-  out.p = p;
-  out.iterations = kNewtonMaxIterations;
-  out.converged = false;
-  return out;
+  return newton_inverse_map(cell.x.data(), quadratic_node_count(cell.type), world, start,
+                            [&](const Vec3& p, double* N, double* dN) {
+                              quadratic_shape_functions(cell.type, p, N);
+                              quadratic_shape_derivatives(cell.type, p, dN);
+                            });
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world) {

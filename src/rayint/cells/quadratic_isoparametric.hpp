@@ -65,6 +65,7 @@
 namespace rayint {
 
 inline constexpr int kMaxQuadraticNodes = 20;
+static_assert(kMaxQuadraticNodes <= kMaxNewtonNodes, "newton_inverse_map's buffers hold every quadratic cell");
 inline constexpr int kJacobianSamples = 5;
 inline constexpr double kJacobianFloor = 1e-10;
 inline constexpr int kPatchDepth = 5;

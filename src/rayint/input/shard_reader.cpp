@@ -186,10 +186,12 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
   return part;
 }
 
-MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
-                                          const std::string& path) {
-  const Reader r{source};
-  MeshRenderPart p;
+namespace {
+
+// The band both mesh renders' shard parts share: its size and rows (checked), the image and,
+// when compared, the compared image and per-pixel errors. Returns the band's pixel count.
+template <class Part>
+std::size_t read_band(const Reader& r, const nlohmann::json& j, const std::string& path, Part& p) {
   p.width = static_cast<int>(r.nonneg(j, path, "width"));
   p.height = static_cast<int>(r.nonneg(j, path, "height"));
   p.row_begin = static_cast<int>(r.nonneg(j, path, "row_begin"));
@@ -205,6 +207,16 @@ MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::st
     p.rel_error = r.numbers(j, path, "rel_error");
     if (p.rel_error.size() != n) r.fail(field::member_path(path, "rel_error"), "must hold one number per pixel");
   }
+  return n;
+}
+
+}  // namespace
+
+MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
+                                          const std::string& path) {
+  const Reader r{source};
+  MeshRenderPart p;
+  read_band(r, j, path, p);
   const nlohmann::json& c = r.at(j, path, "cost");
   const std::string cp = field::member_path(path, "cost");
   MeshRenderCost& cost = p.cost;
@@ -230,16 +242,7 @@ CellMeshRenderPart cell_mesh_render_part_from_json(const nlohmann::json& j, cons
   const Reader r{source};
   if (!(r.at(j, path, "mode") == "own")) r.fail(field::member_path(path, "mode"), "must be \"own\" (an own-mode render's band)");
   CellMeshRenderPart p;
-  p.width = static_cast<int>(r.nonneg(j, path, "width"));
-  p.height = static_cast<int>(r.nonneg(j, path, "height"));
-  p.row_begin = static_cast<int>(r.nonneg(j, path, "row_begin"));
-  p.row_end = static_cast<int>(r.nonneg(j, path, "row_end"));
-  if (p.width > 65536 || p.height > 65536 || static_cast<long long>(p.width) * p.height > (1LL << 26) ||
-      p.row_end > p.height || p.row_begin > p.row_end)
-    r.fail(path, "needs width, height <= 65536, at most 2^26 pixels and 0 <= row_begin <= row_end <= height");
-  p.compared = r.boolean(j, path, "compared");
-  const std::size_t n = static_cast<std::size_t>(p.row_end - p.row_begin) * static_cast<std::size_t>(p.width);
-  p.image = r.pixels(j, path, "image", n);
+  const std::size_t n = read_band(r, j, path, p);
   const nlohmann::json& failed = r.array(j, path, "failed");
   const std::string fp = field::member_path(path, "failed");
   if (failed.size() != n) r.fail(fp, "must hold one 0 or 1 per pixel");
@@ -247,11 +250,6 @@ CellMeshRenderPart cell_mesh_render_part_from_json(const nlohmann::json& j, cons
     const long long f = r.integer(failed[i], field::index_path(fp, i));
     if (f != 0 && f != 1) r.fail(field::index_path(fp, i), "must be 0 or 1");
     p.failed.push_back(static_cast<std::uint8_t>(f));
-  }
-  if (p.compared) {
-    p.compared_image = r.pixels(j, path, "compared_image", n);
-    p.rel_error = r.numbers(j, path, "rel_error");
-    if (p.rel_error.size() != n) r.fail(field::member_path(path, "rel_error"), "must hold one number per pixel");
   }
   const nlohmann::json& counts = r.array(j, path, "counts");
   const std::string cp = field::member_path(path, "counts");

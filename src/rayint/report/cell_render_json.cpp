@@ -46,20 +46,9 @@ nlohmann::json cell_mesh_render_json(const MeshCase& mc, const CellTraversal& me
                     {"integration_seconds", r.integration_seconds},
                     {"traversal_share", busy > 0 ? r.traversal_seconds / busy : 0.0},
                     {"traversal", to_json(r.traversal)}}}};
-  if (compare) {
-    // The method on VTK's split against the own interpolation; pixels whose own ray failed have
-    // no error and are counted in non_finite.
-    const ErrorSummary& e = r.error;
-    stats["compare"] = {{"method", compare->label},
-                        {"heat_map", compare->heat_map},
-                        {"pixels", e.pixels},
-                        {"max_rel_error", e.max_rel},
-                        {"mean_rel_error", e.mean_rel},
-                        {"median_rel_error", e.median_rel},
-                        {"p99_rel_error", e.p99_rel},
-                        {"max_abs_error", e.max_abs},
-                        {"non_finite", e.non_finite}};
-  }
+  // The method on VTK's split against the own interpolation; pixels whose own ray failed have no
+  // error and are counted in non_finite.
+  if (compare) stats["compare"] = comparison_json(*compare, r.error);
   return stats;
 }
 
@@ -72,11 +61,7 @@ std::string cell_mesh_render_summary(const CellMeshRender& r, const MeshRenderCo
                 r.wall_seconds > 0 ? static_cast<double>(r.rays) / r.wall_seconds : 0.0, r.max_error_estimate,
                 r.failed_pixels, r.failed_pixels > 0 ? " (NaN in the image, not a result)" : "");
   std::string out = line;
-  if (compare) {
-    std::snprintf(line, sizeof line, "rayint render: %s vs own: max rel %.3g, median %.3g, p99 %.3g -> %s\n",
-                  compare->label.c_str(), r.error.max_rel, r.error.median_rel, r.error.p99_rel, compare->heat_map.c_str());
-    out += line;
-  }
+  if (compare) out += comparison_summary(*compare, r.error, "own");
   return out;
 }
 

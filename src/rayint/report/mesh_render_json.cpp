@@ -41,18 +41,7 @@ nlohmann::json mesh_render_json(const MeshCase& mc, const TetTraversal& mesh, co
                           {"method", mesh.quadratic() ? "exact (quadratic tetrahedra)" : "exact"},
                           {"shading", mc.shading.enabled},
                           {"cost", to_json(r.cost)}};
-  if (compare) {
-    const ErrorSummary& e = r.error;
-    stats["compare"] = {{"method", compare->label},
-                        {"heat_map", compare->heat_map},
-                        {"pixels", e.pixels},
-                        {"max_rel_error", e.max_rel},
-                        {"mean_rel_error", e.mean_rel},
-                        {"median_rel_error", e.median_rel},
-                        {"p99_rel_error", e.p99_rel},
-                        {"max_abs_error", e.max_abs},
-                        {"non_finite", e.non_finite}};
-  }
+  if (compare) stats["compare"] = comparison_json(*compare, r.error);
   return stats;
 }
 
@@ -67,13 +56,27 @@ std::string mesh_render_summary(const MeshRender& r, const MeshRenderComparison*
                 static_cast<double>(c.pieces) / c.wall_seconds, busy > 0 ? 100 * c.traversal_seconds / busy : 0.0,
                 busy > 0 ? 100 * c.integration_seconds / busy : 0.0);
   std::string out = line;
-  if (compare) {
-    std::snprintf(line, sizeof line, "rayint render: %s vs exact: max rel %.3g, median %.3g, p99 %.3g -> %s\n",
-                  compare->label.c_str(), r.error.max_rel, r.error.median_rel, r.error.p99_rel,
-                  compare->heat_map.c_str());
-    out += line;
-  }
+  if (compare) out += comparison_summary(*compare, r.error, "exact");
   return out;
+}
+
+nlohmann::json comparison_json(const MeshRenderComparison& compare, const ErrorSummary& e) {
+  return {{"method", compare.label},
+          {"heat_map", compare.heat_map},
+          {"pixels", e.pixels},
+          {"max_rel_error", e.max_rel},
+          {"mean_rel_error", e.mean_rel},
+          {"median_rel_error", e.median_rel},
+          {"p99_rel_error", e.p99_rel},
+          {"max_abs_error", e.max_abs},
+          {"non_finite", e.non_finite}};
+}
+
+std::string comparison_summary(const MeshRenderComparison& compare, const ErrorSummary& e, const char* against) {
+  char line[1024];
+  std::snprintf(line, sizeof line, "rayint render: %s vs %s: max rel %.3g, median %.3g, p99 %.3g -> %s\n",
+                compare.label.c_str(), against, e.max_rel, e.median_rel, e.p99_rel, compare.heat_map.c_str());
+  return line;
 }
 
 }  // namespace rayint

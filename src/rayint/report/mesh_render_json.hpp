@@ -21,5 +21,9 @@ nlohmann::json mesh_render_json(const MeshCase& c, const TetTraversal& mesh, con
                                 const MeshRenderComparison* compare);
 // "rayint render: N rays in ..." and, when compared, "rayint render: LABEL vs exact: ...".
 std::string mesh_render_summary(const MeshRender& r, const MeshRenderComparison* compare);
+// The "compare" block of --stats and its summary line ("LABEL vs AGAINST: max rel ..."), shared
+// by the tetrahedral and the own-cells renders.
+nlohmann::json comparison_json(const MeshRenderComparison& compare, const ErrorSummary& e);
+std::string comparison_summary(const MeshRenderComparison& compare, const ErrorSummary& e, const char* against);
 
 }  // namespace rayint
