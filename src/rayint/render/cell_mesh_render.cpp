@@ -123,19 +123,8 @@ void compare_cell_mesh_render(CellMeshRender& own, const Image& compared, const 
 
 CellMeshRenderPart cell_mesh_render_part(const CellMeshRender& r, const ShardSpec& shard) {
   CellMeshRenderPart p;
-  p.width = r.image.width;
-  p.height = r.image.height;
-  const IndexRange rows = shard_range(static_cast<std::size_t>(p.height), shard);
-  p.row_begin = static_cast<int>(rows.begin);
-  p.row_end = static_cast<int>(rows.end);
-  p.compared = !r.rel_error.empty();
-  const auto first = static_cast<long>(rows.begin) * p.width, last = static_cast<long>(rows.end) * p.width;
-  p.image.assign(r.image.pixels.begin() + first, r.image.pixels.begin() + last);
-  p.failed.assign(r.failed.begin() + first, r.failed.begin() + last);
-  if (p.compared) {
-    p.compared_image.assign(r.compared.pixels.begin() + first, r.compared.pixels.begin() + last);
-    p.rel_error.assign(r.rel_error.begin() + first, r.rel_error.begin() + last);
-  }
+  const IndexRange px = cut_band(p, r, shard);
+  p.failed.assign(r.failed.begin() + static_cast<long>(px.begin), r.failed.begin() + static_cast<long>(px.end));
   p.failed_pixels = r.failed_pixels;
   p.rays = r.rays;
   p.chords = r.chords;
@@ -166,20 +155,11 @@ CellMeshRender assemble_cell_mesh_render(const std::vector<CellMeshRenderPart>& 
   int covered_to = 0;
   out.threads = 0;
   for (const CellMeshRenderPart* p : ordered) {
-    const std::size_t n = static_cast<std::size_t>(p->row_end - p->row_begin) * static_cast<std::size_t>(width);
-    if (p->width != width || p->height != height || p->compared != compared || p->row_begin < covered_to ||
-        p->row_end > height || p->image.size() != n || p->failed.size() != n ||
-        (compared && (p->compared_image.size() != n || p->rel_error.size() != n)))
-      throw std::invalid_argument("cell mesh render: parts of different renders, or overlapping");
-    covered_to = p->row_end;
-    const auto first = static_cast<long>(p->row_begin) * width;
-    std::copy(p->image.begin(), p->image.end(), out.image.pixels.begin() + first);
-    std::copy(p->failed.begin(), p->failed.end(), out.failed.begin() + first);
-    if (compared) {
-      std::copy(p->compared_image.begin(), p->compared_image.end(), out.compared.pixels.begin() + first);
-      std::copy(p->rel_error.begin(), p->rel_error.end(), out.rel_error.begin() + first);
-      for (std::size_t i = 0; i < n; ++i) pixel.push_back(static_cast<std::size_t>(first) + i);
-    }
+    if (p->failed.size() != p->image.size()) throw std::invalid_argument("cell mesh render: parts of different renders, or overlapping");
+    const std::size_t first = place_band(*p, out, covered_to, "cell mesh render");
+    std::copy(p->failed.begin(), p->failed.end(), out.failed.begin() + static_cast<long>(first));
+    if (compared)
+      for (std::size_t i = 0; i < p->rel_error.size(); ++i) pixel.push_back(first + i);
     out.failed_pixels += p->failed_pixels;
     out.rays += p->rays;
     out.chords += p->chords;

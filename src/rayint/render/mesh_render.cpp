@@ -185,20 +185,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
 
 MeshRenderPart mesh_render_part(const MeshRender& r, const ShardSpec& shard) {
   MeshRenderPart p;
-  p.width = r.image.width;
-  p.height = r.image.height;
-  const IndexRange rows = shard_range(static_cast<std::size_t>(p.height), shard);
-  p.row_begin = static_cast<int>(rows.begin);
-  p.row_end = static_cast<int>(rows.end);
-  p.compared = !r.rel_error.empty();
-  const auto first = static_cast<std::size_t>(p.row_begin) * static_cast<std::size_t>(p.width);
-  const auto last = static_cast<std::size_t>(p.row_end) * static_cast<std::size_t>(p.width);
-  p.image.assign(r.image.pixels.begin() + static_cast<long>(first), r.image.pixels.begin() + static_cast<long>(last));
-  if (p.compared) {
-    p.compared_image.assign(r.compared.pixels.begin() + static_cast<long>(first),
-                            r.compared.pixels.begin() + static_cast<long>(last));
-    p.rel_error.assign(r.rel_error.begin() + static_cast<long>(first), r.rel_error.begin() + static_cast<long>(last));
-  }
+  cut_band(p, r, shard);
   p.cost = r.cost;
   return p;
 }
@@ -220,21 +207,12 @@ MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts) {
   std::sort(ordered.begin(), ordered.end(), [](auto* a, auto* b) { return a->row_begin < b->row_begin; });
   int covered_to = 0;
   for (const MeshRenderPart* p : ordered) {
-    const std::size_t n = static_cast<std::size_t>(p->row_end - p->row_begin) * static_cast<std::size_t>(width);
-    if (p->width != width || p->height != height || p->compared != compared || p->row_begin < covered_to ||
-        p->row_end > height || p->image.size() != n || (compared && (p->compared_image.size() != n || p->rel_error.size() != n)))
-      throw std::invalid_argument("mesh render: parts of different renders, or overlapping");
-    covered_to = p->row_end;
-    const std::size_t first = static_cast<std::size_t>(p->row_begin) * static_cast<std::size_t>(width);
-    std::copy(p->image.begin(), p->image.end(), out.image.pixels.begin() + static_cast<long>(first));
-    if (compared) {
-      std::copy(p->compared_image.begin(), p->compared_image.end(), out.compared.pixels.begin() + static_cast<long>(first));
-      std::copy(p->rel_error.begin(), p->rel_error.end(), out.rel_error.begin() + static_cast<long>(first));
-      for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t first = place_band(*p, out, covered_to, "mesh render");
+    if (compared)
+      for (std::size_t i = 0; i < p->rel_error.size(); ++i) {
         pixel.push_back(first + i);
         rel.push_back(p->rel_error[i]);
       }
-    }
     const MeshRenderCost& c = p->cost;
     out.cost.wall_seconds += c.wall_seconds;
     out.cost.traversal_seconds += c.traversal_seconds;

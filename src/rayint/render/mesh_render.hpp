@@ -6,7 +6,9 @@
 // max, median and p99 as core/statistics.hpp defines them).
 // Progress is reported through a callback from the calling thread only (it monitors the
 // workers), so the callback needs no locking. Library code: nothing is printed.
+#include <algorithm>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -80,6 +82,49 @@ struct MeshRenderPart {
   MeshRenderCost cost;
 };
 MeshRenderPart mesh_render_part(const MeshRender& render, const ShardSpec& shard);
+
+// The band fields both mesh renders' parts share (width, height, row_begin/row_end, compared,
+// image, compared_image, rel_error), for MeshRenderPart and CellMeshRenderPart alike.
+// cut_band: a render's band of rows for `shard`; returns the band's first and one-past-last pixel.
+template <class Part, class Render>
+IndexRange cut_band(Part& p, const Render& r, const ShardSpec& shard) {
+  p.width = r.image.width;
+  p.height = r.image.height;
+  const IndexRange rows = shard_range(static_cast<std::size_t>(p.height), shard);
+  p.row_begin = static_cast<int>(rows.begin);
+  p.row_end = static_cast<int>(rows.end);
+  p.compared = !r.rel_error.empty();
+  const auto w = static_cast<std::size_t>(p.width);
+  const IndexRange px{rows.begin * w, rows.end * w};
+  const auto at = [&](const auto& v, std::size_t i) { return v.begin() + static_cast<long>(i); };
+  p.image.assign(at(r.image.pixels, px.begin), at(r.image.pixels, px.end));
+  if (p.compared) {
+    p.compared_image.assign(at(r.compared.pixels, px.begin), at(r.compared.pixels, px.end));
+    p.rel_error.assign(at(r.rel_error, px.begin), at(r.rel_error, px.end));
+  }
+  return px;
+}
+// place_band: part p's pixels into the assembled render `out` (already sized from the first
+// part), after checking that p belongs to the same render and starts at or after covered_to
+// (what the parts before it covered); `what` names the render in the exception. Returns the
+// band's first pixel; covered_to moves to p's end.
+template <class Part, class Render>
+std::size_t place_band(const Part& p, Render& out, int& covered_to, const char* what) {
+  const int width = out.image.width, height = out.image.height;
+  const bool compared = !out.rel_error.empty();
+  const std::size_t n = static_cast<std::size_t>(p.row_end - p.row_begin) * static_cast<std::size_t>(width);
+  if (p.width != width || p.height != height || p.compared != compared || p.row_begin < covered_to ||
+      p.row_end > height || p.image.size() != n || (compared && (p.compared_image.size() != n || p.rel_error.size() != n)))
+    throw std::invalid_argument(std::string(what) + ": parts of different renders, or overlapping");
+  covered_to = p.row_end;
+  const auto first = static_cast<long>(p.row_begin) * width;
+  std::copy(p.image.begin(), p.image.end(), out.image.pixels.begin() + first);
+  if (compared) {
+    std::copy(p.compared_image.begin(), p.compared_image.end(), out.compared.pixels.begin() + first);
+    std::copy(p.rel_error.begin(), p.rel_error.end(), out.rel_error.begin() + first);
+  }
+  return static_cast<std::size_t>(first);
+}
 // The render from its parts (all of them: the single run's render exactly; some: a partial
 // merge, the missing rows black and left out of the error summary).
 MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts);
