@@ -49,8 +49,8 @@
 // face point's reference coordinates), then the centre. The same Chord struct, so the traversal
 // treats linear and quadratic cells alike.
 //
-// Inverse map: Newton as linear_cells.hpp (kNewtonStepTolerance, kNewtonMaxIterations,
-// kNewtonMaxStep; residual 8 eps x magnitude), shape functions and derivatives of
+// Inverse map: linear_cells.hpp's newton_inverse_map (kNewtonStepTolerance, kNewtonMaxIterations,
+// kNewtonMaxStep; residual 8 eps x magnitude) with the shape functions and derivatives of
 // quadratic_cells.hpp. Affine cells (every node at the affine image of its reference node within
 // kAffineTolerance x magnitude, e.g. a straight-edged tet10) take the exact linear inverse
 // instead: along a ray their scalar is a polynomial of degree <= 4 in t.

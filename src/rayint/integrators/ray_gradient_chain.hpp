@@ -64,6 +64,9 @@ enum class PieceEnds {
 // When density[c] and color[c] both jump at x_j, moving one jump alone is not differentiable
 // (the slab takes the other function's value from the side it moves into): that position is
 // marked NaN, the scalar entries (moving both together) keep the term.
+// Measured against the jump-aware 50-digit reference gradient (tests/test_grad_jumps.cpp):
+// worst 3.3e-15 of each channel's largest entry over 48 random rays with 445 crossings; 2.2e-14
+// on a saturated zig-zag ray (L = 10), the conditioning limit of saturated rays generally.
 inline void add_jump_crossing(const TransferFunctions& tf, const Ray& ray, const PieceRecord& before,
                               const PieceRecord& after, int c, double light, double adjoint, RayGradient& grad) {
   const double e = after.s_far;
