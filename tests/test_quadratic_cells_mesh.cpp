@@ -27,6 +27,7 @@
 #include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
 #include "rayint/reference/cell_reference.hpp"
+#include "rayint/studies/own_cells_eval.hpp"
 
 using namespace rayint;
 namespace fs = std::filesystem;
@@ -85,18 +86,7 @@ std::vector<ViewRay> random_rays(const CellTraversal& m, int n, unsigned seed) {
 }
 
 CellReferenceInput reference_input(const QuadraticCell& cell, const CellTrace& trace, double t_near, double t_far) {
-  CellReferenceInput in;
-  in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < quadratic_node_count(cell.type); ++i) {
-    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-  }
-  in.origin = {trace.origin[0], trace.origin[1], trace.origin[2]};
-  in.direction = {trace.direction[0], trace.direction[1], trace.direction[2]};
-  in.t_near = t_near;
-  in.t_far = t_far;
-  return in;
+  return cell_reference_input(cell, trace.origin, trace.direction, t_near, t_far);
 }
 
 const char* kMeshes[] = {"cylinder-tet10-41.msh", "cylinder-tet10-22.msh", "cylinder-tet10-gmsh.vtk",

@@ -12,6 +12,7 @@
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/quadratic_isoparametric.hpp"
 #include "rayint/reference/cell_reference.hpp"
+#include "rayint/studies/own_cells_eval.hpp"
 #include "cell_samples.hpp"
 
 using namespace rayint;
@@ -84,18 +85,7 @@ Vec3 random_inside(QuadraticCellType type, std::mt19937& rng) {
 }
 
 CellReferenceInput reference_input(const QuadraticCell& cell, const ViewRay& ray, double t_near, double t_far) {
-  CellReferenceInput in;
-  in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < quadratic_node_count(cell.type); ++i) {
-    const Vec3& x = cell.x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
-  }
-  in.origin = {ray.origin[0], ray.origin[1], ray.origin[2]};
-  in.direction = {ray.direction[0], ray.direction[1], ray.direction[2]};
-  in.t_near = t_near;
-  in.t_far = t_far;
-  return in;
+  return cell_reference_input(cell, ray.origin, ray.direction, t_near, t_far);
 }
 
 }  // namespace

@@ -10,11 +10,14 @@
 
 namespace rayint {
 
-CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& origin, const Vec3& direction,
-                                        double t_near, double t_far) {
+namespace {
+
+template <class Cell>
+CellReferenceInput reference_input_of(const Cell& cell, int nodes, const Vec3& origin, const Vec3& direction,
+                                      double t_near, double t_far) {
   CellReferenceInput in;
   in.vtk_id = static_cast<int>(cell.type);
-  for (int i = 0; i < linear_node_count(cell.type); ++i) {
+  for (int i = 0; i < nodes; ++i) {
     const Vec3& x = cell.x[static_cast<std::size_t>(i)];
     in.nodes.push_back({x[0], x[1], x[2]});
     in.values.push_back(cell.value[static_cast<std::size_t>(i)]);
@@ -26,28 +29,24 @@ CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& orig
   return in;
 }
 
-namespace {
-
 // The reference's input for cell c's chord [a, b]: a quadratic cell with all its nodes (ids 24-26),
 // a linear one with its corners.
 CellReferenceInput reference_input(const CellTraversal& mesh, std::size_t c, const CellTrace& trace, double a, double b) {
-  const QuadraticCell* q = mesh.quadratic_cell(c);
-  if (!q) return cell_reference_input(mesh.cell(c), trace.origin, trace.direction, a, b);
-  CellReferenceInput in;
-  in.vtk_id = static_cast<int>(q->type);
-  for (int i = 0; i < quadratic_node_count(q->type); ++i) {
-    const Vec3& x = q->x[static_cast<std::size_t>(i)];
-    in.nodes.push_back({x[0], x[1], x[2]});
-    in.values.push_back(q->value[static_cast<std::size_t>(i)]);
-  }
-  in.origin = {trace.origin[0], trace.origin[1], trace.origin[2]};
-  in.direction = {trace.direction[0], trace.direction[1], trace.direction[2]};
-  in.t_near = a;
-  in.t_far = b;
-  return in;
+  if (const QuadraticCell* q = mesh.quadratic_cell(c)) return cell_reference_input(*q, trace.origin, trace.direction, a, b);
+  return cell_reference_input(mesh.cell(c), trace.origin, trace.direction, a, b);
 }
 
 }  // namespace
+
+CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& origin, const Vec3& direction,
+                                        double t_near, double t_far) {
+  return reference_input_of(cell, linear_node_count(cell.type), origin, direction, t_near, t_far);
+}
+
+CellReferenceInput cell_reference_input(const QuadraticCell& cell, const Vec3& origin, const Vec3& direction,
+                                        double t_near, double t_far) {
+  return reference_input_of(cell, quadratic_node_count(cell.type), origin, direction, t_near, t_far);
+}
 
 OwnCaseEvaluation evaluate_own_cells(const MeshCase& mc, bool with_reference, unsigned threads) {
   if (!mc.cells) throw std::invalid_argument(mc.source + ": not a mesh case of cells in their own interpolation");

@@ -51,6 +51,9 @@ struct OwnCaseEvaluation {
 // (The cell tests, tools/cell_accuracy and bench/bench_cells build theirs with it too.)
 CellReferenceInput cell_reference_input(const LinearCell& cell, const Vec3& origin, const Vec3& direction,
                                         double t_near, double t_far);
+// Likewise for a quadratic cell (VTK ids 24-26) with all its nodes.
+CellReferenceInput cell_reference_input(const QuadraticCell& cell, const Vec3& origin, const Vec3& direction,
+                                        double t_near, double t_far);
 
 // `mesh_case.cells` must be set. threads: for the reference (0 = all cores).
 OwnCaseEvaluation evaluate_own_cells(const MeshCase& mesh_case, bool with_reference, unsigned threads = 0);
