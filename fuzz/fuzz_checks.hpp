@@ -2,7 +2,9 @@
 // What every fuzz target checks of a refusal, and how it reports a finding: each check traps
 // (__builtin_trap), so libFuzzer saves the input as a crash artifact. A refusal must be one
 // InputError line starting "<source>: " (the file it names, as the CLI prints it).
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "rayint/core/error.hpp"
 
@@ -12,21 +14,45 @@ inline void require(bool ok) {
   if (!ok) __builtin_trap();
 }
 
-// `what` is one line (no CR or LF) starting "<source>: ".
-inline void check_message(const std::string& what, const std::string& source) {
-  const std::string prefix = source + ": ";
-  require(what.compare(0, prefix.size(), prefix) == 0);
+// `what` is one line (no CR or LF) starting with one of `prefixes` (a reader that reads several
+// files names the one it refuses).
+inline void check_line_starts(const std::string& what, const std::vector<std::string>& prefixes) {
+  bool named = false;
+  for (const std::string& prefix : prefixes) named = named || what.compare(0, prefix.size(), prefix) == 0;
+  require(named);
   require(what.find('\n') == std::string::npos && what.find('\r') == std::string::npos);
 }
 
+// `what` is one line (no CR or LF) starting "<source>: ".
+inline void check_message(const std::string& what, const std::string& source) {
+  check_line_starts(what, {source + ": "});
+}
+
 // Runs `body` (a reader on the input, then the checks of what it accepted); an InputError it
-// throws must be one line starting "<source>: ". Returns 0, libFuzzer's "go on".
+// throws must be one line starting with one of `prefixes`. Returns 0, libFuzzer's "go on".
 template <class Body>
-int refusals_are_one_line(const std::string& source, Body&& body) {
+int refusals_start_with(const std::vector<std::string>& prefixes, Body&& body) {
   try {
     body();
   } catch (const InputError& e) {
-    check_message(e.what(), source);
+    check_line_starts(e.what(), prefixes);
+  }
+  return 0;
+}
+
+// The same with the one prefix "<source>: ".
+template <class Body>
+int refusals_are_one_line(const std::string& source, Body&& body) {
+  return refusals_start_with({source + ": "}, body);
+}
+
+// The same for what a merge does with parts a reader accepted: its consistency checks across
+// parts throw std::invalid_argument, an expected refusal of parts that do not fit together.
+template <class Body>
+int merge_refusals_are_one_line(const std::string& source, Body&& body) {
+  try {
+    return refusals_are_one_line(source, body);
+  } catch (const std::invalid_argument&) {
   }
   return 0;
 }

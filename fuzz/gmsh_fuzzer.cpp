@@ -13,15 +13,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   const std::string source = "fuzz.msh";
-  try {
-    rayint::fuzz::check_mesh(rayint::parse_gmsh(bytes, source), source);
-  } catch (const rayint::InputError& e) {
-    rayint::fuzz::check_message(e.what(), source);
-  }
-  try {
-    rayint::fuzz::check_cells(rayint::parse_gmsh_cells(bytes, source), source);
-  } catch (const rayint::InputError& e) {
-    rayint::fuzz::check_message(e.what(), source);
-  }
-  return 0;
+  using rayint::fuzz::refusals_are_one_line;
+  refusals_are_one_line(source, [&] { rayint::fuzz::check_mesh(rayint::parse_gmsh(bytes, source), source); });
+  return refusals_are_one_line(source, [&] { rayint::fuzz::check_cells(rayint::parse_gmsh_cells(bytes, source), source); });
 }

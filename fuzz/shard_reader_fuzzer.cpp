@@ -20,9 +20,6 @@
 
 namespace {
 
-using rayint::fuzz::check_message;
-using rayint::fuzz::require;
-
 constexpr const char* kSource = "fuzz-shard.json";
 
 }  // namespace
@@ -33,10 +30,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     j = rayint::json_source::parse(text, kSource);
   } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
+    rayint::fuzz::check_message(e.what(), kSource);
     return 0;
   }
-  try {
+  using rayint::fuzz::merge_refusals_are_one_line;
+  using rayint::fuzz::refusals_are_one_line;
+  refusals_are_one_line(kSource, [&] {
     const rayint::MonteCarloPart p = rayint::monte_carlo_part_from_json(j, kSource, "data");
     if (p.blocks < (1u << 20)) {
       rayint::BlockSumTree tree(p.blocks);
@@ -44,49 +43,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       tree.reduce();
       (void)tree.total(p.scores);
     }
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  }
-  try {
-    (void)rayint::stress_partial_from_json(j, kSource, "data");
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  }
-  try {
+  });
+  refusals_are_one_line(kSource, [&] { (void)rayint::stress_partial_from_json(j, kSource, "data"); });
+  merge_refusals_are_one_line(kSource, [&] {
     const rayint::MeshRenderPart p = rayint::mesh_render_part_from_json(j, kSource, "data");
     (void)rayint::assemble_mesh_render({p});
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  } catch (const std::invalid_argument&) {
-  }
-  try {
+  });
+  merge_refusals_are_one_line(kSource, [&] {
     const rayint::CellMeshRenderPart p = rayint::cell_mesh_render_part_from_json(j, kSource, "data");
     (void)rayint::assemble_cell_mesh_render({p});
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  } catch (const std::invalid_argument&) {
-  }
-  try {
-    (void)rayint::sweep_part_from_json(j, kSource, "data");
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  }
-  try {
+  });
+  refusals_are_one_line(kSource, [&] { (void)rayint::sweep_part_from_json(j, kSource, "data"); });
+  merge_refusals_are_one_line(kSource, [&] {
     const rayint::VolumeComparisonPart p = rayint::volume_comparison_part_from_json(j, kSource, "data");
     if (static_cast<long long>(p.width) * p.height <= (1 << 16)) (void)rayint::finish_volume_comparison({p});
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  } catch (const std::invalid_argument&) {
-  }
-  try {
+  });
+  return merge_refusals_are_one_line(kSource, [&] {
     const rayint::CellsSamples p = rayint::cells_samples_from_json(j, kSource, "data");
     rayint::CellsStudyOptions o;
     o.levels = {1, 2};
     o.voxel_sizes = {4};
     (void)rayint::finish_cells_study(o, {p});
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  } catch (const std::invalid_argument&) {
-  }
-  return 0;
+  });
 }

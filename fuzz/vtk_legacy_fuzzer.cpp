@@ -17,25 +17,15 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   const std::string source = "fuzz.vtk";
-  try {
-    rayint::fuzz::check_mesh(rayint::parse_vtk_legacy(bytes, source), source);
-  } catch (const rayint::InputError& e) {
-    rayint::fuzz::check_message(e.what(), source);
-  }
-  try {  // every linear cell kept (parse_vtk_legacy_cells), then split
-    rayint::fuzz::check_cells(rayint::parse_vtk_legacy_cells(bytes, source), source);
-  } catch (const rayint::InputError& e) {
-    rayint::fuzz::check_message(e.what(), source);
-  }
-  try {
+  using rayint::fuzz::refusals_are_one_line;
+  using rayint::fuzz::require;
+  refusals_are_one_line(source, [&] { rayint::fuzz::check_mesh(rayint::parse_vtk_legacy(bytes, source), source); });
+  // every linear cell kept (parse_vtk_legacy_cells), then split
+  refusals_are_one_line(source, [&] { rayint::fuzz::check_cells(rayint::parse_vtk_legacy_cells(bytes, source), source); });
+  return refusals_are_one_line(source, [&] {
     const rayint::VoxelGrid g = rayint::parse_vtk_legacy_image(bytes, source);
     const auto& d = g.dims();
-    if (g.values().size() != static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]))
-      __builtin_trap();
-    for (const double v : g.values())
-      if (!std::isfinite(v)) __builtin_trap();
-  } catch (const rayint::InputError& e) {
-    rayint::fuzz::check_message(e.what(), source);
-  }
-  return 0;
+    require(g.values().size() == static_cast<std::size_t>(d[0]) * static_cast<std::size_t>(d[1]) * static_cast<std::size_t>(d[2]));
+    for (const double v : g.values()) require(std::isfinite(v));
+  });
 }

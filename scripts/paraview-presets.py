@@ -45,7 +45,8 @@ import tempfile  # noqa: E402
 
 import numpy as np  # noqa: E402
 from paraview import servermanager as sm  # noqa: E402
-from paraview.simple import GetColorTransferFunction, GetOpacityTransferFunction  # noqa: E402
+from paraview.simple import GetColorTransferFunction  # noqa: E402
+from paraview_colormaps import export_colormap  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkVersion  # noqa: E402
 
 UNIFORM = 513
@@ -134,19 +135,8 @@ def main():
              ("rayint exported log Viridis", "Viridis (matplotlib)", (0.1, 1000.0)),
              ("rayint exported log Cool to Warm", "Cool to Warm", (0.1, 1000.0))]
     for k, (export_name, preset, log_range) in enumerate(specs):
-        lut = GetColorTransferFunction("rayint_export_%d" % k)
-        otf = GetOpacityTransferFunction("rayint_export_%d" % k)
-        lut.ApplyPreset(preset, False)
-        if log_range:
-            lut.RescaleTransferFunction(*log_range)
-            otf.RescaleTransferFunction(*log_range)
-            lut.UseLogScale = 1
-        lut.Discretize = 0
-        lut.UpdateVTKObjects()
-        otf.UpdateVTKObjects()
         path = os.path.join(tmp, "export%d.json" % k)
-        if not sm.vtkSMTransferFunctionProxy.ExportTransferFunction(lut.SMProxy, otf.SMProxy, export_name, path):
-            raise SystemExit("ExportTransferFunction failed: " + export_name)
+        lut, otf = export_colormap("rayint_export_%d" % k, preset, log_range, export_name, path, discretize=0)
         with open(path) as f:
             e = json.load(f)[0]
         exported.append(e)

@@ -26,6 +26,28 @@ def slab(args, method):
     return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
 
 
+def p1_map(light, orders, errors, after=None, progress="P1 map"):
+    """The runs of the P1 map of reports/scattering/pn_report.py (beam) and pn_p1_isotropic_report.py
+    (diffuse light): per phase function (isotropic, hg:0.75), albedo and optical thickness, the slab
+    lit by `light` (slab options) through the doubling `d` and P_N of each order `n` in `orders`
+    (`p`), both with I_up and I_down at mu = 1. A record {"phase", "albedo", "tau", "P<n>":
+    errors(p, d), then after(d)'s entries} per slab."""
+    out = []
+    for phase in ("isotropic", "hg:0.75"):
+        for a in (0.2, 0.5, 0.8, 0.9, 0.95, 0.99, 1.0):
+            for t in (0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100):
+                args = ["--tau", repr(t), "--albedo", repr(a), "--phase", phase] + light + ["--mu-up", "1", "--mu-down", "1"]
+                d = slab(args, "doubling")["doubling"]
+                rec = {"phase": phase, "albedo": a, "tau": t}
+                for n in orders:
+                    rec[f"P{n}"] = errors(slab(args, f"pn:order={n}")["pn"], d)
+                if after is not None:
+                    rec.update(after(d))
+                out.append(rec)
+        print(progress, phase, file=sys.stderr)
+    return out
+
+
 def plot_p1_map(records, light, suptitle, path):
     """The P1 map of reports/scattering/pn_report.py (beam) and pn_p1_isotropic_report.py (diffuse
     light): per phase function (isotropic, hg:0.75) and quantity (reflectance, transmittance), the

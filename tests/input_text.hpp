@@ -30,15 +30,21 @@ inline std::string replace_first(std::string text, std::string_view from, std::s
   return text;
 }
 
+// The message of the `Error` that `read` throws, or `none` when it throws nothing.
+template <class Error, class Read>
+std::string error_message_of(Read&& read, const std::string& none) {
+  try {
+    read();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return none;
+}
+
 // The message of the InputError that `read` throws, or "(no error)".
 template <class Read>
 std::string input_error_of(Read&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return error_message_of<InputError>(read, "(no error)");
 }
 
 // `msg` is `<source>: <path>: <what...>` on one line.

@@ -2,6 +2,7 @@
 // Mesh test set-ups several tests share.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -91,6 +92,19 @@ inline TransferFunctions mesh_field_tf() {
   tf.color = {PiecewiseLinear{{-0.5, 1.5}, {0.1, 0.9}}, PiecewiseLinear{{0.0, 1.0}, {0.8, 0.2}},
               PiecewiseLinear{{0.0}, {0.5}}};
   return tf;
+}
+
+// The points, point scalars and tets of `a` and then of `b`, b's indices moved past a's points (no
+// shared points; cell scalars are not carried).
+inline TetMesh concat(TetMesh a, const TetMesh& b) {
+  const auto offset = static_cast<std::int32_t>(a.points.size());
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  a.scalars.insert(a.scalars.end(), b.scalars.begin(), b.scalars.end());
+  for (auto t : b.tets) {
+    for (auto& i : t) i += offset;
+    a.tets.push_back(t);
+  }
+  return a;
 }
 
 }  // namespace rayint::test

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "scene_builders.hpp"
 #include "rayint/studies/convergence.hpp"
 
 using namespace rayint;
@@ -21,12 +22,7 @@ using nlohmann::json;
 namespace {
 
 json grid_scene() {
-  json values = json::array();
-  for (int k = 0; k < 5; ++k)
-    for (int j = 0; j < 5; ++j)
-      for (int i = 0; i < 5; ++i) values.push_back(0.3 + 0.6 * std::fabs(std::sin(1.1 * i + 1.7 * j - 0.9 * k)));
-  return {{"medium", {{"type", "grid"},
-                      {"grid", {{"dims", {5, 5, 5}}, {"origin", {-1, -1, -1}}, {"spacing", {0.5, 0.5, 0.5}}, {"values", values}}}}},
+  return {{"medium", {{"type", "grid"}, {"grid", sine_grid(5, 0.3, 0.6, 1.1, 1.7, 0.9)}}},
           {"transfer", {{"extinction", {{0, 0}, {0.5, 1.5}, {1, 2.5}}}, {"emission", {{0, 0.2}, {1, 0.9}}}}},
           {"background", {{"color", {0.3, 0.6, 0.9}}}},
           {"camera", {{"position", {0.3, 0.4, 5}}, {"look_at", {0, 0, 0}}, {"fov_deg", 30}, {"width", 10}, {"height", 8}}},

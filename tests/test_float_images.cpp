@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "candidate_images.hpp"
 #include "cli_harness.hpp"
+#include "cli_refusal.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/render/float_image.hpp"
 #include "rayint/render/image_compare.hpp"
@@ -263,12 +265,8 @@ TEST_CASE("CLI: bad candidate images exit 2 with one line and no output", "[imag
                                  "check cam.json --candidate-image junk.exr --junit j.xml -o d.json",
                                  "check cam.json --candidate-image missing.pfm --junit j.xml -o d.json",
                                  "check cam.json --candidate-image cam.tiff --junit j.xml -o d.json"}) {
-    const auto r = run_cli(dir.path, args);
-    INFO(args << "\n" << r.err);
-    CHECK(r.status == 2);
-    CHECK(line_count(r.err) == 1);
-    CHECK(r.out.empty());
-    CHECK(dir.entries() == before);
+    INFO(args);
+    CHECK(check_refused(dir, args).out.empty());
   }
   CHECK(run_cli(dir.path, "check cam.json --candidate-image small.npy").err.find("16 x 12") != std::string::npos);
   const auto unknown = run_cli(dir.path, "render cam.json -o out.tiff --quiet");
@@ -401,12 +399,7 @@ TEST_CASE("CLI: check --candidate-variance runs the z-test and names it in JUnit
   const Image exact = read_image((dir.path / "exact.npy").string());
   // A "Monte Carlo" candidate 1 sigma off in every channel (sigma^2 = 1e-6 per sample, 100
   // samples): every p = 0.32, nothing rejected. Then a 0.01 bias, 10 sigma: every test rejected.
-  Image one_sigma = exact, biased = exact, var(exact.width, exact.height, Rgb{1e-6, 1e-6, 1e-6});
-  for (auto& p : one_sigma.pixels) for (double& v : p) v += 1e-4;
-  for (auto& p : biased.pixels) for (double& v : p) v += 1e-2;
-  write_image((dir.path / "mc.npy").string(), one_sigma);
-  write_image((dir.path / "biased.npy").string(), biased);
-  write_image((dir.path / "var.npy").string(), var);
+  write_z_test_candidates(dir.path, exact, 1e-6, 1e-4, 1e-2);
   const auto ok = run_cli(dir.path, "check cam.json --candidate-image mc.npy --candidate-variance var.npy --samples 100 -o d.json --junit j.xml");
   INFO(ok.err);
   CHECK(ok.status == 0);
@@ -422,6 +415,7 @@ TEST_CASE("CLI: check --candidate-variance runs the z-test and names it in JUnit
   CHECK(junit.rfind("OK 1 1", 0) == 0);
   CHECK(junit.find("z_test_fraction_passing | fraction of pixel channels passing the z-test measured 0, limit 0.998") != std::string::npos);
   // A negative variance is bad input.
+  Image var = read_image((dir.path / "var.npy").string());
   var.at(2, 3)[0] = -1.0;
   write_image((dir.path / "var.npy").string(), var);
   const auto neg = run_cli(dir.path, "check cam.json --candidate-image mc.npy --candidate-variance var.npy -o d2.json");
@@ -511,16 +505,10 @@ TEST_CASE("CLI: check --candidate-alpha composites a premultiplied or straight R
   // Bad input: no alpha channel, alpha outside [0, 1], unknown mode: exit 2, one line, no output.
   alpha[5] = 1.5;
   write_rgba_npy(dir.path / "bad_alpha.npy", black, alpha);
-  const auto before = dir.entries();
   for (const std::string args : {"check cam.json --candidate-image cam.npy --candidate-alpha premultiplied -o o.json",
                                  "check cam.json --candidate-image bad_alpha.npy --candidate-alpha straight -o o.json",
-                                 "check cam.json --candidate-image premultiplied.npy --candidate-alpha other -o o.json"}) {
-    const auto r = run_cli(dir.path, args);
-    INFO(args << "\n" << r.err);
-    CHECK(r.status == 2);
-    CHECK(line_count(r.err) == 1);
-    CHECK(dir.entries() == before);
-  }
+                                 "check cam.json --candidate-image premultiplied.npy --candidate-alpha other -o o.json"})
+    check_refused(dir, args);
   CHECK(run_cli(dir.path, "check cam.json --candidate-image cam.npy --candidate-alpha premultiplied").err.find("no alpha channel") !=
         std::string::npos);
   CHECK(run_cli(dir.path, "check cam.json --candidate-image bad_alpha.npy --candidate-alpha straight").err.find("pixel(5,0)") !=

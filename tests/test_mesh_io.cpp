@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
@@ -13,6 +14,7 @@
 #include "rayint/report/vtk_legacy_writer.hpp"
 #include "rayint/mesh/mesh_generators.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
+#include "input_text.hpp"
 
 using namespace rayint;
 
@@ -35,19 +37,14 @@ const char* kOneTetAscii =
     "LOOKUP_TABLE default\n"
     "0.5 1.5 2.5 3.5\n";
 
+// `s` with the first `from` replaced by `to` (which must be there): input_text.hpp's, by the
+// short name the tables below use.
 std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
+  return rayint::test::replace_first(std::move(s), from, to);
 }
 
 std::string error_of(const std::string& vtk) {
-  try {
-    parse_vtk_legacy(vtk, "m.vtk");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::input_error_of([&] { parse_vtk_legacy(vtk, "m.vtk"); });
 }
 
 }  // namespace
@@ -162,13 +159,8 @@ TEST_CASE("Inline JSON mesh cases: every field error names the file and field", 
   const std::string good = R"({"name": "x", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
     "mesh": {"points": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "scalars": [0, 1, 2, 3], "tets": [[0,1,2,3]]},
     "rays": [{"origin": [0.2, 0.2, 5], "direction": [0, 0, -1]}]})";
-  const auto err = [](const std::string& text) -> std::string {
-    try {
-      parse_case_text(text, "c.json", MeshReadOptions{true});
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(no error)";
+  const auto err = [](const std::string& text) {
+    return test::input_error_of([&] { parse_case_text(text, "c.json", MeshReadOptions{true}); });
   };
   const Case c = parse_case_text(good, "c.json", MeshReadOptions{true});
   REQUIRE(c.rays.size() == 1);

@@ -18,8 +18,10 @@
 #include "rayint/mesh/mesh_check.hpp"
 #include "rayint/mesh/mesh_generators.hpp"
 #include "rayint/mesh/tet_traversal.hpp"
+#include "mesh_case_fixtures.hpp"
 
 using namespace rayint;
+using rayint::test::concat;
 
 namespace {
 
@@ -46,19 +48,6 @@ TetMesh appended(const TetMesh& m, const Vec3& shift) {
   out.scalars.insert(out.scalars.end(), m.scalars.begin(), m.scalars.end());
   for (auto t : m.tets) {
     for (auto& i : t) i += n;
-    out.tets.push_back(t);
-  }
-  return out;
-}
-
-// The points and tets of `a` and then of `b` (no shared points).
-TetMesh concat(const TetMesh& a, const TetMesh& b) {
-  TetMesh out = a;
-  const auto offset = static_cast<std::int32_t>(a.points.size());
-  out.points.insert(out.points.end(), b.points.begin(), b.points.end());
-  out.scalars.insert(out.scalars.end(), b.scalars.begin(), b.scalars.end());
-  for (auto t : b.tets) {
-    for (auto& i : t) i += offset;
     out.tets.push_back(t);
   }
   return out;

@@ -24,6 +24,7 @@
 #include "tolerances.hpp"
 
 using namespace rayint;
+using rayint::test::concat;
 
 namespace {
 
@@ -47,17 +48,6 @@ double inside_length(const TetTraversal& m, const ViewRay& r, TraversalStats* st
   double len = 0.0;
   for (const Segment& s : mesh_ray(m, r, Rgb{0, 0, 0}, stats).segments) len += s.length;
   return len;
-}
-
-TetMesh concat(TetMesh a, const TetMesh& b) {
-  const auto off = static_cast<std::int32_t>(a.points.size());
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  a.scalars.insert(a.scalars.end(), b.scalars.begin(), b.scalars.end());
-  for (auto t : b.tets) {
-    for (auto& i : t) i += off;
-    a.tets.push_back(t);
-  }
-  return a;
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli_harness.hpp"
+#include "cli_refusal.hpp"
 #include "input_text.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "transfer_builders.hpp"
@@ -31,12 +32,7 @@ using rayint::test::TempDir;
 
 // The message parse_method_spec gives for `spec`, or "" if it accepts it.
 std::string refusal(const std::string& spec) {
-  try {
-    parse_method_spec(spec);
-  } catch (const MethodSpecError& e) {
-    return e.what();
-  }
-  return "";
+  return rayint::test::error_message_of<MethodSpecError>([&] { parse_method_spec(spec); }, "");
 }
 
 std::string number_text(double x) {
@@ -180,14 +176,10 @@ TEST_CASE("CLI: an invalid method spec is bad input in every command", "[cli][me
   const TempDir dir;
   dir.write("case.json", kCase);
   const auto refused = [&](const std::string& args, const std::string& line) {
-    const auto before = dir.entries();
-    const CliRun r = run_cli(dir.path, args);
+    const CliRun r = rayint::test::check_refused(dir, args);  // nothing written, -o included
     INFO("rayint " << args << "\nstdout: " << r.out << "\nstderr: " << r.err);
-    CHECK(r.status == 2);
     CHECK(r.out.empty());
-    CHECK(line_count(r.err) == 1);
     CHECK(r.err == "rayint: error: " + line + "\n");
-    CHECK(dir.entries() == before);  // nothing written, -o included
   };
   std::vector<Invalid> specs = kInvalid;
   specs.push_back({"nosuch", ""});

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_harness.hpp"
+#include "input_text.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
@@ -62,12 +63,7 @@ std::string copy_parallel(const TempDir& dir, const std::string& name, const std
 }
 
 std::string refusal(const std::string& path) {
-  try {
-    read_cell_mesh_file(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_of([&] { read_cell_mesh_file(path); });
 }
 
 }  // namespace

@@ -98,34 +98,28 @@ TEST_CASE("preset point gradient: the chain rule through the import matches diff
       REQUIRE(scale[c] > 0.0);
     }
     double worst = 0.0;
-    for (std::size_t k = 0; k < base.color.nodes.size(); ++k) {
-      for (int what = 0; what < 4; ++what) {
-        const Rgb d = difference([&](PresetCurves& q) -> double& {
-          return what == 0 ? q.color.nodes[k].x : q.color.nodes[k].rgb[what - 1];
-        });
-        for (int c = 0; c < kChannels; ++c) {
-          const double got = pg.rgb_points[static_cast<std::size_t>(c)][k][static_cast<std::size_t>(what)];
-          INFO("rescaled " << rescaled << " RGBPoints[" << k << "] entry " << what << " channel " << c << ": " << got
-                           << " vs " << d[c]);
-          CHECK(std::fabs(got - d[c]) <= 1e-7 * scale[c]);
-          worst = std::max(worst, std::fabs(got - d[c]) / scale[c]);
+    // Every entry `what` of node k of the preset's array `name` (`nodes` nodes of `entries`
+    // numbers; `entry` picks it in a PresetCurves) against the central difference.
+    const auto check_array = [&](const char* name, std::size_t nodes, int entries, const auto& got_table, auto&& entry) {
+      for (std::size_t k = 0; k < nodes; ++k) {
+        for (int what = 0; what < entries; ++what) {
+          const Rgb d = difference([&](PresetCurves& q) -> double& { return entry(q, k, what); });
+          for (int c = 0; c < kChannels; ++c) {
+            const double got = got_table[static_cast<std::size_t>(c)][k][static_cast<std::size_t>(what)];
+            INFO("rescaled " << rescaled << " " << name << "[" << k << "] entry " << what << " channel " << c << ": "
+                             << got << " vs " << d[c]);
+            CHECK(std::fabs(got - d[c]) <= 1e-7 * scale[c]);
+            worst = std::max(worst, std::fabs(got - d[c]) / scale[c]);
+          }
         }
       }
-    }
-    for (std::size_t k = 0; k < base.opacity.nodes.size(); ++k) {
-      for (int what = 0; what < 2; ++what) {
-        const Rgb d = difference([&](PresetCurves& q) -> double& {
-          return what == 0 ? q.opacity.nodes[k].x : q.opacity.nodes[k].y;
-        });
-        for (int c = 0; c < kChannels; ++c) {
-          const double got = pg.points[static_cast<std::size_t>(c)][k][static_cast<std::size_t>(what)];
-          INFO("rescaled " << rescaled << " Points[" << k << "] entry " << what << " channel " << c << ": " << got
-                           << " vs " << d[c]);
-          CHECK(std::fabs(got - d[c]) <= 1e-7 * scale[c]);
-          worst = std::max(worst, std::fabs(got - d[c]) / scale[c]);
-        }
-      }
-    }
+    };
+    check_array("RGBPoints", base.color.nodes.size(), 4, pg.rgb_points, [](PresetCurves& q, std::size_t k, int what) -> double& {
+      return what == 0 ? q.color.nodes[k].x : q.color.nodes[k].rgb[what - 1];
+    });
+    check_array("Points", base.opacity.nodes.size(), 2, pg.points, [](PresetCurves& q, std::size_t k, int what) -> double& {
+      return what == 0 ? q.opacity.nodes[k].x : q.opacity.nodes[k].y;
+    });
     WARN("preset point gradient vs central differences (h = 1e-6) of the import + exact pipeline, step "
          << step << ", rescaled " << rescaled << ": worst " << worst << " of the channel's largest entry");
   }

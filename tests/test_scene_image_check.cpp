@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "candidate_images.hpp"
 #include "cli_harness.hpp"
 #include "rayint/render/float_image.hpp"
 
@@ -102,12 +103,7 @@ TEST_CASE("scene image check: z-test mode, wrong size and slab scenes", "[image]
   REQUIRE(run_cli(dir.path, "check scene.json --candidate-image render.npy --artifacts art -o d.json").status == 0);
   const Image ref = read_image((dir.path / "art" / "reference.npy").string());
   // 1 sigma off everywhere (variance of the mean 1e-8): passes; 10 sigma: fails.
-  Image one_sigma = ref, biased = ref, var(ref.width, ref.height, Rgb{1e-8, 1e-8, 1e-8});
-  for (auto& p : one_sigma.pixels) for (double& v : p) v += 1e-4;
-  for (auto& p : biased.pixels) for (double& v : p) v += 1e-3;
-  write_image((dir.path / "mc.npy").string(), one_sigma);
-  write_image((dir.path / "biased.npy").string(), biased);
-  write_image((dir.path / "var.npy").string(), var);
+  write_z_test_candidates(dir.path, ref, 1e-8, 1e-4, 1e-3);
   const CliRun pass = run_cli(dir.path, "check scene.json --candidate-image mc.npy --candidate-variance var.npy --artifacts art -o z.json");
   INFO(pass.err);
   CHECK(pass.status == 0);

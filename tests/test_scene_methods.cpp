@@ -12,13 +12,7 @@ using nlohmann::json;
 
 namespace {
 
-json small_grid() {
-  json values = json::array();
-  for (int k = 0; k < 4; ++k)
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i) values.push_back(0.2 + 0.8 * std::fabs(std::sin(1.3 * i + 2.1 * j - 0.7 * k)));
-  return {{"dims", {4, 4, 4}}, {"origin", {-1, -1, -1}}, {"spacing", {2.0 / 3, 2.0 / 3, 2.0 / 3}}, {"values", values}};
-}
+json small_grid() { return sine_grid(4, 0.2, 0.8, 1.3, 2.1, 0.7); }
 
 json grid_rays() {
   json rays = json::array();

@@ -57,16 +57,21 @@ Measured measure(Vec vec, Ref ref, Cerf cerf) {
   return m;
 }
 
+// One vector function's measurement against its bound `ref_rel` (50 digits) and libcerf's, then
+// reported as `name`_simd with the target it ran on.
+void check_measured(const char* name, const Measured& m, double ref_rel) {
+  INFO("target " << special::simd_target_name() << ": max rel vs 50 digits " << m.max_ref << " at x = "
+                 << m.at_ref << ", vs libcerf " << m.max_cerf << " at x = " << m.at_cerf);
+  CHECK(m.max_ref <= ref_rel);
+  CHECK(m.max_cerf <= SimdTolerances::vs_libcerf_rel);
+  WARN(name << "_simd (" << special::simd_target_name() << "): max rel " << m.max_ref << " at " << m.at_ref
+            << "; vs libcerf " << m.max_cerf << " at " << m.at_cerf);
+}
+
 }  // namespace
 
 TEST_CASE("vector erfcx against 50 digits and libcerf", "[special_simd]") {
-  const Measured m = measure(special::erfcx_array, erfcx_reference, special::erfcx);
-  INFO("target " << special::simd_target_name() << ": max rel vs 50 digits " << m.max_ref << " at x = "
-                 << m.at_ref << ", vs libcerf " << m.max_cerf << " at x = " << m.at_cerf);
-  CHECK(m.max_ref <= SimdTolerances::erfcx_rel);
-  CHECK(m.max_cerf <= SimdTolerances::vs_libcerf_rel);
-  WARN("erfcx_simd (" << special::simd_target_name() << "): max rel " << m.max_ref << " at " << m.at_ref
-                      << "; vs libcerf " << m.max_cerf << " at " << m.at_cerf);
+  check_measured("erfcx", measure(special::erfcx_array, erfcx_reference, special::erfcx), SimdTolerances::erfcx_rel);
 }
 
 TEST_CASE("vector erfcx and Dawson on every SIMD target this CPU runs", "[special_simd][simd_targets]") {
@@ -83,13 +88,7 @@ TEST_CASE("vector erfcx and Dawson on every SIMD target this CPU runs", "[specia
 }
 
 TEST_CASE("vector Dawson against 50 digits and libcerf", "[special_simd]") {
-  const Measured m = measure(special::dawson_array, dawson_reference, special::dawson);
-  INFO("target " << special::simd_target_name() << ": max rel vs 50 digits " << m.max_ref << " at x = "
-                 << m.at_ref << ", vs libcerf " << m.max_cerf << " at x = " << m.at_cerf);
-  CHECK(m.max_ref <= SimdTolerances::dawson_rel);
-  CHECK(m.max_cerf <= SimdTolerances::vs_libcerf_rel);
-  WARN("dawson_simd (" << special::simd_target_name() << "): max rel " << m.max_ref << " at " << m.at_ref
-                       << "; vs libcerf " << m.max_cerf << " at " << m.at_cerf);
+  check_measured("dawson", measure(special::dawson_array, dawson_reference, special::dawson), SimdTolerances::dawson_rel);
 }
 
 TEST_CASE("vector erfcx and Dawson: limits and special values", "[special_simd]") {

@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
+#include <initializer_list>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli_harness.hpp"
@@ -228,29 +230,29 @@ TEST_CASE("one visual transfer function stated in each opacity convention gives 
   const auto per_unit = [&](double r) { return r * D; };
   const auto per_sample = [&](double r) { return -std::expm1(-r * d); };
 
+  // Each import (points, convention, distance) states `density` exactly: the import says so and
+  // its images agree with those of `density` to 1e-13.
+  using Import = std::tuple<std::vector<double>, OpacityConvention, double>;
+  const auto check_exact = [&](const char* what, const TransferFunctions& density, std::initializer_list<Import> imports) {
+    for (const auto& [pts, c, dist] : imports) {
+      const rayint::TfImport t = imported(pts, c, dist);
+      CHECK(t.density.exact());
+      const double diff = max_image_difference(density, t.transfer, rays);
+      CHECK(diff <= 1e-13);
+      WARN(what << ", " << rayint::convention_name(c) << " vs density: max rel diff " << diff);
+    }
+  };
   // (a)
   const TransferFunctions a_density = imported(points(ident, 0.0), OpacityConvention::density, 1.0).transfer;
-  for (const auto& [pts, c, dist] :
-       {std::tuple{points(ident, 0.0), OpacityConvention::nerf_sigma, 1.0},
-        std::tuple{points(per_unit, 0.0), OpacityConvention::unit_distance, D}}) {
-    const rayint::TfImport t = imported(pts, c, dist);
-    CHECK(t.density.exact());
-    const double diff = max_image_difference(a_density, t.transfer, rays);
-    CHECK(diff <= 1e-13);
-    WARN("(a) linear rho, " << rayint::convention_name(c) << " vs density: max rel diff " << diff);
-  }
+  check_exact("(a) linear rho", a_density,
+              {Import{points(ident, 0.0), OpacityConvention::nerf_sigma, 1.0},
+               Import{points(per_unit, 0.0), OpacityConvention::unit_distance, D}});
   // (b)
   const TransferFunctions b_density = imported(points(ident, 1.0), OpacityConvention::density, 1.0).transfer;
-  for (const auto& [pts, c, dist] :
-       {std::tuple{points(ident, 1.0), OpacityConvention::nerf_sigma, 1.0},
-        std::tuple{points(per_unit, 1.0), OpacityConvention::unit_distance, D},
-        std::tuple{points(per_sample, 1.0), OpacityConvention::sample_distance, d}}) {
-    const rayint::TfImport t = imported(pts, c, dist);
-    CHECK(t.density.exact());
-    const double diff = max_image_difference(b_density, t.transfer, rays);
-    CHECK(diff <= 1e-13);
-    WARN("(b) stepped rho, " << rayint::convention_name(c) << " vs density: max rel diff " << diff);
-  }
+  check_exact("(b) stepped rho", b_density,
+              {Import{points(ident, 1.0), OpacityConvention::nerf_sigma, 1.0},
+               Import{points(per_unit, 1.0), OpacityConvention::unit_distance, D},
+               Import{points(per_sample, 1.0), OpacityConvention::sample_distance, d}});
   // (c) alpha nodes every 1/256 of each interval, from the linear rho of (a).
   std::vector<double> dense;
   const PiecewiseLinear rho_a{xs, rho};

@@ -18,6 +18,7 @@
 #include "rayint/input/case_reader.hpp"
 #include "tolerances.hpp"
 #include "transfer_builders.hpp"
+#include "input_text.hpp"
 
 using namespace rayint;
 
@@ -288,12 +289,7 @@ std::string le_bytes(const std::vector<double>& v, const std::string& type) {
 }
 const char* kHeader = R"("dims": [2, 3, 2], "origin": [0, 0, 0], "spacing": [1, 0.5, 2])";
 std::string error_of(const std::string& text, const std::string& base = "") {
-  try {
-    parse_voxel_grid_text(text, "grid.json", base);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::input_error_of([&] { parse_voxel_grid_text(text, "grid.json", base); });
 }
 }  // namespace
 

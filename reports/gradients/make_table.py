@@ -18,6 +18,25 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def plot_errors(ax, pts, label, style, with_intensity):
+    """Points (n, gradient error, intensity error), sorted by n: the gradient error in `style`
+    and, if asked, the intensity error (floored at 1e-17 for the log scale) dashed in its colour."""
+    pts.sort()
+    ns = [p[0] for p in pts]
+    line, = ax.loglog(ns, [p[1] for p in pts], style, label=f"{label}: gradient")
+    if with_intensity:
+        ax.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
+                  label=f"{label}: intensity")
+
+
+def finish_axes(ax, xlabel, title):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("max relative error vs 50-digit reference")
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6)
+
+
 def main(path, outdir):
     with open(path) as f:
         report = json.load(f)
@@ -50,16 +69,8 @@ def main(path, outdir):
         n = int(mm.group(1))
         series.setdefault((c, r), []).append((n, g, i))
     for (c, r), pts in sorted(series.items()):
-        pts.sort()
-        ns = [p[0] for p in pts]
-        line, = ax.loglog(ns, [p[1] for p in pts], "o-", label=f"{c} ray {r}: gradient")
-        ax.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
-                  label=f"{c} ray {r}: intensity")
-    ax.set_xlabel("Riemann samples per segment n")
-    ax.set_ylabel("max relative error vs 50-digit reference")
-    ax.set_title("What a Riemann renderer's gradient costs in accuracy")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6)
+        plot_errors(ax, pts, f"{c} ray {r}", "o-", True)
+    finish_axes(ax, "Riemann samples per segment n", "What a Riemann renderer's gradient costs in accuracy")
 
     # psi_table and preintegrated (bilinear lookup): gradient error vs table size.
     tables = {}
@@ -68,18 +79,10 @@ def main(path, outdir):
         if mm and g is not None:
             tables.setdefault((mm.group(1), c, r), []).append((int(mm.group(2)), g, i))
     for (method, c, r), pts in sorted(tables.items()):
-        pts.sort()
-        ns = [p[0] for p in pts]
-        style = "o-" if method == "psi_table" else "^-."
-        line, = ax_t.loglog(ns, [p[1] for p in pts], style, label=f"{method} {c} ray {r}: gradient")
-        if method == "psi_table":
-            ax_t.loglog(ns, [max(p[2], 1e-17) for p in pts], "s--", color=line.get_color(), alpha=0.6,
-                        label=f"{method} {c} ray {r}: intensity")
-    ax_t.set_xlabel("table size (lookup=linear; preintegrated: dims=2, step 2^-6)")
-    ax_t.set_ylabel("max relative error vs 50-digit reference")
-    ax_t.set_title("... and a table's (derivative of the bilinear table)")
-    ax_t.grid(True, which="both", alpha=0.3)
-    ax_t.legend(fontsize=6)
+        plot_errors(ax_t, pts, f"{method} {c} ray {r}", "o-" if method == "psi_table" else "^-.",
+                    method == "psi_table")
+    finish_axes(ax_t, "table size (lookup=linear; preintegrated: dims=2, step 2^-6)",
+                "... and a table's (derivative of the bilinear table)")
     fig.tight_layout()
     fig.savefig(f"{outdir}/gradient_error_vs_n.png", dpi=120)
 

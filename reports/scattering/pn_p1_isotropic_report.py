@@ -12,11 +12,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from report_env import ROOT, plot_p1_map, slab  # noqa: E402
+from report_env import ROOT, p1_map, plot_p1_map  # noqa: E402
 
 OUT = os.path.join(ROOT, "reports", "scattering")
-TAUS = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
-ALBEDOS = [0.2, 0.5, 0.8, 0.9, 0.95, 0.99, 1.0]
 
 
 def rel(a, b):
@@ -24,21 +22,11 @@ def rel(a, b):
 
 
 def main():
-    out = []
-    for phase in ("isotropic", "hg:0.75"):
-        for a in ALBEDOS:
-            for t in TAUS:
-                args = ["--tau", repr(t), "--albedo", repr(a), "--phase", phase, "--source", "isotropic",
-                        "--mu-up", "1", "--mu-down", "1"]
-                d = slab(args, "doubling")["doubling"]
-                rec = {"phase": phase, "albedo": a, "tau": t}
-                for n in (1, 3):
-                    p = slab(args, f"pn:order={n}")["pn"]
-                    rec[f"P{n}"] = {"reflectance": rel(p["flux_up_top"], d["flux_up_top"]),
-                                    "transmittance": rel(p["diffuse_down_bottom"], d["diffuse_down_bottom"]),
-                                    "I_up(1)": rel(p["intensity_up_top"][0], d["intensity_up_top"][0])}
-                out.append(rec)
-        print("P1 isotropic light map", phase, file=sys.stderr)
+    out = p1_map(["--source", "isotropic"], (1, 3),
+                 lambda p, d: {"reflectance": rel(p["flux_up_top"], d["flux_up_top"]),
+                               "transmittance": rel(p["diffuse_down_bottom"], d["diffuse_down_bottom"]),
+                               "I_up(1)": rel(p["intensity_up_top"][0], d["intensity_up_top"][0])},
+                 progress="P1 isotropic light map")
     with open(os.path.join(OUT, "pn_p1_isotropic.json"), "w") as f:
         json.dump({"source": "isotropic incident intensity 1", "p1": out}, f, indent=1)
     plot_p1_map(out, "isotropic light",

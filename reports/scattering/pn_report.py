@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from report_env import BUILD, ROOT, plot_p1_map, plt, slab  # noqa: E402
+from report_env import BUILD, ROOT, p1_map, plot_p1_map, plt, slab  # noqa: E402
 
 BENCH = os.path.join(BUILD, "bench", "rayint_bench")
 OUT = os.path.join(ROOT, "reports", "scattering")
@@ -113,29 +113,15 @@ def cost():
     return out
 
 
-def p1_map():
+def beam_p1_map():
     """P1 (diffusion with Marshak's boundary) against the doubling over albedo and thickness."""
-    taus = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
-    albedos = [0.2, 0.5, 0.8, 0.9, 0.95, 0.99, 1.0]
-    out = []
-    for phase in ("isotropic", "hg:0.75"):
-        for a in albedos:
-            for t in taus:
-                args = ["--tau", repr(t), "--albedo", repr(a), "--phase", phase, "--mu0", "1",
-                        "--mu-up", "1", "--mu-down", "1"]
-                d = slab(args, "doubling")["doubling"]
-                rec = {"phase": phase, "albedo": a, "tau": t}
-                for n in (1, 3, 7):
-                    p = slab(args, f"pn:order={n}")["pn"]
-                    rec[f"P{n}"] = {
-                        "reflectance": rel(p["flux_up_top"], d["flux_up_top"]),
-                        "transmittance": rel(p["diffuse_down_bottom"] + p["direct_down_bottom"],
-                                             d["diffuse_down_bottom"] + d["direct_down_bottom"]),
-                        "I_up(1)": rel(p["intensity_up_top"][0], d["intensity_up_top"][0])}
-                rec["doubling_reflectance"] = d["flux_up_top"] / math.pi
-                out.append(rec)
-        print("pn_report: P1 map", phase, file=sys.stderr)
-    return out
+    return p1_map(["--mu0", "1"], (1, 3, 7),
+                  lambda p, d: {"reflectance": rel(p["flux_up_top"], d["flux_up_top"]),
+                                "transmittance": rel(p["diffuse_down_bottom"] + p["direct_down_bottom"],
+                                                     d["diffuse_down_bottom"] + d["direct_down_bottom"]),
+                                "I_up(1)": rel(p["intensity_up_top"][0], d["intensity_up_top"][0])},
+                  after=lambda d: {"doubling_reflectance": d["flux_up_top"] / math.pi},
+                  progress="pn_report: P1 map")
 
 
 def fmt(x):
@@ -234,7 +220,7 @@ def figures(rows, costs, p1):
 def main():
     rows = convergence()
     costs = cost()
-    p1 = p1_map()
+    p1 = beam_p1_map()
     write(rows, costs, p1)
     figures(rows, costs, p1)
 

@@ -14,14 +14,16 @@ import sys
 
 # an extracted python3-paraview (PYTHONPATH) must win over python3-vtk9's vtkmodules
 sys.path[:0] = [p for p in os.environ.get("PYTHONPATH", "").split(":") if p]
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))  # scripts/paraview_colormaps.py
 
 import json  # noqa: E402
 
 from paraview import servermanager as sm  # noqa: E402
-from paraview.simple import (AppendDatasets, Clip, Delaunay3D, Elevation, GetColorTransferFunction,  # noqa: E402
-                             GetOpacityTransferFunction, ResampleToImage, SaveData, Sphere, Tetrahedralize,
-                             Transform, Wavelet)
+from paraview.simple import (AppendDatasets, Clip, Delaunay3D, Elevation, ResampleToImage, SaveData,  # noqa: E402
+                             Sphere, Tetrahedralize, Transform, Wavelet)
 from vtkmodules.vtkCommonCore import vtkVersion  # noqa: E402
+
+from paraview_colormaps import export_colormap  # noqa: E402
 
 OUT = os.path.abspath(sys.argv[1])
 PV = "ParaView %s (pvpython, VTK %s)" % (sm.vtkSMProxyManager.GetParaViewSourceVersion().split()[-1],
@@ -120,18 +122,8 @@ for i in range(presets.GetNumberOfPresets()):
 for k, (preset, log_range) in enumerate([("Viridis (matplotlib)", None), ("Cool to Warm", None), ("Jet", None),
                                          ("Black-Body Radiation", None), ("Rainbow Uniform", None),
                                          ("Inferno (matplotlib)", (0.1, 1000.0)), ("Cool to Warm", (0.1, 1000.0))]):
-    lut = GetColorTransferFunction("corpus_%d" % k)
-    otf = GetOpacityTransferFunction("corpus_%d" % k)
-    lut.ApplyPreset(preset, False)
-    if log_range:
-        lut.RescaleTransferFunction(*log_range)
-        otf.RescaleTransferFunction(*log_range)
-        lut.UseLogScale = 1
-    lut.UpdateVTKObjects()
-    otf.UpdateVTKObjects()
     path = os.path.join(CM, "exported-%d.json" % k)
-    if not sm.vtkSMTransferFunctionProxy.ExportTransferFunction(lut.SMProxy, otf.SMProxy, "exported " + preset, path):
-        raise SystemExit("ExportTransferFunction failed: " + preset)
+    export_colormap("corpus_%d" % k, preset, log_range, "exported " + preset, path)
     record(path, "colormap", "exported %s%s" % (preset, ", log scale over [0.1, 1000]" if log_range else ""), "exported",
            None, "ApplyPreset(%r)%s; vtkSMTransferFunctionProxy.ExportTransferFunction(lut, opacity)" % (
                preset, "; RescaleTransferFunction(0.1, 1000); UseLogScale = 1" if log_range else ""))

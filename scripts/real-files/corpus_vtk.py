@@ -31,6 +31,18 @@ def s_of(x, y, z):
     return 0.5 + 0.3 * x - 0.2 * y + 0.4 * z
 
 
+def clipped_by_plane(clip, data, origin, normal):
+    """What the clip filter `clip` (vtkClipDataSet, vtkTableBasedClipDataSet) keeps of `data`
+    cut by the plane through `origin` with `normal`."""
+    clip.SetInputData(data)
+    plane = vtk.vtkPlane()
+    plane.SetOrigin(*origin)
+    plane.SetNormal(*normal)
+    clip.SetClipFunction(plane)
+    clip.Update()
+    return clip.GetOutput()
+
+
 # ------------------------------------------------------------------ gmsh's legacy .vtk + the field
 # gmsh writes its legacy VTK export without any field; POINT_DATA s is appended here (text), so the
 # cells, points and their order stay gmsh's.
@@ -310,15 +322,9 @@ for name, fn, fmt in [("voxels.vtu", lambda d, pth: xml_write(vtk.vtkXMLUnstruct
     fn(app.GetOutput(), os.path.join(V, name))
     record(os.path.join(V, name), "mesh", VTK_TOOL, fmt + " voxels (VTK 11)", "vtk-voxels", "s",
            "vtkRTAnalyticSource 7^3 spacing 0.3 -> vtkAppendFilter (image to unstructured grid: voxels)")
-clip = vtk.vtkTableBasedClipDataSet()
-clip.SetInputData(vox_src)
-plane = vtk.vtkPlane()
-plane.SetOrigin(0.1, 0.05, 0)
-plane.SetNormal(1, 0.4, 0.2)
-clip.SetClipFunction(plane)
-clip.Update()
 p = os.path.join(V, "clip-mixed.vtu")
-xml_write(vtk.vtkXMLUnstructuredGridWriter, clip.GetOutput(), p, "appended", "zlib")
+xml_write(vtk.vtkXMLUnstructuredGridWriter, clipped_by_plane(vtk.vtkTableBasedClipDataSet(), vox_src, (0.1, 0.05, 0), (1, 0.4, 0.2)),
+          p, "appended", "zlib")
 record(p, "mesh", VTK_TOOL, "vtu mixed linear cells", "vtk-clip", "s",
        "the 7^3 wavelet image clipped by a plane: vtkTableBasedClipDataSet (voxels, wedges, pyramids, tets)")
 i2p = vtk.vtkImageDataToPointSet()
@@ -396,18 +402,21 @@ p = os.path.join(V, "tets-fielddata.vtk")
 legacy_write(fd, p, False)
 record(p, "mesh", VTK_TOOL, "vtk legacy ascii, two point SCALARS, a cell array, FIELD data", "vtk-wavelet-tets-fielddata", "RTData",
        "the wavelet tets with a FIELD TimeValue; vtkUnstructuredGridWriter ascii")
-empty_clip = vtk.vtkClipDataSet()
-empty_clip.SetInputData(ug)
-eplane = vtk.vtkPlane()
-eplane.SetOrigin(100, 0, 0)
-eplane.SetNormal(1, 0, 0)
-empty_clip.SetClipFunction(eplane)
-empty_clip.Update()
-for name, fn in [("empty.vtu", lambda d, pth: xml_write(vtk.vtkXMLUnstructuredGridWriter, d, pth, "appended", "zlib")),
-                 ("empty.vtk", lambda d, pth: legacy_write(d, pth, False))]:
-    fn(empty_clip.GetOutput(), os.path.join(V, name))
-    record(os.path.join(V, name), "mesh", VTK_TOOL, name.split(".")[1] + " empty (0 cells)", "vtk-empty", "RTData",
-           "vtkClipDataSet of the wavelet tets by a plane beyond it: an empty output, written as it is")
+
+
+def write_vtu_and_vtk(data, stem, what, family, field, how):
+    """`data` as V/<stem>.vtu (XML appended, zlib) and V/<stem>.vtk (legacy ASCII), each recorded
+    with the format "vtu <what>" / "vtk <what>"."""
+    for ext, write in [("vtu", lambda pth: xml_write(vtk.vtkXMLUnstructuredGridWriter, data, pth, "appended", "zlib")),
+                       ("vtk", lambda pth: legacy_write(data, pth, False))]:
+        path = os.path.join(V, stem + "." + ext)
+        write(path)
+        record(path, "mesh", VTK_TOOL, ext + " " + what, family, field, how)
+
+
+write_vtu_and_vtk(clipped_by_plane(vtk.vtkClipDataSet(), ug, (100, 0, 0), (1, 0, 0)), "empty", "empty (0 cells)",
+                  "vtk-empty", "RTData",
+                  "vtkClipDataSet of the wavelet tets by a plane beyond it: an empty output, written as it is")
 # one polyhedron (a cube given by its 6 faces) and its neighbour tetrahedron
 poly_ug = vtk.vtkUnstructuredGrid()
 pp = vtk.vtkPoints()
@@ -424,11 +433,8 @@ for f in faces:
 poly_ug.InsertNextCell(vtk.VTK_POLYHEDRON, fl)  # the face stream: nfaces, (n, ids...) per face
 poly_ug.InsertNextCell(vtk.VTK_TETRA, 4, [1, 2, 5, 8])
 add_point_array(poly_ug, "s", s_of)
-for name, fn in [("polyhedron.vtu", lambda d, pth: xml_write(vtk.vtkXMLUnstructuredGridWriter, d, pth, "appended", "zlib")),
-                 ("polyhedron.vtk", lambda d, pth: legacy_write(d, pth, False))]:
-    fn(poly_ug, os.path.join(V, name))
-    record(os.path.join(V, name), "mesh", VTK_TOOL, name.split(".")[1] + " polyhedron (VTK 42) + tetra", "vtk-polyhedron", "s",
-           "a cube as one vtkPolyhedron (6 faces) and a tetrahedron beside it")
+write_vtu_and_vtk(poly_ug, "polyhedron", "polyhedron (VTK 42) + tetra", "vtk-polyhedron", "s",
+                  "a cube as one vtkPolyhedron (6 faces) and a tetrahedron beside it")
 lag = vtk.vtkUnstructuredGrid()
 lp = vtk.vtkPoints()
 for xyz in [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0, 0), (0.5, 0.5, 0), (0, 0.5, 0), (0, 0, 0.5), (0.5, 0, 0.5), (0, 0.5, 0.5)]:

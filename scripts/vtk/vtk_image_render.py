@@ -305,6 +305,35 @@ def read_vti(path):
     return r.GetOutput()
 
 
+def make_mapper(mapper, step, info):
+    """The VTK volume mapper named `mapper` (MAPPERS), its sample distance fixed at `step` (None:
+    the mapper's default, recorded in info["default_sample_distance"]) and never adjusted by VTK."""
+    import vtk
+    if mapper.startswith("fixedpoint"):
+        m = vtk.vtkFixedPointVolumeRayCastMapper()
+    elif mapper == "gpu":
+        m = vtk.vtkGPUVolumeRayCastMapper()
+    elif mapper == "smart":
+        m = vtk.vtkSmartVolumeMapper()
+    else:
+        raise SystemExit("--mapper: one of " + ", ".join(MAPPERS))
+    info["default_sample_distance"] = m.GetSampleDistance()
+    m.AutoAdjustSampleDistancesOff()
+    if mapper == "smart":
+        m.SetRequestedRenderModeToDefault()
+        m.InteractiveAdjustSampleDistancesOff()
+    else:  # the two ray casters
+        m.LockSampleDistanceToInputSpacingOff()
+    if mapper.startswith("fixedpoint"):
+        m.SetImageSampleDistance(1.0)
+        m.SetNumberOfThreads(2)
+    elif mapper == "gpu":
+        m.UseJitteringOff()
+    if step is not None:
+        m.SetSampleDistance(step)
+    return m
+
+
 def build(scene, scene_path, mapper, step):
     """(render window, renderer, volume, mapper object, info) set up for one render."""
     import vtk
@@ -315,33 +344,7 @@ def build(scene, scene_path, mapper, step):
     prop = vr.volume_property(opacity, colour, unit)
     prop.DisableGradientOpacityOn()
     info = {"mapper": mapper, "requested_step": step, "unit_distance": unit}
-    if mapper.startswith("fixedpoint"):
-        m = vtk.vtkFixedPointVolumeRayCastMapper()
-        info["default_sample_distance"] = m.GetSampleDistance()
-        m.AutoAdjustSampleDistancesOff()
-        m.LockSampleDistanceToInputSpacingOff()
-        m.SetImageSampleDistance(1.0)
-        m.SetNumberOfThreads(2)
-        if step is not None:
-            m.SetSampleDistance(step)
-    elif mapper == "gpu":
-        m = vtk.vtkGPUVolumeRayCastMapper()
-        info["default_sample_distance"] = m.GetSampleDistance()
-        m.AutoAdjustSampleDistancesOff()
-        m.LockSampleDistanceToInputSpacingOff()
-        m.UseJitteringOff()
-        if step is not None:
-            m.SetSampleDistance(step)
-    elif mapper == "smart":
-        m = vtk.vtkSmartVolumeMapper()
-        info["default_sample_distance"] = m.GetSampleDistance()
-        m.SetRequestedRenderModeToDefault()
-        m.AutoAdjustSampleDistancesOff()
-        m.InteractiveAdjustSampleDistancesOff()
-        if step is not None:
-            m.SetSampleDistance(step)
-    else:
-        raise SystemExit("--mapper: one of " + ", ".join(MAPPERS))
+    m = make_mapper(mapper, step, info)
     m.SetBlendModeToComposite()
     win, ren, vol = vr.offscreen_volume(m, image, prop, w, h, alpha_planes=True)
     ren.SetActiveCamera(vr.make_vtk_camera(cam, vr.vtk_camera_settings(cam, "projected", "exact")))
