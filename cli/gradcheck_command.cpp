@@ -13,7 +13,7 @@
 #include "options.hpp"
 #include "rayint/core/atomic_file.hpp"
 #include "rayint/input/case_reader.hpp"
-#include "rayint/input/grad_candidate_reader.hpp"
+#include "rayint/input/candidate_reader.hpp"
 #include "rayint/report/grad_json.hpp"
 #include "rayint/report/junit.hpp"
 #include "rayint/studies/grad_study.hpp"
@@ -62,8 +62,11 @@ void set_gradcheck_command(CLI::App& app) {
     emit(gradcheck_report_json(r).dump(2), opt->output);
     std::string line = "gradcheck " + c.name + ": " + (r.passed() ? "PASS" : "FAIL") + ", " +
                        std::to_string(r.failed) + " of " + std::to_string(r.entries) + " entries fail";
+    if (r.null_in_candidate > 0)
+      line += "; " + std::to_string(r.null_in_candidate) + " entries null in the candidate (not passed), first: " +
+              entry_name(*r.first_null);
     if (r.undefined > 0)
-      line += " (" + std::to_string(r.undefined) + " entries not checked: no derivative exists there, " +
+      line += "; " + std::to_string(r.undefined) + " entries skipped, undefined (no derivative exists there: " +
               r.undefined_reason + ")";
     if (r.worst) {
       const GradCheckEntry& w = *r.worst;
@@ -80,6 +83,9 @@ void set_gradcheck_command(CLI::App& app) {
       jc.name = "gradient_within_tolerance";
       jc.pass = r.passed();
       if (!jc.pass && r.worst) jc.message = entry_name(*r.worst) + ": " + junit_measure(r.worst->excess, 1.0);
+      if (r.null_in_candidate > 0)
+        jc.message += (jc.message.empty() ? "" : "; ") + std::to_string(r.null_in_candidate) +
+                      " entries null in the candidate, first: " + entry_name(*r.first_null);
       suite.cases.push_back(jc);
       write_file_atomically(opt->junit, junit_xml({suite}));
     }

@@ -16,35 +16,17 @@
 #include "rayint/input/candidate_reader.hpp"
 #include "fuzz_checks.hpp"
 
-namespace {
-
-using rayint::fuzz::check_message;
-using rayint::fuzz::require;
-
-constexpr const char* kSource = "fuzz-candidate.json";
-
-rayint::Case three_rays() {
-  rayint::Case c;
-  c.name = "fig2";
-  c.source = "fig2.json";
-  c.rays.resize(3);
-  return c;
-}
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const rayint::Case kCase = three_rays();
+  using rayint::fuzz::require;
+  static const char* const kSource = "fuzz-candidate.json";
+  static const rayint::Case kCase = rayint::fuzz::fig2_case({1, 1, 1});
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  try {
+  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
     const rayint::Candidate c = rayint::parse_candidate_text(text, kSource);
     require(!c.case_name.empty() && !c.intensity.empty() && c.source == kSource);
     for (const rayint::Rgb& I : c.intensity)
       for (double x : I) require(std::isfinite(x));
     rayint::require_candidate_matches(c, kCase);
     require(c.case_name == kCase.name && c.intensity.size() == kCase.rays.size());
-  } catch (const rayint::InputError& e) {
-    check_message(e.what(), kSource);
-  }
-  return 0;
+  });
 }

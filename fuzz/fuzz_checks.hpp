@@ -2,11 +2,13 @@
 // What every fuzz target checks of a refusal, and how it reports a finding: each check traps
 // (__builtin_trap), so libFuzzer saves the input as a crash artifact. A refusal must be one
 // InputError line starting "<source>: " (the file it names, as the CLI prints it).
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "rayint/core/error.hpp"
+#include "rayint/model/ray.hpp"
 
 namespace rayint::fuzz {
 
@@ -55,6 +57,20 @@ int merge_refusals_are_one_line(const std::string& source, Body&& body) {
   } catch (const std::invalid_argument&) {
   }
   return 0;
+}
+
+// The fixed case the candidate parsers' matches run against: named "fig2" (file fig2.json), one
+// ray per entry of `segments` with that many (zero) segments, every transfer function two nodes.
+inline Case fig2_case(const std::vector<std::size_t>& segments) {
+  Case c;
+  c.name = "fig2";
+  c.source = "fig2.json";
+  for (int ch = 0; ch < kChannels; ++ch) {
+    c.transfer.density[ch] = {{0.0, 1.0}, {5.0, 2.0}};
+    c.transfer.color[ch] = {{0.0, 1.0}, {1.0, 1.0}};
+  }
+  for (const std::size_t m : segments) c.rays.emplace_back().segments.resize(m);
+  return c;
 }
 
 }  // namespace rayint::fuzz

@@ -13,49 +13,13 @@
 #include "rayint/integrators/exact_grad.hpp"
 #include "rayint/reference/reference_grad.hpp"
 #include "rayint/studies/grad_study.hpp"
+#include "grad_checks.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
 
-namespace {
-
-// Max over entries of |got - want| / (largest |want| entry of the channel), per channel; the
-// worst entry is named in `where`.
-double gradient_error(const RayGradient& got, const RayGradient& want, int c, std::string* where) {
-  const double scale = want.channel_scale(c);
-  std::vector<double> w;
-  want.for_each(c, [&w](double v, const char*, std::size_t, const char*) { w.push_back(v); });
-  std::size_t i = 0;
-  double worst = 0.0;
-  got.for_each(c, [&](double v, const char* block, std::size_t idx, const char* param) {
-    const double diff = std::fabs(v - w[i++]);
-    const double e = scale > 0.0 ? diff / scale : diff;
-    if (!(e <= worst)) {
-      worst = e;
-      if (where) *where = std::string(block) + "[" + std::to_string(idx) + "]" + (*param ? "." : "") + param;
-    }
-  });
-  return worst;
-}
-
-struct Worst {
-  double err = 0.0;
-  std::string where;
-  long samples = 0;
-  void add(const RayGradient& got, const RayGradient& want, const std::string& label) {
-    for (int c = 0; c < kChannels; ++c) {
-      std::string w;
-      const double e = gradient_error(got, want, c, &w);
-      ++samples;
-      if (!(e <= err)) {
-        err = e;
-        where = label + " channel " + std::to_string(c) + " " + w;
-      }
-    }
-  }
-};
-
-}  // namespace
+using test::gradient_error;
+using Worst = test::WorstGradientError;
 
 TEST_CASE("exact gradient: forward intensity is exact:path=scalar's, bit for bit", "[grad]") {
   const Case cs = read_case_file(RAYINT_SOURCE_DIR "/cases/medical-ct.json");
@@ -143,43 +107,6 @@ TEST_CASE("exact gradient: kink convention at a constant-scalar segment on a nod
   for (int c = 0; c < kChannels; ++c) CHECK(gradient_error(on, ref.gradient, c, nullptr) <= 1e-15);
 }
 
-namespace {
-
-// Central differences in double of a method's own intensity (registry) with respect to each
-// segment input and node of `tf`: step 1e-6, so truncation ~1e-12 and rounding ~1e-10 relative.
-RayGradient finite_difference(const std::string& spec_text, TransferFunctions tf, Ray ray) {
-  RayGradient g = RayGradient::zeros(tf, ray);
-  const MethodSpec spec = parse_method_spec(spec_text);
-  const auto I = [&](const TransferFunctions& t, const Ray& r) { return make_integrator(spec, t)->integrate(r, nullptr).intensity; };
-  const auto diff = [&](double& x, auto&& store) {
-    const double x0 = x, h = 1e-6 * std::max(1.0, std::fabs(x0));
-    x = x0 + h;
-    const Rgb up = I(tf, ray);
-    x = x0 - h;
-    const Rgb down = I(tf, ray);
-    x = x0;
-    for (int c = 0; c < kChannels; ++c) store(c, (up[c] - down[c]) / (2 * h));
-  };
-  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
-    diff(ray.segments[j].length, [&](int c, double d) { g.length[j][c] = d; });
-    diff(ray.segments[j].scalar_far, [&](int c, double d) { g.scalar_far[j][c] = d; });
-    diff(ray.segments[j].scalar_exit, [&](int c, double d) { g.scalar_exit[j][c] = d; });
-  }
-  for (int c = 0; c < kChannels; ++c) {
-    g.background[c] = make_integrator(spec, tf)->integrate(ray, nullptr).transmittance[c];
-    for (const bool density : {true, false}) {
-      PiecewiseLinear& f = (density ? tf.density : tf.color)[c];
-      auto& out = (density ? g.density : g.color)[c];
-      for (std::size_t k = 0; k < f.scalar.size(); ++k) {
-        diff(f.scalar[k], [&](int ch, double d) { if (ch == c) out[k].position = d; });
-        diff(f.value[k], [&](int ch, double d) { if (ch == c) out[k].value = d; });
-      }
-    }
-  }
-  return g;
-}
-
-}  // namespace
 
 TEST_CASE("riemann, nerf, pl_nerf, psi_table gradients: the derivative of each renderer's own sum", "[grad]") {
   // Kinks inside segments, no sample within 1e-6 of a node (sample positions are k/n, (k+1/2)/n
@@ -189,9 +116,7 @@ TEST_CASE("riemann, nerf, pl_nerf, psi_table gradients: the derivative of each r
                 PiecewiseLinear{{0.1, 0.61, 0.9}, {1.0, 0.2, 2.5}}};
   tf.color = {PiecewiseLinear{{0.0, 1.0}, {0.9, 0.3}}, PiecewiseLinear{{0.0, 0.57, 1.0}, {0.4, 0.8, 0.5}},
               PiecewiseLinear{{0.0, 1.0}, {0.2, 0.7}}};
-  Ray ray;
-  ray.background = {0.3, 0.1, 0.6};
-  ray.segments = {{0.7, 0.0123, 0.8871}, {0.45, 0.8871, 0.3317}, {0.3, 0.3317, 0.9533}};
+  const Ray ray = test::three_segment_ray();
   // psi_table: the derivative of the bilinear table (no lookup here lies within a difference
   // step of a grid line). lookup=nearest is piecewise constant in Psi and a step of 1e-6 straddles
   // one of its jumps here (node 0 of density r: differences 5.9 at h = 1e-6, -0.0497294222 at
@@ -199,7 +124,9 @@ TEST_CASE("riemann, nerf, pl_nerf, psi_table gradients: the derivative of each r
   for (const char* spec : {"riemann:n=16", "nerf:n=16", "nerf:n=16:at=near", "pl_nerf:n=16", "pl_nerf:n=16:color=near",
                            "psi_table:size=64", "psi_table:size=512"}) {
     const RayGradient got = method_gradient(parse_method_spec(spec), tf, ray);
-    const RayGradient fd = finite_difference(spec, tf, ray);
+    // Central differences in double of the renderer's own intensity, step 1e-6: truncation
+    // ~1e-12 and rounding ~1e-10 relative.
+    const RayGradient fd = test::method_finite_difference(spec, tf, ray, 1e-6);
     for (int c = 0; c < kChannels; ++c) {
       std::string where;
       const double err = gradient_error(got, fd, c, &where);

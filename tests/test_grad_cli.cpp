@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli_harness.hpp"
-#include "rayint/input/grad_candidate_reader.hpp"
+#include "rayint/input/candidate_reader.hpp"
 #include "rayint/render/float_image.hpp"
 #include "tolerances.hpp"
 
@@ -85,7 +85,7 @@ TEST_CASE("gradcheck: the exact candidate passes, a perturbed entry and Riemann 
 TEST_CASE("gradcheck: bad input is one line naming the file and field, exit 2", "[grad][grad_cli]") {
   TempDir dir;
   dir.copy_case("paper-figure-2");
-  dir.write("nan.json", R"({"case": "paper-figure-2", "rays": [{"gradient": {"background": [1, null, 0]}}]})");
+  dir.write("nan.json", R"({"case": "paper-figure-2", "rays": [{"gradient": {"background": [1, "x", 0]}}]})");
   const auto r = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate nan.json");
   CHECK(r.status == 2);
   CHECK(r.out.empty());
@@ -305,7 +305,17 @@ TEST_CASE("gradcheck across a jump: the tie, untested null entries, a candidate 
   CHECK(ok.status == 0);
   const json verdict = json::parse(ok.out);
   CHECK(verdict["undefined"].get<int>() == 6);  // 3 channels x (jump position, ray end scalar)
-  CHECK(ok.err.find("not checked") != std::string::npos);
+  CHECK(ok.err.find("6 entries skipped, undefined") != std::string::npos);
+  CHECK(verdict["null_in_candidate"].get<int>() == 0);
+  // The same with the candidate leaving them null: skipped too (not counted as null entries).
+  json with_nulls = json::parse(candidate_from(report, "exact"));
+  with_nulls["rays"][0]["gradient"].erase("undefined");
+  with_nulls["rays"][1]["gradient"].erase("undefined");
+  dir.write("nulls.json", with_nulls.dump());
+  const auto skipped = run_cli(dir.path, "gradcheck case.json --candidate nulls.json --rel-tol 1e-12");
+  CHECK(skipped.status == 0);
+  CHECK(json::parse(skipped.out)["undefined"].get<int>() == 6);
+  CHECK(json::parse(skipped.out)["null_in_candidate"].get<int>() == 0);
   // A candidate with the other tie (the jump's derivative on the second node) fails, by name.
   json wrong = cand;
   const double tied = wrong["rays"][0]["gradient"]["density"]["r"][1][0].get<double>();
@@ -317,4 +327,50 @@ TEST_CASE("gradcheck across a jump: the tie, untested null entries, a candidate 
   const auto bad = run_cli(dir.path, "gradcheck case.json --candidate wrong.json --rel-tol 1e-6");
   CHECK(bad.status == 1);
   CHECK(bad.err.find("density node 1 position channel r") != std::string::npos);
+}
+
+TEST_CASE("gradcheck: null entries in a candidate are not passed, counted and named, exit 1", "[grad][grad_cli]") {
+  TempDir dir;
+  dir.copy_case("paper-figure-2");
+  REQUIRE(run_cli(dir.path, "grad paper-figure-2.json --no-reference -o g.json").status == 0);
+  const json report = json::parse(slurp(dir.path / "g.json"));
+  // The exact gradient with two entries the "renderer" cannot give: null.
+  json cand = json::parse(candidate_from(report, "exact"));
+  cand["rays"][1]["gradient"]["color"]["g"][1][1] = nullptr;
+  cand["rays"][2]["gradient"]["length"][0][0] = nullptr;
+  dir.write("nulls.json", cand.dump());
+  const auto r = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate nulls.json --rel-tol 1e-12 --junit j.xml");
+  CHECK(r.status == 1);
+  const json v = json::parse(r.out);
+  CHECK(v["pass"] == false);
+  CHECK(v["null_in_candidate"].get<int>() == 2);
+  CHECK(v["failed"].get<int>() == 2);  // every other entry is exact's own
+  CHECK(v["first_null"]["ray"].get<int>() == 1);
+  CHECK(v["first_null"]["block"] == "color");
+  CHECK(v["first_null"]["parameter"] == "value");
+  CHECK(v["first_null"]["channel"] == "g");
+  CHECK(v["first_null"]["got"].is_null());
+  CHECK(r.err.find("2 entries null in the candidate (not passed), first: ray 1 color node 1 value channel g") !=
+        std::string::npos);
+  CHECK(slurp(dir.path / "j.xml").find("entries null in the candidate") != std::string::npos);
+  // A candidate of nothing but nulls is never a pass.
+  json all_null = cand;
+  for (json& ray : all_null["rays"]) {
+    json& g = ray["gradient"];
+    g["background"] = json::array({nullptr, nullptr, nullptr});
+    for (const char* block : {"length"})
+      for (json& e : g[block]) e = json::array({nullptr, nullptr, nullptr});
+    for (json& e : g["scalar"]) e = json::array({json::array({nullptr, nullptr, nullptr}), json::array({nullptr, nullptr, nullptr})});
+    for (const char* f : {"density", "color"})
+      for (const char* ch : {"r", "g", "b"})
+        for (json& node : g[f][ch]) node = json::array({nullptr, nullptr});
+  }
+  dir.write("all_null.json", all_null.dump());
+  const auto n = run_cli(dir.path, "gradcheck paper-figure-2.json --candidate all_null.json");
+  CHECK(n.status == 1);
+  const json nv = json::parse(n.out);
+  CHECK(nv["pass"] == false);
+  CHECK(nv["null_in_candidate"] == nv["entries"]);
+  CHECK(nv["failed"] == nv["entries"]);
+  CHECK(nv["entries"].get<int>() > 0);
 }

@@ -13,57 +13,22 @@
 #include <vector>
 
 #include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/integrator.hpp"
 #include "rayint/integrators/exact_grad.hpp"
 #include "rayint/integrators/psi_table_grad.hpp"
 #include "rayint/integrators/riemann_grad.hpp"
 #include "rayint/reference/reference_grad.hpp"
 #include "rayint/studies/grad_study.hpp"
+#include "grad_checks.hpp"
 #include "tolerances.hpp"
 #include "transfer_builders.hpp"
 
 using namespace rayint;
 
+using test::gradient_error;
+using Worst = test::WorstGradientError;
+
 namespace {
-
-// Max over the channel's entries of |got - want| / (largest |want| entry), where both exist; the
-// NaN pattern (entries that do not exist) must be the same, else the error is +inf.
-double jump_error(const RayGradient& got, const RayGradient& want, int c, std::string* where) {
-  const double scale = want.channel_scale(c);
-  std::vector<double> w;
-  want.for_each(c, [&w](double v, const char*, std::size_t, const char*) { w.push_back(v); });
-  std::size_t i = 0;
-  double worst = 0.0;
-  got.for_each(c, [&](double v, const char* block, std::size_t idx, const char* param) {
-    const double ref = w[i++];
-    double e = 0.0;
-    if (std::isnan(v) || std::isnan(ref))
-      e = std::isnan(v) && std::isnan(ref) ? 0.0 : HUGE_VAL;
-    else
-      e = std::fabs(v - ref) / (scale > 0.0 ? scale : 1.0);
-    if (!(e <= worst)) {
-      worst = e;
-      if (where) *where = std::string(block) + "[" + std::to_string(idx) + "]" + (*param ? "." : "") + param;
-    }
-  });
-  return worst;
-}
-
-struct Worst {
-  double err = 0.0;
-  std::string where;
-  long samples = 0;
-  void add(const RayGradient& got, const RayGradient& want, const std::string& label) {
-    for (int c = 0; c < kChannels; ++c) {
-      std::string w;
-      const double e = jump_error(got, want, c, &w);
-      ++samples;
-      if (!(e <= err)) {
-        err = e;
-        where = label + " channel " + std::to_string(c) + " " + w;
-      }
-    }
-  }
-};
 
 // A function on [0, 1] with 3..5 distinct node positions, one or two of them jumps (one of them,
 // sometimes, at the first or last node); values in [0, vmax], some exactly 0 (zero-density sides).
@@ -207,7 +172,7 @@ TEST_CASE("exact gradient where the ray touches a jump: null, and the one-sided 
       CHECK(std::isnan(got.density[c][1].position));
       CHECK(std::isnan((t.far ? got.scalar_far : got.scalar_exit)[t.segment][c]));
       std::string where;
-      CHECK(jump_error(got, ref.gradient, c, &where) <= test::GradTolerances::jump_vs_reference_rel);
+      CHECK(gradient_error(got, ref.gradient, c, &where) <= test::GradTolerances::jump_vs_reference_rel);
     }
     // Not a convention: moving the jump (both nodes) one way and the other gives different
     // slopes, in double, step 1e-6 (their difference is O(1) of the channel's scale here).
@@ -235,15 +200,236 @@ TEST_CASE("exact gradient: density and color jumping at one scalar", "[grad][gra
   CHECK(std::isnan(got.density[0][1].position));
   CHECK(std::isnan(got.color[0][1].position));
   CHECK(std::isfinite(got.scalar_far[0][0]));
-  for (int c = 0; c < kChannels; ++c) CHECK(jump_error(got, ref.gradient, c, nullptr) <= test::GradTolerances::jump_vs_reference_rel);
+  for (int c = 0; c < kChannels; ++c) CHECK(gradient_error(got, ref.gradient, c, nullptr) <= test::GradTolerances::jump_vs_reference_rel);
 }
 
-TEST_CASE("gradients that do not differentiate a jump refuse it with one line", "[grad][grad_jump]") {
+TEST_CASE("every ray gradient accepts a transfer function with a jump", "[grad][grad_jump]") {
   const TransferFunctions tf =
       test::uniform_tf(PiecewiseLinear{{0.2, 0.5, 0.5, 0.9}, {0.4, 0.6, 2.5, 1.0}}, test::constant(0.5));
   const Ray ray{{0, 0, 0}, {{1.0, 0.1, 0.9}}};
-  CHECK_THROWS_WITH(riemann_ray_gradient(tf, ray, RiemannOptions{}), Catch::Contains("jump"));
-  CHECK_THROWS_WITH(psi_table_ray_gradient(tf, ray, 64, table::Lookup::linear), Catch::Contains("jump"));
-  CHECK_THROWS_WITH(method_gradient(parse_method_spec("preintegrated:size=64"), tf, ray), Catch::Contains("jump"));
-  CHECK_NOTHROW(exact_ray_gradient(tf, ray));
+  // (preintegrated:size=64 would put grid scalar 35 of [0, 0.9] on the jump at 0.5: undefined there.)
+  for (const char* spec : {"exact", "riemann:n=8", "nerf:n=8", "pl_nerf:n=8", "psi_table:size=64", "preintegrated:size=60"}) {
+    INFO(spec);
+    const RayGradient g = method_gradient(parse_method_spec(spec), tf, ray);
+    CHECK(g.undefined.empty());
+    CHECK(g.density[0][1].position != 0.0);  // the jump (or the linear piece beside it) moves I
+    CHECK(g.density[0][2].position == 0.0);  // the tie
+  }
+}
+
+namespace {
+
+// Transfer functions with jumps of every kind for the sampled renderers: density r jumps between
+// two linear pieces at 0.45; density b jumps at its first node 0.3 (0.05 below); colour r is a pure
+// step at 0.55 (constant on both sides); colour g jumps between linear pieces at 0.62. (Not a
+// value exactly 0: psi_table skips a transparent piece and central differences of a 0 value
+// cross into negative densities, so neither is differentiable there.)
+TransferFunctions sampled_jump_tf() {
+  TransferFunctions tf;
+  tf.density = {PiecewiseLinear{{0.2, 0.45, 0.45, 0.9}, {0.4, 0.6, 2.5, 1.0}}, PiecewiseLinear{{0.0, 1.0}, {0.5, 1.5}},
+                PiecewiseLinear{{0.3, 0.3, 0.8}, {0.05, 1.2, 0.5}}};
+  tf.color = {PiecewiseLinear{{0.55, 0.55}, {0.2, 0.9}}, PiecewiseLinear{{0.0, 0.62, 0.62, 1.0}, {0.2, 0.3, 0.8, 0.9}},
+              PiecewiseLinear{{0.0, 1.0}, {0.2, 0.7}}};
+  return tf;
+}
+
+// The scalars of every sample the renderer takes on the ray: fractions (k + 1/2)/n of each
+// segment for midpoint samples (riemann, nerf at=mid), k/n (k = 0..n) for nerf at=near and pl_nerf.
+std::vector<double> sample_scalars(const Ray& ray, int n, bool midpoints) {
+  std::vector<double> out;
+  for (const Segment& seg : ray.segments)
+    for (int j = midpoints ? 1 : 0; j <= 2 * n; j += 2)
+      out.push_back(seg.scalar_far + (j / (2.0 * n)) * (seg.scalar_exit - seg.scalar_far));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("riemann, nerf, pl_nerf gradients across jumps: the derivative of each renderer's own sum",
+          "[grad][grad_jump]") {
+  const TransferFunctions tf = sampled_jump_tf();
+  const Ray ray = test::three_segment_ray();  // crosses every jump, no end within 1e-3 of a node
+  const std::vector<double> bp = tf.breakpoints();
+  const std::vector<double> jumps = jump_positions(tf);
+  REQUIRE(jumps.size() == 4);
+  // Central differences, step 1e-6 (relative to max(1, |x|): scalars and positions move <= 1e-6).
+  const double step = 1e-6;
+  struct Spec {
+    const char* spec;
+    int n;
+    bool midpoints;
+  };
+  Worst worst;
+  for (const Spec& sp : {Spec{"riemann:n=16", 16, true}, Spec{"riemann:n=64", 64, true}, Spec{"nerf:n=16", 16, true},
+                         Spec{"nerf:n=16:at=near", 16, false}, Spec{"pl_nerf:n=16", 16, false},
+                         Spec{"pl_nerf:n=16:color=near", 16, false}}) {
+    INFO(sp.spec);
+    // The precondition of comparing with differences: no sample within a few steps of a node (no
+    // sample changes side of a jump, or interval of a kink, under any perturbation), checked on a
+    // superset of the sample scalars (both grids: the renderers compute them in their own order).
+    const std::vector<double> all = sample_scalars(ray, sp.n, true), grid = sample_scalars(ray, sp.n, false);
+    double nearest = HUGE_VAL;
+    for (const auto* samples : {&all, &grid})
+      for (const double s : *samples)
+        for (const double x : bp) nearest = std::min(nearest, std::fabs(s - x));
+    INFO("nearest sample to a node " << nearest);
+    REQUIRE(nearest > 8 * step);
+    // ... and not vacuous: samples on both sides of every jump.
+    const std::vector<double> taken = sample_scalars(ray, sp.n, sp.midpoints);
+    for (const double x : jumps) {
+      const auto below = std::count_if(taken.begin(), taken.end(), [x](double s) { return s < x; });
+      CHECK(below > 0);
+      CHECK(below < static_cast<long>(taken.size()));
+    }
+    const RayGradient got = method_gradient(parse_method_spec(sp.spec), tf, ray);
+    const RayGradient fd = test::method_finite_difference(sp.spec, tf, ray, step);
+    CHECK(got.undefined.empty());
+    worst.add(got, fd, sp.spec);
+    for (int c = 0; c < kChannels; ++c) {
+      std::string where;
+      const double err = gradient_error(got, fd, c, &where);
+      INFO("channel " << c << " worst at " << where << ": " << err);
+      CHECK(err <= 1e-8);
+      const double I = make_integrator(parse_method_spec(sp.spec), tf)->integrate(ray, nullptr).intensity[c];
+      CHECK(std::fabs(got.intensity[c] - I) <= 1e-14 * std::fabs(I));
+    }
+    // The tie: second nodes 0; the jumps between linear pieces move those pieces (non-zero);
+    // the pure step (colour r) has nothing beside it to move: exactly 0, where exact's is not.
+    CHECK(got.density[0][2].position == 0.0);
+    CHECK(got.density[0][1].position != 0.0);
+    CHECK(fd.density[0][1].position != 0.0);
+    CHECK(got.color[1][2].position == 0.0);
+    CHECK(got.color[1][1].position != 0.0);
+    CHECK(got.color[0][0].position == 0.0);
+    CHECK(got.color[0][1].position == 0.0);
+    CHECK(std::fabs(exact_ray_gradient(tf, ray).color[0][0].position) > 0.01 * got.channel_scale(0));
+  }
+  WARN("sampled renderers across jumps vs central differences of their own sums: worst " << worst.err << " at "
+       << worst.where << " (" << worst.samples << " ray-channels)");
+}
+
+TEST_CASE("riemann gradient: a sample exactly on a jump takes the left value's side", "[grad][grad_jump]") {
+  // riemann:n=4 on a segment 0 -> 1 samples at 0.125, 0.375, 0.625, 0.875 exactly; the density
+  // jumps 1 -> 3 at 0.375, so one sample sits on the jump, where operator() returns the left
+  // value. The sum is left-continuous there: its derivatives are the one-sided ones for moving
+  // that sample down (scalar_far and scalar_exit decreased, as ds/ds_far = 5/8, ds/ds_exit = 3/8
+  // are positive) or the jump up, measured by second-order one-sided differences.
+  const TransferFunctions tf = test::uniform_tf(PiecewiseLinear{{0.1, 0.375, 0.375, 0.9}, {0.5, 1.0, 3.0, 0.8}},
+                                                PiecewiseLinear{{0.0, 1.0}, {0.2, 0.9}});
+  const Ray ray{{0.2, 0.2, 0.2}, {{1.0, 0.0, 1.0}}};
+  const std::string spec = "riemann:n=4";
+  REQUIRE(0.0 + (1.5 / 4.0) * (1.0 - 0.0) == 0.375);
+  const RayGradient got = method_gradient(parse_method_spec(spec), tf, ray);
+  const auto I = [&](const TransferFunctions& t, const Ray& r) {
+    return make_integrator(parse_method_spec(spec), t)->integrate(r, nullptr).intensity[0];
+  };
+  const double h = 1e-7;
+  // d/dx by a one-sided stencil in direction dir (+1 forward, -1 backward): second order.
+  const auto one_sided = [&](auto&& f, double dir) { return dir * (-3.0 * f(0.0) + 4.0 * f(dir * h) - f(2.0 * dir * h)) / (2.0 * h); };
+  const auto far = [&](double d) { Ray r = ray; r.segments[0].scalar_far += d; return I(tf, r); };
+  const auto exit = [&](double d) { Ray r = ray; r.segments[0].scalar_exit += d; return I(tf, r); };
+  const auto jump = [&](double d) {
+    TransferFunctions t = tf;
+    t.density[0].scalar[1] = t.density[0].scalar[2] = 0.375 + d;
+    return I(t, ray);
+  };
+  const double scale = got.channel_scale(0);
+  INFO("scale " << scale);
+  CHECK(std::fabs(got.scalar_far[0][0] - one_sided(far, -1.0)) <= 1e-7 * scale);
+  CHECK(std::fabs(got.scalar_exit[0][0] - one_sided(exit, -1.0)) <= 1e-7 * scale);
+  CHECK(std::fabs(got.density[0][1].position - one_sided(jump, +1.0)) <= 1e-7 * scale);
+  CHECK(got.density[0][2].position == 0.0);
+  // Not a convention the other side would also satisfy: the other one-sided differences see the
+  // jump (O(1/h)).
+  CHECK(std::fabs(one_sided(far, +1.0) - got.scalar_far[0][0]) > 1e3 * scale);
+  CHECK(std::fabs(one_sided(jump, -1.0) - got.density[0][1].position) > 1e3 * scale);
+  // The value: the sample reads the left value (node 1), the right value (node 2) only through
+  // the samples above the jump (0.625, 0.875); central differences of the values agree.
+  const RayGradient fd = test::method_finite_difference(spec, tf, ray, 1e-6, [](double) { return true; });
+  for (const std::size_t k : {std::size_t{1}, std::size_t{2}})
+    CHECK(std::fabs(got.density[0][k].value - fd.density[0][k].value) <= 1e-8 * scale);
+}
+
+TEST_CASE("psi_table and preintegrated gradients across jumps: the derivative of each renderer's own forward",
+          "[grad][grad_jump]") {
+  const TransferFunctions tf = sampled_jump_tf();
+  const double step = 1e-6;  // central differences, relative to max(1, |x|)
+  const Ray ray = test::three_segment_ray();  // crosses every jump, no end within 1e-3 of a node
+  const std::vector<double> bp = tf.breakpoints();
+  const std::vector<double> jumps = jump_positions(tf);
+  // Preconditions of comparing with differences: no segment end within a few steps of a node (the
+  // split of a segment changes only continuously), ...
+  for (const Segment& seg : ray.segments)
+    for (const double x : bp) {
+      REQUIRE(std::fabs(seg.scalar_far - x) > 8 * step);
+      REQUIRE(std::fabs(seg.scalar_exit - x) > 8 * step);
+    }
+  // ... and every jump crossed (not vacuous).
+  for (const double x : jumps) {
+    int crossings = 0;
+    for (const Segment& seg : ray.segments) crossings += (seg.scalar_far - x) * (seg.scalar_exit - x) < 0.0;
+    CHECK(crossings > 0);
+  }
+  struct Spec {
+    const char* spec;
+    int table_size;  // preintegrated's grid (0: psi_table, whose table is in optical depths)
+  };
+  Worst worst;
+  for (const Spec& sp : {Spec{"psi_table:size=64", 0}, Spec{"psi_table:size=512", 0}, Spec{"preintegrated:size=64", 64},
+                         Spec{"preintegrated:size=48:step=0.031", 48}, Spec{"preintegrated:size=40:dims=3:lengths=12", 40}}) {
+    INFO(sp.spec);
+    // preintegrated: no grid scalar (s_lo + i (s_hi - s_lo)/(size - 1), range [0, 1] here) within
+    // a few steps of a jump (a table entry is smooth in x only while x is strictly inside its step).
+    // The lookup coordinates are those of tests/test_preintegrated_grad.cpp (same ray, same range).
+    REQUIRE(bp.front() == 0.0);
+    REQUIRE(bp.back() == 1.0);
+    for (int i = 0; i < sp.table_size; ++i)
+      for (const double x : jumps) REQUIRE(std::fabs(i / (sp.table_size - 1.0) - x) > 8 * step);
+    const RayGradient got = method_gradient(parse_method_spec(sp.spec), tf, ray);
+    CHECK(got.undefined.empty());
+    // preintegrated holds its scalar range fixed: the positions of nodes at 0 and 1 are not compared.
+    const auto range_node = [&](double s) { return sp.table_size > 0 && (s == bp.front() || s == bp.back()); };
+    const RayGradient fd = test::method_finite_difference(sp.spec, tf, ray, step, range_node);
+    for (int c = 0; c < kChannels; ++c) {
+      std::string where;
+      const double err = gradient_error(got, fd, c, &where, [&](const char* block, std::size_t idx, const char* param) {
+        return std::string(param) == "position" &&
+               range_node((std::string(block) == "density" ? tf.density : tf.color)[c].scalar[idx]);
+      });
+      INFO("channel " << c << " worst at " << where << ": " << err);
+      CHECK(err <= 1e-8);
+      if (!(err <= worst.err)) {
+        worst.err = err;
+        worst.where = std::string(sp.spec) + " channel " + std::to_string(c) + " " + where;
+      }
+      ++worst.samples;
+    }
+    // The jumps' position entries (ties: second 0) carry the moving switch point: non-zero, also
+    // for the pure step of colour r (nothing linear beside it), unlike the sampled renderers.
+    CHECK(got.density[0][2].position == 0.0);
+    CHECK(got.color[0][1].position == 0.0);
+    CHECK(std::fabs(got.color[0][0].position) > 1e-3 * got.channel_scale(0));
+    CHECK(std::fabs(got.color[0][0].position - fd.color[0][0].position) <= 1e-8 * got.channel_scale(0));
+    CHECK(std::fabs(got.density[0][1].position) > 1e-3 * got.channel_scale(0));
+  }
+  WARN("psi_table and preintegrated across jumps vs central differences of their own forward: worst " << worst.err
+       << " at " << worst.where << " (" << worst.samples << " ray-channels)");
+}
+
+TEST_CASE("preintegrated gradient: a grid scalar on a jump leaves its position undefined", "[grad][grad_jump]") {
+  // Range [0, 1], size 65: grid scalar 32/64 = 0.5 is exactly the jump; the ray's scalars pass
+  // through the cells beside it, so the entries of that row and column are read.
+  const TransferFunctions tf = test::uniform_tf(PiecewiseLinear{{0.0, 0.5, 0.5, 1.0}, {0.4, 0.6, 2.5, 1.0}},
+                                                PiecewiseLinear{{0.0, 1.0}, {0.2, 0.9}});
+  const Ray ray{{0.2, 0.2, 0.2}, {{1.0, 0.13, 0.91}}};
+  const RayGradient got = method_gradient(parse_method_spec("preintegrated:size=65"), tf, ray);
+  CHECK_FALSE(got.undefined.empty());
+  for (int c = 0; c < kChannels; ++c) {
+    CHECK(std::isnan(got.density[c][1].position));
+    CHECK(got.density[c][2].position == 0.0);
+    CHECK(std::isfinite(got.density[c][1].value));
+    CHECK(std::isfinite(got.scalar_far[0][c]));
+  }
+  // size 64 (no grid scalar on 0.5): defined.
+  CHECK(method_gradient(parse_method_spec("preintegrated:size=64"), tf, ray).undefined.empty());
 }

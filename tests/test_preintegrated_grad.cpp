@@ -10,6 +10,7 @@
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/integrators/preintegrated.hpp"
 #include "rayint/studies/grad_study.hpp"
+#include "grad_checks.hpp"
 
 using namespace rayint;
 
@@ -26,51 +27,19 @@ TransferFunctions test_functions() {
   return tf;
 }
 
-Ray test_ray() {
-  Ray ray;
-  ray.background = {0.3, 0.1, 0.6};
-  ray.segments = {{0.7, 0.0123, 0.8871}, {0.45, 0.8871, 0.3317}, {0.3, 0.3317, 0.9533}};
-  return ray;
-}
+Ray test_ray() { return test::three_segment_ray(); }
 
 // Central differences of the renderer's intensity (step 1e-6 relative). Node positions at the
 // table's range ends (0 and 1 here) are left 0: moving them moves the range, which the gradient
 // holds fixed (preintegrated_grad.cpp), and the difference straddles the min/max over functions.
-RayGradient finite_difference(const std::string& spec_text, TransferFunctions tf, Ray ray, bool* range_node = nullptr) {
-  RayGradient g = RayGradient::zeros(tf, ray);
-  const MethodSpec spec = parse_method_spec(spec_text);
-  const auto I = [&]() { return make_integrator(spec, tf)->integrate(ray, nullptr); };
-  const auto diff = [&](double& x, auto&& store) {
-    const double x0 = x, h = 1e-6 * std::max(1.0, std::fabs(x0));
-    x = x0 + h;
-    const Rgb up = I().intensity;
-    x = x0 - h;
-    const Rgb down = I().intensity;
-    x = x0;
-    for (int c = 0; c < kChannels; ++c) store(c, (up[c] - down[c]) / (2 * h));
-  };
-  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
-    diff(ray.segments[j].length, [&](int c, double d) { g.length[j][c] = d; });
-    diff(ray.segments[j].scalar_far, [&](int c, double d) { g.scalar_far[j][c] = d; });
-    diff(ray.segments[j].scalar_exit, [&](int c, double d) { g.scalar_exit[j][c] = d; });
-  }
+RayGradient finite_difference(const std::string& spec_text, const TransferFunctions& tf, const Ray& ray,
+                              bool* range_node = nullptr) {
   const std::vector<double> bp = tf.breakpoints();
-  for (int c = 0; c < kChannels; ++c) {
-    g.background[c] = I().transmittance[c];
-    for (const bool density : {true, false}) {
-      PiecewiseLinear& f = (density ? tf.density : tf.color)[c];
-      auto& out = (density ? g.density : g.color)[c];
-      for (std::size_t k = 0; k < f.scalar.size(); ++k) {
-        if (f.scalar[k] == bp.front() || f.scalar[k] == bp.back()) {
-          if (range_node) *range_node = true;
-        } else {
-          diff(f.scalar[k], [&](int ch, double d) { if (ch == c) out[k].position = d; });
-        }
-        diff(f.value[k], [&](int ch, double d) { if (ch == c) out[k].value = d; });
-      }
-    }
-  }
-  return g;
+  return test::method_finite_difference(spec_text, tf, ray, 1e-6, [&](double s) {
+    const bool at_end = s == bp.front() || s == bp.back();
+    if (at_end && range_node) *range_node = true;
+    return at_end;
+  });
 }
 
 // Max over channel c's entries of |got - want| / largest |want|, skipping node positions at the
@@ -78,25 +47,11 @@ RayGradient finite_difference(const std::string& spec_text, TransferFunctions tf
 double error_without_range_nodes(const RayGradient& got, const RayGradient& want, const TransferFunctions& tf, int c,
                                  std::string& where) {
   const std::vector<double> bp = tf.breakpoints();
-  const double scale = want.channel_scale(c);
-  std::vector<double> w;
-  want.for_each(c, [&w](double v, const char*, std::size_t, const char*) { w.push_back(v); });
-  std::size_t i = 0;
-  double worst = 0.0;
-  got.for_each(c, [&](double v, const char* block, std::size_t idx, const char* param) {
-    const double want_v = w[i++];
-    const std::string b = block, p = param;
-    if (p == "position") {
-      const double s = (b == "density" ? tf.density : tf.color)[c].scalar[idx];
-      if (s == bp.front() || s == bp.back()) return;
-    }
-    const double e = std::fabs(v - want_v) / scale;
-    if (!(e <= worst)) {
-      worst = e;
-      where = b + "[" + std::to_string(idx) + "]" + (p.empty() ? "" : "." + p);
-    }
+  return test::gradient_error(got, want, c, &where, [&](const char* block, std::size_t idx, const char* param) {
+    if (std::string(param) != "position") return false;
+    const double s = (std::string(block) == "density" ? tf.density : tf.color)[c].scalar[idx];
+    return s == bp.front() || s == bp.back();
   });
-  return worst;
 }
 
 }  // namespace

@@ -84,11 +84,8 @@ TEST_CASE("a jump: the value at it is the left one, limits from each side, at mo
         std::string::npos);
   CHECK(check_points(PiecewiseLinear{{0.0, 0.5, 0.4}, {1.0, 2.0, 3.0}}).find("non-decreasing") !=
         std::string::npos);
-  // The gradients that do not differentiate a jump refuse it through one helper (exact does:
-  // tests/test_grad_jumps.cpp).
   TransferFunctions tf = test::uniform_tf(f, test::constant(1.0));
   CHECK(tf.has_jump());
-  CHECK_THROWS_AS(refuse_jumps(tf, "test"), std::invalid_argument);
 }
 
 TEST_CASE("the splitter's pieces at a jump take the limit from inside each piece, as append_pieces",

@@ -16,18 +16,12 @@
 namespace rayint {
 
 Candidate parse_candidate_text(std::string_view text, const std::string& source) {
-  const JsonSchema s(source);
-  Candidate c;
-  c.source = source;
   // rays[i]: {"index"?: i, "intensity": [r, g, b]}.
-  const candidate_schema::Root root = candidate_schema::walk(
-      s, json_source::parse(text, source), "intensity", " of {\"intensity\": [r, g, b]}, one per ray of the case",
-      [&](std::size_t, const nlohmann::json& v, const std::string& path) {
+  return candidate_schema::parse<Candidate>(
+      text, source, "intensity", " of {\"intensity\": [r, g, b]}, one per ray of the case",
+      [](const JsonSchema& s, Candidate& c, const nlohmann::json& v, const std::string& path) {
         c.intensity.push_back(candidate_schema::triple(s, v, path));
       });
-  c.case_name = root.case_name;
-  c.renderer = root.renderer;
-  return c;
 }
 
 void require_candidate_matches(const Candidate& candidate, const Case& c) {
@@ -35,10 +29,7 @@ void require_candidate_matches(const Candidate& candidate, const Case& c) {
 }
 
 Candidate read_candidate_file(const std::string& path, const Case& c) {
-  const std::string text = json_source::read_text_file(path);
-  Candidate candidate = parse_candidate_text(text, path);
-  require_candidate_matches(candidate, c);
-  return candidate;
+  return candidate_schema::read_file(path, c, parse_candidate_text, require_candidate_matches);
 }
 
 }  // namespace rayint

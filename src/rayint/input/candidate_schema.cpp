@@ -18,10 +18,15 @@ double finite(const JsonSchema& s, const json& x, const std::string& path) {
   return v;
 }
 
-Rgb triple(const JsonSchema& s, const json& v, const std::string& path) {
-  s.array_of_size(v, path, kChannels, "an array of 3 numbers [r, g, b]");
+double finite_or_null(const JsonSchema& s, const json& x, const std::string& path) {
+  return x.is_null() ? std::nan("") : finite(s, x, path);
+}
+
+Rgb triple(const JsonSchema& s, const json& v, const std::string& path, bool allow_null) {
+  s.array_of_size(v, path, kChannels, allow_null ? "an array of 3 numbers (or null) [r, g, b]" : "an array of 3 numbers [r, g, b]");
   Rgb out{};
-  for (std::size_t k = 0; k < kChannels; ++k) out[k] = finite(s, v[k], index_path(path, k));
+  for (std::size_t k = 0; k < kChannels; ++k)
+    out[k] = allow_null ? finite_or_null(s, v[k], index_path(path, k)) : finite(s, v[k], index_path(path, k));
   return out;
 }
 

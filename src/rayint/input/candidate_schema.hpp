@@ -7,8 +7,10 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "rayint/input/json_schema.hpp"
+#include "rayint/input/json_source.hpp"
 #include "rayint/studies/check.hpp"
 
 namespace rayint::candidate_schema {
@@ -16,8 +18,10 @@ namespace rayint::candidate_schema {
 // A finite number. The message says why JSON cannot carry a NaN or Inf, since a renderer's
 // non-finite result usually arrives as null.
 double finite(const JsonSchema& s, const nlohmann::json& x, const std::string& path);
-// [r, g, b] of finite numbers.
-Rgb triple(const JsonSchema& s, const nlohmann::json& v, const std::string& path);
+// A finite number, or null (a value the candidate says it cannot give): NaN.
+double finite_or_null(const JsonSchema& s, const nlohmann::json& x, const std::string& path);
+// [r, g, b] of finite numbers (allow_null: or null, read as NaN).
+Rgb triple(const JsonSchema& s, const nlohmann::json& v, const std::string& path, bool allow_null = false);
 
 struct Root {
   std::string case_name, renderer;
@@ -31,5 +35,28 @@ Root walk(const JsonSchema& s, const nlohmann::json& root, const char* key, cons
 // The candidate (file `source`) answers case `c`: the same name and `entries` == its ray count.
 void require_case_matches(const std::string& source, const std::string& case_name, std::size_t entries,
                           const Case& c);
+
+// Parses `text` (file `source`) and walks its root (walk above) into a candidate C (fields
+// source, case_name, renderer): entry(s, candidate, value, path) reads each ray's `key` value.
+template <class C, class Entry>
+C parse(std::string_view text, const std::string& source, const char* key, const std::string& of, Entry&& entry) {
+  const JsonSchema s(source);
+  C c;
+  c.source = source;
+  const Root root = walk(s, json_source::parse(text, source), key, of,
+                         [&](std::size_t, const nlohmann::json& v, const std::string& path) { entry(s, c, v, path); });
+  c.case_name = root.case_name;
+  c.renderer = root.renderer;
+  return c;
+}
+
+// Reads the file `path`, parses it (parse(text, path)) and requires it to match `c`
+// (match(candidate, c)): the reading both candidate readers do. Throws InputError.
+template <class Parse, class Match>
+auto read_file(const std::string& path, const Case& c, Parse&& parse, Match&& match) {
+  auto candidate = parse(json_source::read_text_file(path), path);
+  match(candidate, c);
+  return candidate;
+}
 
 }  // namespace rayint::candidate_schema

@@ -1,6 +1,8 @@
-// Candidate gradients for `rayint gradcheck`: json_source::parse, then a strict schema walk
-// (input/json_schema.hpp), as input/candidate_reader.cpp does for intensities.
-#include "rayint/input/grad_candidate_reader.hpp"
+// Candidate gradients for `rayint gradcheck` (declared in input/candidate_reader.hpp):
+// json_source::parse, then a strict schema walk (input/json_schema.hpp), as
+// input/candidate_reader.cpp does for intensities. An entry may be null: NaN in the candidate,
+// an entry the renderer says it cannot give (grad_check counts it as not passed).
+#include "rayint/input/candidate_reader.hpp"
 
 #include "rayint/input/candidate_schema.hpp"
 #include "rayint/input/json_schema.hpp"
@@ -18,8 +20,9 @@ using json_source::member_path;
 
 constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
 
+using candidate_schema::finite_or_null;
 using candidate_schema::triple;
-using candidate_schema::finite;
+
 
 void node_blocks(const JsonSchema& s, const json& j, const std::string& path,
                  std::array<std::vector<NodeDerivative>, kChannels>& out) {
@@ -32,7 +35,8 @@ void node_blocks(const JsonSchema& s, const json& j, const std::string& path,
     for (std::size_t k = 0; k < list.size(); ++k) {
       const std::string npath = index_path(cpath, k);
       s.array_of_size(list[k], npath, 2, "an array of 2 numbers [d position, d value]");
-      out[c].push_back({finite(s, list[k][0], index_path(npath, 0)), finite(s, list[k][1], index_path(npath, 1))});
+      out[c].push_back(
+          {finite_or_null(s, list[k][0], index_path(npath, 0)), finite_or_null(s, list[k][1], index_path(npath, 1))});
     }
   }
 }
@@ -41,7 +45,7 @@ RayGradient gradient(const JsonSchema& s, const json& j, const std::string& path
   s.require_object(j, path);
   s.check_fields(j, path, {"background", "length", "scalar", "density", "color"});
   RayGradient g;
-  g.background = triple(s, s.required(j, path, "background"), member_path(path, "background"));
+  g.background = triple(s, s.required(j, path, "background"), member_path(path, "background"), true);
   const std::string lpath = member_path(path, "length"), spath = member_path(path, "scalar");
   const json& length = s.required(j, path, "length");
   const json& scalar = s.required(j, path, "scalar");
@@ -51,11 +55,11 @@ RayGradient gradient(const JsonSchema& s, const json& j, const std::string& path
     s.fail(spath, "has " + std::to_string(scalar.size()) + " entries but length has " +
                       std::to_string(length.size()) + " (one per segment each)");
   for (std::size_t i = 0; i < length.size(); ++i) {
-    g.length.push_back(triple(s, length[i], index_path(lpath, i)));
+    g.length.push_back(triple(s, length[i], index_path(lpath, i), true));
     const std::string p = index_path(spath, i);
     s.array_of_size(scalar[i], p, 2, "an array [[far r, g, b], [exit r, g, b]]");
-    g.scalar_far.push_back(triple(s, scalar[i][0], index_path(p, 0)));
-    g.scalar_exit.push_back(triple(s, scalar[i][1], index_path(p, 1)));
+    g.scalar_far.push_back(triple(s, scalar[i][0], index_path(p, 0), true));
+    g.scalar_exit.push_back(triple(s, scalar[i][1], index_path(p, 1), true));
   }
   node_blocks(s, s.required(j, path, "density"), member_path(path, "density"), g.density);
   node_blocks(s, s.required(j, path, "color"), member_path(path, "color"), g.color);
@@ -65,16 +69,12 @@ RayGradient gradient(const JsonSchema& s, const json& j, const std::string& path
 }  // namespace
 
 GradCandidate parse_grad_candidate_text(std::string_view text, const std::string& source) {
-  const JsonSchema s(source);
-  GradCandidate c;
-  c.source = source;
   // rays[i]: {"index"?: i, "gradient": GRADIENT}.
-  const candidate_schema::Root root = candidate_schema::walk(
-      s, json_source::parse(text, source), "gradient", " of {\"gradient\": {...}}, one per ray of the case",
-      [&](std::size_t, const json& g, const std::string& path) { c.rays.push_back(gradient(s, g, path)); });
-  c.case_name = root.case_name;
-  c.renderer = root.renderer;
-  return c;
+  return candidate_schema::parse<GradCandidate>(
+      text, source, "gradient", " of {\"gradient\": {...}}, one per ray of the case",
+      [](const JsonSchema& s, GradCandidate& c, const json& g, const std::string& path) {
+        c.rays.push_back(gradient(s, g, path));
+      });
 }
 
 void require_grad_candidate_matches(const GradCandidate& cand, const Case& c) {
@@ -101,10 +101,7 @@ void require_grad_candidate_matches(const GradCandidate& cand, const Case& c) {
 }
 
 GradCandidate read_grad_candidate_file(const std::string& path, const Case& c) {
-  const std::string text = json_source::read_text_file(path);
-  GradCandidate cand = parse_grad_candidate_text(text, path);
-  require_grad_candidate_matches(cand, c);
-  return cand;
+  return candidate_schema::read_file(path, c, parse_grad_candidate_text, require_grad_candidate_matches);
 }
 
 }  // namespace rayint

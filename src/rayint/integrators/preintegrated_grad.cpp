@@ -37,6 +37,17 @@
 //   its density and color blocks). Moving a breakpoint moves the piece ends too, but the
 //   integrands are continuous there, so those terms cancel (Leibniz); the sums above are the
 //   full first derivative of the table entry with respect to the node.
+// Jumps (a node scalar stored twice): the table build splits each entry's unit step at the jump
+// (append_pieces) and integrates each side with its own one-sided limits, so an entry is a smooth
+// function of the jump's position while the jump lies strictly between the entry's two grid
+// scalars: the piece terms above (values of each side, node positions of the linear pieces
+// beside the jump), plus the boundary term of the moving switch point, (integrand(x-) -
+// integrand(x+)) / |g_j - g_i| for rate and q(0) (add_entry_jump_terms), and exact_ray_gradient's
+// crossing term for E(L). The lookups are bilinear in the entries, so the renderer is as smooth
+// in the nodes as its entries are. Where a grid scalar lies exactly on the jump (always the case
+// for a jump at the range's first or last breakpoint) the entries that start or end there are
+// one-sided in its position: NaN, with `undefined` saying why. The position entries follow the
+// tie of model/ray_gradient.hpp.
 // What is not differentiated: the table's scalar range [s_lo, s_hi] = [first, last breakpoint
 // of the six functions] is held fixed. It moves with the position of the extreme node, but it is
 // a min/max over all six functions' nodes -- not differentiable where several functions share
@@ -56,6 +67,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "rayint/core/math.hpp"
@@ -139,10 +151,47 @@ void add_node_derivative(const PiecewiseLinear& f, double lo, double s, double b
   }
 }
 
+// The boundary terms of a table entry's integrals at the jumps it crosses (see the header
+// comment, "Jumps"): the entry is the unit step from grid scalar gi to gj, its integrand
+// rho (rate) or kappa rho (q(0), with_kappa) switches at every jump x strictly between them, at
+// the fraction u* = (x - gi)/(gj - gi) of the step, so
+//     d/dx int_0^1 integrand du = (integrand(x-) - integrand(x+)) / |gj - gi|
+// (moving x up turns a slab of width 1/|gj - gi| per unit of x from right to left values, in
+// either direction of the step), into the first node's position entry (the tie). A grid point
+// exactly on x (gi == x or gj == x) makes the entry one-sided in x: NaN, as where density[c] and
+// color[c] both jump at x in q(0) (moving one alone is one-sided).
+void add_entry_jump_terms(const TransferFunctions& tf, int c, double gi, double gj, double bar, bool with_kappa,
+                          RayGradient& g) {
+  if (bar == 0.0) return;
+  const double lo = std::min(gi, gj), hi = std::max(gi, gj);
+  for (const bool density : {true, false}) {
+    if (!density && !with_kappa) continue;
+    const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
+    const PiecewiseLinear& other = density ? tf.color[c] : tf.density[c];
+    std::vector<NodeDerivative>& nodes = density ? g.density[c] : g.color[c];
+    for (std::size_t i = 0; i + 1 < f.scalar.size(); ++i) {
+      const double x = f.scalar[i];
+      if (x != f.scalar[i + 1] || x < lo || x > hi) continue;
+      const bool both = with_kappa && jump_node(other, x) != kNoJump;
+      if (x == gi || x == gj || both) {
+        nodes[i].position = std::nan("");
+        if (!g.undefined.empty()) g.undefined += "; ";
+        g.undefined += std::string("preintegrated: a table entry read ") +
+                       (both ? "crosses jumps of density and color at one scalar " : "has a grid scalar on the jump at ") +
+                       std::to_string(x) + " (one-sided in the jump's position)";
+        continue;
+      }
+      const auto integrand = [&](bool above) {
+        return with_kappa ? tf.density[c].limit(x, above) * tf.color[c].limit(x, above) : tf.density[c].limit(x, above);
+      };
+      nodes[i].position += bar * (integrand(false) - integrand(true)) / (hi - lo);
+    }
+  }
+}
+
 }  // namespace
 
 RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const Ray& ray) const {
-  refuse_jumps(tf, "preintegrated");
   count_lookups(ray);
   const int n = opt_.size;
   const bool linear = opt_.lookup == table::Lookup::linear;
@@ -249,6 +298,7 @@ RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const
 
   // Through the table build, entry by entry.
   const std::vector<double> breakpoints = tf.breakpoints();
+  const bool jumps = tf.has_jump();
   std::vector<Piece> pieces;
   RayGradient entry_grad;
   for (const auto& [key, bar] : entry_bar) {
@@ -260,6 +310,7 @@ RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const
     append_pieces(tf, Segment{1.0, gi, gj}, breakpoints, pieces);
     // d rate (plane -1 directly; a q plane of L > 0 through phi(rate L)) and d q(0).
     const auto through_rate = [&](int c, double rate_bar) {
+      if (jumps) add_entry_jump_terms(tf, c, gi, gj, rate_bar, false, g);
       for (const Piece& p : pieces) {
         const double lo = std::min(p.scalar_far, p.scalar_exit);
         add_node_derivative(tf.density[c], lo, p.scalar_far, rate_bar * 0.5 * p.length, g.density[c]);
@@ -274,6 +325,7 @@ RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const
     if (!(L > 0.0)) {  // q(0) = int kappa rho du
       for (int c = 0; c < kChannels; ++c) {
         if (bar[c] == 0.0) continue;
+        if (jumps) add_entry_jump_terms(tf, c, gi, gj, bar[c], true, g);
         for (const Piece& p : pieces) {
           const double lo = std::min(p.scalar_far, p.scalar_exit);
           const double rf = p.rho_far[c], re = p.rho_exit[c], kf = p.kappa_far[c], ke = p.kappa_exit[c];
@@ -289,6 +341,9 @@ RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const
     Ray unit;
     unit.segments.push_back(Segment{L, gi, gj});
     exact_ray_gradient(tf, unit, entry_grad);  // background 0: the intensity is E(L)
+    if (!entry_grad.undefined.empty() && g.undefined.find(entry_grad.undefined) == std::string::npos)
+      g.undefined += (g.undefined.empty() ? "preintegrated: a table entry read: " : "; preintegrated: a table entry read: ") +
+                     entry_grad.undefined;
     for (int c = 0; c < kChannels; ++c) {
       if (bar[c] == 0.0) continue;
       const double rate = rate_[c][entry];
@@ -306,6 +361,9 @@ RayGradient PreintegratedIntegrator::gradient(const TransferFunctions& tf, const
       through_rate(c, -bar[c] * q * L * step_weight_derivative(rate * L) / phi);
     }
   }
+  // A jump's two position entries: the derivative for moving both, on the first (the node
+  // terms of the pieces either side landed on both nodes; exact_ray_gradient's are tied already).
+  if (jumps) tie_jump_positions(tf, g.density, g.color);
   return g;
 }
 

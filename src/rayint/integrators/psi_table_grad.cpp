@@ -73,7 +73,6 @@ PieceOpticsGrad psi_piece_grad(const PsiTable& table, table::Lookup lookup, cons
 }  // namespace
 
 RayGradient psi_table_ray_gradient(const TransferFunctions& tf, const Ray& ray, int size, table::Lookup lookup) {
-  refuse_jumps(tf, "psi_table");
   const std::shared_ptr<const PsiTable> table = PsiTable::shared(size, lookup);
   RayGradient grad;
   detail::chain_ray_gradient(tf, ray, grad, [&](const ChannelPiece& cp, double) {

@@ -67,22 +67,29 @@ enum class PieceEnds {
 // Measured against the jump-aware 50-digit reference gradient (tests/test_grad_jumps.cpp):
 // worst 3.3e-15 of each channel's largest entry over 48 random rays with 445 crossings; 2.2e-14
 // on a saturated zig-zag ray (L = 10), the conditioning limit of saturated rays generally.
+// With PieceEnds::moving (psi_table) the crossing's motion is already in the piece lengths (the
+// ends at x_j move with it, routed to the jump's node): with_term false then only marks the
+// positions NaN where density[c] and color[c] both jump at x_j.
 inline void add_jump_crossing(const TransferFunctions& tf, const Ray& ray, const PieceRecord& before,
-                              const PieceRecord& after, int c, double light, double adjoint, RayGradient& grad) {
+                              const PieceRecord& after, int c, double light, double adjoint, RayGradient& grad,
+                              bool with_term = true) {
   const double e = after.s_far;
   if (before.segment != after.segment || before.s_exit != e) return;
   const PiecewiseLinear& rho = tf.density[c];
   const PiecewiseLinear& kappa = tf.color[c];
   const std::size_t jd = jump_node(rho, e), jc = jump_node(kappa, e);
   if (jd == kNoJump && jc == kNoJump) return;
+  if (!with_term && (jd == kNoJump || jc == kNoJump)) return;
   const bool before_above = e < before.s_far, after_above = e < after.s_exit;
   const double rho_b = rho.limit(e, before_above), kappa_b = kappa.limit(e, before_above);
   const double rho_a = rho.limit(e, after_above), kappa_a = kappa.limit(e, after_above);
   const double dI_dl = adjoint * (rho_b * (kappa_b - light) - rho_a * (kappa_a - light));
   const double l_per_x = ray.segments[after.segment].length / after.span;
   const double phi = after.phi_far;
-  grad.scalar_far[after.segment][c] -= dI_dl * l_per_x * (1.0 - phi);
-  grad.scalar_exit[after.segment][c] -= dI_dl * l_per_x * phi;
+  if (with_term) {
+    grad.scalar_far[after.segment][c] -= dI_dl * l_per_x * (1.0 - phi);
+    grad.scalar_exit[after.segment][c] -= dI_dl * l_per_x * phi;
+  }
   if (jd != kNoJump && jc != kNoJump) {
     grad.density[c][jd].position = std::nan("");
     grad.color[c][jc].position = std::nan("");
@@ -241,6 +248,16 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
           (far_side ? grad.scalar_far : grad.scalar_exit)[pr.segment][c] += s_bar;
           return;
         }
+        // A jump owns its breakpoint: moving it moves the crossing (the split); another
+        // function's node at the same scalar moved alone leaves the split there.
+        if (jumps)
+          for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
+            const std::size_t first = jump_node(nodes == &grad.density[c] ? tf.density[c] : tf.color[c], e);
+            if (first != kNoJump) {
+              (*nodes)[first].position += s_bar;
+              return;
+            }
+          }
         for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
           const PiecewiseLinear& f = nodes == &grad.density[c] ? tf.density[c] : tf.color[c];
           const auto it = std::lower_bound(f.scalar.begin(), f.scalar.end(), e);
@@ -287,7 +304,9 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       through(tf.color[c], grad.color[c], pr.s_far, kappa_far_bar, pr.phi_far);
       through(tf.color[c], grad.color[c], pr.s_exit, kappa_exit_bar, pr.phi_exit);
       adjoint[c] *= g.optics.transmittance;
-      if (jumps && !pr.far_is_end && k > 0) add_jump_crossing(tf, ray, pieces[k - 1], pr, c, incoming[i], adjoint[c], grad);
+      if (jumps && !pr.far_is_end && k > 0)
+        add_jump_crossing(tf, ray, pieces[k - 1], pr, c, incoming[i], adjoint[c], grad,
+                          ends_mode == PieceEnds::fixed_along_segment);
     }
   }
   grad.background = adjoint;

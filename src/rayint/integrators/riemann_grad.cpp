@@ -22,10 +22,13 @@ struct SamplePoint {
   double toward = 0.0;  // sign: the segment's interior lies at larger (> 0) or smaller scalars
 };
 
-// The interval node_weights differentiates in: the one toward the segment's interior, so that a
-// sample exactly on a node at a segment end is differentiated like that segment's pieces.
-double interval_key(const SamplePoint& sp) {
-  return sp.toward < 0.0 ? std::nextafter(sp.s, -HUGE_VAL) : sp.s;
+// The interval node_weights differentiates f in at a sample: the one toward the segment's
+// interior, so that a sample exactly on a node at a segment end is differentiated like that
+// segment's pieces -- except on a jump of f, where the forward's lookup (PiecewiseLinear's
+// operator()) returns the LEFT value, so the derivative is the left interval's (one-sided: the
+// sum is left-continuous there; see riemann_grad.hpp).
+double interval_key(const PiecewiseLinear& f, const SamplePoint& sp) {
+  return sp.toward < 0.0 || jump_node(f, sp.s) != kNoJump ? std::nextafter(sp.s, -HUGE_VAL) : sp.s;
 }
 
 struct Step {
@@ -37,7 +40,6 @@ struct Step {
 };
 
 RayGradient march_gradient(const TransferFunctions& tf, const Ray& ray, const std::vector<Step>& steps) {
-  refuse_jumps(tf, "a sampled renderer (riemann, nerf, pl_nerf)");
   RayGradient g = RayGradient::zeros(tf, ray);
   const std::size_t n = steps.size();
   // Forward: per step and channel the optics and the light entering.
@@ -76,8 +78,8 @@ RayGradient march_gradient(const TransferFunctions& tf, const Ray& ray, const st
         const SamplePoint& sp = st.p[i];
         const double rho_bar = x_bar * st.h * sp.w_rho;
         const double kappa_bar = colour_bar * sp.w_kappa;
-        const NodeWeights nr = node_weights(tf.density[c], interval_key(sp), sp.s);
-        const NodeWeights nk = node_weights(tf.color[c], interval_key(sp), sp.s);
+        const NodeWeights nr = node_weights(tf.density[c], interval_key(tf.density[c], sp), sp.s);
+        const NodeWeights nk = node_weights(tf.color[c], interval_key(tf.color[c], sp), sp.s);
         for (int j = 0; j < nr.count; ++j) {
           g.density[c][nr.node[j]].value += rho_bar * nr.w[j];
           g.density[c][nr.node[j]].position += rho_bar * nr.dp[j];
@@ -94,6 +96,8 @@ RayGradient march_gradient(const TransferFunctions& tf, const Ray& ray, const st
     }
   }
   g.background = adjoint;
+  // A jump's two position entries carry its derivative on the first (model/ray_gradient.hpp).
+  tie_jump_positions(tf, g.density, g.color);
   return g;
 }
 

@@ -17,6 +17,20 @@
 // A sample exactly on a transfer-function node takes the interval toward its segment's interior
 // (toward the eye for an interior sample; to the right of the node on a constant-scalar segment,
 // the kink convention of model/ray_gradient.hpp); otherwise every derivative is two-sided.
+//
+// Jumps (a node scalar stored twice, model/transfer_function.hpp). The discrete sum is piecewise
+// differentiable: a sample's values depend on the nodes of the side it lies on, and no sample
+// changes side under a small enough change of any input, so there is no crossing term -- the
+// derivative in the jump's position x_j is only what it moves in the linear pieces beside it (the
+// node-position terms of a sample in [p_{j-1}, x_j] or [x_j, p_{j+1}]; exactly 0 when both sides
+// are constant, as for a step). The exact integral has, in addition, the crossing term
+// A [rho_b (kappa_b - I*) - rho_a (kappa_a - I*)] dl/dx_j (docs/gradients.md, "Jumps"), which a
+// sampled renderer's autodiff never sees: that is the bias of a differentiable renderer with a step.
+// A sample exactly ON x_j takes the value PiecewiseLinear's operator() returns there, the left
+// one, so its derivative is the left interval's (in the sample's scalar, the left-hand slope; in
+// x_j, the derivative for moving x_j up, the side on which the sample stays left of it). The two
+// position entries of a jump follow the tie of model/ray_gradient.hpp: the first node's entry
+// holds the derivative for moving both nodes together, the second's is 0. No entry is NaN.
 #include "rayint/integrators/nerf.hpp"
 #include "rayint/integrators/riemann.hpp"
 #include "rayint/model/ray_gradient.hpp"

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -69,13 +68,6 @@ std::size_t jump_node(const PiecewiseLinear& f, double x) {
   const auto it = std::lower_bound(f.scalar.begin(), f.scalar.end(), x);
   if (it == f.scalar.end() || *it != x || it + 1 == f.scalar.end() || *(it + 1) != x) return kNoJump;
   return static_cast<std::size_t>(it - f.scalar.begin());
-}
-
-void refuse_jumps(const TransferFunctions& tf, const char* who) {
-  if (tf.has_jump())
-    throw std::invalid_argument(std::string("gradient of ") + who +
-                                ": a transfer function with a jump (a scalar repeated) is differentiated only by "
-                                "exact and the trilinear grid gradient");
 }
 
 void tie_jump_positions(const TransferFunctions& tf, std::array<std::vector<NodeDerivative>, kChannels>& density,

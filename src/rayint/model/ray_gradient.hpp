@@ -99,11 +99,6 @@ NodeWeights node_weights(const PiecewiseLinear& f, double lo, double s);
 inline constexpr std::size_t kNoJump = static_cast<std::size_t>(-1);
 std::size_t jump_node(const PiecewiseLinear& f, double x);
 
-// For the gradients that do not differentiate across a jump (riemann, nerf, pl_nerf, psi_table,
-// preintegrated, the mesh and voxel-grid pixel Jacobians): throws std::invalid_argument with one
-// line naming `who` when a function of `tf` jumps. The one place that refusal is worded.
-void refuse_jumps(const TransferFunctions& tf, const char* who);
-
 // The tie of a jump's two position entries (see above): for every jump (nodes i, i+1 at one
 // scalar) of each function, position[i] += position[i+1] and position[i+1] = 0.
 void tie_jump_positions(const TransferFunctions& tf, std::array<std::vector<NodeDerivative>, kChannels>& density,

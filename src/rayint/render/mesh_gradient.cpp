@@ -147,11 +147,11 @@ PixelJacobian pixel_jacobian(const TetTraversal& mesh, const TransferFunctions& 
   RayTrace trace;
   mesh.trace(view, trace);
   const Ray ray = ray_from_trace(trace, background);
-  refuse_jumps(tf, "a mesh pixel");
   const RayGradient g = exact_ray_gradient(tf, ray);
   SparseSink sink;
   PixelJacobian out;
   out.intensity = g.intensity;
+  out.undefined = g.undefined;
   out.cell_scalars = !mesh.mesh().cell_scalars.empty();
   out.ends_on_edges = chain_trace(mesh, trace, g, sink);
   for (const auto& [i, d] : sink.scalar_map) {
@@ -170,7 +170,6 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: required for an image loss");
   if (mc.shading.enabled)
     throw std::invalid_argument(mc.source + ": shading: a shaded render is not differentiated");
-  refuse_jumps(mc.transfer, "a mesh image loss");
   const Camera& cam = *mc.camera;
   if (target.width != cam.width || target.height != cam.height)
     throw std::invalid_argument("target image is " + std::to_string(target.width) + " x " +
@@ -212,7 +211,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
         p.loss += r * r;
         finite = finite && std::isfinite(r) && std::isfinite(p.grad.channel_scale(c));
       }
-      if (!finite) {
+      if (!finite || !p.grad.undefined.empty()) {  // undefined: a derivative does not exist (a jump)
         ++p.failed;
         continue;
       }

@@ -25,6 +25,12 @@
 // derivatives differ in general. There the face opposite the smallest lambda is used and the end
 // is counted (`ends_on_edges`): a caller that needs a defined position gradient checks it is 0.
 // Scalar derivatives are defined there (positions fixed).
+// Jumps of the transfer functions (model/ray_gradient.hpp): the crossing term of a jump inside a
+// cell is in exact_ray_gradient's dI/ds_far, dI/ds_exit (and its length derivative is 0), so the
+// chain above carries it to vertex scalars and positions unchanged. Where the ray's scalar is
+// exactly on a jump at a segment end, that end's dI/ds is NaN (no derivative): the pixel's
+// `undefined` says why and the NaN reaches the entries it touches; the image loss counts such a
+// pixel as failed (pixels_failed).
 //
 // Accuracy (tests/test_mesh_gradient.cpp, [grad]): against fourth-order central differences of
 // the 50-digit reference render (reference_ray on the retraced, perturbed mesh), relative to the
@@ -33,6 +39,7 @@
 // for the measured figures.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "rayint/mesh/mesh_case.hpp"
@@ -56,6 +63,7 @@ struct PixelJacobian {
   std::vector<std::int32_t> position_index;   // vertices whose position moves the pixel
   std::vector<std::array<Rgb, 3>> d_position; // [i][axis][c] dI_c / d x_axis of position_index[i]
   long ends_on_edges = 0;                     // segment ends on an edge/vertex (positions undefined)
+  std::string undefined;                      // empty, or why some entries are NaN (a jump: see above)
   double channel_scale(int c) const;          // largest |entry| of channel c (scalars and positions)
 };
 
@@ -76,6 +84,7 @@ struct LossGradient {
   long ends_on_edges = 0;                      // summed over pixels (positions undefined there; 0
                                                // when positions are not asked for)
   long pixels_failed = 0;                      // pixels whose intensity or gradient is not finite
+                                               // (or undefined: the ray's scalar on a jump)
 };
 // `target` must have the camera's size (std::invalid_argument otherwise); mesh_case.camera must be
 // set and its shading off. positions = false skips the position gradient (cheaper).

@@ -128,19 +128,18 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
 }
 
 ojson gradcheck_report_json(const GradCheckResult& r) {
-  ojson worst = nullptr;
-  if (r.worst) {
-    const GradCheckEntry& w = *r.worst;
-    worst = {{"ray", w.ray},
-             {"block", w.block},
-             {"index", w.index},
-             {"parameter", w.parameter},
-             {"channel", kChannelNames[w.channel]},
-             {"got", number_or_null(w.got)},
-             {"exact", number_or_null(w.exact)},
-             {"allowed", number_or_null(w.allowed)},
-             {"excess", number_or_null(w.excess)}};
-  }
+  const auto entry = [](const std::optional<GradCheckEntry>& e) -> ojson {
+    if (!e) return nullptr;
+    return {{"ray", e->ray},
+            {"block", e->block},
+            {"index", e->index},
+            {"parameter", e->parameter},
+            {"channel", kChannelNames[e->channel]},
+            {"got", number_or_null(e->got)},
+            {"exact", number_or_null(e->exact)},
+            {"allowed", number_or_null(e->allowed)},
+            {"excess", number_or_null(e->excess)}};
+  };
   return {{"tool", "rayint"},
           {"report", "gradcheck"},
           {"pass", r.passed()},
@@ -153,9 +152,11 @@ ojson gradcheck_report_json(const GradCheckResult& r) {
           {"abs_tol", r.abs_tol},
           {"entries", r.entries},
           {"failed", r.failed},
+          {"null_in_candidate", r.null_in_candidate},
+          {"first_null", entry(r.first_null)},
           {"undefined", r.undefined},
           {"undefined_reason", r.undefined_reason.empty() ? ojson(nullptr) : ojson(r.undefined_reason)},
-          {"worst", worst}};
+          {"worst", entry(r.worst)}};
 }
 
 }  // namespace rayint

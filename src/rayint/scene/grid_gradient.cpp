@@ -18,10 +18,10 @@ double GridPixelJacobian::channel_scale(int c) const {
 GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const TransferFunctions& tf, const ViewRay& view,
                                       const Rgb& background) {
   const Ray ray = ray_segments(grid, view, background);
-  refuse_jumps(tf, "a voxel-grid pixel (Kuhn interpolant)");
   const RayGradient g = exact_ray_gradient(tf, ray);
   GridPixelJacobian out;
   out.intensity = g.intensity;
+  out.undefined = g.undefined;
   if (ray.segments.empty()) return out;
   // ray_segments' parameters: from max(0, t_enter), segments near -> far of length dt * speed.
   const RaySpan span = grid.clip(view);

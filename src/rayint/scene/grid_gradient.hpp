@@ -13,7 +13,11 @@
 // Accuracy (tests/test_grid_gradient.cpp, [grad]): against fourth-order differences of the
 // 50-digit reference render of the perturbed grid, rays through grid points and along grid lines
 // included; see the test's WARN line for the measured worst.
+// Jumps of the transfer functions: the crossing term is in exact_ray_gradient's dI/ds at the
+// segment ends, so the chain carries it unchanged; where a segment end's scalar is exactly on a
+// jump its dI/ds is NaN and `undefined` says why (model/ray_gradient.hpp).
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "rayint/grid/voxel_grid.hpp"
@@ -25,6 +29,7 @@ struct GridPixelJacobian {
   Rgb intensity{};
   std::vector<std::size_t> index;  // grid points with a derivative (ascending)
   std::vector<Rgb> d_value;        // [i][c] dI_c / d value of point index[i]
+  std::string undefined;           // empty, or why some entries are NaN (a jump)
   double channel_scale(int c) const;
 };
 

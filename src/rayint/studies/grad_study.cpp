@@ -158,6 +158,13 @@ GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, double
           ++res.undefined;
           return;
         }
+        if (std::isnan(have)) {  // null in the candidate: it cannot give this entry -- not a pass
+          ++res.entries;
+          ++res.failed;
+          if (res.null_in_candidate++ == 0)
+            res.first_null = GradCheckEntry{i, ch, block, index, param, have, want, allowed, std::nan("")};
+          return;
+        }
         const double diff = std::fabs(have - want);
         const double excess = allowed > 0.0 ? diff / allowed : (diff == 0.0 ? 0.0 : HUGE_VAL);
         const bool fail = !(diff <= allowed);

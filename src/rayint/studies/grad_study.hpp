@@ -90,16 +90,22 @@ struct GradCheckResult {
   std::string case_name;
   std::string renderer;
   double rel_tol = 0.0, abs_tol = 0.0;
-  std::size_t entries = 0, failed = 0;
-  std::size_t undefined = 0;  // entries whose exact derivative does not exist (at a jump): not checked
+  std::size_t entries = 0, failed = 0;  // failed includes null_in_candidate
+  // Entries the candidate gave as null (it cannot give them; NaN in GradCandidate) where the
+  // exact derivative exists: not passed, counted in failed; the first is named.
+  std::size_t null_in_candidate = 0;
+  std::optional<GradCheckEntry> first_null;
+  std::size_t undefined = 0;  // entries whose exact derivative does not exist (at a jump): skipped, not passed
   std::string undefined_reason;  // the first such ray's RayGradient::undefined
   std::vector<Rgb> channel_scale;  // [ray][c]: the largest |exact| entry
-  std::optional<GradCheckEntry> worst;  // the entry with the largest excess
+  std::optional<GradCheckEntry> worst;  // the numeric entry with the largest excess
   bool passed() const { return failed == 0; }
 };
 
-// Pass rule per entry: |got - exact| <= max(abs_tol, rel_tol * channel_scale); a non-finite
-// got fails.
+// Pass rule per entry: |got - exact| <= max(abs_tol, rel_tol * channel_scale); a null (NaN) got
+// fails (null_in_candidate). Where the exact derivative does not exist (NaN with
+// RayGradient::undefined) the entry is skipped whatever the candidate gives (undefined): neither
+// passed nor failed.
 GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, double rel_tol, double abs_tol);
 
 }  // namespace rayint
