@@ -47,19 +47,22 @@ void set_render_command(CLI::App& app) {
                   "scenes: measure each term against its reference on K x K pixels (all explicit rays)")
       ->check(CLI::Range(0, 4096));
   cmd->add_option("--loss-target", opts->loss_target,
-                  "mesh cases: float image (.npy, .pfm, .exr) for the loss sum (I - target)^2; "
-                  "with --grad-out");
+                  "mesh cases and voxel-grid scenes: float image (.npy, .pfm, .exr) for the loss sum "
+                  "(I - target)^2; with --grad-out");
   cmd->add_option("--grad-out", opts->grad_out,
-                  "mesh cases: write d loss / d vertex scalar here (.npy float64, one per point; per tet "
-                  "for cell data); needs --loss-target");
+                  "write the exact d loss / d scalar here (.npy float64); needs --loss-target. Mesh cases: "
+                  "per vertex, shape (points,) (per tet for cell data). Voxel-grid scenes (effects absorption "
+                  "[+ emission], method exact): per grid point, in the grid's interpolation (trilinear, or "
+                  "kuhn), shape (nz, ny, nx): [k, j, i] is point (i, j, k), x fastest as the grid's values");
   cmd->add_option("--grad-positions-out", opts->grad_positions_out,
                   "mesh cases: with --grad-out, also d loss / d vertex position (.npy, points x 3)");
   cmd->callback([opts] {
     const bool gradient = !opts->grad_out.empty() || !opts->loss_target.empty() || !opts->grad_positions_out.empty();
     if (gradient && (opts->grad_out.empty() || opts->loss_target.empty()))
       throw std::invalid_argument("--grad-out and --loss-target go together (--grad-positions-out needs both)");
-    if (gradient && (!opts->compare.empty() || !opts->shard.empty() || !opts->stats_path.empty() || opts->fit))
-      throw std::invalid_argument("--grad-out: not with --compare, --shard, --stats or --fit");
+    if (gradient && (!opts->compare.empty() || !opts->shard.empty() || !opts->stats_path.empty() || opts->fit ||
+                     opts->error_grid > 0))
+      throw std::invalid_argument("--grad-out: not with --compare, --shard, --stats, --fit or --errors");
     // --compare is one method spec, checked before anything is read or rendered.
     if (!opts->compare.empty() && parse_methods_option(opts->compare, "--compare").size() != 1)
       throw std::invalid_argument("--compare " + opts->compare + ": one method, not a list");
@@ -71,10 +74,8 @@ void set_render_command(CLI::App& app) {
       throw InputError(opts->input +
                        ": medium.type: \"slab\" is a plane-parallel slab with detectors, not an "
                        "image; solve it with `rayint slab --scene " + opts->input + "`");
-    if (gradient && root.is_object() && (root.contains("effects") || root.contains("medium")))
-      throw InputError(opts->input + ": --grad-out: gradients are for mesh cases, not scenes");
     if (root.is_object() && (root.contains("effects") || root.contains("medium")))
-      render_scene_file(root, *opts);
+      gradient ? render_scene_gradient_file(root, *opts) : render_scene_file(root, *opts);
     else if (root.is_object() && (root.contains("mesh") || root.contains("mesh_file")))
       gradient ? render_mesh_gradient_file(root, *opts) : render_mesh_file(root, *opts);
     else

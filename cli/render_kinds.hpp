@@ -1,11 +1,14 @@
 #pragma once
 // The two kinds of file `rayint render` draws; render_command.cpp dispatches between them.
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "rayint/geometry/camera.hpp"
 #include "rayint/mesh/mesh_case.hpp"
+#include "rayint/scene/pipeline.hpp"
+#include "rayint/scene/scene.hpp"
 
 namespace rayint::cli {
 
@@ -34,6 +37,13 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options);
 // --loss-target with --grad-out: render_mesh_gradient.cpp
 void render_mesh_gradient_file(const nlohmann::json& root, const RenderOptions& options);
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options);  // render_scene.cpp
+// --loss-target with --grad-out on a voxel-grid scene: render_scene_gradient.cpp
+void render_scene_gradient_file(const nlohmann::json& root, const RenderOptions& options);
+// The scene of `rayint render` (render_scene.cpp): read (grid and preset files relative to it),
+// its camera's memory checked, --method overrides applied; and its pipeline (a scene the
+// pipeline refuses is an InputError naming the file).
+Scene read_render_scene(const nlohmann::json& root, const RenderOptions& options);
+std::unique_ptr<ScenePipeline> make_render_pipeline(const Scene& scene, const RenderOptions& options);
 
 // Refuses (InputError naming `where`) a render whose pixel memory exceeds core/limits.hpp
 // kImageBytes: `images` RGB images of doubles, plus a double per pixel with `per_pixel_error`.

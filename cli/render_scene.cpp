@@ -27,7 +27,7 @@ std::string dir_of(const std::string& path) {
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
 }
 
-void apply_overrides(Scene& scene, const std::vector<std::string>& overrides) {
+void apply_method_overrides(Scene& scene, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) {
     try {
       auto [effect, spec] = parse_effect_assignment(scene, o);
@@ -42,6 +42,21 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& overrides) {
 
 }  // namespace
 
+Scene read_render_scene(const nlohmann::json& root, const RenderOptions& options) {
+  Scene scene = parse_scene(root, options.input, dir_of(options.input));
+  if (scene.camera) check_camera_memory(*scene.camera, 1, false, options.input + ": camera");
+  apply_method_overrides(scene, options.methods);
+  return scene;
+}
+
+std::unique_ptr<ScenePipeline> make_render_pipeline(const Scene& scene, const RenderOptions& options) {
+  try {
+    return std::make_unique<ScenePipeline>(scene, options.threads);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(options.input + ": (root): " + json_source::one_line(e.what()));
+  }
+}
+
 void render_scene_file(const nlohmann::json& root, const RenderOptions& options) {
   if (!options.compare.empty())
     throw InputError(options.input + ": --compare applies to mesh cases; for scenes use --errors K");
@@ -49,15 +64,8 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
     throw InputError("--errors: not with --shard (the reference comparison samples the whole image; "
                      "run --errors K unsharded)");
   const json_source::InputFileLog read;  // the grid and preset files the scene names: shard inputs
-  Scene scene = parse_scene(root, options.input, dir_of(options.input));
-  if (scene.camera) check_camera_memory(*scene.camera, 1, false, options.input + ": camera");
-  apply_overrides(scene, options.methods);
-  std::unique_ptr<ScenePipeline> pipeline;
-  try {
-    pipeline = std::make_unique<ScenePipeline>(scene, options.threads);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(options.input + ": (root): " + json_source::one_line(e.what()));
-  }
+  const Scene scene = read_render_scene(root, options);
+  const std::unique_ptr<ScenePipeline> pipeline = make_render_pipeline(scene, options);
   SceneRenderOptions ro;
   ro.threads = options.threads;
   ro.error_grid = options.error_grid;

@@ -16,7 +16,9 @@ so the commands read the bundled files as they would from a checkout and write (
 there, never into the source tree. `rayint` is the built executable (its folder first on PATH);
 `PYTHONPATH` holds the built Python module.
 
-Usage: readme_examples.py SOURCE_DIR RAYINT_EXE [PYTHON_DIR] [--update-hint] [--only N] [--no-python]
+Usage: readme_examples.py SOURCE_DIR RAYINT_EXE [PYTHON_DIR] [--update-hint] [--only N] [--no-python] [--doc PATH]
+  --doc PATH     the examples of another Markdown file (relative to SOURCE_DIR, e.g. docs/gradients.md:
+                 CTest `docs_gradients_examples`) instead of README.md, with the same rules
   --no-python    the build has no Python module (the ASan+UBSan build: python3 cannot load an
                  instrumented module); blocks that run Python are reported as skipped, by count
   --update-hint  print, for every block that differs, the output the commands print now, in the
@@ -28,6 +30,9 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+
+DOC = "README.md"  # the file whose examples run (--doc)
 
 
 def blocks(readme_text):
@@ -56,7 +61,7 @@ def blocks(readme_text):
                 elif steps:
                     steps[-1][1].append(line)
                 else:
-                    raise SystemExit(f"README.md:{start + j}: output before the first `$ ` command")
+                    raise SystemExit(f"{DOC}:{start + j}: output before the first `$ ` command")
                 j += 1
             out.append((start, steps))
         i += 1
@@ -119,6 +124,10 @@ def main():
     if "--only" in sys.argv:
         only = int(sys.argv[sys.argv.index("--only") + 1])
         args = [a for a in args if a != str(only)]
+    global DOC
+    if "--doc" in sys.argv:
+        DOC = sys.argv[sys.argv.index("--doc") + 1]
+        args = [a for a in args if a != DOC]
     if len(args) < 2:
         raise SystemExit(__doc__)
     source, exe = os.path.abspath(args[0]), os.path.abspath(args[1])
@@ -127,27 +136,27 @@ def main():
     if len(args) > 2:
         env["PYTHONPATH"] = os.path.abspath(args[2])
     env["LC_ALL"] = "C.UTF-8"
-    readme = open(os.path.join(source, "README.md"), encoding="utf-8").read()
+    readme = open(os.path.join(source, DOC), encoding="utf-8").read()
     found = blocks(readme)
     # A code block shown as a file's content (`<!-- file: PATH -->` before it) is that file.
     bad_files = 0
     for m in re.finditer(r"<!-- file: (\S+) -->\n```\w*\n(.*?)```", readme, re.S):
         if open(os.path.join(source, m.group(1)), encoding="utf-8").read() != m.group(2):
-            print(f"README.md shows {m.group(1)}, but the file differs")
+            print(f"{DOC} shows {m.group(1)}, but the file differs")
             bad_files += 1
     if not found:
-        raise SystemExit("README.md has no ```console examples")
+        raise SystemExit(f"{DOC} has no ```console examples")
     bad = skipped = 0
     for n, (line, steps) in enumerate(found):
         if only is not None and n != only:
             continue
         if no_python and any(uses_module(cmd, source) for cmd, _ in steps):
-            print(f"example {n} (README.md line {line}, {len(steps)} commands): SKIPPED (no Python module in this build)")
+            print(f"example {n} ({DOC} line {line}, {len(steps)} commands): SKIPPED (no Python module in this build)")
             skipped += 1
             continue
         failures, actual = run_block(steps, source, env)
         status = "ok" if not failures else "DIFFERS"
-        print(f"example {n} (README.md line {line}, {len(steps)} commands): {status}")
+        print(f"example {n} ({DOC} line {line}, {len(steps)} commands): {status}")
         for f in failures:
             print("  " + f.replace("\n", "\n  "))
         if failures:
