@@ -353,6 +353,9 @@ TEST_CASE("gradcheck: null entries in a candidate are not passed, counted and na
   CHECK(r.err.find("2 entries null in the candidate (not passed), first: ray 1 color node 1 value channel g") !=
         std::string::npos);
   CHECK(slurp(dir.path / "j.xml").find("entries null in the candidate") != std::string::npos);
+  // Only the nulls fail: the closest numeric entry is not called the failure.
+  CHECK(r.err.find("every numeric entry passes, closest to its limit: ") != std::string::npos);
+  CHECK(r.err.find("worst: ") == std::string::npos);
   // A candidate of nothing but nulls is never a pass.
   json all_null = cand;
   for (json& ray : all_null["rays"]) {
