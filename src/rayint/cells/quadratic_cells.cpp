@@ -52,23 +52,50 @@ const Basis& basis(QuadraticCellType type) {
        {0.5, 0, 1}, {0.5, 0.5, 1}, {0, 0.5, 1}, {0, 0, 0.5}, {1, 0, 0.5}, {0, 1, 0.5}},
       {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {1, 1, 0}, {0, 2, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {2, 0, 1},
        {1, 1, 1}, {0, 2, 1}, {0, 0, 2}, {1, 0, 2}, {0, 1, 2}});
+  // Triquadratic hexahedron: the 20 nodes above, then the face centres (x = 0, x = 1, y = 0, y = 1,
+  // z = 0, z = 1: vtkTriQuadraticHexahedron.h's faces (0,4,7,3), (1,2,6,5), (0,1,5,4), (3,7,6,2),
+  // (0,3,2,1), (4,5,6,7)) and the cell centre; the full tensor space Q2 = {r^a s^b t^c, a, b, c <= 2}.
+  static const Basis hexahedron27 = [] {
+    std::vector<Vec3> nodes = hexahedron.nodes;
+    for (const Vec3& p : std::vector<Vec3>{{0, 0.5, 0.5}, {1, 0.5, 0.5}, {0.5, 0, 0.5}, {0.5, 1, 0.5}, {0.5, 0.5, 0},
+                                           {0.5, 0.5, 1}, {0.5, 0.5, 0.5}})
+      nodes.push_back(p);
+    std::vector<Exponents> m;
+    for (int a = 0; a <= 2; ++a)
+      for (int b = 0; b <= 2; ++b)
+        for (int c = 0; c <= 2; ++c) m.push_back({a, b, c});
+    return make_basis(std::move(nodes), std::move(m));
+  }();
+  // Biquadratic-quadratic wedge: the 15 nodes above, then the centres of the quadrilateral faces
+  // (0,1,4,3), (1,2,5,4), (2,0,3,5) (vtkBiQuadraticQuadraticWedge.h); P2 of the triangle x
+  // {1, t, t^2}.
+  static const Basis wedge18 = [] {
+    std::vector<Vec3> nodes = wedge.nodes;
+    for (const Vec3& p : std::vector<Vec3>{{0.5, 0, 0.5}, {0.5, 0.5, 0.5}, {0, 0.5, 0.5}}) nodes.push_back(p);
+    std::vector<Exponents> m;
+    for (const Exponents& e : std::vector<Exponents>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {1, 1, 0}, {0, 2, 0}})
+      for (int c = 0; c <= 2; ++c) m.push_back({e[0], e[1], c});
+    return make_basis(std::move(nodes), std::move(m));
+  }();
   switch (type) {
     case QuadraticCellType::tetra: return tetra;
     case QuadraticCellType::hexahedron: return hexahedron;
     case QuadraticCellType::wedge: return wedge;
+    case QuadraticCellType::triquadratic_hexahedron: return hexahedron27;
+    case QuadraticCellType::biquadratic_wedge: return wedge18;
   }
   return tetra;
 }
 
 double power(double x, int e) { return e == 0 ? 1.0 : (e == 1 ? x : x * x); }
 
-// At most 20 entries, on the stack (the inverse map evaluates these in its Newton loop).
-using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 20, 1>;
+// At most 27 entries, on the stack (the inverse map evaluates these in its Newton loop).
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 27, 1>;
 
 }  // namespace
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type) {
-  if (vtk_id < 24 || vtk_id > 26) return false;
+  if ((vtk_id < 24 || vtk_id > 26) && vtk_id != 29 && vtk_id != 32) return false;
   type = static_cast<QuadraticCellType>(vtk_id);
   return true;
 }
