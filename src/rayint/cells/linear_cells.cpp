@@ -288,17 +288,10 @@ Vec3 cell_scalar_gradient(const LinearCell& cell, const Vec3& p) {
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& start) {
-  InverseMap out;
-  if (cell.affine) {
-    out.p = cell.affine_inverse * (world - cell.affine_origin);
-    out.converged = out.p.allFinite();
-    return out;
-  }
-  return newton_inverse_map(cell.x.data(), linear_node_count(cell.type), world, start,
-                            [&](const Vec3& p, double* N, double* dN) {
-                              linear_shape_functions(cell.type, p, N);
-                              linear_shape_derivatives(cell.type, p, dN);
-                            });
+  return isoparametric_inverse_map(cell, linear_node_count(cell.type), world, start, [&](const Vec3& p, double* N, double* dN) {
+    linear_shape_functions(cell.type, p, N);
+    linear_shape_derivatives(cell.type, p, dN);
+  });
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world) {

@@ -19,7 +19,10 @@
 // uses exactly these monomials.
 // Method: N(p) = V^-T m(p) with m the monomials above and V the Vandermonde matrix of the nodes
 // (V_ij = m_j(node_i), inverted once in double: entries are 0, 1/2, 1 and their products, its
-// condition number is <= 1e3); dN = V^-T dm/dp. Accuracy (tests/test_quadratic_cells.cpp,
+// condition number is <= 1e3); dN = V^-T dm/dp. The 27- and 18-node cells are evaluated as
+// products instead (1-D Lagrange in r, s, t; the P2 triangle times Lagrange in t): their 27 x 27
+// Vandermonde inverse rounds to 1.4e-14 per weight, too coarse for the inverse map's 4e-15 step
+// test (Newton then stalls); the products round to ~1e-16. Accuracy (tests/test_quadratic_cells.cpp,
 // [cells][quadratic]): against VTK 9.1's InterpolateFunctions / InterpolateDerivs at 10 random
 // parametric points per type (tests/fixtures/cells/vtk_quadratic_cells.json, written by
 // scripts/cells/vtk_quadratic_fixture.py): parametric nodes identical; worst |N - VTK| 1.8e-16

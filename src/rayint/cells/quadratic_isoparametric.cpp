@@ -349,17 +349,10 @@ QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world, const Vec3& start) {
-  InverseMap out;
-  if (cell.affine) {
-    out.p = cell.affine_inverse * (world - cell.affine_origin);
-    out.converged = out.p.allFinite();
-    return out;
-  }
-  return newton_inverse_map(cell.x.data(), quadratic_node_count(cell.type), world, start,
-                            [&](const Vec3& p, double* N, double* dN) {
-                              quadratic_shape_functions(cell.type, p, N);
-                              quadratic_shape_derivatives(cell.type, p, dN);
-                            });
+  return isoparametric_inverse_map(cell, quadratic_node_count(cell.type), world, start, [&](const Vec3& p, double* N, double* dN) {
+    quadratic_shape_functions(cell.type, p, N);
+    quadratic_shape_derivatives(cell.type, p, dN);
+  });
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world) {
