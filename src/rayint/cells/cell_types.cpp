@@ -73,9 +73,18 @@ const std::vector<CellTypeInfo>& table() {
       row(27, "quadratic pyramid", 13, 3, 19, {}, S::NotYet),
       // gmsh's order-2 hexahedron is this 27-node one unless Mesh.SecondOrderIncomplete = 1 (then
       // the 20-node one above); its prism is the 18-node one (gmsh type 13, VTK's biquadratic-
-      // quadratic wedge 32) unless the same option gives the 15-node one. Neither is integrated.
-      row(29, "triquadratic hexahedron", 27, 3, 12, {}, S::NotYet),
-      row(32, "biquadratic-quadratic wedge", 18, 3, 13, {}, S::NotYet),
+      // quadratic wedge 32) unless the same option gives the 15-node one.
+      // gmsh 27-node hexahedron: the 20 nodes as the 20-node one, then the face centres of
+      // (0,1,2,3) (0,1,4,5) (0,3,4,7) (1,2,5,6) (2,3,6,7) (4,5,6,7), then the cell centre; VTK's
+      // (vtkTriQuadraticHexahedron.h): faces (0,4,7,3) (1,2,6,5) (0,1,5,4) (3,7,6,2) (0,3,2,1)
+      // (4,5,6,7), then the centre.
+      row(29, "triquadratic hexahedron", 27, 3, 12,
+          {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26},
+          S::Isoparametric),
+      // gmsh 18-node prism: the 15 nodes as the 15-node one, then the centres of the quadrilaterals
+      // (0,1,4,3) (0,2,5,3) (1,2,5,4); VTK's (vtkBiQuadraticQuadraticWedge.h): (0,1,4,3) (1,2,5,4) (2,0,3,5).
+      row(32, "biquadratic-quadratic wedge", 18, 3, 13,
+          {0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11, 15, 17, 16}, S::Isoparametric),
       row(42, "polyhedron", -1, 3, 0, {}, S::NotYet),
   };
   return rows;
@@ -143,8 +152,9 @@ std::string unsupported_cell_message(long long vtk_id) {
            "): --cells split tetrahedralises linear cells only; read this file without --cells split "
            "(its straight-edged quadratic tetrahedra are integrated with their quadratic interpolation)";
   return std::string("cell type ") + r->name + " (VTK id " + std::to_string(vtk_id) +
-         ") is not supported yet; tetrahedra, voxels, hexahedra, wedges, pyramids and quadratic tetrahedra, "
-         "hexahedra and wedges (VTK ids 10-14, 24-26) are integrated";
+         ") is not supported yet; tetrahedra, voxels, hexahedra, wedges, pyramids, quadratic tetrahedra, "
+         "hexahedra and wedges, triquadratic hexahedra and biquadratic-quadratic wedges (VTK ids 10-14, 24-26, "
+         "29, 32) are integrated";
 }
 
 }  // namespace rayint

@@ -13,7 +13,7 @@
 //               cells. `--cells split` (the CellMesh path) refuses it: VTK's split is defined
 //               for linear cells;
 //   Isoparametric  a quadratic volume cell other than the tetrahedron (quadratic hexahedron,
-//               quadratic wedge): read into a CellMesh and integrated in its own isoparametric
+//               quadratic wedge, triquadratic hexahedron, biquadratic-quadratic wedge): read into a CellMesh and integrated in its own isoparametric
 //               interpolation, curved or not (cells/quadratic_isoparametric.hpp); the
 //               tetrahedral paths and `--cells split` refuse it (unsupported_cell_message);
 //   Skipped     a cell of dimension 0-2 (vertex, line, triangle, quad, ...): boundary and
@@ -23,8 +23,7 @@
 //               pyramid): read into a CellMesh (mesh/cell_mesh.hpp) and integrated after
 //               `--cells split` (mesh/cell_split.hpp, VTK's tetrahedralisation: an approximation);
 //               the tetrahedral path refuses it with unsupported_cell_message(), which says so;
-//   NotYet      a volume cell rayint does not integrate yet (quadratic pyramids, triquadratic
-//               hexahedra (gmsh's default 27-node order-2 hexahedron), polyhedra):
+//   NotYet      a volume cell rayint does not integrate yet (quadratic pyramids, polyhedra):
 //               refused with unsupported_cell_message().
 // Node order is always VTK's once read: a reader permutes gmsh's order with gmsh_to_vtk
 // (vtk node i = gmsh node gmsh_to_vtk[i]). The permutations are gmsh's documented node numbering

@@ -2,6 +2,8 @@
 // linear_cells.hpp for the definitions, regions and thresholds).
 #include "rayint/cells/linear_cells.hpp"
 
+#include "rayint/cells/isoparametric_sums.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -260,27 +262,19 @@ LinearCell make_linear_cell(LinearCellType type, const std::vector<Vec3>& nodes,
 Vec3 cell_position(const LinearCell& cell, const Vec3& p) {
   double N[kMaxLinearNodes];
   linear_shape_functions(cell.type, p, N);
-  Vec3 x = Vec3::Zero();
-  for (int i = 0; i < linear_node_count(cell.type); ++i) x += N[i] * cell.x[static_cast<std::size_t>(i)];
-  return x;
+  return weighted_position(cell.x.data(), N, linear_node_count(cell.type));
 }
 
 double cell_scalar(const LinearCell& cell, const Vec3& p) {
   double N[kMaxLinearNodes];
   linear_shape_functions(cell.type, p, N);
-  double f = 0.0;
-  for (int i = 0; i < linear_node_count(cell.type); ++i) f += N[i] * cell.value[static_cast<std::size_t>(i)];
-  return f;
+  return weighted_value(cell.value.data(), N, linear_node_count(cell.type));
 }
 
 Eigen::Matrix3d cell_jacobian(const LinearCell& cell, const Vec3& p) {
-  const int n = linear_node_count(cell.type);
   double dN[3 * kMaxLinearNodes];
   linear_shape_derivatives(cell.type, p, dN);
-  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < n; ++i) J.col(j) += dN[j * n + i] * cell.x[static_cast<std::size_t>(i)];
-  return J;
+  return jacobian_from_derivatives(cell.x.data(), dN, linear_node_count(cell.type));
 }
 
 Vec3 cell_scalar_gradient(const LinearCell& cell, const Vec3& p) {
@@ -294,17 +288,10 @@ Vec3 cell_scalar_gradient(const LinearCell& cell, const Vec3& p) {
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& start) {
-  InverseMap out;
-  if (cell.affine) {
-    out.p = cell.affine_inverse * (world - cell.affine_origin);
-    out.converged = out.p.allFinite();
-    return out;
-  }
-  return newton_inverse_map(cell.x.data(), linear_node_count(cell.type), world, start,
-                            [&](const Vec3& p, double* N, double* dN) {
-                              linear_shape_functions(cell.type, p, N);
-                              linear_shape_derivatives(cell.type, p, dN);
-                            });
+  return isoparametric_inverse_map(cell, linear_node_count(cell.type), world, start, [&](const Vec3& p, double* N, double* dN) {
+    linear_shape_functions(cell.type, p, N);
+    linear_shape_derivatives(cell.type, p, dN);
+  });
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world) {

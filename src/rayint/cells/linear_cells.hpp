@@ -125,7 +125,7 @@ InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& st
 // quadratic_isoparametric.hpp), as described at the top of this file: n <= kMaxNewtonNodes
 // node positions x, shapes(p, N, dN) fills the n shape functions and their derivatives in VTK's
 // layout. A header template so that each cell kind's shape functions are inlined into it.
-inline constexpr int kMaxNewtonNodes = 20;
+inline constexpr int kMaxNewtonNodes = 27;
 template <class Shapes>
 InverseMap newton_inverse_map(const Vec3* x, int n, const Vec3& world, const Vec3& start, Shapes&& shapes) {
   InverseMap out;

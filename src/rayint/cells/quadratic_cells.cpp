@@ -52,23 +52,128 @@ const Basis& basis(QuadraticCellType type) {
        {0.5, 0, 1}, {0.5, 0.5, 1}, {0, 0.5, 1}, {0, 0, 0.5}, {1, 0, 0.5}, {0, 1, 0.5}},
       {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {1, 1, 0}, {0, 2, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {2, 0, 1},
        {1, 1, 1}, {0, 2, 1}, {0, 0, 2}, {1, 0, 2}, {0, 1, 2}});
+  // Triquadratic hexahedron: the 20 nodes above, then the face centres (x = 0, x = 1, y = 0, y = 1,
+  // z = 0, z = 1: vtkTriQuadraticHexahedron.h's faces (0,4,7,3), (1,2,6,5), (0,1,5,4), (3,7,6,2),
+  // (0,3,2,1), (4,5,6,7)) and the cell centre; the full tensor space Q2 = {r^a s^b t^c, a, b, c <= 2}.
+  static const Basis hexahedron27 = [] {
+    std::vector<Vec3> nodes = hexahedron.nodes;
+    for (const Vec3& p : std::vector<Vec3>{{0, 0.5, 0.5}, {1, 0.5, 0.5}, {0.5, 0, 0.5}, {0.5, 1, 0.5}, {0.5, 0.5, 0},
+                                           {0.5, 0.5, 1}, {0.5, 0.5, 0.5}})
+      nodes.push_back(p);
+    std::vector<Exponents> m;
+    for (int a = 0; a <= 2; ++a)
+      for (int b = 0; b <= 2; ++b)
+        for (int c = 0; c <= 2; ++c) m.push_back({a, b, c});
+    return make_basis(std::move(nodes), std::move(m));
+  }();
+  // Biquadratic-quadratic wedge: the 15 nodes above, then the centres of the quadrilateral faces
+  // (0,1,4,3), (1,2,5,4), (2,0,3,5) (vtkBiQuadraticQuadraticWedge.h); P2 of the triangle x
+  // {1, t, t^2}.
+  static const Basis wedge18 = [] {
+    std::vector<Vec3> nodes = wedge.nodes;
+    for (const Vec3& p : std::vector<Vec3>{{0.5, 0, 0.5}, {0.5, 0.5, 0.5}, {0, 0.5, 0.5}}) nodes.push_back(p);
+    std::vector<Exponents> m;
+    for (const Exponents& e : std::vector<Exponents>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {1, 1, 0}, {0, 2, 0}})
+      for (int c = 0; c <= 2; ++c) m.push_back({e[0], e[1], c});
+    return make_basis(std::move(nodes), std::move(m));
+  }();
   switch (type) {
     case QuadraticCellType::tetra: return tetra;
     case QuadraticCellType::hexahedron: return hexahedron;
     case QuadraticCellType::wedge: return wedge;
+    case QuadraticCellType::triquadratic_hexahedron: return hexahedron27;
+    case QuadraticCellType::biquadratic_wedge: return wedge18;
   }
   return tetra;
 }
 
 double power(double x, int e) { return e == 0 ? 1.0 : (e == 1 ? x : x * x); }
 
-// At most 20 entries, on the stack (the inverse map evaluates these in its Newton loop).
-using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 20, 1>;
+// 1-D quadratic Lagrange functions on the nodes 0, 1/2, 1 and their derivatives.
+void lagrange_1d(double u, double* l, double* dl) {
+  l[0] = 2.0 * (u - 0.5) * (u - 1.0), l[1] = 4.0 * u * (1.0 - u), l[2] = 2.0 * u * (u - 0.5);
+  dl[0] = 4.0 * u - 3.0, dl[1] = 4.0 - 8.0 * u, dl[2] = 4.0 * u - 1.0;
+}
+
+// The 27- and 18-node cells as products (header: the Vandermonde inverse of 27 monomials rounds
+// to 1.4e-14, too coarse for the inverse map's 4e-15 step test). Per node: the 1-D Lagrange
+// index of each coordinate (hexahedron) or the P2 triangle node and the t index (wedge), read
+// off the node's reference point (coordinates in {0, 1/2, 1}).
+struct ProductNode {
+  int a = 0, b = 0, c = 0;  // hexahedron: indices in r, s, t; wedge: a = triangle node 0-5, c = t index
+};
+const std::vector<ProductNode>& product_nodes(QuadraticCellType type) {
+  const auto make = [](QuadraticCellType t) {
+    std::vector<ProductNode> out;
+    for (const Vec3& x : basis(t).nodes) {
+      ProductNode q;
+      const int i = static_cast<int>(std::lround(2.0 * x[0])), j = static_cast<int>(std::lround(2.0 * x[1]));
+      q.c = static_cast<int>(std::lround(2.0 * x[2]));
+      if (t == QuadraticCellType::biquadratic_wedge) {
+        // Triangle nodes (r, s) = (0,0) (1,0) (0,1) (1/2,0) (1/2,1/2) (0,1/2) as 0-5, in 2 x units.
+        static const int tri[3][3] = {{0, 5, 2}, {3, 4, -1}, {1, -1, -1}};  // tri[2r][2s]
+        q.a = tri[i][j];
+      } else {
+        q.a = i, q.b = j;
+      }
+      out.push_back(q);
+    }
+    return out;
+  };
+  static const std::vector<ProductNode> hexahedron27 = make(QuadraticCellType::triquadratic_hexahedron);
+  static const std::vector<ProductNode> wedge18 = make(QuadraticCellType::biquadratic_wedge);
+  return type == QuadraticCellType::biquadratic_wedge ? wedge18 : hexahedron27;
+}
+
+// P2 triangle on (r, s): corners L(2L - 1) for L = 1 - r - s, r, s; edges (0,1) (1,2) (2,0) 4 La Lb.
+void p2_triangle(double r, double s, double* N, double* dr, double* ds) {
+  const double L[3] = {1.0 - r - s, r, s}, Lr[3] = {-1.0, 1.0, 0.0}, Ls[3] = {-1.0, 0.0, 1.0};
+  for (int k = 0; k < 3; ++k) {
+    N[k] = L[k] * (2.0 * L[k] - 1.0);
+    dr[k] = (4.0 * L[k] - 1.0) * Lr[k];
+    ds[k] = (4.0 * L[k] - 1.0) * Ls[k];
+    const int i = k, j = (k + 1) % 3;
+    N[3 + k] = 4.0 * L[i] * L[j];
+    dr[3 + k] = 4.0 * (Lr[i] * L[j] + L[i] * Lr[j]);
+    ds[3 + k] = 4.0 * (Ls[i] * L[j] + L[i] * Ls[j]);
+  }
+}
+
+// N and, when dN is given, its derivatives (VTK's layout) of a 27- or 18-node cell.
+void product_functions(QuadraticCellType type, const Vec3& p, double* N, double* dN) {
+  const std::vector<ProductNode>& nodes = product_nodes(type);
+  const auto n = static_cast<int>(nodes.size());
+  double lr[3], dlr[3], ls[3], dls[3], lt[3], dlt[3];
+  lagrange_1d(p[0], lr, dlr);
+  lagrange_1d(p[1], ls, dls);
+  lagrange_1d(p[2], lt, dlt);
+  double T[6], Tr[6], Ts[6];
+  if (type == QuadraticCellType::biquadratic_wedge) p2_triangle(p[0], p[1], T, Tr, Ts);
+  for (int i = 0; i < n; ++i) {
+    const ProductNode& q = nodes[static_cast<std::size_t>(i)];
+    if (type == QuadraticCellType::biquadratic_wedge) {
+      N[i] = T[q.a] * lt[q.c];
+      if (dN) dN[i] = Tr[q.a] * lt[q.c], dN[n + i] = Ts[q.a] * lt[q.c], dN[2 * n + i] = T[q.a] * dlt[q.c];
+    } else {
+      N[i] = lr[q.a] * ls[q.b] * lt[q.c];
+      if (dN)
+        dN[i] = dlr[q.a] * ls[q.b] * lt[q.c], dN[n + i] = lr[q.a] * dls[q.b] * lt[q.c],
+        dN[2 * n + i] = lr[q.a] * ls[q.b] * dlt[q.c];
+    }
+  }
+}
+
+bool is_product(QuadraticCellType type) {
+  return type == QuadraticCellType::triquadratic_hexahedron || type == QuadraticCellType::biquadratic_wedge;
+}
+
+// At most 27 entries, on the stack (the inverse map evaluates these in its Newton loop).
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 27, 1>;
 
 }  // namespace
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type) {
-  if (vtk_id < 24 || vtk_id > 26) return false;
+  if ((vtk_id < 24 || vtk_id > 26) && vtk_id != 29 && vtk_id != 32) return false;
   type = static_cast<QuadraticCellType>(vtk_id);
   return true;
 }
@@ -78,6 +183,7 @@ int quadratic_node_count(QuadraticCellType type) { return static_cast<int>(basis
 const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type) { return basis(type).nodes; }
 
 void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N) {
+  if (is_product(type)) return product_functions(type, p, N, nullptr);
   const Basis& b = basis(type);
   const auto n = static_cast<Eigen::Index>(b.nodes.size());
   SmallVector m(n);
@@ -91,6 +197,10 @@ void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N)
 }
 
 void quadratic_shape_derivatives(QuadraticCellType type, const Vec3& p, double* dN) {
+  if (is_product(type)) {
+    double N[27];
+    return product_functions(type, p, N, dN);
+  }
   const Basis& b = basis(type);
   const auto n = static_cast<Eigen::Index>(b.nodes.size());
   for (int axis = 0; axis < 3; ++axis) {

@@ -1,6 +1,6 @@
 #pragma once
 // VTK's quadratic volume cells in VTK's parametric coordinates (vtkQuadraticTetra,
-// vtkQuadraticHexahedron, vtkQuadraticWedge): node order, parametric node coordinates, shape
+// vtkQuadraticHexahedron, vtkQuadraticWedge, vtkTriQuadraticHexahedron, vtkBiQuadraticQuadraticWedge): node order, parametric node coordinates, shape
 // functions and their derivatives -- the building blocks an isoparametric treatment of these
 // cells needs (inverse map by Newton, as cells/linear_cells.hpp does for the linear ones). Not yet
 // used by a traversal; straight-edged tet10 meshes are integrated by mesh/quadratic_tets.hpp.
@@ -10,10 +10,19 @@
 //   quadratic tetra (10 nodes)      P2: 1, r, s, t, r^2, s^2, t^2, rs, st, rt;
 //   quadratic hexahedron (20)       serendipity: P2 and r^2 s, r^2 t, s^2 r, s^2 t, t^2 r,
 //                                   t^2 s, rst, r^2 st, rs^2 t, rst^2 (superlinear degree <= 2);
-//   quadratic wedge (15)            {1, r, s, r^2, rs, s^2} x {1, t} + t^2, r t^2, s t^2.
+//   quadratic wedge (15)            {1, r, s, r^2, rs, s^2} x {1, t} + t^2, r t^2, s t^2;
+//   triquadratic hexahedron (27)    Q2: r^a s^b t^c, a, b, c <= 2 (vtkTriQuadraticHexahedron);
+//   biquadratic-quadratic wedge (18) {1, r, s, r^2, rs, s^2} x {1, t, t^2}
+//                                   (vtkBiQuadraticQuadraticWedge).
+// The two spaces of the 27- and 18-node cells were read off VTK 9.1 itself: a least-squares fit
+// of its weights at 600 random points to every monomial of total degree <= 6 leaves 1.3e-13 and
+// uses exactly these monomials.
 // Method: N(p) = V^-T m(p) with m the monomials above and V the Vandermonde matrix of the nodes
 // (V_ij = m_j(node_i), inverted once in double: entries are 0, 1/2, 1 and their products, its
-// condition number is <= 1e3); dN = V^-T dm/dp. Accuracy (tests/test_quadratic_cells.cpp,
+// condition number is <= 1e3); dN = V^-T dm/dp. The 27- and 18-node cells are evaluated as
+// products instead (1-D Lagrange in r, s, t; the P2 triangle times Lagrange in t): their 27 x 27
+// Vandermonde inverse rounds to 1.4e-14 per weight, too coarse for the inverse map's 4e-15 step
+// test (Newton then stalls); the products round to ~1e-16. Accuracy (tests/test_quadratic_cells.cpp,
 // [cells][quadratic]): against VTK 9.1's InterpolateFunctions / InterpolateDerivs at 10 random
 // parametric points per type (tests/fixtures/cells/vtk_quadratic_cells.json, written by
 // scripts/cells/vtk_quadratic_fixture.py): parametric nodes identical; worst |N - VTK| 1.8e-16
@@ -26,10 +35,12 @@
 
 namespace rayint {
 
-enum class QuadraticCellType : int { tetra = 24, hexahedron = 25, wedge = 26 };
+// VTK's type ids: quadratic tetra, quadratic hexahedron, quadratic wedge, triquadratic hexahedron
+// (27 nodes), biquadratic-quadratic wedge (18 nodes).
+enum class QuadraticCellType : int { tetra = 24, hexahedron = 25, wedge = 26, triquadratic_hexahedron = 29, biquadratic_wedge = 32 };
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type);
-int quadratic_node_count(QuadraticCellType type);  // 10, 20, 15
+int quadratic_node_count(QuadraticCellType type);  // 10, 20, 15, 27, 18
 // VTK's parametric node coordinates (vtkCell::GetParametricCoords), VTK's node order.
 const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type);
 // N[i] for every node at parametric point p (N has quadratic_node_count entries).

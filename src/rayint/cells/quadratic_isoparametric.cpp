@@ -3,6 +3,8 @@
 // and thresholds).
 #include "rayint/cells/quadratic_isoparametric.hpp"
 
+#include "rayint/cells/isoparametric_sums.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -28,25 +30,53 @@ int mid_node(QuadraticCellType type, int a, int b) {
   int n = 0, first = 0;
   switch (type) {
     case Q::tetra: edges = kTetEdges, n = 6, first = 4; break;
-    case Q::hexahedron: edges = kHexEdges, n = 12, first = 8; break;
-    case Q::wedge: edges = kWedgeEdges, n = 9, first = 6; break;
+    case Q::hexahedron:
+    case Q::triquadratic_hexahedron: edges = kHexEdges, n = 12, first = 8; break;
+    case Q::wedge:
+    case Q::biquadratic_wedge: edges = kWedgeEdges, n = 9, first = 6; break;
   }
   for (int e = 0; e < n; ++e)
     if ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a)) return first + e;
   throw std::logic_error("quadratic cells: no such edge");
 }
 
-int corner_count(QuadraticCellType type) {
-  switch (type) {
-    case Q::tetra: return 4;
-    case Q::hexahedron: return 8;
-    case Q::wedge: return 6;
-  }
-  return 0;
+int corner_count(QuadraticCellType type) { return linear_node_count(quadratic_corner_type(type)); }
+
+// The node at the centre of a face with the given corners (the mean of their reference points),
+// or -1: the face-centre nodes of the triquadratic hexahedron and of the biquadratic-quadratic
+// wedge's quadrilaterals. Found by position so that it follows VTK's face tables whatever their order.
+int centre_node(QuadraticCellType type, const std::array<int, 4>& corner, int count) {
+  const std::vector<Vec3>& ref = quadratic_reference_nodes(type);
+  Vec3 mean = Vec3::Zero();
+  for (int k = 0; k < count; ++k) mean += ref[static_cast<std::size_t>(corner[static_cast<std::size_t>(k)])];
+  mean /= count;
+  for (std::size_t i = 0; i < ref.size(); ++i)
+    if ((ref[i] - mean).cwiseAbs().maxCoeff() < 1e-12) return static_cast<int>(i);
+  return -1;
 }
 
-// Face shape functions and their (u, v) derivatives: corners, then mid-edge nodes (header).
-void patch_functions(int count, double u, double v, double* N, double* dNu, double* dNv) {
+// 1-D quadratic Lagrange functions on the nodes 0, 1/2, 1 and their derivatives.
+void lagrange3(double u, double* l, double* dl) {
+  l[0] = 2.0 * (u - 0.5) * (u - 1.0), l[1] = 4.0 * u * (1.0 - u), l[2] = 2.0 * u * (u - 0.5);
+  dl[0] = 4.0 * u - 3.0, dl[1] = 4.0 - 8.0 * u, dl[2] = 4.0 * u - 1.0;
+}
+
+// Face shape functions and their (u, v) derivatives: corners, then mid-edge nodes, then the
+// centre when there is one (header).
+void patch_functions(int count, bool centre, double u, double v, double* N, double* dNu, double* dNv) {
+  if (centre) {  // biquadratic 9-node quadrilateral: Lagrange in u times Lagrange in v
+    double lu[3], du[3], lv[3], dv[3];
+    lagrange3(u, lu, du);
+    lagrange3(v, lv, dv);
+    // Grid indices of A, B, C, D, AB, BC, CD, DA, centre.
+    static const int iu[9] = {0, 2, 2, 0, 1, 2, 1, 0, 1}, iv[9] = {0, 0, 2, 2, 0, 1, 2, 1, 1};
+    for (int k = 0; k < 9; ++k) {
+      N[k] = lu[iu[k]] * lv[iv[k]];
+      dNu[k] = du[iu[k]] * lv[iv[k]];
+      dNv[k] = lu[iu[k]] * dv[iv[k]];
+    }
+    return;
+  }
   if (count == 3) {
     const double L[3] = {1.0 - u - v, u, v};
     const double Lu[3] = {-1.0, 1.0, 0.0}, Lv[3] = {-1.0, 0.0, 1.0};
@@ -90,13 +120,15 @@ void patch_functions(int count, double u, double v, double* N, double* dNu, doub
 using Vec2 = Eigen::Vector2d;
 
 struct Projected {
-  std::array<Vec2, 8> g{};
+  std::array<Vec2, kMaxPatchNodes> g{};
   int count = 0;
+  bool centre = false;
+  int nodes() const { return patch_node_count(count, centre); }
   Vec2 at(double u, double v) const {
-    double N[8], du[8], dv[8];
-    patch_functions(count, u, v, N, du, dv);
+    double N[kMaxPatchNodes], du[kMaxPatchNodes], dv[kMaxPatchNodes];
+    patch_functions(count, centre, u, v, N, du, dv);
     Vec2 s = Vec2::Zero();
-    for (int k = 0; k < 2 * count; ++k) s += N[k] * g[static_cast<std::size_t>(k)];
+    for (int k = 0; k < nodes(); ++k) s += N[k] * g[static_cast<std::size_t>(k)];
     return s;
   }
 };
@@ -116,11 +148,11 @@ bool excluded(const Vec2* b, int n, double tol) {
 
 // Newton on G(u, v) = 0 from (u, v); false when it does not converge.
 bool patch_newton(const Projected& P, double& u, double& v, double scale) {
-  double N[8], du[8], dv[8];
+  double N[kMaxPatchNodes], du[kMaxPatchNodes], dv[kMaxPatchNodes];
   for (int it = 0; it < 30; ++it) {
-    patch_functions(P.count, u, v, N, du, dv);
+    patch_functions(P.count, P.centre, u, v, N, du, dv);
     Vec2 G = Vec2::Zero(), Gu = Vec2::Zero(), Gv = Vec2::Zero();
-    for (int k = 0; k < 2 * P.count; ++k) {
+    for (int k = 0; k < P.nodes(); ++k) {
       const Vec2& g = P.g[static_cast<std::size_t>(k)];
       G += N[k] * g, Gu += du[k] * g, Gv += dv[k] * g;
     }
@@ -192,6 +224,8 @@ const char* quadratic_cell_name(QuadraticCellType type) {
     case Q::tetra: return "quadratic tetra";
     case Q::hexahedron: return "quadratic hexahedron";
     case Q::wedge: return "quadratic wedge";
+    case Q::triquadratic_hexahedron: return "triquadratic hexahedron";
+    case Q::biquadratic_wedge: return "biquadratic-quadratic wedge";
   }
   return "?";
 }
@@ -199,8 +233,10 @@ const char* quadratic_cell_name(QuadraticCellType type) {
 LinearCellType quadratic_corner_type(QuadraticCellType type) {
   switch (type) {
     case Q::tetra: return LinearCellType::tetra;
-    case Q::hexahedron: return LinearCellType::hexahedron;
-    case Q::wedge: return LinearCellType::wedge;
+    case Q::hexahedron:
+    case Q::triquadratic_hexahedron: return LinearCellType::hexahedron;
+    case Q::wedge:
+    case Q::biquadratic_wedge: return LinearCellType::wedge;
   }
   return LinearCellType::hexahedron;
 }
@@ -216,6 +252,7 @@ QuadraticFaceNodes quadratic_face(QuadraticCellType type, int face) {
     q.corner[kk] = f.node[kk];
     q.mid[kk] = mid_node(type, f.node[kk], f.node[static_cast<std::size_t>((k + 1) % f.count)]);
   }
+  q.centre = centre_node(type, q.corner, q.count);
   return q;
 }
 
@@ -224,27 +261,19 @@ Vec3 quadratic_reference_centre(QuadraticCellType type) { return linear_referenc
 Vec3 cell_position(const QuadraticCell& cell, const Vec3& p) {
   double N[kMaxQuadraticNodes];
   quadratic_shape_functions(cell.type, p, N);
-  Vec3 x = Vec3::Zero();
-  for (int i = 0; i < quadratic_node_count(cell.type); ++i) x += N[i] * cell.x[static_cast<std::size_t>(i)];
-  return x;
+  return weighted_position(cell.x.data(), N, quadratic_node_count(cell.type));
 }
 
 double cell_scalar(const QuadraticCell& cell, const Vec3& p) {
   double N[kMaxQuadraticNodes];
   quadratic_shape_functions(cell.type, p, N);
-  double f = 0.0;
-  for (int i = 0; i < quadratic_node_count(cell.type); ++i) f += N[i] * cell.value[static_cast<std::size_t>(i)];
-  return f;
+  return weighted_value(cell.value.data(), N, quadratic_node_count(cell.type));
 }
 
 Eigen::Matrix3d cell_jacobian(const QuadraticCell& cell, const Vec3& p) {
-  const int n = quadratic_node_count(cell.type);
   double dN[3 * kMaxQuadraticNodes];
   quadratic_shape_derivatives(cell.type, p, dN);
-  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < n; ++i) J.col(j) += dN[j * n + i] * cell.x[static_cast<std::size_t>(i)];
-  return J;
+  return jacobian_from_derivatives(cell.x.data(), dN, quadratic_node_count(cell.type));
 }
 
 QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3>& nodes,
@@ -320,17 +349,10 @@ QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world, const Vec3& start) {
-  InverseMap out;
-  if (cell.affine) {
-    out.p = cell.affine_inverse * (world - cell.affine_origin);
-    out.converged = out.p.allFinite();
-    return out;
-  }
-  return newton_inverse_map(cell.x.data(), quadratic_node_count(cell.type), world, start,
-                            [&](const Vec3& p, double* N, double* dN) {
-                              quadratic_shape_functions(cell.type, p, N);
-                              quadratic_shape_derivatives(cell.type, p, dN);
-                            });
+  return isoparametric_inverse_map(cell, quadratic_node_count(cell.type), world, start, [&](const Vec3& p, double* N, double* dN) {
+    quadratic_shape_functions(cell.type, p, N);
+    quadratic_shape_derivatives(cell.type, p, dN);
+  });
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world) {
@@ -361,20 +383,22 @@ QuadraticFacePatch canonical_quadratic_face(const QuadraticCell& cell, int face,
     out.local[static_cast<std::size_t>(k)] = f.corner[static_cast<std::size_t>(a)];
     out.local[static_cast<std::size_t>(n + k)] = mid;
   }
-  for (int k = 0; k < 2 * n; ++k)
+  out.centre = f.centre >= 0;
+  if (out.centre) out.local[static_cast<std::size_t>(2 * n)] = f.centre;
+  for (int k = 0; k < patch_node_count(n, out.centre); ++k)
     out.node[static_cast<std::size_t>(k)] = cell.x[static_cast<std::size_t>(out.local[static_cast<std::size_t>(k)])];
   return out;
 }
 
-Vec3 patch_point(const std::array<Vec3, 8>& node, int count, double u, double v) {
-  double N[8], du[8], dv[8];
-  patch_functions(count, u, v, N, du, dv);
+Vec3 patch_point(const PatchNodes& node, int count, bool centre, double u, double v) {
+  double N[kMaxPatchNodes], du[kMaxPatchNodes], dv[kMaxPatchNodes];
+  patch_functions(count, centre, u, v, N, du, dv);
   Vec3 x = Vec3::Zero();
-  for (int k = 0; k < 2 * count; ++k) x += N[k] * node[static_cast<std::size_t>(k)];
+  for (int k = 0; k < patch_node_count(count, centre); ++k) x += N[k] * node[static_cast<std::size_t>(k)];
   return x;
 }
 
-void patch_control_box(const std::array<Vec3, 8>& node, int count, Vec3& lo, Vec3& hi) {
+void patch_control_box(const PatchNodes& node, int count, bool centre, Vec3& lo, Vec3& hi) {
   std::vector<Vec3> control;
   if (count == 3) {
     for (int k = 0; k < 3; ++k) {
@@ -387,7 +411,7 @@ void patch_control_box(const std::array<Vec3, 8>& node, int count, Vec3& lo, Vec
     // The 3 x 3 values on the grid {0, 1/2, 1}^2, then Bernstein along u and v (as Search::quad).
     Vec3 F[3][3], H[3][3];
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) F[i][j] = patch_point(node, 4, 0.5 * i, 0.5 * j);
+      for (int j = 0; j < 3; ++j) F[i][j] = patch_point(node, 4, centre, 0.5 * i, 0.5 * j);
     for (int j = 0; j < 3; ++j) {
       H[0][j] = F[0][j], H[2][j] = F[2][j];
       H[1][j] = 2.0 * F[1][j] - 0.5 * (F[0][j] + F[2][j]);
@@ -405,15 +429,21 @@ void patch_control_box(const std::array<Vec3, 8>& node, int count, Vec3& lo, Vec
   }
 }
 
-std::vector<PatchHit> intersect_quadratic_face(const std::array<Vec3, 8>& node, int count, const ViewRay& ray) {
+std::vector<PatchHit> intersect_quadratic_face(const PatchNodes& node, int count, bool centre, const ViewRay& ray) {
   std::vector<PatchHit> out;
-  // A flat patch (every mid-edge node at its edge's midpoint to kAffineTolerance): the patch is
-  // the plane triangle / bilinear patch of its corners, in the same (u, v).
+  const int n_nodes = patch_node_count(count, centre);
+  // A flat patch (every mid-edge node at its edge's midpoint and the centre node, if any, at the
+  // corners' mean, to kAffineTolerance): the patch is the plane triangle / bilinear patch of its
+  // corners, in the same (u, v).
   double magnitude = 0.0, offset = 0.0;
-  for (int k = 0; k < 2 * count; ++k) magnitude = std::max(magnitude, node[static_cast<std::size_t>(k)].cwiseAbs().maxCoeff());
+  for (int k = 0; k < n_nodes; ++k) magnitude = std::max(magnitude, node[static_cast<std::size_t>(k)].cwiseAbs().maxCoeff());
   for (int k = 0; k < count; ++k) {
     const Vec3 mid = 0.5 * (node[static_cast<std::size_t>(k)] + node[static_cast<std::size_t>((k + 1) % count)]);
     offset = std::max(offset, (node[static_cast<std::size_t>(count + k)] - mid).cwiseAbs().maxCoeff());
+  }
+  if (centre) {
+    const Vec3 mean = 0.25 * (node[0] + node[1] + node[2] + node[3]);
+    offset = std::max(offset, (node[8] - mean).cwiseAbs().maxCoeff());
   }
   if (offset <= kAffineTolerance * magnitude) {
     std::array<Vec3, 4> corners{};
@@ -432,8 +462,9 @@ std::vector<PatchHit> intersect_quadratic_face(const std::array<Vec3, 8>& node, 
   const Vec3 e1 = d.unitOrthogonal(), e2 = d.normalized().cross(e1);
   Projected P;
   P.count = count;
+  P.centre = centre;
   double scale = 0.0;
-  for (int k = 0; k < 2 * count; ++k) {
+  for (int k = 0; k < n_nodes; ++k) {
     const Vec3 r = node[static_cast<std::size_t>(k)] - o;
     P.g[static_cast<std::size_t>(k)] = Vec2(e1.dot(r), e2.dot(r));
     scale = std::max(scale, P.g[static_cast<std::size_t>(k)].cwiseAbs().maxCoeff());
@@ -443,7 +474,7 @@ std::vector<PatchHit> intersect_quadratic_face(const std::array<Vec3, 8>& node, 
   if (count == 3) s.tri(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), 0);
   else s.quad(0.0, 1.0, 0.0, 1.0, 0);
   for (const auto& r : s.roots) {
-    const Vec3 x = patch_point(node, count, r[0], r[1]);
+    const Vec3 x = patch_point(node, count, centre, r[0], r[1]);
     out.push_back({(x - o).dot(d) / dn2, r[0], r[1]});
   }
   std::sort(out.begin(), out.end(), [](const PatchHit& a, const PatchHit& b) { return a.t < b.t; });
@@ -461,11 +492,11 @@ Chord quadratic_chord(const QuadraticCell& cell, const ViewRay& ray, const std::
   const std::vector<Vec3>& ref = quadratic_reference_nodes(cell.type);
   for (int f = 0; f < quadratic_face_count(cell.type); ++f) {
     const QuadraticFacePatch patch = canonical_quadratic_face(cell, f, global_ids);
-    std::array<Vec3, 8> ref_nodes{};
-    for (int k = 0; k < 2 * patch.count; ++k)
+    PatchNodes ref_nodes{};
+    for (int k = 0; k < patch_node_count(patch.count, patch.centre); ++k)
       ref_nodes[static_cast<std::size_t>(k)] = ref[static_cast<std::size_t>(patch.local[static_cast<std::size_t>(k)])];
-    for (const PatchHit& h : intersect_quadratic_face(patch.node, patch.count, ray))
-      hits.push_back({h.t, f, patch_point(ref_nodes, patch.count, h.u, h.v)});
+    for (const PatchHit& h : intersect_quadratic_face(patch.node, patch.count, patch.centre, ray))
+      hits.push_back({h.t, f, patch_point(ref_nodes, patch.count, patch.centre, h.u, h.v)});
   }
   std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t || (a.t == b.t && a.face < b.face); });
   for (const Hit& h : hits) out.hits.push_back({h.t, h.face});

@@ -1,6 +1,8 @@
 #pragma once
 // VTK's quadratic volume cells -- quadratic tetra (VTK id 24, 10 nodes), quadratic hexahedron
-// (25, 20 nodes), quadratic wedge (26, 15 nodes) -- in their own isoparametric interpolation,
+// (25, 20 nodes), quadratic wedge (26, 15 nodes), triquadratic hexahedron (29, 27 nodes: gmsh's
+// default order-2 hexahedron), biquadratic-quadratic wedge (32, 18 nodes: gmsh's default order-2
+// prism) -- in their own isoparametric interpolation,
 // curved edges and faces included: x(p) = sum_i N_i(p) x_i, f(p) = sum_i N_i(p) f_i with VTK's
 // quadratic shape functions (cells/quadratic_cells.hpp, checked against VTK 9.1). What
 // cells/linear_cells.hpp does for the linear cells, for these: the inverse map, the faces as
@@ -22,11 +24,14 @@
 // map on it: a 6-node quadratic triangle (P2: corners A, B, C at (0,0), (1,0), (0,1) in (u, v),
 // mid-edge nodes AB, BC, CA) or an 8-node serendipity quadrilateral (corners A, B, C, D at
 // (0,0), (1,0), (1,1), (0,1), mid-edge nodes AB, BC, CD, DA). Two cells sharing a face see the
-// same patch (the trace depends on the face's nodes only).
+// same patch (the trace depends on the face's nodes only). The quadrilaterals of the 27-node
+// hexahedron and of the 18-node wedge also have a face-centre node: their trace is the 9-node
+// biquadratic Lagrange quadrilateral (the centre at (1/2, 1/2)), its triangles stay P2.
 //
 // Ray-patch hits (intersect_quadratic_face): with e1, e2 orthonormal and perpendicular to the ray,
 // the hits are the zeros of G(u, v) = (e1 . (P(u, v) - o), e2 . (P(u, v) - o)), a quadratic
-// (triangle) or bi-quadratic (quadrilateral) map R^2 -> R^2 given by the projected nodes. Bracket:
+// (triangle) or bi-quadratic (quadrilateral, serendipity or 9-node) map R^2 -> R^2 given by the
+// projected nodes. Bracket:
 // recursive subdivision of the face's domain (quadrilaterals into 4 rectangles, triangles into 4
 // triangles), a sub-domain discarded when one component of G has all its Bernstein coefficients
 // on that sub-domain (the patch lies in their convex hull) of one sign beyond kPatchExclusion =
@@ -64,7 +69,7 @@
 
 namespace rayint {
 
-inline constexpr int kMaxQuadraticNodes = 20;
+inline constexpr int kMaxQuadraticNodes = 27;
 static_assert(kMaxQuadraticNodes <= kMaxNewtonNodes, "newton_inverse_map's buffers hold every quadratic cell");
 inline constexpr int kJacobianSamples = 5;
 inline constexpr double kJacobianFloor = 1e-10;
@@ -76,12 +81,19 @@ LinearCellType quadratic_corner_type(QuadraticCellType type);   // tetra, hexahe
 int quadratic_face_count(QuadraticCellType type);                // 4, 6, 5
 
 // Face f: corners (local node ids, cyclic, as linear_face of the corner type) and the mid-edge
-// node of each corner edge: mid[k] lies on the edge (corner[k], corner[(k + 1) % count]).
+// node of each corner edge: mid[k] lies on the edge (corner[k], corner[(k + 1) % count]); the
+// face-centre node of a 9-node quadrilateral, -1 when the face has none.
 struct QuadraticFaceNodes {
   std::array<int, 4> corner{};
   std::array<int, 4> mid{};
   int count = 0;  // 3 or 4 corners
+  int centre = -1;
 };
+
+// A face patch's nodes: corners, mid-edge nodes, then the centre when there is one.
+inline constexpr int kMaxPatchNodes = 9;
+using PatchNodes = std::array<Vec3, kMaxPatchNodes>;
+inline constexpr int patch_node_count(int corners, bool centre) { return 2 * corners + (centre ? 1 : 0); }
 QuadraticFaceNodes quadratic_face(QuadraticCellType type, int face);
 
 struct QuadraticCell {
@@ -109,28 +121,30 @@ InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world);
 
 // A face's nodes in canonical order: corners by canonical_face_order of their global ids (or
 // coordinates), mid-edge nodes following their edges. node[0..count) corners, node[count + k]
-// the mid-edge node of corner edge (k, k + 1); `local` the cell's local ids in that order.
+// the mid-edge node of corner edge (k, k + 1), node[2 count] the centre when `centre`; `local`
+// the cell's local ids in that order.
 struct QuadraticFacePatch {
-  std::array<Vec3, 8> node{};
-  std::array<int, 8> local{};
+  PatchNodes node{};
+  std::array<int, kMaxPatchNodes> local{};
   int count = 0;
+  bool centre = false;
 };
 QuadraticFacePatch canonical_quadratic_face(const QuadraticCell& cell, int face,
                                             const std::int64_t* global_ids = nullptr);
 
 // The patch point at (u, v) (triangle: barycentrics of corners 1 and 2).
-Vec3 patch_point(const std::array<Vec3, 8>& node, int count, double u, double v);
+Vec3 patch_point(const PatchNodes& node, int count, bool centre, double u, double v);
 
 // A box holding the whole patch: the box of its Bernstein control points (the patch lies in
 // their convex hull), for bounding-volume hierarchies.
-void patch_control_box(const std::array<Vec3, 8>& node, int count, Vec3& lo, Vec3& hi);
+void patch_control_box(const PatchNodes& node, int count, bool centre, Vec3& lo, Vec3& hi);
 
 struct PatchHit {
   double t = 0.0;
   double u = 0.0, v = 0.0;
 };
 // Every hit of the line origin + t direction with the closed patch, sorted by t (see above).
-std::vector<PatchHit> intersect_quadratic_face(const std::array<Vec3, 8>& node, int count, const ViewRay& ray);
+std::vector<PatchHit> intersect_quadratic_face(const PatchNodes& node, int count, bool centre, const ViewRay& ray);
 
 // The pieces of the line inside the cell (see above; the Chord of linear_cells.hpp).
 Chord quadratic_chord(const QuadraticCell& cell, const ViewRay& ray, const std::int64_t* global_ids = nullptr);

@@ -65,6 +65,8 @@ int mesh_cell_nodes(long long vtk_id) {
     case 24: return 10;
     case 25: return 20;
     case 26: return 15;
+    case 29: return 27;
+    case 32: return 18;
     default: return 0;
   }
 }
@@ -81,6 +83,8 @@ const char* mesh_cell_name(MeshCellType type) {
     case MeshCellType::quadratic_tetra: return "quadratic tetra";
     case MeshCellType::quadratic_hexahedron: return "quadratic hexahedron";
     case MeshCellType::quadratic_wedge: return "quadratic wedge";
+    case MeshCellType::triquadratic_hexahedron: return "triquadratic hexahedron";
+    case MeshCellType::biquadratic_quadratic_wedge: return "biquadratic-quadratic wedge";
   }
   return "?";
 }
@@ -180,8 +184,10 @@ int cell_orientation(const CellMesh& mesh, std::size_t c) {
     case MeshCellType::pyramid: return corner_signs(mesh, p, kPyramidCorners);
     // Quadratic cells list their corners first: the corner Jacobians of the linear cell.
     case MeshCellType::quadratic_tetra: return corner_signs(mesh, p, kTetCorners);
-    case MeshCellType::quadratic_hexahedron: return corner_signs(mesh, p, kHexCorners);
-    case MeshCellType::quadratic_wedge: return corner_signs(mesh, p, kWedgeCorners);
+    case MeshCellType::quadratic_hexahedron:
+    case MeshCellType::triquadratic_hexahedron: return corner_signs(mesh, p, kHexCorners);
+    case MeshCellType::quadratic_wedge:
+    case MeshCellType::biquadratic_quadratic_wedge: return corner_signs(mesh, p, kWedgeCorners);
   }
   return 0;
 }

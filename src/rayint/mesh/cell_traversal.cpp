@@ -99,6 +99,17 @@ void cell_face_bounds(const RTCBoundsFunctionArguments* args) {
 
 namespace {
 
+// A quadratic boundary face's patch nodes (corners, mid-edge nodes, centre) from the mesh's points.
+PatchNodes patch_nodes(const CellMesh& mesh, const CellTraversal::BoundaryFace& f) {
+  PatchNodes nodes{};
+  for (int k = 0; k < f.count; ++k) {
+    nodes[static_cast<std::size_t>(k)] = mesh.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
+    nodes[static_cast<std::size_t>(f.count + k)] = mesh.points[static_cast<std::size_t>(f.mids[static_cast<std::size_t>(k)])];
+  }
+  if (f.centre >= 0) nodes[static_cast<std::size_t>(2 * f.count)] = mesh.points[static_cast<std::size_t>(f.centre)];
+  return nodes;
+}
+
 void cell_face_intersect(const RTCIntersectFunctionNArguments* args) {
   if (args->valid[0] == 0) return;
   const auto* ctx = reinterpret_cast<const QueryContext*>(args->context);
@@ -127,14 +138,8 @@ CellBoundaryFirstHit::CellBoundaryFirstHit(const CellTraversal& mesh) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    if (f.mids[0] >= 0) {  // a quadratic patch: the box of its Bernstein control points
-      std::array<Vec3, 8> nodes{};
-      for (int k = 0; k < f.count; ++k) {
-        nodes[static_cast<std::size_t>(k)] = mesh.mesh().points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
-        nodes[static_cast<std::size_t>(f.count + k)] = mesh.mesh().points[static_cast<std::size_t>(f.mids[static_cast<std::size_t>(k)])];
-      }
-      patch_control_box(nodes, f.count, lo, hi);
-    }
+    if (f.mids[0] >= 0)  // a quadratic patch: the box of its Bernstein control points
+      patch_control_box(patch_nodes(mesh.mesh(), f), f.count, f.centre >= 0, lo, hi);
     for (int k = 0; k < 3; ++k) {
       // Rounded outward to float, then padded.
       bounds_[i][static_cast<std::size_t>(k)] = std::nextafter(static_cast<float>(lo[k] - pad), -HUGE_VALF);
@@ -178,12 +183,8 @@ void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint
   const CellTraversal::BoundaryFace& f = m.boundary_[prim];
   std::vector<double> hit_t;
   if (f.mids[0] >= 0) {  // a quadratic patch, nodes in canonical order
-    std::array<Vec3, 8> nodes{};
-    for (int k = 0; k < f.count; ++k) {
-      nodes[static_cast<std::size_t>(k)] = m.mesh_.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
-      nodes[static_cast<std::size_t>(f.count + k)] = m.mesh_.points[static_cast<std::size_t>(f.mids[static_cast<std::size_t>(k)])];
-    }
-    for (const PatchHit& h : intersect_quadratic_face(nodes, f.count, w.ray())) hit_t.push_back(h.t);
+    for (const PatchHit& h : intersect_quadratic_face(patch_nodes(m.mesh_, f), f.count, f.centre >= 0, w.ray()))
+      hit_t.push_back(h.t);
   } else {
     std::array<Vec3, 4> nodes{};
     for (int k = 0; k < f.count; ++k)
@@ -318,6 +319,7 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
           b.points[static_cast<std::size_t>(k)] = mesh_.cell(c)[patch.local[static_cast<std::size_t>(k)]];
           b.mids[static_cast<std::size_t>(k)] = mesh_.cell(c)[patch.local[static_cast<std::size_t>(fn.count + k)]];
         }
+        if (patch.centre) b.centre = mesh_.cell(c)[patch.local[static_cast<std::size_t>(2 * fn.count)]];
       }
       boundary_.push_back(b);
     }

@@ -147,6 +147,7 @@ class CellTraversal {
     int local = 0;  // face index in the cell (linear_face)
     std::array<std::int32_t, 4> mids{-1, -1, -1, -1};  // a quadratic face: mid-edge node of canonical
                                                        // corner edge (k, k + 1); -1 for a linear face
+    std::int32_t centre = -1;  // a 9-node quadrilateral's face-centre node, else -1
   };
   const BoundaryFace& boundary_face(std::size_t i) const { return boundary_[i]; }
 

@@ -46,7 +46,7 @@ using reference_detail::linear_part;
 using reference_detail::Real;
 using R3 = std::array<Real, 3>;
 
-constexpr int kMaxNodes = 20;
+constexpr int kMaxNodes = 27;
 
 int node_count(int id) {
   switch (id) {
@@ -57,6 +57,8 @@ int node_count(int id) {
     case 24: return 10;
     case 25: return 20;
     case 26: return 15;
+    case 29: return 27;
+    case 32: return 18;
     default: return 0;
   }
 }
@@ -81,8 +83,17 @@ Dual coordinate(const R3& p, int k) {
   return d;
 }
 
-// VTK's quadratic cells (vtkQuadraticTetra, vtkQuadraticHexahedron, vtkQuadraticWedge): the
-// textbook serendipity / P2 shape functions on VTK's parametric nodes, VTK's node order.
+// The quadratic Lagrange functions of one coordinate on the nodes 0, 1/2, 1.
+void lagrange_1d(const Dual& x, Dual* l) {
+  const Dual one = constant(Real(1)), half = constant(Real(0.5));
+  l[0] = Real(2) * ((x - half) * (x - one));
+  l[1] = Real(4) * (x * (one - x));
+  l[2] = Real(2) * (x * (x - half));
+}
+
+// VTK's quadratic cells (vtkQuadraticTetra, vtkQuadraticHexahedron, vtkQuadraticWedge,
+// vtkTriQuadraticHexahedron, vtkBiQuadraticQuadraticWedge): the textbook serendipity / P2 /
+// Lagrange shape functions on VTK's parametric nodes, VTK's node order.
 void quadratic_shape(int id, const R3& p, Dual* N) {
   const Dual one = constant(Real(1)), r = coordinate(p, 0), s = coordinate(p, 1), t = coordinate(p, 2);
   switch (id) {
@@ -127,6 +138,31 @@ void quadratic_shape(int id, const R3& p, Dual* N) {
         N[9 + i] = edge * top;
         N[12 + i] = L[i] * bubble;
       }
+      return;
+    }
+    case 29: {  // Lagrange l_a(r) l_b(s) l_c(t), nodes at the grid points (a, b, c) / 2
+      static const int node[27][3] = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2},
+                                      {0, 2, 2}, {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2},
+                                      {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}, {0, 1, 1},
+                                      {2, 1, 1}, {1, 0, 1}, {1, 2, 1}, {1, 1, 0}, {1, 1, 2}, {1, 1, 1}};
+      Dual l[3][3];
+      const Dual x[3] = {r, s, t};
+      for (int k = 0; k < 3; ++k) lagrange_1d(x[k], l[k]);
+      for (int i = 0; i < 27; ++i) N[i] = l[0][node[i][0]] * l[1][node[i][1]] * l[2][node[i][2]];
+      return;
+    }
+    case 32: {  // P2 triangle (corners 0-2, edges (0,1) (1,2) (2,0)) times Lagrange in t
+      const Dual L[3] = {one - r - s, r, s};
+      Dual tri[6], lt[3];
+      for (int i = 0; i < 3; ++i) {
+        tri[i] = L[i] * (Real(2) * L[i] - one);
+        tri[3 + i] = Real(4) * (L[i] * L[(i + 1) % 3]);
+      }
+      lagrange_1d(t, lt);
+      // Node i: triangle node, level in t (0, 1/2, 1 as 0, 1, 2).
+      static const int node[18][2] = {{0, 0}, {1, 0}, {2, 0}, {0, 2}, {1, 2}, {2, 2}, {3, 0}, {4, 0}, {5, 0},
+                                      {3, 2}, {4, 2}, {5, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}, {4, 1}, {5, 1}};
+      for (int i = 0; i < 18; ++i) N[i] = tri[node[i][0]] * lt[node[i][1]];
       return;
     }
     default: throw std::invalid_argument("reference_cell_chord: unknown cell type");
@@ -210,7 +246,7 @@ R3 cramer(const R3& c0, const R3& c1, const R3& c2, const R3& rhs) {  // [c0 c1 
 class Cell {
  public:
   Cell(const CellReferenceInput& in) : id_(in.vtk_id), n_(node_count(in.vtk_id)) {
-    if (n_ == 0) throw std::invalid_argument("reference_cell_chord: vtk_id must be 10..14 or 24..26");
+    if (n_ == 0) throw std::invalid_argument("reference_cell_chord: vtk_id must be 10..14, 24..26, 29 or 32");
     if (static_cast<int>(in.nodes.size()) != n_ || static_cast<int>(in.values.size()) != n_)
       throw std::invalid_argument("reference_cell_chord: node and value counts do not match the type");
     for (int i = 0; i < n_; ++i) {
@@ -234,7 +270,7 @@ class Cell {
     speed_ = sqrt(d_[0] * d_[0] + d_[1] * d_[1] + d_[2] * d_[2]);
     if (scale_ == 0) scale_ = 1;
     start_ = (id_ == 10 || id_ == 24) ? R3{Real(0.25), Real(0.25), Real(0.25)}
-             : (id_ == 13 || id_ == 26) ? R3{Real(1) / 3, Real(1) / 3, Real(0.5)}
+             : (id_ == 13 || id_ == 26 || id_ == 32) ? R3{Real(1) / 3, Real(1) / 3, Real(0.5)}
              : id_ == 14 ? R3{Real(0.5), Real(0.5), Real(0.25)}
                          : R3{Real(0.5), Real(0.5), Real(0.5)};
   }
