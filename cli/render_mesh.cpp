@@ -183,16 +183,7 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   }
   MeshRender r;
   if (merging()) {
-    check_merge_inputs("render", inputs);
-    const ShardContext& c = shard_context();
-    std::vector<MeshRenderPart> parts;
-    for (std::size_t i = 0; i < c.data.size(); ++i) {
-      if (c.data[i].is_null()) continue;
-      parts.push_back(mesh_render_part_from_json(c.data[i], c.files[i], "data"));
-      check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
-                       parts.back().row_end, "data.row_begin");
-    }
-    r = assemble_mesh_render(parts);
+    r = assemble_mesh_render(merged_parts("render", inputs, mesh_render_part_from_json, check_row_band));
   } else {
     r = render_mesh(mc, mesh, *exact, compare.get(), settings);
   }
@@ -269,22 +260,15 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_sou
   }
   CellMeshRender r;
   if (merging()) {
-    check_merge_inputs("render", inputs);
-    const ShardContext& c = shard_context();
-    std::vector<CellMeshRenderPart> parts;
-    for (std::size_t i = 0; i < c.data.size(); ++i) {
-      if (c.data[i].is_null()) continue;
-      parts.push_back(cell_mesh_render_part_from_json(c.data[i], c.files[i], "data"));
-      check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
-                       parts.back().row_end, "data.row_begin");
-    }
+    const std::vector<CellMeshRenderPart> parts =
+        merged_parts("render", inputs, cell_mesh_render_part_from_json, check_row_band);
     try {
       r = assemble_cell_mesh_render(parts);
     } catch (const std::invalid_argument& e) {
-      throw InputError(c.files.front() + ": data: " + e.what());
+      throw InputError(shard_context().files.front() + ": data: " + e.what());
     }
     if (r.image.width != mc.camera->width || r.image.height != mc.camera->height || r.compared.pixels.empty() == comparing)
-      throw InputError(c.files.front() + ": data: the shards were rendered with another camera or --compare");
+      throw InputError(shard_context().files.front() + ": data: the shards were rendered with another camera or --compare");
   } else {
     r = render_band();
   }
