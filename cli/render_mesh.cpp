@@ -95,6 +95,21 @@ std::string fit_camera_to_mesh(MeshCase& mc) {
          ", \"width\": " + std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}\n";
 }
 
+// What both modes write once the render `r` is done: the image (-o), the heat map with --compare
+// (`comparison`, else nullptr), stats(comparison) with --stats, the line of the fitted camera
+// (--fit) and, unless -q, summary(comparison).
+template <class Render, class Stats, class Summary>
+void write_render_outputs(const RenderOptions& options, const Render& r, const MeshRenderComparison* comparison,
+                          const std::string& fitted, Stats stats, Summary summary) {
+  PngOptions png;
+  png.exposure = options.exposure;
+  write_image(options.output, r.image, png);
+  if (comparison) write_png(comparison->heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
+  if (!options.stats_path.empty()) write_file_atomically(options.stats_path, stats(comparison).dump(2) + "\n");
+  std::fputs(fitted.c_str(), stderr);
+  if (!options.quiet) std::fputs(summary(comparison).c_str(), stderr);
+}
+
 // The own mode (mesh/cell_traversal.hpp): cells other than tetrahedra in their own interpolation.
 void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_source::InputFileLog& read);
 
@@ -187,15 +202,10 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   } else {
     r = render_mesh(mc, mesh, *exact, compare.get(), settings);
   }
-  PngOptions png;
-  png.exposure = options.exposure;
-  write_image(options.output, r.image, png);
-  if (compare) write_png(comparison.heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
-  if (!options.stats_path.empty())
-    write_file_atomically(options.stats_path,
-                          mesh_render_json(mc, mesh, r, compare ? &comparison : nullptr).dump(2) + "\n");
-  std::fputs(fitted.c_str(), stderr);
-  if (!options.quiet) std::fputs(mesh_render_summary(r, compare ? &comparison : nullptr).c_str(), stderr);
+  write_render_outputs(
+      options, r, compare ? &comparison : nullptr, fitted,
+      [&](const MeshRenderComparison* c) { return mesh_render_json(mc, mesh, r, c); },
+      [&](const MeshRenderComparison* c) { return mesh_render_summary(r, c); });
 }
 
 }  // namespace rayint::cli
@@ -272,15 +282,10 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_sou
   } else {
     r = render_band();
   }
-  PngOptions png;
-  png.exposure = options.exposure;
-  write_image(options.output, r.image, png);
-  if (comparing) write_png(comparison.heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
-  if (!options.stats_path.empty())
-    write_file_atomically(options.stats_path,
-                          cell_mesh_render_json(mc, mesh, r, comparing ? &comparison : nullptr).dump(2) + "\n");
-  std::fputs(fitted.c_str(), stderr);
-  if (!options.quiet) std::fputs(cell_mesh_render_summary(r, comparing ? &comparison : nullptr).c_str(), stderr);
+  write_render_outputs(
+      options, r, comparing ? &comparison : nullptr, fitted,
+      [&](const MeshRenderComparison* c) { return cell_mesh_render_json(mc, mesh, r, c); },
+      [&](const MeshRenderComparison* c) { return cell_mesh_render_summary(r, c); });
   if (r.failed_pixels > 0) {
     std::fprintf(stderr, "rayint render: %ld pixels failed (a cell chord not located or not integrated): NaN in the image\n",
                  r.failed_pixels);
