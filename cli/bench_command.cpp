@@ -123,18 +123,12 @@ void set_bench_command(CLI::App& app) {
     }
     SweepResult result;
     if (merging()) {
-      check_merge_inputs("bench", inputs);
-      const ShardContext& c = shard_context();
-      std::vector<SweepPart> parts;
-      for (std::size_t i = 0; i < c.data.size(); ++i) {
-        if (c.data[i].is_null()) continue;
-        parts.push_back(sweep_part_from_json(c.data[i], c.files[i], "data"));
-        // every case's rays exactly once: each setting of each part holds its shard's band
-        const std::vector<IndexRange> want =
-            sweep_shard_rays(cases, ShardSpec{static_cast<long>(i), static_cast<long>(c.data.size())});
-        for (std::size_t a = 0; a < parts.back().methods.size(); ++a)
-          for (std::size_t k = 0; k < parts.back().methods[a].size(); ++k) {
-            const auto& got = parts.back().methods[a][k].cases;
+      // every case's rays exactly once: each setting of each part holds its shard's band
+      const auto check = [&cases](std::size_t i, const SweepPart& part) {
+        const std::vector<IndexRange> want = sweep_shard_rays(cases, merged_shard(i));
+        for (std::size_t a = 0; a < part.methods.size(); ++a)
+          for (std::size_t k = 0; k < part.methods[a].size(); ++k) {
+            const auto& got = part.methods[a][k].cases;
             const std::string where = "data.methods[" + std::to_string(a) + "][" + std::to_string(k) + "]";
             check_shard_count(i, want.size(), got.size(), where + ".cases (cases)");
             for (std::size_t ci = 0; ci < want.size(); ++ci)
@@ -143,8 +137,8 @@ void set_bench_command(CLI::App& app) {
                                  static_cast<long>(got[ci].first_ray + got[ci].covered),
                                  where + ".cases[" + std::to_string(ci) + "].first_ray");
           }
-      }
-      result = finish_sweep(cases, axes, so, parts);
+      };
+      result = finish_sweep(cases, axes, so, merged_parts("bench", inputs, sweep_part_from_json, check));
     } else {
       result = run_sweep(cases, axes, so);
     }

@@ -74,23 +74,18 @@ void set_cells_command(CLI::App& app) {
     }
     CellsReport report;
     if (merging()) {
-      check_merge_inputs("cells", {});
-      const ShardContext& c = shard_context();
-      std::vector<CellsSamples> parts;
-      for (std::size_t i = 0; i < c.data.size(); ++i) {
-        if (c.data[i].is_null()) continue;
-        parts.push_back(cells_samples_from_json(c.data[i], c.files[i], "data"));
-        // every cell and voxel ray exactly once: each part holds its shard's band of them
-        const ShardSpec spec{static_cast<long>(i), static_cast<long>(c.data.size())};
+      // every cell and voxel ray exactly once: each part holds its shard's band of them
+      const auto check = [&so](std::size_t i, const CellsSamples& part) {
+        const ShardSpec spec = merged_shard(i);
         const std::size_t cells = shard_range(static_cast<std::size_t>(so.count), spec).size() *
                                   static_cast<std::size_t>(so.rays_per_cell);  // every ray of the band's cells
         const std::size_t rays = shard_range(static_cast<std::size_t>(so.voxel_rays), spec).size();
-        for (std::size_t t = 0; t < parts.back().cells.size(); ++t)
-          check_shard_count(i, cells, parts.back().cells[t].size(), "data.cells[" + std::to_string(t) + "] (rays of cells)");
-        for (std::size_t g = 0; g < parts.back().voxels.size(); ++g)
-          check_shard_count(i, rays, parts.back().voxels[g].size(), "data.voxels[" + std::to_string(g) + "] (rays)");
-      }
-      report = finish_cells_study(so, parts);
+        for (std::size_t t = 0; t < part.cells.size(); ++t)
+          check_shard_count(i, cells, part.cells[t].size(), "data.cells[" + std::to_string(t) + "] (rays of cells)");
+        for (std::size_t g = 0; g < part.voxels.size(); ++g)
+          check_shard_count(i, rays, part.voxels[g].size(), "data.voxels[" + std::to_string(g) + "] (rays)");
+      };
+      report = finish_cells_study(so, merged_parts("cells", {}, cells_samples_from_json, check));
     } else {
       report = run_cells_study(so);
     }

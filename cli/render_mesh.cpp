@@ -95,6 +95,21 @@ std::string fit_camera_to_mesh(MeshCase& mc) {
          ", \"width\": " + std::to_string(c.width) + ", \"height\": " + std::to_string(c.height) + "}\n";
 }
 
+// What both modes write once the render `r` is done: the image (-o), the heat map with --compare
+// (`comparison`, else nullptr), stats(comparison) with --stats, the line of the fitted camera
+// (--fit) and, unless -q, summary(comparison).
+template <class Render, class Stats, class Summary>
+void write_render_outputs(const RenderOptions& options, const Render& r, const MeshRenderComparison* comparison,
+                          const std::string& fitted, Stats stats, Summary summary) {
+  PngOptions png;
+  png.exposure = options.exposure;
+  write_image(options.output, r.image, png);
+  if (comparison) write_png(comparison->heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
+  if (!options.stats_path.empty()) write_file_atomically(options.stats_path, stats(comparison).dump(2) + "\n");
+  std::fputs(fitted.c_str(), stderr);
+  if (!options.quiet) std::fputs(summary(comparison).c_str(), stderr);
+}
+
 // The own mode (mesh/cell_traversal.hpp): cells other than tetrahedra in their own interpolation.
 void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_source::InputFileLog& read);
 
@@ -183,28 +198,14 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   }
   MeshRender r;
   if (merging()) {
-    check_merge_inputs("render", inputs);
-    const ShardContext& c = shard_context();
-    std::vector<MeshRenderPart> parts;
-    for (std::size_t i = 0; i < c.data.size(); ++i) {
-      if (c.data[i].is_null()) continue;
-      parts.push_back(mesh_render_part_from_json(c.data[i], c.files[i], "data"));
-      check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
-                       parts.back().row_end, "data.row_begin");
-    }
-    r = assemble_mesh_render(parts);
+    r = assemble_mesh_render(merged_parts("render", inputs, mesh_render_part_from_json, check_row_band));
   } else {
     r = render_mesh(mc, mesh, *exact, compare.get(), settings);
   }
-  PngOptions png;
-  png.exposure = options.exposure;
-  write_image(options.output, r.image, png);
-  if (compare) write_png(comparison.heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
-  if (!options.stats_path.empty())
-    write_file_atomically(options.stats_path,
-                          mesh_render_json(mc, mesh, r, compare ? &comparison : nullptr).dump(2) + "\n");
-  std::fputs(fitted.c_str(), stderr);
-  if (!options.quiet) std::fputs(mesh_render_summary(r, compare ? &comparison : nullptr).c_str(), stderr);
+  write_render_outputs(
+      options, r, compare ? &comparison : nullptr, fitted,
+      [&](const MeshRenderComparison* c) { return mesh_render_json(mc, mesh, r, c); },
+      [&](const MeshRenderComparison* c) { return mesh_render_summary(r, c); });
 }
 
 }  // namespace rayint::cli
@@ -269,34 +270,22 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_sou
   }
   CellMeshRender r;
   if (merging()) {
-    check_merge_inputs("render", inputs);
-    const ShardContext& c = shard_context();
-    std::vector<CellMeshRenderPart> parts;
-    for (std::size_t i = 0; i < c.data.size(); ++i) {
-      if (c.data[i].is_null()) continue;
-      parts.push_back(cell_mesh_render_part_from_json(c.data[i], c.files[i], "data"));
-      check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
-                       parts.back().row_end, "data.row_begin");
-    }
+    const std::vector<CellMeshRenderPart> parts =
+        merged_parts("render", inputs, cell_mesh_render_part_from_json, check_row_band);
     try {
       r = assemble_cell_mesh_render(parts);
     } catch (const std::invalid_argument& e) {
-      throw InputError(c.files.front() + ": data: " + e.what());
+      throw InputError(shard_context().files.front() + ": data: " + e.what());
     }
     if (r.image.width != mc.camera->width || r.image.height != mc.camera->height || r.compared.pixels.empty() == comparing)
-      throw InputError(c.files.front() + ": data: the shards were rendered with another camera or --compare");
+      throw InputError(shard_context().files.front() + ": data: the shards were rendered with another camera or --compare");
   } else {
     r = render_band();
   }
-  PngOptions png;
-  png.exposure = options.exposure;
-  write_image(options.output, r.image, png);
-  if (comparing) write_png(comparison.heat_map, error_heat_map(r.rel_error, r.image.width, r.image.height));
-  if (!options.stats_path.empty())
-    write_file_atomically(options.stats_path,
-                          cell_mesh_render_json(mc, mesh, r, comparing ? &comparison : nullptr).dump(2) + "\n");
-  std::fputs(fitted.c_str(), stderr);
-  if (!options.quiet) std::fputs(cell_mesh_render_summary(r, comparing ? &comparison : nullptr).c_str(), stderr);
+  write_render_outputs(
+      options, r, comparing ? &comparison : nullptr, fitted,
+      [&](const MeshRenderComparison* c) { return cell_mesh_render_json(mc, mesh, r, c); },
+      [&](const MeshRenderComparison* c) { return cell_mesh_render_summary(r, c); });
   if (r.failed_pixels > 0) {
     std::fprintf(stderr, "rayint render: %ld pixels failed (a cell chord not located or not integrated): NaN in the image\n",
                  r.failed_pixels);

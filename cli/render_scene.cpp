@@ -93,15 +93,10 @@ void render_scene_file(const nlohmann::json& root, const RenderOptions& options)
   }
   SceneRenderResult result;
   if (merging()) {
-    check_merge_inputs("render", inputs);
-    const ShardContext& c = shard_context();
-    std::vector<SceneRenderPart> parts;
-    for (std::size_t i = 0; i < c.data.size(); ++i) {
-      if (c.data[i].is_null()) continue;
-      parts.push_back(scene_render_part_from_json(c.data[i], c.files[i], "data"));
-      check_shard_band(i, static_cast<std::size_t>(parts.back().lines), parts.back().line_begin,
-                       parts.back().line_end, "data.line_begin");
-    }
+    const std::vector<SceneRenderPart> parts = merged_parts(
+        "render", inputs, scene_render_part_from_json, [](std::size_t i, const SceneRenderPart& part) {
+          check_shard_band(i, static_cast<std::size_t>(part.lines), part.line_begin, part.line_end, "data.line_begin");
+        });
     try {
       result = pipeline->assemble(parts);
     } catch (const std::invalid_argument& e) {

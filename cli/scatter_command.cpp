@@ -85,17 +85,9 @@ void set_scatter_command(CLI::App& app) {
                     to_json(compare_volume_methods_part(setup.volume, setup.camera, o, shard, progress)));
         return;
       }
-      check_merge_inputs("scatter", inputs);
-      const ShardContext& c = shard_context();
-      std::vector<VolumeComparisonPart> parts;
-      for (std::size_t i = 0; i < c.data.size(); ++i) {
-        if (c.data[i].is_null()) continue;
-        parts.push_back(volume_comparison_part_from_json(c.data[i], c.files[i], "data"));
-        check_shard_band(i, static_cast<std::size_t>(parts.back().height), parts.back().row_begin,
-                         parts.back().row_end, "data.row_begin");
-      }
       r.volume = std::move(setup.volume);
-      r.comparison = finish_volume_comparison(parts);
+      r.comparison =
+          finish_volume_comparison(merged_parts("scatter", inputs, volume_comparison_part_from_json, check_row_band));
       if (r.comparison.width != s->width || r.comparison.height != s->height)
         throw std::invalid_argument("merge: the shards' images are not --width x --height");
     } else {

@@ -169,15 +169,19 @@ void check_merge_inputs(const std::string& command, const std::vector<std::strin
                                 now + ", shards " + shard_context().fingerprint + ")");
 }
 
+ShardSpec merged_shard(std::size_t index) {
+  return ShardSpec{static_cast<long>(index), static_cast<long>(shard_context().data.size())};
+}
+
 void check_shard_band(std::size_t index, std::size_t total, long begin, long end, const std::string& field) {
-  const IndexRange want = shard_range(total, ShardSpec{static_cast<long>(index), static_cast<long>(shard_context().data.size())});
+  const IndexRange want = shard_range(total, merged_shard(index));
   check_shard_cover(index, want.begin, want.end, begin, end, field, " of " + std::to_string(total));
 }
 
 void check_shard_cover(std::size_t index, std::size_t want_begin, std::size_t want_end, long begin, long end,
                        const std::string& field, const std::string& of) {
   const ShardContext& c = shard_context();
-  const ShardSpec spec{static_cast<long>(index), static_cast<long>(c.data.size())};
+  const ShardSpec spec = merged_shard(index);
   if (want_begin == want_end && begin == end) return;  // an empty band (more shards than items)
   if (begin != static_cast<long>(want_begin) || end != static_cast<long>(want_end))
     throw InputError(c.files[index] + ": " + field + ": shard " + spec.label() + of + " must cover [" +
@@ -188,7 +192,7 @@ void check_shard_cover(std::size_t index, std::size_t want_begin, std::size_t wa
 void check_shard_count(std::size_t index, std::size_t expected, std::size_t got, const std::string& field) {
   if (expected == got) return;
   const ShardContext& c = shard_context();
-  const ShardSpec spec{static_cast<long>(index), static_cast<long>(c.data.size())};
+  const ShardSpec spec = merged_shard(index);
   throw InputError(c.files[index] + ": " + field + ": shard " + spec.label() + " of this run covers " +
                    std::to_string(expected) + ", but its data hold " + std::to_string(got) +
                    " (a gap or an overlap: a shard of another run, or edited)");

@@ -57,11 +57,43 @@ void write_shard(const std::string& path, const std::string& command, const Shar
 // Merge mode: checks the recorded fingerprint against the inputs as they are now.
 void check_merge_inputs(const std::string& command, const std::vector<std::string>& input_files);
 
+// Merge mode: shard `index` of the run (index / the number of shards).
+ShardSpec merged_shard(std::size_t index);
+
+// Merge mode: the shards' parts of the run, after check_merge_inputs(command, input_files): the
+// data of each shard present, read by `read` (a *_from_json of input/shard_reader.hpp, given the
+// shard's file and the field "data"), then `check(index, part)` (what the shard must cover:
+// check_shard_band, check_shard_cover, check_shard_count) before the next shard is read.
+template <class Part, class Check>
+std::vector<Part> merged_parts(const std::string& command, const std::vector<std::string>& input_files,
+                               Part (*read)(const nlohmann::json&, const std::string&, const std::string&),
+                               Check check) {
+  check_merge_inputs(command, input_files);
+  const ShardContext& c = shard_context();
+  std::vector<Part> parts;
+  for (std::size_t i = 0; i < c.data.size(); ++i) {
+    if (c.data[i].is_null()) continue;
+    parts.push_back(read(c.data[i], c.files[i], "data"));
+    check(i, parts.back());
+  }
+  return parts;
+}
+
 // Merge mode: shard `index` of the run must hold exactly the band of `total` items that
 // shard_range(total, index/count) gives it ([begin, end) as its data say): a hand-edited or
 // foreign shard that leaves a row out or repeats one is refused with one line naming its file
 // and `field` (e.g. "data.row_begin").
 void check_shard_band(std::size_t index, std::size_t total, long begin, long end, const std::string& field);
+
+// merged_parts' check for a part that holds a band of image rows: check_shard_band on its height,
+// row_begin and row_end ("data.row_begin").
+struct RowBandCheck {
+  template <class Part>
+  void operator()(std::size_t index, const Part& part) const {
+    check_shard_band(index, static_cast<std::size_t>(part.height), part.row_begin, part.row_end, "data.row_begin");
+  }
+};
+inline constexpr RowBandCheck check_row_band{};
 
 // Merge mode: likewise, where the band [want_begin, want_end) is computed by the caller.
 void check_shard_cover(std::size_t index, std::size_t want_begin, std::size_t want_end, long begin, long end,

@@ -95,21 +95,15 @@ void set_stress_command(CLI::App& app) {
     }
     StressReport report;
     if (merging()) {
-      check_merge_inputs("stress", {});
-      const ShardContext& c = shard_context();
-      std::vector<StressPartial> parts;
-      for (std::size_t i = 0; i < c.data.size(); ++i) {
-        if (c.data[i].is_null()) continue;
-        parts.push_back(stress_partial_from_json(c.data[i], c.files[i], "data"));
-        // every regime's samples exactly once: each part holds what its shard evaluates
-        const std::vector<long> want =
-            stress_shard_samples(so, ShardSpec{static_cast<long>(i), static_cast<long>(c.data.size())});
-        check_shard_count(i, want.size(), parts.back().regimes.size(), "data.regimes (regimes)");
+      // every regime's samples exactly once: each part holds what its shard evaluates
+      const auto check = [&so](std::size_t i, const StressPartial& part) {
+        const std::vector<long> want = stress_shard_samples(so, merged_shard(i));
+        check_shard_count(i, want.size(), part.regimes.size(), "data.regimes (regimes)");
         for (std::size_t r = 0; r < want.size(); ++r)
-          check_shard_count(i, static_cast<std::size_t>(want[r]), static_cast<std::size_t>(parts.back().regimes[r].samples),
+          check_shard_count(i, static_cast<std::size_t>(want[r]), static_cast<std::size_t>(part.regimes[r].samples),
                             "data.regimes[" + std::to_string(r) + "].samples");
-      }
-      report = finish_stress(so, parts);
+      };
+      report = finish_stress(so, merged_parts("stress", {}, stress_partial_from_json, check));
     } else {
       report = run_stress(so);
     }

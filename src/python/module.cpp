@@ -94,12 +94,36 @@ std::vector<rayint::MethodSpec> methods_of(const std::string& csv) {
                       std::string(what) + ", got " + rayint::format_number(got));
 }
 
-py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array& kappa_exit,
-                       const Array& kappa_far, const Array& length) {
+// The five piece arrays of exact_pieces and exact_grad: their common size, or one line naming
+// `function` when they differ.
+std::size_t piece_count(const char* function, const Array& rho_exit, const Array& rho_far,
+                        const Array& kappa_exit, const Array& kappa_far, const Array& length) {
   const std::size_t n = static_cast<std::size_t>(rho_exit.size());
   for (const Array* a : {&rho_far, &kappa_exit, &kappa_far, &length})
     if (static_cast<std::size_t>(a->size()) != n)
-      throw std::invalid_argument("exact_pieces: the five arrays must have the same size");
+      throw std::invalid_argument(std::string(function) + ": the five arrays must have the same size");
+  return n;
+}
+
+// Every piece in the exact path's domain: densities and length finite and >= 0, colours finite;
+// bad_value naming `function`, the array and the index otherwise. Needs no GIL.
+void check_pieces(const char* function, const double* rho_exit, const double* rho_far, const double* kappa_exit,
+                  const double* kappa_far, const double* length, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(std::isfinite(rho_exit[i]) && rho_exit[i] >= 0.0))
+      bad_value(function, "rho_exit", i, "must be finite and >= 0", rho_exit[i]);
+    if (!(std::isfinite(rho_far[i]) && rho_far[i] >= 0.0))
+      bad_value(function, "rho_far", i, "must be finite and >= 0", rho_far[i]);
+    if (!std::isfinite(kappa_exit[i])) bad_value(function, "kappa_exit", i, "must be finite", kappa_exit[i]);
+    if (!std::isfinite(kappa_far[i])) bad_value(function, "kappa_far", i, "must be finite", kappa_far[i]);
+    if (!(std::isfinite(length[i]) && length[i] >= 0.0))
+      bad_value(function, "length", i, "must be finite and >= 0", length[i]);
+  }
+}
+
+py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array& kappa_exit,
+                       const Array& kappa_far, const Array& length) {
+  const std::size_t n = piece_count("exact_pieces", rho_exit, rho_far, kappa_exit, kappa_far, length);
   Array emission(static_cast<py::ssize_t>(n)), transmittance(static_cast<py::ssize_t>(n));
   // The batched exact path (integrators/exact_batch.hpp), the one `exact` itself uses.
   const rayint::PieceColumns in{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(),
@@ -109,18 +133,7 @@ py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array&
   out.transmittance = transmittance.mutable_data();
   {
     py::gil_scoped_release release;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(std::isfinite(in.rho_exit[i]) && in.rho_exit[i] >= 0.0))
-        bad_value("exact_pieces", "rho_exit", i, "must be finite and >= 0", in.rho_exit[i]);
-      if (!(std::isfinite(in.rho_far[i]) && in.rho_far[i] >= 0.0))
-        bad_value("exact_pieces", "rho_far", i, "must be finite and >= 0", in.rho_far[i]);
-      if (!std::isfinite(in.kappa_exit[i]))
-        bad_value("exact_pieces", "kappa_exit", i, "must be finite", in.kappa_exit[i]);
-      if (!std::isfinite(in.kappa_far[i]))
-        bad_value("exact_pieces", "kappa_far", i, "must be finite", in.kappa_far[i]);
-      if (!(std::isfinite(in.length[i]) && in.length[i] >= 0.0))
-        bad_value("exact_pieces", "length", i, "must be finite and >= 0", in.length[i]);
-    }
+    check_pieces("exact_pieces", in.rho_exit, in.rho_far, in.kappa_exit, in.kappa_far, in.length, n);
     rayint::exact_batch(in, out);
   }
   return py::make_tuple(emission, transmittance);
@@ -130,10 +143,7 @@ py::tuple exact_pieces(const Array& rho_exit, const Array& rho_far, const Array&
 // transmittance and their derivatives with respect to the five inputs, GIL released.
 py::tuple exact_grad(const Array& rho_exit, const Array& rho_far, const Array& kappa_exit,
                      const Array& kappa_far, const Array& length) {
-  const std::size_t n = static_cast<std::size_t>(rho_exit.size());
-  for (const Array* a : {&rho_far, &kappa_exit, &kappa_far, &length})
-    if (static_cast<std::size_t>(a->size()) != n)
-      throw std::invalid_argument("exact_grad: the five arrays must have the same size");
+  const std::size_t n = piece_count("exact_grad", rho_exit, rho_far, kappa_exit, kappa_far, length);
   constexpr int kOut = 10;
   std::vector<Array> out;
   for (int k = 0; k < kOut; ++k) out.emplace_back(static_cast<py::ssize_t>(n));
@@ -143,16 +153,7 @@ py::tuple exact_grad(const Array& rho_exit, const Array& rho_far, const Array& k
                *kf = kappa_far.data(), *len = length.data();
   {
     py::gil_scoped_release release;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(std::isfinite(re[i]) && re[i] >= 0.0))
-        bad_value("exact_grad", "rho_exit", i, "must be finite and >= 0", re[i]);
-      if (!(std::isfinite(rf[i]) && rf[i] >= 0.0))
-        bad_value("exact_grad", "rho_far", i, "must be finite and >= 0", rf[i]);
-      if (!std::isfinite(ke[i])) bad_value("exact_grad", "kappa_exit", i, "must be finite", ke[i]);
-      if (!std::isfinite(kf[i])) bad_value("exact_grad", "kappa_far", i, "must be finite", kf[i]);
-      if (!(std::isfinite(len[i]) && len[i] >= 0.0))
-        bad_value("exact_grad", "length", i, "must be finite and >= 0", len[i]);
-    }
+    check_pieces("exact_grad", re, rf, ke, kf, len, n);
     for (std::size_t i = 0; i < n; ++i) {
       const rayint::PieceOpticsGrad g = rayint::exact_piece_grad({len[i], rf[i], re[i], kf[i], ke[i]});
       const double v[kOut] = {g.optics.emission, g.optics.transmittance, g.de_rho_exit, g.de_rho_far,

@@ -200,6 +200,37 @@ std::string assign_scalar(const RawMesh& raw, const std::string& source, const A
   return where;
 }
 
+// Both assemblies: the points (assemble_shared), then each cell through the table (table_cell
+// with `accepted`); `take(row, node)` stores a kept cell, node(local) giving the mesh point of
+// its local node (mesh_point). Kept cells are recorded in info.cell_ids; none kept is one line
+// ("no WHAT (N cells, K of dimension 0-2 skipped, G ghost)"). Then the scalar (assign_scalar),
+// whose field name is returned for later messages.
+template <class Mesh, class Take>
+std::string assemble_cells(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+                           const RawMeshFields& fields, Mesh& mesh, const char* what,
+                           bool (*accepted)(CellSupport), Take take) {
+  const std::size_t n_cells = raw.types.size();
+  MeshFileInfo& info = mesh.info;
+  const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < n_cells; ++i) {
+    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, accepted);
+    if (row == nullptr) continue;
+    take(*row, [&](std::size_t local) {
+      return mesh_point(raw, raw.offsets[i] + local, i, local, shared, source, fields);
+    });
+    kept.push_back(i);
+    info.cell_ids.push_back(static_cast<long long>(i));
+  }
+  if (kept.empty())
+    field::fail(source, fields.cells,
+                std::string("no ") + what + " (" + std::to_string(n_cells) + " cells, " +
+                    std::to_string(info.skipped_cells) + " of dimension 0-2 skipped, " +
+                    std::to_string(info.ghost_cells) + " ghost)");
+  return assign_scalar(raw, source, options, fields, shared, kept, mesh.points.size(), info, mesh.scalars,
+                       mesh.cell_scalars);
+}
+
 }  // namespace
 
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
@@ -214,72 +245,43 @@ std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
 
 TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                           const RawMeshFields& fields) {
-  const std::size_t n_cells = raw.types.size();
-  TetMesh mesh;
-  MeshFileInfo& info = mesh.info;
-  const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
-
-  // Cells through the table.
   // Quadratic tetrahedra: corners as a tet, the six mid-edge nodes (VTK's order) beside it.
-  std::vector<std::size_t> kept;
+  TetMesh mesh;
   bool quadratic = false;
-  for (std::size_t i = 0; i < n_cells; ++i) {
-    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, [](CellSupport support) {
-      return support == CellSupport::Traversed || support == CellSupport::Quadratic;
-    });
-    if (row == nullptr) continue;
-    std::array<std::int32_t, 4> t{};
-    for (std::size_t k = 0; k < 4; ++k) t[k] = mesh_point(raw, raw.offsets[i] + k, i, k, shared, source, fields);
-    mesh.tets.push_back(t);
-    std::array<std::int32_t, 6>& e = mesh.edge_nodes.emplace_back();
-    e.fill(-1);
-    if (row->support == CellSupport::Quadratic) {
-      quadratic = true;
-      for (std::size_t k = 0; k < 6; ++k) e[k] = mesh_point(raw, raw.offsets[i] + 4 + k, i, 4 + k, shared, source, fields);
-    }
-    kept.push_back(i);
-    info.cell_ids.push_back(static_cast<long long>(i));
-  }
+  const std::string where = assemble_cells(
+      raw, source, options, fields, mesh, "tetrahedra",
+      [](CellSupport support) { return support == CellSupport::Traversed || support == CellSupport::Quadratic; },
+      [&](const CellTypeInfo& row, const auto& node) {
+        std::array<std::int32_t, 4> t{};
+        for (std::size_t k = 0; k < 4; ++k) t[k] = node(k);
+        mesh.tets.push_back(t);
+        std::array<std::int32_t, 6>& e = mesh.edge_nodes.emplace_back();
+        e.fill(-1);
+        if (row.support == CellSupport::Quadratic) {
+          quadratic = true;
+          for (std::size_t k = 0; k < 6; ++k) e[k] = node(4 + k);
+        }
+      });
   if (!quadratic) mesh.edge_nodes.clear();
-  if (mesh.tets.empty())
-    field::fail(source, fields.cells,
-                "no tetrahedra (" + std::to_string(n_cells) + " cells, " + std::to_string(info.skipped_cells) +
-                    " of dimension 0-2 skipped, " + std::to_string(info.ghost_cells) + " ghost)");
-  const std::string where = assign_scalar(raw, source, options, fields, shared, kept, mesh.points.size(), info,
-                                          mesh.scalars, mesh.cell_scalars);
   validate_tet_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
   return mesh;
 }
 
 CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                             const RawMeshFields& fields) {
-  const std::size_t n_cells = raw.types.size();
+  // Linear volume cells and quadratic ones kept with all their nodes.
   CellMesh mesh;
-  MeshFileInfo& info = mesh.info;
-  const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
-
-  // Cells through the table: linear volume cells kept, dimensions 0-2 skipped and counted.
-  std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < n_cells; ++i) {
-    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info,
-                                         [](CellSupport support) {
-                                           return support == CellSupport::Traversed || support == CellSupport::CellPath ||
-                                                  support == CellSupport::Quadratic || support == CellSupport::Isoparametric;
-                                         });
-    if (row == nullptr) continue;
-    for (std::size_t k = raw.offsets[i]; k < raw.offsets[i + 1]; ++k)
-      mesh.connectivity.push_back(mesh_point(raw, k, i, k - raw.offsets[i], shared, source, fields));
-    mesh.types.push_back(static_cast<MeshCellType>(row->vtk_id));
-    mesh.offsets.push_back(static_cast<std::uint32_t>(mesh.connectivity.size()));
-    kept.push_back(i);
-    info.cell_ids.push_back(static_cast<long long>(i));
-  }
-  if (mesh.types.empty())
-    field::fail(source, fields.cells,
-                "no volume cells (" + std::to_string(n_cells) + " cells, " + std::to_string(info.skipped_cells) +
-                    " of dimension 0-2 skipped, " + std::to_string(info.ghost_cells) + " ghost)");
-  const std::string where = assign_scalar(raw, source, options, fields, shared, kept, mesh.points.size(), info,
-                                          mesh.scalars, mesh.cell_scalars);
+  const std::string where = assemble_cells(
+      raw, source, options, fields, mesh, "volume cells",
+      [](CellSupport support) {
+        return support == CellSupport::Traversed || support == CellSupport::CellPath ||
+               support == CellSupport::Quadratic || support == CellSupport::Isoparametric;
+      },
+      [&](const CellTypeInfo& row, const auto& node) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(row.nodes); ++k) mesh.connectivity.push_back(node(k));
+        mesh.types.push_back(static_cast<MeshCellType>(row.vtk_id));
+        mesh.offsets.push_back(static_cast<std::uint32_t>(mesh.connectivity.size()));
+      });
   validate_cell_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
   return mesh;
 }

@@ -17,6 +17,20 @@ constexpr long long kMaxCount = 2'000'000'000;  // indices are stored as int32
 
 std::string at(const char* field, std::size_t i) { return std::string(field) + "[" + std::to_string(i) + "]"; }
 
+// The index `word` of line i of a .node or .ele list (field f): TetGen numbers the lines from 0 or 1,
+// as the first line says (then kept in `base`), one by one.
+void check_line_index(const mesh_text::LineCursor& c, std::string_view word, const std::string& f, std::size_t i,
+                      long long& base) {
+  const long long index = c.integer(word, f, -kMaxCount, kMaxCount);
+  if (i == 0) {
+    if (index != 0 && index != 1) c.fail(f, "the first index must be 0 or 1, got " + std::to_string(index));
+    base = index;
+  } else if (index != base + static_cast<long long>(i)) {
+    c.fail(f, "index " + std::to_string(index) + " out of sequence (expected " +
+                  std::to_string(base + static_cast<long long>(i)) + ")");
+  }
+}
+
 }  // namespace
 
 TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source,
@@ -47,14 +61,7 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
   for (std::size_t i = 0; i < points; ++i) {
     const std::string f = at("node", i);
     const auto w = n.need_words(f, 4 + attributes + markers, "index x y z [attributes] [marker]");
-    const long long index = n.integer(w[0], f, -kMaxCount, kMaxCount);
-    if (i == 0) {
-      if (index != 0 && index != 1) n.fail(f, "the first index must be 0 or 1, got " + std::to_string(index));
-      base = index;
-    } else if (index != base + static_cast<long long>(i)) {
-      n.fail(f, "index " + std::to_string(index) + " out of sequence (expected " +
-                    std::to_string(base + static_cast<long long>(i)) + ")");
-    }
+    check_line_index(n, w[0], f, i, base);
     mesh.points.emplace_back(n.real(w[1], f), n.real(w[2], f), n.real(w[3], f));
     mesh.scalars.push_back(n.real(w[4 + which], f));
   }
@@ -74,14 +81,7 @@ TetMesh parse_tetgen(std::string_view node_bytes, const std::string& node_source
   for (std::size_t i = 0; i < tets; ++i) {
     const std::string f = at("ele", i);
     const auto w = e.need_words(f, 1 + static_cast<std::size_t>(per_tet) + region, "index n1 n2 n3 n4 [...]");
-    const long long index = e.integer(w[0], f, -kMaxCount, kMaxCount);
-    if (i == 0) {
-      if (index != 0 && index != 1) e.fail(f, "the first index must be 0 or 1, got " + std::to_string(index));
-      ele_base = index;
-    } else if (index != ele_base + static_cast<long long>(i)) {
-      e.fail(f, "index " + std::to_string(index) + " out of sequence (expected " +
-                    std::to_string(ele_base + static_cast<long long>(i)) + ")");
-    }
+    check_line_index(e, w[0], f, i, ele_base);
     std::array<std::int32_t, 10> v{};
     for (std::size_t k = 0; k < static_cast<std::size_t>(per_tet); ++k)
       v[k] = static_cast<std::int32_t>(

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "rayint/core/error.hpp"
@@ -395,26 +396,29 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
   return d;
 }
 
+// An UNSTRUCTURED_GRID's raw cells, with the assembly options the two mesh parsers take.
+std::pair<RawMesh, AssemblyOptions> parse_unstructured(std::string_view bytes, const std::string& source,
+                                                       const std::string& scalar_name, bool cell_to_point) {
+  VtkCursor c(bytes, source);
+  LegacyDataset d = parse_legacy(c, "UNSTRUCTURED_GRID");
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
+  return {std::move(d.raw), o};
+}
+
 }  // namespace
 
 TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
                          const std::string& scalar_name, bool cell_to_point) {
-  VtkCursor c(bytes, source);
-  LegacyDataset d = parse_legacy(c, "UNSTRUCTURED_GRID");
-  AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
-  return assemble_tet_mesh(std::move(d.raw), source, o);
+  auto [raw, options] = parse_unstructured(bytes, source, scalar_name, cell_to_point);
+  return assemble_tet_mesh(std::move(raw), source, options);
 }
 
 CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
                                 bool cell_to_point) {
-  VtkCursor c(bytes, source);
-  LegacyDataset d = parse_legacy(c, "UNSTRUCTURED_GRID");
-  AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
-  return assemble_cell_mesh(std::move(d.raw), source, o);
+  auto [raw, options] = parse_unstructured(bytes, source, scalar_name, cell_to_point);
+  return assemble_cell_mesh(std::move(raw), source, options);
 }
 
 CellMesh read_vtk_legacy_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {

@@ -567,30 +567,34 @@ std::vector<Vec3> rectilinear_points(const std::array<std::vector<double>, 3>& a
   return out;
 }
 
+// A serial StructuredGrid or RectilinearGrid (voxels: its cells are axis-aligned): the piece and
+// its dimensions (structured_dims), its points as points_of(d, piece, type, n) gives them, then
+// structured_mesh.
+template <class Points>
+CellMesh parse_grid(std::string_view bytes, const std::string& source, const std::string& scalar_name,
+                    bool cell_to_point, const std::string& type, bool voxels, Points points_of) {
+  const Document d(bytes, source, type);
+  pugi::xml_node piece;
+  const std::array<int, 3> n = structured_dims(d, type, piece);
+  RawMesh raw;
+  raw.points = points_of(d, piece, type, n);
+  return structured_mesh(d, piece, type, n, voxels, std::move(raw), source, scalar_name, cell_to_point,
+                         structured_fields(type));
+}
+
 }  // namespace
 
 CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name,
                    bool cell_to_point) {
-  const std::string type = "StructuredGrid";
-  const Document d(bytes, source, type);
-  pugi::xml_node piece;
-  const std::array<int, 3> n = structured_dims(d, type, piece);
-  RawMesh raw;
-  raw.points = structured_points(d, piece, type, n);
-  return structured_mesh(d, piece, type, n, false, std::move(raw), source, scalar_name, cell_to_point,
-                         structured_fields(type));
+  return parse_grid(bytes, source, scalar_name, cell_to_point, "StructuredGrid", false, structured_points);
 }
 
 CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name,
                    bool cell_to_point) {
-  const std::string type = "RectilinearGrid";
-  const Document d(bytes, source, type);
-  pugi::xml_node piece;
-  const std::array<int, 3> n = structured_dims(d, type, piece);
-  RawMesh raw;
-  raw.points = rectilinear_points(rectilinear_axes(d, piece, type, n));
-  return structured_mesh(d, piece, type, n, true, std::move(raw), source, scalar_name, cell_to_point,
-                         structured_fields(type));
+  return parse_grid(bytes, source, scalar_name, cell_to_point, "RectilinearGrid", true,
+                    [](const Document& d, pugi::xml_node piece, const std::string& type, const std::array<int, 3>& n) {
+                      return rectilinear_points(rectilinear_axes(d, piece, type, n));
+                    });
 }
 
 CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,

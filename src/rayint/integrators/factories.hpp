@@ -1,10 +1,18 @@
 #pragma once
 // Factories of the methods other than exact/paper; each is defined in the file named after it.
+#include <cstddef>
+#include <initializer_list>
 #include <memory>
+#include <string>
 
 #include "rayint/integrators/integrator.hpp"
 
 namespace rayint {
+
+// For the factories: the position of spec.text(key) in `values`: choice_of(spec, "at", {"mid",
+// "near"}) is 0 or 1; any other value throws std::invalid_argument "method NAME: at must be mid or
+// near, got 'X'".
+std::size_t choice_of(const MethodSpec& spec, const std::string& key, std::initializer_list<const char*> values);
 
 std::unique_ptr<RayIntegrator> make_ode(const MethodSpec&, const TransferFunctions&);        // ode.cpp
 std::unique_ptr<RayIntegrator> make_rk4(const MethodSpec&, const TransferFunctions&);        // rk4.cpp

@@ -77,39 +77,16 @@ CompositeResult pl_nerf_composite(const double* sigma, const double* colour, con
 
 NerfOptions nerf_options(const MethodSpec& spec) {
   NerfOptions o;
-  const std::string where = "method " + spec.name + ": ";
   o.n = spec.integer("n");  // ranges and choices: the method table (registry.cpp)
-  const std::string at = spec.text("at");
-  if (at == "mid") {
-    o.at = NerfSampleAt::mid;
-  } else if (at == "near") {
-    o.at = NerfSampleAt::near;
-  } else {
-    throw std::invalid_argument(where + "at must be mid or near, got '" + at + "'");
-  }
-  const std::string last = spec.text("last");
-  if (last == "interval") {
-    o.last_inf = false;
-  } else if (last == "inf") {
-    o.last_inf = true;
-  } else {
-    throw std::invalid_argument(where + "last must be interval or inf, got '" + last + "'");
-  }
+  o.at = choice_of(spec, "at", {"mid", "near"}) == 0 ? NerfSampleAt::mid : NerfSampleAt::near;
+  o.last_inf = choice_of(spec, "last", {"interval", "inf"}) == 1;
   return o;
 }
 
 NerfOptions pl_nerf_options(const MethodSpec& spec) {
   NerfOptions o;
   o.n = spec.integer("n");
-  const std::string colour = spec.text("color");
-  if (colour == "mid") {
-    o.mid_colour = true;
-  } else if (colour == "near") {
-    o.mid_colour = false;
-  } else {
-    throw std::invalid_argument("method " + spec.name + ": color must be mid or near, got '" +
-                                colour + "'");
-  }
+  o.mid_colour = choice_of(spec, "color", {"mid", "near"}) == 0;
   return o;
 }
 

@@ -235,15 +235,10 @@ std::string allowed_values(const MethodParam& p) {
 
 MethodParam integer_param(const std::string& name, const std::string& fallback, double min,
                           double max, const std::string& about, const std::string& limit) {
-  MethodParam p;
-  p.name = name;
+  // A number in [min, max] of integer type: its range is always closed, also for a max of inf.
+  MethodParam p = number_param(name, fallback, min, false, max, false, about, limit);
   p.type = MethodParam::Type::integer;
-  p.fallback = fallback;
-  p.min = min;
-  p.max = max;
-  p.has_min = p.has_max = true;
-  p.about = about;
-  p.limit = limit;
+  p.has_max = true;
   return p;
 }
 
@@ -316,6 +311,18 @@ int MethodSpec::integer(const std::string& key) const {
 
 std::string MethodSpec::text(const std::string& key) const {
   return value_of(*this, param_of(*this, key));
+}
+
+std::size_t choice_of(const MethodSpec& spec, const std::string& key, std::initializer_list<const char*> values) {
+  const std::string value = spec.text(key);
+  std::string listed;
+  std::size_t i = 0;
+  for (const char* v : values) {
+    if (value == v) return i;
+    listed += std::string(i == 0 ? "" : i + 1 == values.size() ? " or " : ", ") + v;
+    ++i;
+  }
+  throw std::invalid_argument("method " + spec.name + ": " + key + " must be " + listed + ", got '" + value + "'");
 }
 
 double MethodSpec::number(const std::string& key, double fallback) const {

@@ -157,31 +157,22 @@ RiemannOptions riemann_options(const MethodSpec& spec) {
   // Types and ranges: the method table (registry.cpp); here only what combines parameters.
   o.n = spec.integer("n");
   o.dt = spec.has("dt") ? spec.number("dt") : 0.0;
-  const std::string order = spec.text("order");
-  if (order == "btf") {
-    o.order = CompositingOrder::back_to_front;
-  } else if (order == "ftb") {
-    o.order = CompositingOrder::front_to_back;
-  } else {
-    throw std::invalid_argument(where + "order must be btf or ftb, got '" + order + "'");
-  }
-  const std::string correction = spec.text("correction");
+  o.order = choice_of(spec, "order", {"btf", "ftb"}) == 0 ? CompositingOrder::back_to_front
+                                                          : CompositingOrder::front_to_back;
+  const std::size_t correction = choice_of(spec, "correction", {"exp", "none", "linear"});
   const bool has_ref = spec.has("ref_dt");
   o.ref_dt = has_ref ? spec.number("ref_dt") : 0.0;
-  if (correction == "exp") {
+  if (correction == 0) {  // exp
     o.opacity = has_ref ? OpacityRule::corrected : OpacityRule::exact;
-  } else if (correction == "none") {
+  } else if (correction == 1) {  // none
     if (!has_ref)
       throw std::invalid_argument(where +
                                   "correction=none needs ref_dt (the step the opacity "
                                   "was tabulated for)");
     o.opacity = OpacityRule::none;
-  } else if (correction == "linear") {
+  } else {  // linear
     if (has_ref) throw std::invalid_argument(where + "correction=linear takes no ref_dt");
     o.opacity = OpacityRule::linear;
-  } else {
-    throw std::invalid_argument(where + "correction must be exp, none or linear, got '" +
-                                correction + "'");
   }
   return o;
 }

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
+#include "rayint/cells/cell_types.hpp"
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
@@ -56,19 +58,19 @@ int corner_signs(const CellMesh& m, const std::int32_t* c, const Corner (&corner
 }  // namespace
 
 int mesh_cell_nodes(long long vtk_id) {
-  switch (vtk_id) {
-    case 10: return 4;
-    case 11: return 8;
-    case 12: return 8;
-    case 13: return 6;
-    case 14: return 5;
-    case 24: return 10;
-    case 25: return 20;
-    case 26: return 15;
-    case 29: return 27;
-    case 32: return 18;
-    default: return 0;
+  // The table's count (cells/cell_types.hpp) for the types a CellMesh holds: those
+  // assemble_cell_mesh keeps (input/mesh_assembly.hpp), the values of MeshCellType.
+  const CellTypeInfo* row = cell_type_from_vtk(vtk_id);
+  if (row == nullptr) return 0;
+  switch (row->support) {
+    case CellSupport::Traversed:
+    case CellSupport::CellPath:
+    case CellSupport::Quadratic:
+    case CellSupport::Isoparametric: return row->nodes;
+    case CellSupport::Skipped:
+    case CellSupport::NotYet: return 0;
   }
+  return 0;
 }
 
 bool is_quadratic(MeshCellType type) { return static_cast<int>(type) >= 24; }
@@ -144,12 +146,22 @@ void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& sourc
   }
 }
 
+namespace {
+// What a TetMesh and a CellMesh hold alike (points, point or cell scalars, file info), moved from
+// one to the other; the cells are the caller's.
+template <class To, class From>
+To with_fields_of(From& from) {
+  To to;
+  to.points = std::move(from.points);
+  to.scalars = std::move(from.scalars);
+  to.cell_scalars = std::move(from.cell_scalars);
+  to.info = std::move(from.info);
+  return to;
+}
+}  // namespace
+
 CellMesh cell_mesh_of(TetMesh&& mesh) {
-  CellMesh m;
-  m.points = std::move(mesh.points);
-  m.scalars = std::move(mesh.scalars);
-  m.cell_scalars = std::move(mesh.cell_scalars);
-  m.info = std::move(mesh.info);
+  CellMesh m = with_fields_of<CellMesh>(mesh);
   for (std::size_t c = 0; c < mesh.tets.size(); ++c) {
     m.connectivity.insert(m.connectivity.end(), mesh.tets[c].begin(), mesh.tets[c].end());
     const bool quadratic = c < mesh.edge_nodes.size() && mesh.edge_nodes[c][0] >= 0;
@@ -161,11 +173,7 @@ CellMesh cell_mesh_of(TetMesh&& mesh) {
 }
 
 TetMesh take_tets(CellMesh&& mesh) {
-  TetMesh t;
-  t.points = std::move(mesh.points);
-  t.scalars = std::move(mesh.scalars);
-  t.cell_scalars = std::move(mesh.cell_scalars);
-  t.info = std::move(mesh.info);
+  TetMesh t = with_fields_of<TetMesh>(mesh);
   t.tets.reserve(mesh.types.size());
   for (std::size_t c = 0; c < mesh.types.size(); ++c) {
     const std::int32_t* p = mesh.cell(c);

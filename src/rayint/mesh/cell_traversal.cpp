@@ -404,12 +404,15 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
       found = true;
     }
   };
-  std::vector<std::int32_t> tried;
+  std::vector<std::int32_t> tried;  // each candidate cell is considered once
+  const auto consider_once = [&](std::int32_t c) {
+    if (std::find(tried.begin(), tried.end(), c) != tried.end()) return;
+    tried.push_back(c);
+    consider(c);
+  };
   for (int f : exit_faces) {
     const std::int32_t nb = neighbors_[static_cast<std::size_t>(neighbor_offsets_[from] + f)];
-    if (nb < 0 || std::find(tried.begin(), tried.end(), nb) != tried.end()) continue;
-    tried.push_back(nb);
-    consider(nb);
+    if (nb >= 0) consider_once(nb);
   }
   if (found) {
     ++stats.face_steps;
@@ -431,12 +434,8 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
   points.erase(std::unique(points.begin(), points.end()), points.end());
   tried.push_back(static_cast<std::int32_t>(from));
   for (std::int32_t p : points)
-    for (std::int32_t i = point_cells_offsets_[static_cast<std::size_t>(p)]; i < point_cells_offsets_[static_cast<std::size_t>(p) + 1]; ++i) {
-      const std::int32_t c = point_cells_[static_cast<std::size_t>(i)];
-      if (std::find(tried.begin(), tried.end(), c) != tried.end()) continue;
-      tried.push_back(c);
-      consider(c);
-    }
+    for (std::int32_t i = point_cells_offsets_[static_cast<std::size_t>(p)]; i < point_cells_offsets_[static_cast<std::size_t>(p) + 1]; ++i)
+      consider_once(point_cells_[static_cast<std::size_t>(i)]);
   if (found) {
     ++stats.star_steps;
     t_far = best;

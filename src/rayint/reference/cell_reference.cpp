@@ -499,15 +499,9 @@ CellReference reference_cell_chord(const TransferFunctions& tf, const CellRefere
           Real K_sum = 0, estimate = 0;
           for (int m = 0; m < n_sub; ++m) {
             const Real centre = -1 + w * (2 * m + 1);
-            const Real f0 = integrand(centre);
-            Real K = rule.kronrod[0] * f0, G = rule.gauss[0] * f0;
-            for (std::size_t j = 1; j < rule.size; ++j) {
-              const Real pair = integrand(centre - w * rule.x[j]) + integrand(centre + w * rule.x[j]);
-              K += rule.kronrod[j] * pair;
-              if (rule.gauss[j] != 0) G += rule.gauss[j] * pair;
-            }
-            K_sum += w * K;
-            estimate += w * abs(K - G);
+            const reference_detail::GaussKronrodSums panel = reference_detail::gauss_kronrod_panel(rule, integrand, centre, w);
+            K_sum += w * panel.kronrod;
+            estimate += w * abs(panel.kronrod - panel.gauss);
           }
           E = h * K_sum;
           E_estimate = h * estimate;

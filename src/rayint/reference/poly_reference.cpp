@@ -90,15 +90,9 @@ Sums gauss_kronrod(const Poly& rho, const Poly& kappa, const Poly& tau, const Re
   };
   for (int m = 0; m < n_sub; ++m) {
     const Real c = h * (2 * m + 1);
-    const Real f0 = integrand(c);
-    Real K = rule.kronrod[0] * f0, G = rule.gauss[0] * f0;
-    for (std::size_t j = 1; j < rule.size; ++j) {
-      const Real pair = integrand(c - h * rule.x[j]) + integrand(c + h * rule.x[j]);
-      K += rule.kronrod[j] * pair;
-      if (rule.gauss[j] != 0) G += rule.gauss[j] * pair;
-    }
-    out.kronrod += h * K;
-    out.estimate += h * abs(K - G);
+    const reference_detail::GaussKronrodSums panel = reference_detail::gauss_kronrod_panel(rule, integrand, c, h);
+    out.kronrod += h * panel.kronrod;
+    out.estimate += h * abs(panel.kronrod - panel.gauss);
   }
   return out;
 }

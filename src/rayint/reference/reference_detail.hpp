@@ -83,6 +83,24 @@ struct GaussKronrodRule {
 };
 GaussKronrodRule gauss_kronrod_rule(int points);
 
+// The rule on the panel [centre - w, centre + w] without the factor w: the Kronrod sum K and the
+// embedded Gauss sum G of f at the nodes centre -+ w x[j]. The panel's integral is w K; w |K - G|
+// is the estimate of its error both references use.
+struct GaussKronrodSums {
+  Real kronrod, gauss;
+};
+template <class F>
+GaussKronrodSums gauss_kronrod_panel(const GaussKronrodRule& rule, const F& f, const Real& centre, const Real& w) {
+  const Real f0 = f(centre);
+  GaussKronrodSums s{rule.kronrod[0] * f0, rule.gauss[0] * f0};
+  for (std::size_t j = 1; j < rule.size; ++j) {
+    const Real pair = f(centre - w * rule.x[j]) + f(centre + w * rule.x[j]);
+    s.kronrod += rule.kronrod[j] * pair;
+    if (rule.gauss[j] != 0) s.gauss += rule.gauss[j] * pair;
+  }
+  return s;
+}
+
 // The unit roundoff of Real, 2^(1 - 168).
 double unit_roundoff();
 // The smallest double >= x (error bounds are rounded up).

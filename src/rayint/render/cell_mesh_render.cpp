@@ -138,19 +138,10 @@ CellMeshRenderPart cell_mesh_render_part(const CellMeshRender& r, const ShardSpe
 }
 
 CellMeshRender assemble_cell_mesh_render(const std::vector<CellMeshRenderPart>& parts) {
-  if (parts.empty()) throw std::invalid_argument("cell mesh render: no parts to assemble");
-  const int width = parts.front().width, height = parts.front().height;
-  const bool compared = parts.front().compared;
   CellMeshRender out;
-  out.image = Image(width, height);
-  out.failed.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
-  if (compared) {
-    out.compared = Image(width, height);
-    out.rel_error.assign(out.failed.size(), 0.0);
-  }
-  std::vector<const CellMeshRenderPart*> ordered;
-  for (const auto& p : parts) ordered.push_back(&p);
-  std::sort(ordered.begin(), ordered.end(), [](auto* a, auto* b) { return a->row_begin < b->row_begin; });
+  const std::vector<const CellMeshRenderPart*> ordered = order_bands(parts, out, "cell mesh render");
+  const bool compared = parts.front().compared;
+  out.failed.assign(out.image.pixels.size(), 0);
   std::vector<std::size_t> pixel;
   int covered_to = 0;
   out.threads = 0;

@@ -191,20 +191,11 @@ MeshRenderPart mesh_render_part(const MeshRender& r, const ShardSpec& shard) {
 }
 
 MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts) {
-  if (parts.empty()) throw std::invalid_argument("mesh render: no parts to assemble");
-  const int width = parts.front().width, height = parts.front().height;
-  const bool compared = parts.front().compared;
   MeshRender out;
-  out.image = Image(width, height);
-  if (compared) {
-    out.compared = Image(width, height);
-    out.rel_error.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
-  }
+  const std::vector<const MeshRenderPart*> ordered = order_bands(parts, out, "mesh render");
+  const bool compared = parts.front().compared;
   std::vector<std::size_t> pixel;
   std::vector<double> rel;
-  std::vector<const MeshRenderPart*> ordered;
-  for (const auto& p : parts) ordered.push_back(&p);
-  std::sort(ordered.begin(), ordered.end(), [](auto* a, auto* b) { return a->row_begin < b->row_begin; });
   int covered_to = 0;
   for (const MeshRenderPart* p : ordered) {
     const std::size_t first = place_band(*p, out, covered_to, "mesh render");

@@ -104,6 +104,23 @@ IndexRange cut_band(Part& p, const Render& r, const ShardSpec& shard) {
   }
   return px;
 }
+// order_bands: the start of an assembly: `out` sized from the first part (image; compared image and
+// rel_error when the parts are compared), and the parts in row order for place_band. Throws
+// std::invalid_argument "WHAT: no parts to assemble" when there are none.
+template <class Part, class Render>
+std::vector<const Part*> order_bands(const std::vector<Part>& parts, Render& out, const char* what) {
+  if (parts.empty()) throw std::invalid_argument(std::string(what) + ": no parts to assemble");
+  const int width = parts.front().width, height = parts.front().height;
+  out.image = Image(width, height);
+  if (parts.front().compared) {
+    out.compared = Image(width, height);
+    out.rel_error.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
+  }
+  std::vector<const Part*> ordered;
+  for (const Part& p : parts) ordered.push_back(&p);
+  std::sort(ordered.begin(), ordered.end(), [](const Part* a, const Part* b) { return a->row_begin < b->row_begin; });
+  return ordered;
+}
 // place_band: part p's pixels into the assembled render `out` (already sized from the first
 // part), after checking that p belongs to the same render and starts at or after covered_to
 // (what the parts before it covered); `what` names the render in the exception. Returns the
