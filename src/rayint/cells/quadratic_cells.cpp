@@ -89,12 +89,6 @@ const Basis& basis(QuadraticCellType type) {
 
 double power(double x, int e) { return e == 0 ? 1.0 : (e == 1 ? x : x * x); }
 
-// 1-D quadratic Lagrange functions on the nodes 0, 1/2, 1 and their derivatives.
-void lagrange_1d(double u, double* l, double* dl) {
-  l[0] = 2.0 * (u - 0.5) * (u - 1.0), l[1] = 4.0 * u * (1.0 - u), l[2] = 2.0 * u * (u - 0.5);
-  dl[0] = 4.0 * u - 3.0, dl[1] = 4.0 - 8.0 * u, dl[2] = 4.0 * u - 1.0;
-}
-
 // The 27- and 18-node cells as products (header: the Vandermonde inverse of 27 monomials rounds
 // to 1.4e-14, too coarse for the inverse map's 4e-15 step test). Per node: the 1-D Lagrange
 // index of each coordinate (hexahedron) or the P2 triangle node and the t index (wedge), read
@@ -123,20 +117,6 @@ const std::vector<ProductNode>& product_nodes(QuadraticCellType type) {
   static const std::vector<ProductNode> hexahedron27 = make(QuadraticCellType::triquadratic_hexahedron);
   static const std::vector<ProductNode> wedge18 = make(QuadraticCellType::biquadratic_wedge);
   return type == QuadraticCellType::biquadratic_wedge ? wedge18 : hexahedron27;
-}
-
-// P2 triangle on (r, s): corners L(2L - 1) for L = 1 - r - s, r, s; edges (0,1) (1,2) (2,0) 4 La Lb.
-void p2_triangle(double r, double s, double* N, double* dr, double* ds) {
-  const double L[3] = {1.0 - r - s, r, s}, Lr[3] = {-1.0, 1.0, 0.0}, Ls[3] = {-1.0, 0.0, 1.0};
-  for (int k = 0; k < 3; ++k) {
-    N[k] = L[k] * (2.0 * L[k] - 1.0);
-    dr[k] = (4.0 * L[k] - 1.0) * Lr[k];
-    ds[k] = (4.0 * L[k] - 1.0) * Ls[k];
-    const int i = k, j = (k + 1) % 3;
-    N[3 + k] = 4.0 * L[i] * L[j];
-    dr[3 + k] = 4.0 * (Lr[i] * L[j] + L[i] * Lr[j]);
-    ds[3 + k] = 4.0 * (Ls[i] * L[j] + L[i] * Ls[j]);
-  }
 }
 
 // N and, when dN is given, its derivatives (VTK's layout) of a 27- or 18-node cell.
@@ -171,6 +151,24 @@ bool is_product(QuadraticCellType type) {
 using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 27, 1>;
 
 }  // namespace
+
+void lagrange_1d(double u, double* l, double* dl) {
+  l[0] = 2.0 * (u - 0.5) * (u - 1.0), l[1] = 4.0 * u * (1.0 - u), l[2] = 2.0 * u * (u - 0.5);
+  dl[0] = 4.0 * u - 3.0, dl[1] = 4.0 - 8.0 * u, dl[2] = 4.0 * u - 1.0;
+}
+
+void p2_triangle(double r, double s, double* N, double* dr, double* ds) {
+  const double L[3] = {1.0 - r - s, r, s}, Lr[3] = {-1.0, 1.0, 0.0}, Ls[3] = {-1.0, 0.0, 1.0};
+  for (int k = 0; k < 3; ++k) {
+    N[k] = L[k] * (2.0 * L[k] - 1.0);
+    dr[k] = (4.0 * L[k] - 1.0) * Lr[k];
+    ds[k] = (4.0 * L[k] - 1.0) * Ls[k];
+    const int i = k, j = (k + 1) % 3;
+    N[3 + k] = 4.0 * L[i] * L[j];
+    dr[3 + k] = 4.0 * (Lr[i] * L[j] + L[i] * Lr[j]);
+    ds[3 + k] = 4.0 * (Ls[i] * L[j] + L[i] * Ls[j]);
+  }
+}
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type) {
   if ((vtk_id < 24 || vtk_id > 26) && vtk_id != 29 && vtk_id != 32) return false;

@@ -48,4 +48,12 @@ void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N)
 // dN laid out as VTK's InterpolateDerivs: dN[i] = dN_i/dr, dN[n + i] = dN_i/ds, dN[2n + i] = dN_i/dt.
 void quadratic_shape_derivatives(QuadraticCellType type, const Vec3& p, double* dN);
 
+// The factors of the product cells, shared with their curved faces (quadratic_isoparametric:
+// the 9-node quadrilateral and 6-node triangle patches).
+// 1-D quadratic Lagrange functions on the nodes 0, 1/2, 1 (l[3]) and their derivatives (dl[3]).
+void lagrange_1d(double u, double* l, double* dl);
+// The 6-node (P2) triangle on (r, s): corners L(2L - 1) for L = 1 - r - s, r, s, then the edges
+// (0,1) (1,2) (2,0) 4 La Lb; N[6] and its derivatives dr[6], ds[6].
+void p2_triangle(double r, double s, double* N, double* dr, double* ds);
+
 }  // namespace rayint

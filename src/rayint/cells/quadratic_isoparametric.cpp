@@ -55,19 +55,13 @@ int centre_node(QuadraticCellType type, const std::array<int, 4>& corner, int co
   return -1;
 }
 
-// 1-D quadratic Lagrange functions on the nodes 0, 1/2, 1 and their derivatives.
-void lagrange3(double u, double* l, double* dl) {
-  l[0] = 2.0 * (u - 0.5) * (u - 1.0), l[1] = 4.0 * u * (1.0 - u), l[2] = 2.0 * u * (u - 0.5);
-  dl[0] = 4.0 * u - 3.0, dl[1] = 4.0 - 8.0 * u, dl[2] = 4.0 * u - 1.0;
-}
-
 // Face shape functions and their (u, v) derivatives: corners, then mid-edge nodes, then the
 // centre when there is one (header).
 void patch_functions(int count, bool centre, double u, double v, double* N, double* dNu, double* dNv) {
   if (centre) {  // biquadratic 9-node quadrilateral: Lagrange in u times Lagrange in v
     double lu[3], du[3], lv[3], dv[3];
-    lagrange3(u, lu, du);
-    lagrange3(v, lv, dv);
+    lagrange_1d(u, lu, du);
+    lagrange_1d(v, lv, dv);
     // Grid indices of A, B, C, D, AB, BC, CD, DA, centre.
     static const int iu[9] = {0, 2, 2, 0, 1, 2, 1, 0, 1}, iv[9] = {0, 0, 2, 2, 0, 1, 2, 1, 1};
     for (int k = 0; k < 9; ++k) {
@@ -78,17 +72,7 @@ void patch_functions(int count, bool centre, double u, double v, double* N, doub
     return;
   }
   if (count == 3) {
-    const double L[3] = {1.0 - u - v, u, v};
-    const double Lu[3] = {-1.0, 1.0, 0.0}, Lv[3] = {-1.0, 0.0, 1.0};
-    for (int k = 0; k < 3; ++k) {
-      N[k] = L[k] * (2.0 * L[k] - 1.0);
-      dNu[k] = (4.0 * L[k] - 1.0) * Lu[k];
-      dNv[k] = (4.0 * L[k] - 1.0) * Lv[k];
-      const int a = k, b = (k + 1) % 3;
-      N[3 + k] = 4.0 * L[a] * L[b];
-      dNu[3 + k] = 4.0 * (Lu[a] * L[b] + L[a] * Lu[b]);
-      dNv[3 + k] = 4.0 * (Lv[a] * L[b] + L[a] * Lv[b]);
-    }
+    p2_triangle(u, v, N, dNu, dNv);
     return;
   }
   // Serendipity quadrilateral on (xi, eta) = (2u - 1, 2v - 1).

@@ -47,7 +47,9 @@
 // in the nodes as its entries are. Where a grid scalar lies exactly on the jump (always the case
 // for a jump at the range's first or last breakpoint) the entries that start or end there are
 // one-sided in its position: NaN, with `undefined` saying why. The position entries follow the
-// tie of model/ray_gradient.hpp.
+// tie of model/ray_gradient.hpp. Measured: against central differences of this renderer's own
+// intensity across jumps (tests/test_grad_jumps.cpp, 5 configurations, 15 ray-channels): 5.5e-10
+// of the channel's largest entry, the differences' own error.
 // What is not differentiated: the table's scalar range [s_lo, s_hi] = [first, last breakpoint
 // of the six functions] is held fixed. It moves with the position of the extreme node, but it is
 // a min/max over all six functions' nodes -- not differentiable where several functions share
@@ -175,10 +177,12 @@ void add_entry_jump_terms(const TransferFunctions& tf, int c, double gi, double 
       const bool both = with_kappa && jump_node(other, x) != kNoJump;
       if (x == gi || x == gj || both) {
         nodes[i].position = std::nan("");
-        if (!g.undefined.empty()) g.undefined += "; ";
-        g.undefined += std::string("preintegrated: a table entry read ") +
-                       (both ? "crosses jumps of density and color at one scalar " : "has a grid scalar on the jump at ") +
-                       std::to_string(x) + " (one-sided in the jump's position)";
+        const std::string why = std::string("preintegrated: a table entry read ") +
+                                (both ? "crosses jumps of density and color at one scalar "
+                                      : "has a grid scalar on the jump at ") +
+                                std::to_string(x) + " (one-sided in the jump's position)";
+        // Said once per jump, however many entries the ray reads there.
+        if (g.undefined.find(why) == std::string::npos) g.undefined += (g.undefined.empty() ? "" : "; ") + why;
         continue;
       }
       const auto integrand = [&](bool above) {

@@ -2,7 +2,9 @@
 // gradients.hpp).
 #include "rayint/mesh/gradients.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <cmath>
 #include <stdexcept>
 
 namespace rayint {
@@ -23,12 +25,24 @@ GradientMode parse_gradient_mode(const std::string& name) {
   throw std::invalid_argument("must be \"cell\", \"vertex_average\" or \"inverse_distance\", got \"" + name + "\"");
 }
 
+bool well_conditioned(double det, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return std::isfinite(det) && std::fabs(det) > kSolveVolumeRatio * a.norm() * b.norm() * c.norm();
+}
+
 std::array<double, 4> barycentric(const TetMesh& mesh, std::size_t cell, const Vec3& p) {
   const auto& t = mesh.tets[cell];
   const Vec3& x0 = mesh.points[t[0]];
+  const Vec3 e1 = mesh.points[t[1]] - x0, e2 = mesh.points[t[2]] - x0, e3 = mesh.points[t[3]] - x0;
+  const Vec3 r = p - x0;
+  const Vec3 c23 = e2.cross(e3);
+  const double det = e1.dot(c23);
+  if (well_conditioned(det, e1, e2, e3)) {
+    const double l1 = r.dot(c23) / det, l2 = e1.dot(r.cross(e3)) / det, l3 = e1.dot(e2.cross(r)) / det;
+    return {1.0 - l1 - l2 - l3, l1, l2, l3};
+  }
   Eigen::Matrix3d e;
-  for (int k = 0; k < 3; ++k) e.col(k) = mesh.points[t[static_cast<std::size_t>(k + 1)]] - x0;
-  const Vec3 l = e.fullPivLu().solve(p - x0);
+  e.col(0) = e1, e.col(1) = e2, e.col(2) = e3;
+  const Vec3 l = e.fullPivLu().solve(r);
   return {1.0 - l[0] - l[1] - l[2], l[0], l[1], l[2]};
 }
 

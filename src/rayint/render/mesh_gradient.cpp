@@ -15,34 +15,6 @@
 namespace rayint {
 namespace {
 
-// Below this |det| / (product of the three column lengths) -- the sine-like volume ratio of a
-// 3 x 3 system -- a solve goes to the full-pivoting LU as before, which decides a numerically
-// singular matrix's rank (an axis-aligned ray lying in a face plane of a structured mesh makes
-// M below exactly singular: the LU then returns a finite solution with a zero component, a
-// cofactor inverse ~1e17). Above it the condition number is < ~1e6 and both agree to rounding.
-constexpr double kSolveVolumeRatio = 1e-6;
-
-bool well_conditioned(double det, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return std::isfinite(det) && std::fabs(det) > kSolveVolumeRatio * a.norm() * b.norm() * c.norm();
-}
-
-// The barycentric coordinates of p in `cell` by Cramer's rule (three triple products): the
-// solution barycentric() (mesh/gradients.hpp, a full-pivoting LU) gives, to rounding, at a
-// fraction of the cost -- that LU, run at every segment end, was a quarter of the loss
-// gradient's time (perf, cases/mesh-ball-radial.json at 384 x 384; reports/gradients/). A
-// (nearly) degenerate cell takes barycentric()'s solution as before.
-std::array<double, 4> end_barycentric(const TetMesh& mesh, std::size_t cell, const Vec3& p) {
-  const auto& t = mesh.tets[cell];
-  const Vec3& x0 = mesh.points[t[0]];
-  const Vec3 e1 = mesh.points[t[1]] - x0, e2 = mesh.points[t[2]] - x0, e3 = mesh.points[t[3]] - x0;
-  const Vec3 r = p - x0;
-  const Vec3 c23 = e2.cross(e3);
-  const double det = e1.dot(c23);
-  if (!well_conditioned(det, e1, e2, e3)) return barycentric(mesh, cell, p);
-  const double l1 = r.dot(c23) / det, l2 = e1.dot(r.cross(e3)) / det, l3 = e1.dot(e2.cross(r)) / det;
-  return {1.0 - l1 - l2 - l3, l1, l2, l3};
-}
-
 // Calls sink.scalar(index, Rgb) and sink.position(point, std::array<Rgb, 3>) for every
 // contribution of the ray's segment ends; returns how many ends lie on an edge or vertex.
 template <class Sink>
@@ -65,7 +37,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
         g_s[c] = end == 0 ? g.scalar_exit[j][c] : g.scalar_far[j][c];
       }
       const Vec3 p = trace.origin + t * trace.direction;
-      const std::array<double, 4> lambda = end_barycentric(mesh, cell, p);
+      const std::array<double, 4> lambda = barycentric(mesh, cell, p);
       // Scalars.
       if (on_cells) {
         sink.scalar(x.cell, g_s);
@@ -109,9 +81,9 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
         ds_du = mesh.scalars[tet[f[1]]] - mesh.scalars[tet[f[0]]];
         ds_dv = mesh.scalars[tet[f[2]]] - mesh.scalars[tet[f[0]]];
       }
-      // M^T y = r for the three channels: the 3 x 3 cofactor inverse once (cheaper than the
-      // full-pivoting LU it replaced, the same to rounding); a (nearly) singular M (the ray in
-      // or near the face's plane) takes the LU's solution as before.
+      // M^T y = r for the three channels: the 3 x 3 cofactor inverse once; a (nearly) singular M
+      // (the ray in or near the face's plane) the full-pivoting LU (well_conditioned,
+      // mesh/gradients.hpp: threshold and measured agreement).
       std::array<Vec3, kChannels> y;
       if (well_conditioned(M.determinant(), M.col(0), M.col(1), M.col(2))) {
         const Eigen::Matrix3d inv = M.transpose().inverse();

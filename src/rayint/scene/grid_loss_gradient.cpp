@@ -83,6 +83,7 @@ GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const I
         intensity = g.intensity;
         index = std::move(g.index);
         d_value = std::move(g.d_value);
+        undefined = std::move(g.undefined);
       }
       const int y = static_cast<int>(row);
       out.image.at(x, y) = intensity;
@@ -96,7 +97,7 @@ GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const I
       }
       for (const Rgb& d : d_value)
         for (int c = 0; c < kChannels; ++c) finite = finite && std::isfinite(d[c]);
-      if (!finite) {
+      if (!finite || !undefined.empty()) {  // undefined: a derivative does not exist (a jump)
         if (p.failed++ == 0 || pixel < p.first_failed) {
           p.first_failed = pixel;
           p.why = !undefined.empty() ? undefined : "non-finite intensity or derivative";

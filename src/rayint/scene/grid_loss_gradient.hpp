@@ -16,9 +16,10 @@
 // B T + E composited in one pass (equal to `rayint render`'s image to rounding, ~1e-16 relative:
 // tests/test_grid_grad_cli.cpp checks 1e-13).
 // loss = sum over pixels and channels of (I - target)^2; dloss/dv = sum 2 (I - target) dI/dv.
-// A pixel whose intensity or grid-value derivative is not finite (the trilinear gradient leaves
-// NaN where a ray touches a transfer-function jump: its derivative does not exist) is counted in
-// pixels_failed and adds nothing; callers show the run as failed.
+// A pixel whose intensity or grid-value derivative is not finite, or whose gradient says a
+// derivative does not exist (`undefined`: both interpolations leave NaN where a ray touches a
+// transfer-function jump), is counted in pixels_failed with the reason and adds nothing; callers
+// show the run as failed.
 #include <array>
 #include <string>
 #include <vector>
@@ -44,7 +45,7 @@ struct GridLossGradient {
 std::string grid_gradient_refusal(const Scene& scene, const ScenePipeline& pipeline);
 
 // Throws std::invalid_argument with grid_gradient_refusal's text, or when `target` is not the
-// image's size, or when the Kuhn gradient refuses the transfer functions (a jump).
+// image's size.
 GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const Image& target, unsigned threads = 0);
 
 }  // namespace rayint
