@@ -4,6 +4,7 @@
 // check of a command line refused as a usage error.
 #include <sys/wait.h>
 #include <unistd.h>
+#include "test_paths.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -71,7 +72,7 @@ struct CliRun {
 inline CliRun run_cli(const fs::path& dir, const std::string& args) {
   const fs::path out = dir.parent_path() / (dir.filename().string() + ".stdout");
   const fs::path err = dir.parent_path() / (dir.filename().string() + ".stderr");
-  const std::string cmd = "cd '" + dir.string() + "' && '" RAYINT_CLI_PATH "' " + args + " >'" +
+  const std::string cmd = "cd '" + dir.string() + "' && '" + RAYINT_CLI_PATH + "' " + args + " >'" +
                           out.string() + "' 2>'" + err.string() + "'";
   const int raw = std::system(cmd.c_str());
   CliRun r;

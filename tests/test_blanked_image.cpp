@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/grid/trilinear_integral.hpp"
 #include "rayint/input/gmsh_reader.hpp"
@@ -35,7 +36,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const fs::path kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 
 PiecewiseLinear pwl(const nlohmann::json& points) {
   PiecewiseLinear f;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
 #include "input_text.hpp"
@@ -254,7 +255,7 @@ TEST_CASE("unreadable files name the file and the reason", "[case_reader]") {
   } catch (const InputError& e) {
     CHECK(std::string(e.what()) == missing + ": cannot read file (No such file or directory)");
   }
-  const std::string dir = RAYINT_SOURCE_DIR "/cases";
+  const std::string dir = RAYINT_SOURCE_DIR + "/cases";
   try {
     read_case_file(dir);
     FAIL("no exception");
@@ -285,7 +286,7 @@ TEST_CASE("file errors carry the file name", "[case_reader]") {
 
 TEST_CASE("every case in cases/ loads", "[case_reader][corpus]") {
   namespace fs = std::filesystem;
-  const std::vector<std::string> files = rayint::list_case_files(RAYINT_SOURCE_DIR "/cases");
+  const std::vector<std::string> files = rayint::list_case_files(RAYINT_SOURCE_DIR + "/cases");
   for (const auto& file : files) {
     INFO("file: " << file);
     CHECK(fs::path(file).filename() != rayint::kGateConfigName);
@@ -300,7 +301,7 @@ TEST_CASE("every case in cases/ loads", "[case_reader][corpus]") {
 TEST_CASE("paper-figure-2 reproduces the paper's interval coefficients", "[case_reader][corpus]") {
   // Williams & Max Sec. 3.3, first interval of Fig. 2: rho_r = a + b s, kappa_r rho_r = f + g s
   // with a = 5, b = -3, f = 8.5, g = -5.1, h = 0.
-  const Case c = read_case_file(RAYINT_SOURCE_DIR "/cases/paper-figure-2.json");
+  const Case c = read_case_file(RAYINT_SOURCE_DIR + "/cases/paper-figure-2.json");
   const auto& rho = c.transfer.density[0];
   const auto& kappa = c.transfer.color[0];
   CHECK(rho(0.0) == 5.0);
@@ -354,7 +355,7 @@ std::string message_of(const std::string& text, bool streamed) {
 
 TEST_CASE("streamed segments give the whole-tree reader's case on every file in cases/",
           "[case_reader][corpus]") {
-  const std::vector<std::string> files = rayint::list_case_files(RAYINT_SOURCE_DIR "/cases");
+  const std::vector<std::string> files = rayint::list_case_files(RAYINT_SOURCE_DIR + "/cases");
   REQUIRE(files.size() >= 20);
   std::size_t segments = 0;
   for (const auto& file : files) {

@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
@@ -27,7 +28,7 @@ using rayint::test::TempDir;
 
 namespace {
 
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 
 // The field generate_cells.py writes at every point.
 double written_field(const Vec3& p) {

@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "cell_samples.hpp"
 #include "cli_harness.hpp"
 #include "rayint/cells/cell_integral.hpp"
@@ -32,7 +33,7 @@ using namespace rayint;
 
 namespace {
 
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 
 struct BruteChord {
   std::int32_t cell;

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <utility>
 
+#include "test_paths.hpp"
 #include "rayint/studies/check.hpp"
 #include "rayint/integrators/exact.hpp"
 #include "rayint/input/candidate_reader.hpp"
@@ -122,7 +123,7 @@ TEST_CASE("pass rule: within the absolute OR the relative tolerance, boundaries 
 // The comparison.
 
 TEST_CASE("the exact values themselves pass with zero error, and the reference agrees", "[check]") {
-  const Case c = read_case_file(RAYINT_SOURCE_DIR "/cases/paper-figure-2.json");
+  const Case c = read_case_file(RAYINT_SOURCE_DIR + "/cases/paper-figure-2.json");
   CheckOptions opt;
   opt.rel_tol = 0.0;
   opt.abs_tol = 0.0;
@@ -151,7 +152,7 @@ TEST_CASE("an analytic candidate (Eq. 6, constant kappa and rho) passes at the e
           "[check]") {
   // I = kappa (1 - exp(-rho L)) + I0 exp(-rho L) for constant rho and kappa (Williams & Max
   // Eq. 6), computed here from the case's numbers without any rayint integrator.
-  const Case c = read_case_file(RAYINT_SOURCE_DIR "/cases/constant-kappa-and-rho.json");
+  const Case c = read_case_file(RAYINT_SOURCE_DIR + "/cases/constant-kappa-and-rho.json");
   Candidate cand;
   cand.case_name = c.name;
   for (const Ray& ray : c.rays) {
@@ -321,14 +322,14 @@ TEST_CASE("candidate: a candidate that does not match the case", "[check][candid
 }
 
 TEST_CASE("candidate: unreadable files name the file", "[check][candidate]") {
-  const std::string missing = RAYINT_SOURCE_DIR "/cases/no-such-candidate.json";
+  const std::string missing = RAYINT_SOURCE_DIR + "/cases/no-such-candidate.json";
   try {
     read_candidate_file(missing, fig2());
     FAIL("no error");
   } catch (const InputError& e) {
     CHECK(std::string(e.what()) == missing + ": cannot read file (No such file or directory)");
   }
-  CHECK_THROWS_AS(read_candidate_file(RAYINT_SOURCE_DIR "/cases", fig2()), InputError);
+  CHECK_THROWS_AS(read_candidate_file(RAYINT_SOURCE_DIR + "/cases", fig2()), InputError);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -467,7 +468,7 @@ void require_same_json(const nlohmann::json& a, const nlohmann::json& b, const s
 
 TEST_CASE("docs/candidate-format.md: the worked example gives the documented output",
           "[check][cli][docs]") {
-  const std::string doc = slurp(RAYINT_SOURCE_DIR "/docs/candidate-format.md");
+  const std::string doc = slurp(RAYINT_SOURCE_DIR + "/docs/candidate-format.md");
   const TempDir dir;
   dir.write("two-rays.json", doc_block(doc, "two-rays.json"));
   dir.write("my-renderer.json", doc_block(doc, "my-renderer.json"));

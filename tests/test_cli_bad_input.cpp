@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "input_text.hpp"
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/studies/drift.hpp"
 

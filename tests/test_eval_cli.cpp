@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "input_text.hpp"
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "candidate_images.hpp"
 #include "cli_harness.hpp"
 #include "cli_refusal.hpp"

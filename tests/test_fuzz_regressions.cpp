@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "test_paths.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/gmsh_reader.hpp"
 #include "rayint/input/vtk_legacy_reader.hpp"

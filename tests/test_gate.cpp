@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "test_paths.hpp"
 #include "rayint/studies/gate.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/gate_config.hpp"
@@ -101,11 +102,11 @@ TEST_CASE("gate: a method that fails or is non-finite fails its checks with the 
 }
 
 TEST_CASE("gate: the project's config is valid and holds (stress sample cut down here)", "[gate]") {
-  GateConfig cfg = read_gate_config(RAYINT_SOURCE_DIR "/cases/gates.json");
+  GateConfig cfg = read_gate_config(RAYINT_SOURCE_DIR + "/cases/gates.json");
   // Paths are relative to the config: every case file of cases/, not the config itself.
   CHECK(cfg.case_files.size() >= 20);
   for (const auto& f : cfg.case_files) {
-    CHECK(fs::path(f).parent_path() == fs::path(RAYINT_SOURCE_DIR "/cases").lexically_normal());
+    CHECK(fs::path(f).parent_path() == fs::path(RAYINT_SOURCE_DIR + "/cases").lexically_normal());
     CHECK(fs::path(f).filename() != "gates.json");
   }
   // exact on the corpus: at least as strict as the issue's target (1e-13), with the underflow

@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 
+#include "test_paths.hpp"
 #include "rayint/generators/regimes.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/integrators/exact.hpp"
@@ -22,7 +23,7 @@ using test::gradient_error;
 using Worst = test::WorstGradientError;
 
 TEST_CASE("exact gradient: forward intensity is exact:path=scalar's, bit for bit", "[grad]") {
-  const Case cs = read_case_file(RAYINT_SOURCE_DIR "/cases/medical-ct.json");
+  const Case cs = read_case_file(RAYINT_SOURCE_DIR + "/cases/medical-ct.json");
   ExactIntegrator scalar(cs.transfer, ExactIntegrator::Path::scalar);
   for (const Ray& ray : cs.rays) {
     const RayGradient g = exact_ray_gradient(cs.transfer, ray);
@@ -66,7 +67,7 @@ TEST_CASE("exact gradient against the 50-digit reference: ray regimes", "[grad]"
 
 TEST_CASE("exact gradient against the 50-digit reference: case corpus", "[grad]") {
   Worst w;
-  for (const std::string& file : list_case_files(RAYINT_SOURCE_DIR "/cases")) {
+  for (const std::string& file : list_case_files(RAYINT_SOURCE_DIR + "/cases")) {
     if (file.find("/mesh-") != std::string::npos || file.find("gates.json") != std::string::npos) continue;
     const Case cs = read_case_file(file);
     for (std::size_t i = 0; i < cs.rays.size(); ++i) {

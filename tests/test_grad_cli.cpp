@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/input/candidate_reader.hpp"
 #include "rayint/render/float_image.hpp"
@@ -120,7 +121,7 @@ TEST_CASE("grad candidate reader: shape mismatches name the field", "[grad]") {
 
 TEST_CASE("render --loss-target --grad-out: the loss gradient as NPY, zero at its own image, bad input", "[grad][grad_cli]") {
   TempDir dir;
-  const std::string mesh_case = "'" RAYINT_SOURCE_DIR "/cases/mesh-linear-field.json'";
+  const std::string mesh_case = "'" + RAYINT_SOURCE_DIR + "/cases/mesh-linear-field.json'";
   REQUIRE(run_cli(dir.path, "render " + mesh_case + " -o own.npy -q").status == 0);
   // Against its own exact render (the batch path; the gradient's forward is exact:path=scalar, equal
   // to rounding): residuals ~1e-16, so the loss ~1e-30 and the gradient ~1e-15 (against ~40 below).
@@ -240,7 +241,7 @@ TEST_CASE("grad: Cool to Warm, imported with jumps at its end nodes, is differen
   // where the derivative in that jump's position and in the ray's last scalar does not exist.
   // (The import has ~1200 nodes per colour function: the rays are kept short in the scalar so
   // that the 50-digit reference differences a few dozen of them.)
-  dir.write("cw.json", slurp(RAYINT_SOURCE_DIR "/fuzz/seeds/preset/colormap-0.json"));
+  dir.write("cw.json", slurp(RAYINT_SOURCE_DIR + "/fuzz/seeds/preset/colormap-0.json"));
   dir.write("case.json", R"({"name": "cw", "transfer_function": {"paraview_preset": "cw.json",
     "name": "Cool to Warm", "opacity": 0.8}, "rays": [
     {"background": [0.1, 0.2, 0.3], "segments": [{"length": 0.7, "scalar": [0.40, 0.42]}]},

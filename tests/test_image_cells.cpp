@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
 #include "rayint/metrics/error_metrics.hpp"
@@ -23,7 +24,7 @@ using rayint::test::TempDir;
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/vti-direction/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/vti-direction/";
 
 nlohmann::json vtk_cells() {
   std::ifstream in(kDir + "probe.json");

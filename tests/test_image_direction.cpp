@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "test_paths.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/grid/trilinear_integral.hpp"
 #include "rayint/input/voxel_grid_reader.hpp"

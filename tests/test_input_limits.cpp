@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "input_text.hpp"
 #include "rayint/core/format.hpp"
@@ -49,8 +50,8 @@ TEST_CASE("The CLI refuses devices, oversized and over-nested inputs with one li
   }
   const std::size_t size = rayint::test::fs::file_size(dir.path / "paper-figure-2.json");
   const std::string env = "RAYINT_MAX_INPUT_BYTES=" + std::to_string(size - 1);
-  const std::string cmd = "cd '" + dir.path.string() + "' && " + env + " '" RAYINT_CLI_PATH
-                          "' eval paper-figure-2.json -o out.json 2>err.txt; echo $? > rc.txt";
+  const std::string cmd = "cd '" + dir.path.string() + "' && " + env + " '" + RAYINT_CLI_PATH
+                          + "' eval paper-figure-2.json -o out.json 2>err.txt; echo $? > rc.txt";
   REQUIRE(std::system(cmd.c_str()) == 0);
   CHECK(rayint::test::slurp(dir.path / "rc.txt") == "2\n");
   CHECK(rayint::test::slurp(dir.path / "err.txt") ==
@@ -62,8 +63,8 @@ TEST_CASE("The CLI refuses devices, oversized and over-nested inputs with one li
 TEST_CASE("A case on standard input through a pipe is read as a stream", "[reliability][input-limits]") {
   const TempDir dir;
   dir.copy_case("paper-figure-2");
-  const std::string cmd = "cd '" + dir.path.string() + "' && cat paper-figure-2.json | '" RAYINT_CLI_PATH
-                          "' eval /dev/stdin --methods exact --no-timing >out.txt 2>err.txt; echo $? > rc.txt";
+  const std::string cmd = "cd '" + dir.path.string() + "' && cat paper-figure-2.json | '" + RAYINT_CLI_PATH
+                          + "' eval /dev/stdin --methods exact --no-timing >out.txt 2>err.txt; echo $? > rc.txt";
   REQUIRE(std::system(cmd.c_str()) == 0);
   INFO(rayint::test::slurp(dir.path / "err.txt"));
   CHECK(rayint::test::slurp(dir.path / "rc.txt") == "0\n");
@@ -122,9 +123,9 @@ TEST_CASE("A float image's size is checked from its header before its pixels are
 #else
   const std::string address_limit = "ulimit -v 2000000; ";
 #endif
-  const std::string mesh_case = "'" RAYINT_SOURCE_DIR "/cases/mesh-linear-field.json'";
+  const std::string mesh_case = "'" + RAYINT_SOURCE_DIR + "/cases/mesh-linear-field.json'";
   for (const std::string name : {"big.pfm", "big.npy"}) {
-    const std::string cmd = "cd '" + dir.path.string() + "' && (" + address_limit + "'" RAYINT_CLI_PATH "' render " +
+    const std::string cmd = "cd '" + dir.path.string() + "' && (" + address_limit + "'" + RAYINT_CLI_PATH + "' render " +
                             mesh_case + " -o fit.npy --loss-target " + name +
                             " --grad-out g.npy -q) >out.txt 2>err.txt; echo $? > rc.txt";
     REQUIRE(std::system(cmd.c_str()) == 0);

@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/cells/vtk_split.hpp"
@@ -76,7 +77,7 @@ Vec3 random_inside(LinearCellType type, std::mt19937& rng) {
 }  // namespace
 
 TEST_CASE("linear cells: shape functions, derivatives and positions match VTK's own", "[cells][isoparametric]") {
-  std::ifstream in(RAYINT_SOURCE_DIR "/tests/fixtures/cells/vtk_linear_cells.json");
+  std::ifstream in(RAYINT_SOURCE_DIR + "/tests/fixtures/cells/vtk_linear_cells.json");
   REQUIRE(in.good());
   const nlohmann::json doc = nlohmann::json::parse(in);
   double worst_weight = 0.0, worst_deriv = 0.0, worst_x = 0.0;
@@ -457,7 +458,7 @@ TEST_CASE("cell reference: the double path on distorted cells of every type, bot
 }
 
 TEST_CASE("vtk split: the recorded tables give VTK's own tetrahedra on distorted cells with random ids", "[cells][isoparametric]") {
-  std::ifstream in(RAYINT_SOURCE_DIR "/tests/fixtures/cells/vtk_split_check.json");
+  std::ifstream in(RAYINT_SOURCE_DIR + "/tests/fixtures/cells/vtk_split_check.json");
   REQUIRE(in.good());
   const nlohmann::json doc = nlohmann::json::parse(in);
   int checked = 0;

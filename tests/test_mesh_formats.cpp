@@ -13,6 +13,7 @@
 #include <sstream>
 #include <utility>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "cli_refusal.hpp"
 #include "rayint/input/case_reader.hpp"
@@ -31,7 +32,7 @@ using rayint::test::TempDir;
 
 namespace {
 
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/meshes/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/meshes/";
 
 using rayint::test::linear_field;
 

@@ -15,6 +15,7 @@
 #include <random>
 #include <sstream>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
@@ -37,7 +38,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 
 const nlohmann::json& oracle() {
   static const nlohmann::json j = nlohmann::json::parse(rayint::test::slurp(fs::path(kDir) / "expected.json"));

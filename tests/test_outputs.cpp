@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <string>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/core/atomic_file.hpp"
 
@@ -31,7 +32,7 @@ bool is_temporary(const std::string& name) { return name.find(".tmp.") != std::s
 // returns the exit status (128 + signal when killed).
 CliRun run_shell(const fs::path& dir, const std::string& shell) {
   const fs::path err = dir.parent_path() / (dir.filename().string() + ".stderr");
-  const std::string cmd = "cd '" + dir.string() + "' && RAYINT='" RAYINT_CLI_PATH "' && (" + shell +
+  const std::string cmd = "cd '" + dir.string() + "' && RAYINT='" + RAYINT_CLI_PATH + "' && (" + shell +
                           ") 2>'" + err.string() + "'";
   const int raw = std::system(cmd.c_str());
   CliRun r;
@@ -111,7 +112,7 @@ TEST_CASE("A failed write to standard output exits non-zero with one line",
 TEST_CASE("A full disk mid-run leaves every earlier output of the command as it was",
           "[reliability][outputs]") {
   const TempDir dir;
-  const std::string mesh_case = "'" RAYINT_SOURCE_DIR "/cases/mesh-ball-radial.json'";
+  const std::string mesh_case = "'" + RAYINT_SOURCE_DIR + "/cases/mesh-ball-radial.json'";
   dir.write("img.npy", "old image");
   dir.write("stats.json", "old stats");
   // ulimit -f 64 (64 KiB per file): the 128x128 RGB float image (196 KiB) cannot be written,

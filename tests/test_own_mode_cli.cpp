@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kReaders = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const std::string kReaders = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 
 std::string bytes_of(const fs::path& p) { return test::slurp(p); }
 

@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "input_text.hpp"
 #include "rayint/core/error.hpp"
@@ -22,7 +23,7 @@ using rayint::test::TempDir;
 
 namespace {
 
-const std::string kReaders = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const std::string kReaders = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 const std::string kParallel = kReaders + "parallel/";
 
 std::string text_of(const std::string& path) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/case_reader.hpp"

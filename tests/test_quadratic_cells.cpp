@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/cells/quadratic_cells.hpp"
@@ -17,7 +18,7 @@ using namespace rayint;
 namespace {
 const nlohmann::json& fixture() {
   static const nlohmann::json j = nlohmann::json::parse(
-      rayint::test::slurp(std::filesystem::path(RAYINT_SOURCE_DIR "/tests/fixtures/cells/vtk_quadratic_cells.json")));
+      rayint::test::slurp(std::filesystem::path(RAYINT_SOURCE_DIR + "/tests/fixtures/cells/vtk_quadratic_cells.json")));
   return j;
 }
 }  // namespace

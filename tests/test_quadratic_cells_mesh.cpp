@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/quadratic_isoparametric.hpp"
@@ -34,7 +35,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/quadratic/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/quadratic/";
 
 struct Tolerances {
   // Position and value against VTK's at VTK's parametric point: VTK's formulas and ours (the
@@ -322,7 +323,7 @@ TEST_CASE("quadratic cells: rays through shared curved faces, edges and vertices
 
 TEST_CASE("quadratic cells: straight-edged tet10 in the own path equal the tetrahedral path's exact quadratic", "[quadratic][mesh][tet10]") {
   const TransferFunctions tf = steep_tf();
-  const std::string file = RAYINT_SOURCE_DIR "/tests/fixtures/readers/tet10-22.msh";
+  const std::string file = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/tet10-22.msh";
   TetMesh tets = read_mesh_file(file, "r");
   REQUIRE(check_tet10_edges(tets).straight());
   const CellTraversal own(cell_mesh_of(TetMesh(tets)), file);

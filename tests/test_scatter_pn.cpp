@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/core/math.hpp"
 #include "rayint/input/slab_benchmark_reader.hpp"

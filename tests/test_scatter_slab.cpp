@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/scattering/azimuthal_phase.hpp"
 #include "rayint/special/gauss_legendre.hpp"

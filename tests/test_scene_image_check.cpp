@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test_paths.hpp"
 #include "candidate_images.hpp"
 #include "cli_harness.hpp"
 #include "rayint/render/float_image.hpp"

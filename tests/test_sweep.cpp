@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "test_paths.hpp"
 #include "rayint/report/sweep_table.hpp"
 #include "rayint/studies/sweep.hpp"
 #include "rayint/input/case_reader.hpp"

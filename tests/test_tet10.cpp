@@ -16,6 +16,7 @@
 #include <map>
 #include <random>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
@@ -33,7 +34,7 @@ using Big = boost::multiprecision::cpp_bin_float_50;
 
 namespace {
 
-const std::string kDir = RAYINT_SOURCE_DIR "/tests/fixtures/readers/";
+const std::string kDir = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/";
 
 // The gmsh mesh of the cube in every format, with the array names of q and r.
 struct Format {

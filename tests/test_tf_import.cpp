@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/paraview_preset.hpp"

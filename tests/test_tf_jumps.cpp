@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "test_paths.hpp"
 #include "rayint/generators/regimes.hpp"
 #include "rayint/input/paraview_preset.hpp"
 #include "rayint/integrators/integrator.hpp"

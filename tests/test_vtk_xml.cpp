@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test_paths.hpp"
 #include "cli_harness.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/mesh_case_reader.hpp"

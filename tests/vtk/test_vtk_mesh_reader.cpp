@@ -15,6 +15,7 @@
 #include <vtkUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include "../test_paths.hpp"
 #include "../cli_harness.hpp"
 #include "rayint/input/vtk_legacy_reader.hpp"
 #include "rayint/vtk/vtk_mesh_reader.hpp"

@@ -18,6 +18,7 @@
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "../test_paths.hpp"
 #include "rayint/input/vtk_xml_reader.hpp"
 
 using namespace rayint;
