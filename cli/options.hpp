@@ -79,14 +79,26 @@ inline std::string integer_from_float_form(std::string s) {
   return std::to_string(static_cast<long long>(v));
 }
 
+// After that rewrite, an integer option's value must be a whole number (and >= 0 for an unsigned
+// one): "must be a whole number >= 0, got -1" instead of CLI11's "Could not convert: --worst = -1",
+// which does not say what would do. 20 digits and more are left to the conversion, which names the
+// overflow.
+inline std::string whole_number_error(const std::string& s, bool non_negative) {
+  const std::size_t sign = !s.empty() && (s[0] == '+' || (s[0] == '-' && !non_negative)) ? 1 : 0;
+  const bool digits = s.size() > sign && s.find_first_not_of("0123456789", sign) == std::string::npos;
+  if (digits) return std::string();
+  return std::string("must be a whole number") + (non_negative ? " >= 0" : "") + ", got " + s;
+}
+
 inline void accept_integer_float_forms(CLI::App& app) {
   for (CLI::Option* o : app.get_options()) {
     const std::string type = o->get_type_name();  // "INT", "UINT", then ":<validator>"...
-    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0)
+    const bool non_negative = type.rfind("UINT", 0) == 0;
+    if (type.rfind("INT", 0) == 0 || non_negative)
       o->transform(CLI::Validator(
-          [](std::string& s) {
+          [non_negative](std::string& s) {
             s = integer_from_float_form(s);
-            return std::string();
+            return whole_number_error(s, non_negative);
           },
           "", "integer float forms"));
   }

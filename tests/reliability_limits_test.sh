@@ -53,6 +53,8 @@ refuse camera_bytes "small.json: camera: 16 x 16 pixels" env RAYINT_MAX_IMAGE_BY
 refuse shard_arg "--shard 0/200000: 2e+05 shards" "$rayint" stress --count 10 --shard 0/200000 -o out.json -q
 # Range messages in short form (CLI11's own printed 309 digits for --exposure -1).
 refuse exposure_negative "--exposure: must be > 0, got -1" "$rayint" render small.json -o out.png --exposure -1 -q
+# Integer options say what would do (CLI11's own: "Could not convert: --count = 2.5").
+refuse count_fraction "--count: must be a whole number, got 2.5" "$rayint" stress --count 2.5 -q -o out.json
 cat > gate.json <<'JSON'
 {"stress": {"count": 1000000000000, "seed": 1}}
 JSON
@@ -215,10 +217,10 @@ refuse converge_invariance_negative "--invariance-tolerance: must be in \[0, 1\]
   conv --steps 0.2,0.1 --invariance-tolerance -1
 refuse converge_invariance_huge "--invariance-tolerance: must be in \[0, 1\] (a fraction of the exact image's peak), got 1e+300" \
   conv --steps 0.2,0.1 --invariance-tolerance 1e300
-refuse converge_worst_negative "--worst" conv --steps 0.2,0.1 --worst -1
+refuse converge_worst_negative "--worst: must be a whole number >= 0, got -1" conv --steps 0.2,0.1 --worst -1
 refuse converge_worst_huge "--worst: at most 100000 pixels, got 100001" conv --steps 0.2,0.1 --worst 100001
-refuse converge_threads_negative "--threads: must be >= 0, got -1" conv --steps 0.2,0.1 --threads -1
-refuse scene_sweep_threads_negative "--threads: must be >= 0, got -1" \
+refuse converge_threads_negative "--threads: must be a whole number >= 0, got -1" conv --steps 0.2,0.1 --threads -1
+refuse scene_sweep_threads_negative "--threads: must be a whole number >= 0, got -1" \
   "$rayint" scene-sweep "$src/docs/examples/grid-scene.json" --threads -1 -o out.json -q
 
 # HSV colour maps: colours outside [0, 1] (the cause of the 456 MB import) are refused at the

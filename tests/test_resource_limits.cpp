@@ -67,3 +67,16 @@ TEST_CASE("Sign checks of options print the value as typed, not 300 digits", "[r
   CHECK(sign_error("-1e-300", true) == "must be >= 0, got -1e-300");
   CHECK(sign_error("2", false).empty());
 }
+
+TEST_CASE("Integer options say what a value must be, not that it could not be converted",
+          "[reliability][limits]") {
+  using rayint::cli::whole_number_error;
+  CHECK(whole_number_error("-1", true) == "must be a whole number >= 0, got -1");
+  CHECK(whole_number_error("abc", true) == "must be a whole number >= 0, got abc");
+  CHECK(whole_number_error("1.5", false) == "must be a whole number, got 1.5");
+  CHECK(whole_number_error("", false) == "must be a whole number, got ");
+  CHECK(whole_number_error("-", false) == "must be a whole number, got -");
+  CHECK(whole_number_error("-1", false).empty());
+  CHECK(whole_number_error("+7", true).empty());
+  CHECK(whole_number_error("0", true).empty());
+}
