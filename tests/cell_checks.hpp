@@ -1,16 +1,28 @@
 #pragma once
-// The check the tests of VTK's cells in their own interpolation, the linear cells
+// What the tests of VTK's cells in their own interpolation, the linear cells
 // (tests/test_linear_cells.cpp) and the quadratic ones (tests/test_quadratic_isoparametric.cpp),
-// share: a chord's double integral against the 50-digit reference (their bounds are
-// LinearCellTolerances and QuadraticCellTolerances in tolerances.hpp).
+// share: random points of a reference cell, and a chord's double integral checked against the
+// 50-digit reference (their bounds are LinearCellTolerances and QuadraticCellTolerances in
+// tolerances.hpp).
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 
 #include "rayint/cells/cell_integral.hpp"
+#include "rayint/cells/linear_cells.hpp"
 #include "rayint/reference/cell_reference.hpp"
 
 namespace rayint::test {
+
+// A uniformly random point of the reference cell of `type` (a quadratic cell: its corners' type).
+inline Vec3 random_inside(LinearCellType type, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (;;) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    if (inside_reference(type, p)) return p;
+  }
+}
 
 // One chord interval's integral `d` in double against the 50-digit reference `ref`, per channel:
 // emission and optical depth within `rel` of the reference (relative), and their errors' sum

@@ -25,6 +25,7 @@
 
 using namespace rayint;
 using rayint::test::LinearCellTolerances;
+using rayint::test::random_inside;
 
 namespace {
 
@@ -45,14 +46,6 @@ LinearCell random_cell(LinearCellType type, std::mt19937& rng, double noise, boo
     values.push_back(v(rng));
   }
   return make_linear_cell(type, nodes, values);
-}
-
-Vec3 random_inside(LinearCellType type, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (;;) {
-    const Vec3 p(u(rng), u(rng), u(rng));
-    if (inside_reference(type, p)) return p;
-  }
 }
 
 }  // namespace

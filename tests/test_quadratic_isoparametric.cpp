@@ -78,11 +78,7 @@ QuadraticCell valid_cell(QuadraticCellType type, std::mt19937& rng, double noise
 }
 
 Vec3 random_inside(QuadraticCellType type, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (;;) {
-    const Vec3 p(u(rng), u(rng), u(rng));
-    if (inside_reference(quadratic_corner_type(type), p)) return p;
-  }
+  return test::random_inside(quadratic_corner_type(type), rng);
 }
 
 CellReferenceInput reference_input(const QuadraticCell& cell, const ViewRay& ray, double t_near, double t_far) {
