@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "subcommand.hpp"
 #include "options.hpp"
 #include "shard.hpp"
 #include "rayint/input/shard_reader.hpp"
@@ -67,12 +68,10 @@ void set_bench_command(CLI::App& app) {
     std::string shard;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "bench", "Accuracy/cost sweep: every method along its knob, error and time per ray");
-  cmd->footer(
-      "Exit status: 0 the report was written (a setting that failed on some rays is counted in "
-      "it: failed_rays, null errors where no ray ran, a failed: line per method); 2 bad input. "
-      "docs/exit-codes.md");
+  CLI::App* cmd = add_command(
+      app, "bench", "Accuracy/cost sweep: every method along its knob, error and time per ray",
+      "0 the report was written (a setting that failed on some rays is counted in "
+      "it: failed_rays, null errors where no ray ran, a failed: line per method); 2 bad input.");
   cmd->add_option("cases", opt->files,
                   "Case files (JSON) or folders of them; default: the folder cases/");
   cmd->add_option("--methods", opt->methods,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "subcommand.hpp"
 #include "options.hpp"
 #include "rayint/studies/evaluate.hpp"
 #include "rayint/input/case_reader.hpp"
@@ -35,12 +36,11 @@ void set_eval_command(CLI::App& app) {
     MeshReadOptions mesh;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "eval", "Evaluate case files with each method against the 50-digit reference");
-  cmd->footer(
-      "Exit status: 0 every method ran on every ray; 1 some method failed on some ray (output "
+  CLI::App* cmd = add_command(
+      app, "eval", "Evaluate case files with each method against the 50-digit reference",
+      "0 every method ran on every ray; 1 some method failed on some ray (output "
       "written, the failed rays with null errors and their failure text, a failed count per "
-      "method); 2 bad input (nothing written). docs/exit-codes.md");
+      "method); 2 bad input (nothing written).");
   cmd->add_option("cases", opt->files, "Case files (JSON) or folders of them")->required();
   cmd->add_option("--methods", opt->methods,
                   "Comma-separated methods, each name[:key=value...] (default: exact,paper)");

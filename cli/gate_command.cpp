@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "data_dir.hpp"
+#include "subcommand.hpp"
 #include "options.hpp"
 #include "rayint/studies/gate.hpp"
 #include "rayint/core/output_dir.hpp"
@@ -94,12 +95,11 @@ void set_gate_command(CLI::App& app) {
     std::vector<std::string> candidates;  // --candidate FILE...: a renderer's own numbers
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "gate", "Check every method's tolerances on the corpus and a stress sample (exit 1 on failure)");
-  cmd->footer(
-      "Exit status: 0 every check passed; 1 some check failed (a method that failed on some ray "
+  CLI::App* cmd = add_command(
+      app, "gate", "Check every method's tolerances on the corpus and a stress sample (exit 1 on failure)",
+      "0 every check passed; 1 some check failed (a method that failed on some ray "
       "fails the check <part>.<case>.<method>.failed whatever its limits); 2 bad configuration, "
-      "including an invalid method spec in it. docs/exit-codes.md");
+      "including an invalid method spec in it.");
   cmd->add_option("--config", opt->config,
                   "Gate config (docs/gates.md); its relative paths are resolved against the "
                   "directory that holds it. Outside a source tree the default is the installed "

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "subcommand.hpp"
 #include "options.hpp"
 #include "shard.hpp"
 #include "rayint/core/limits.hpp"
@@ -37,12 +38,11 @@ void set_stress_command(CLI::App& app) {
     std::string shard;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "stress", "Adversarial pieces and rays, regime by regime, against the 50-digit reference");
-  cmd->footer(
-      "Exit status: 0 no method and no reference failed; 1 a method threw or returned a "
+  CLI::App* cmd = add_command(
+      app, "stress", "Adversarial pieces and rays, regime by regime, against the 50-digit reference",
+      "0 no method and no reference failed; 1 a method threw or returned a "
       "non-finite result, or the reference failed, on some sample (report written, counted in "
-      "the nonfin and failed columns); 2 bad input. docs/exit-codes.md");
+      "the nonfin and failed columns); 2 bad input.");
   cmd->add_option("--count", opt->count,
                   "Pieces in total, split evenly over the regimes (ray-level regimes draw whole "
                   "rays until their pieces reach their share)")

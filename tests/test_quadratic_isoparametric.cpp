@@ -13,23 +13,14 @@
 #include "rayint/cells/quadratic_isoparametric.hpp"
 #include "rayint/reference/cell_reference.hpp"
 #include "rayint/studies/own_cells_eval.hpp"
+#include "cell_checks.hpp"
 #include "cell_samples.hpp"
+#include "tolerances.hpp"
 
 using namespace rayint;
+using rayint::test::QuadraticCellTolerances;
 
 namespace {
-
-struct QuadraticCellTolerances {
-  // Inverse map round trip on the curved cells below (|J| >= ~0.2 in every direction, coordinates
-  // <= ~3): Newton stops at 8 eps * 3 in x, so |dp| <= ~1e-14; 1e-12.
-  static constexpr double round_trip_abs = 1e-12;
-  // A ray aimed at a patch point hits it: the hit (Newton on the projected patch to 8 eps of the
-  // patch's size, then t from the patch point) lies within ~1e-15 of the point; 1e-12.
-  static constexpr double patch_hit_abs = 1e-12;
-  // The double path against the 50-digit reference, per channel, relative (the same target as the
-  // linear cells' reference_rel in test_linear_cells.cpp: near machine precision).
-  static constexpr double reference_rel = 1e-13;
-};
 
 const std::array<QuadraticCellType, 5> kTypes = {QuadraticCellType::tetra, QuadraticCellType::hexahedron,
                                                  QuadraticCellType::wedge, QuadraticCellType::triquadratic_hexahedron,
@@ -87,11 +78,7 @@ QuadraticCell valid_cell(QuadraticCellType type, std::mt19937& rng, double noise
 }
 
 Vec3 random_inside(QuadraticCellType type, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (;;) {
-    const Vec3 p(u(rng), u(rng), u(rng));
-    if (inside_reference(quadratic_corner_type(type), p)) return p;
-  }
+  return test::random_inside(quadratic_corner_type(type), rng);
 }
 
 CellReferenceInput reference_input(const QuadraticCell& cell, const ViewRay& ray, double t_near, double t_far) {
@@ -256,15 +243,7 @@ TEST_CASE("quadratic cells: the double path against the 50-digit reference on cu
           REQUIRE(d.converged);
           CHECK(d.path == CellPath::isoparametric);
           const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
-          for (std::size_t c = 0; c < kChannels; ++c) {
-            const double e = std::abs(d.emission[c] - ref.emission[c]), o = std::abs(d.optical_depth[c] - ref.optical_depth[c]);
-            worst = std::max({worst, e / ref.emission[c], o / ref.optical_depth[c]});
-            INFO("pieces " << d.pieces << " degree " << d.max_degree << " estimate " << d.error_estimate << " errors "
-                           << e / ref.emission[c] << " " << o / ref.optical_depth[c]);
-            CHECK(e <= QuadraticCellTolerances::reference_rel * ref.emission[c]);
-            CHECK(o <= QuadraticCellTolerances::reference_rel * ref.optical_depth[c]);
-            CHECK(e + o <= d.error_estimate);
-          }
+          worst = std::max(worst, test::check_against_reference(d, ref, QuadraticCellTolerances::reference_rel));
           ++chords;
         }
       }

@@ -133,6 +133,16 @@ PolySegment q_chord_50(const ViewRay& r, double t0, double t1) {
   return PolySegment{static_cast<double>(L), {static_cast<double>(v[0]), static_cast<double>(b), static_cast<double>(c)}};
 }
 
+// The mesh-free 50-digit oracle of ray `r`: the reference integral of q along its chord of the
+// cube (q_chord_50), which a straight tet10 mesh of q reproduces exactly.
+ReferenceRay q_oracle(const TransferFunctions& tf, const ViewRay& r) {
+  double t0 = 0.0, t1 = 0.0;
+  REQUIRE(cube_chord(r, t0, t1));
+  PolyRay chord;
+  chord.segments.push_back(q_chord_50(r, t0, t1));
+  return reference_poly_ray(tf, chord);
+}
+
 // The 50-digit quadratic of one crossing through tet `cell` of `mesh`, from its own barycentric
 // coordinates (Cramer's rule) and the tet10 shape functions N_i = l_i (2 l_i - 1), N_ab = 4 l_a l_b.
 Big tet10_value_50(const TetMesh& mesh, std::size_t cell, const Big x[3]) {
@@ -260,11 +270,7 @@ TEST_CASE("tet10 ray integral: q against the mesh-free 50-digit reference in eve
     double worst = 0.0, worst_t = 0.0;
     RayTrace trace;
     for (const ViewRay& r : rays) {
-      double t0 = 0.0, t1 = 0.0;
-      REQUIRE(cube_chord(r, t0, t1));
-      PolyRay ref_ray;
-      ref_ray.segments.push_back(q_chord_50(r, t0, t1));
-      const ReferenceRay ref = reference_poly_ray(tf, ref_ray);
+      const ReferenceRay ref = q_oracle(tf, r);
       traversal.trace(r, trace);
       const RayResult got = integrator.integrate(trace, Rgb{0.0, 0.0, 0.0});
       for (std::size_t c = 0; c < 3; ++c) {
@@ -474,11 +480,7 @@ TEST_CASE("eval of tet10: exact and the reference on quadratic chords, sampling 
     REQUIRE(out.size() == rays.size());
     double worst_exact = 0.0, worst_ref = 0.0, worst_riemann = 0.0, worst_nerf = 0.0, worst_rk4 = 0.0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      double t0 = 0.0, t1 = 0.0;
-      REQUIRE(cube_chord(rays[i], t0, t1));
-      PolyRay chord;
-      chord.segments.push_back(q_chord_50(rays[i], t0, t1));
-      const ReferenceRay oracle = reference_poly_ray(tf, chord);  // mesh-free
+      const ReferenceRay oracle = q_oracle(tf, rays[i]);  // mesh-free
       const auto& m = out[i]["methods"];
       for (std::size_t c = 0; c < 3; ++c) {
         const double want = oracle.intensity[c].hi;
@@ -524,11 +526,7 @@ TEST_CASE("tet10 chords: the same rays taken as linear segments would be another
   double worst_linear = 0.0;
   RayTrace trace;
   for (const ViewRay& r : rays) {
-    double t0 = 0.0, t1 = 0.0;
-    REQUIRE(cube_chord(r, t0, t1));
-    PolyRay chord;
-    chord.segments.push_back(q_chord_50(r, t0, t1));
-    const ReferenceRay oracle = reference_poly_ray(tf, chord);
+    const ReferenceRay oracle = q_oracle(tf, r);
     traversal.trace(r, trace);
     Ray ray = ray_with_quadratic_chords(trace, Rgb{});
     REQUIRE(has_quadratic_segments(ray));
@@ -553,11 +551,7 @@ TEST_CASE("check and check --candidate-image of tet10 against the quadratic chor
   nlohmann::json good = {{"case", "tet10"}, {"renderer", "the analytic q, 50 digits"}, {"rays", nlohmann::json::array()}};
   nlohmann::json bad = good;
   for (const ViewRay& r : rays) {
-    double t0 = 0.0, t1 = 0.0;
-    REQUIRE(cube_chord(r, t0, t1));
-    PolyRay chord;
-    chord.segments.push_back(q_chord_50(r, t0, t1));
-    const ReferenceRay oracle = reference_poly_ray(tf, chord);
+    const ReferenceRay oracle = q_oracle(tf, r);
     const nlohmann::json v = {oracle.intensity[0].hi, oracle.intensity[1].hi, oracle.intensity[2].hi};
     good["rays"].push_back({{"intensity", v}});
     bad["rays"].push_back({{"intensity", {oracle.intensity[0].hi * (1 + 1e-6), oracle.intensity[1].hi, oracle.intensity[2].hi}}});

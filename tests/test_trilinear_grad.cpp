@@ -100,6 +100,69 @@ struct Worst {
   }
 };
 
+// The voxel entries of `grad` against voxel_difference: the `top` largest of channel 0 and every
+// `every`-th of the rest (each costs four 50-digit renders). `where` labels the ray.
+void compare_voxels(const TransferFunctions& tf, const VoxelGrid& g, const ViewRay& ray, const Rgb& background,
+                    const TrilinearGradient& grad, std::size_t top, std::size_t every, const std::string& where,
+                    Worst& voxels) {
+  std::vector<std::size_t> order(grad.index.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::fabs(grad.d_value[a][0]) > std::fabs(grad.d_value[b][0]);
+  });
+  for (std::size_t n = 0; n < order.size(); ++n) {
+    if (n >= top && n % every != 0) continue;
+    const std::size_t i = order[n];
+    const Rgb want = voxel_difference(tf, g, ray, background, grad.index[i]);
+    for (int c = 0; c < kChannels; ++c) {
+      std::ostringstream label;
+      label << where << " voxel " << grad.index[i] << " channel " << c;
+      voxels.add(grad.d_value[i][c], want[c], grad.channel_scale(c), label.str());
+    }
+  }
+}
+
+// Every transfer-function node's value and position entry of `grad` against differences of the
+// reference on `base` (the ray's cubics, which do not move with the nodes). A node value within
+// 2h of 0 (densities and colours must stay >= 0) takes the one-sided difference. At a jump (two
+// nodes at one scalar) the position entry is the first node's with both moved; the second's is 0
+// (the tie), checked here.
+void compare_nodes(TransferFunctions& tf, const PolyRay& base, const TrilinearGradient& grad, const std::string& where,
+                   Worst& nodes) {
+  for (int c = 0; c < kChannels; ++c) {
+    const std::size_t ch = static_cast<std::size_t>(c);
+    for (const bool density : {true, false}) {
+      PiecewiseLinear& f = (density ? tf.density : tf.color)[ch];
+      const auto& got = (density ? grad.density : grad.color)[ch];
+      for (std::size_t k = 0; k < f.scalar.size(); ++k) {
+        const bool jump_first = k + 1 < f.scalar.size() && f.scalar[k + 1] == f.scalar[k];
+        const bool jump_second = k > 0 && f.scalar[k - 1] == f.scalar[k];
+        for (const bool position : {false, true}) {
+          if (position && jump_second) {
+            CHECK(got[k].position == 0.0);  // the tie
+            continue;
+          }
+          double& x = position ? f.scalar[k] : f.value[k];
+          const double x0 = x;
+          const auto at = [&](double h) {
+            x = x0 + h;
+            if (position && jump_first) f.scalar[k + 1] = x0 + h;
+            const Rgb v = reference_intensity(tf, base);
+            x = x0;
+            if (position && jump_first) f.scalar[k + 1] = x0;
+            return v;
+          };
+          const Rgb d = !position && x0 < 2 * kStep ? forward_difference(at, kStep) : difference(at, kStep);
+          std::ostringstream label;
+          label << where << (density ? " density" : " color") << "[" << c << "][" << k << "]."
+                << (position ? "position" : "value");
+          nodes.add(position ? got[k].position : got[k].value, d[c], grad.channel_scale(c), label.str());
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("trilinear gradient: forward intensity is integrate()'s and the background derivative its transmittance",
@@ -138,52 +201,13 @@ TEST_CASE("trilinear gradient against differences of the 50-digit reference", "[
         const TrilinearGradient grad = integrator.gradient(g, ray, background);
         REQUIRE(!grad.index.empty());
         ++rays;
-        // Voxels: the 3 largest entries of channel 0 and every 12th of the rest (each costs four
-        // 50-digit renders).
-        std::vector<std::size_t> order(grad.index.size());
-        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-          return std::fabs(grad.d_value[a][0]) > std::fabs(grad.d_value[b][0]);
-        });
-        for (std::size_t n = 0; n < order.size(); ++n) {
-          if (n >= 3 && n % 12 != 0) continue;
-          const std::size_t i = order[n];
-          const Rgb want = voxel_difference(tf, g, ray, background, grad.index[i]);
-          for (int c = 0; c < kChannels; ++c) {
-            std::ostringstream label;
-            label << "scale " << scale << " ray " << r << " voxel " << grad.index[i] << " channel " << c;
-            voxels.add(grad.d_value[i][c], want[c], grad.channel_scale(c), label.str());
-          }
-        }
+        std::ostringstream where;
+        where << "scale " << scale << " ray " << r;
+        compare_voxels(tf, g, ray, background, grad, 3, 12, where.str(), voxels);
         // Transfer-function nodes on one ray per grid and scale (the last random one): every
         // node's value and position.
         if (r != chosen.size() - 1) continue;
-        const PolyRay base = trilinear_ray(g, ray, background);
-        for (int c = 0; c < kChannels; ++c) {
-          const std::size_t ch = static_cast<std::size_t>(c);
-          for (const bool density : {true, false}) {
-            PiecewiseLinear& f = (density ? tf.density : tf.color)[ch];
-            const auto& got = (density ? grad.density : grad.color)[ch];
-            for (std::size_t k = 0; k < f.scalar.size(); ++k) {
-              for (const bool position : {false, true}) {
-                double& x = position ? f.scalar[k] : f.value[k];
-                const double x0 = x;
-                const auto at = [&](double h) {
-                  x = x0 + h;
-                  const Rgb v = reference_intensity(tf, base);
-                  x = x0;
-                  return v;
-                };
-                // A node value within 2h of 0 (densities and colours must stay >= 0): one-sided.
-                const Rgb d = !position && x0 < 2 * kStep ? forward_difference(at, kStep) : difference(at, kStep);
-                std::ostringstream label;
-                label << "scale " << scale << " ray " << r << (density ? " density" : " color") << "[" << c << "]["
-                      << k << "]." << (position ? "position" : "value");
-                nodes.add(position ? got[k].position : got[k].value, d[c], grad.channel_scale(c), label.str());
-              }
-            }
-          }
-        }
+        compare_nodes(tf, trilinear_ray(g, ray, background), grad, where.str(), nodes);
       }
     }
   }
@@ -257,54 +281,10 @@ TEST_CASE("trilinear gradient across jumps against differences of the 50-digit r
           continue;
         }
         ++rays;
-        std::vector<std::size_t> order(grad.index.size());
-        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-          return std::fabs(grad.d_value[a][0]) > std::fabs(grad.d_value[b][0]);
-        });
-        for (std::size_t n = 0; n < order.size(); ++n) {
-          if (n >= 4 && n % 8 != 0) continue;
-          const std::size_t i = order[n];
-          const Rgb want = voxel_difference(tf, g, ray, background, grad.index[i]);
-          for (int c = 0; c < kChannels; ++c) {
-            std::ostringstream label;
-            label << "scale " << scale << " ray " << r << " voxel " << grad.index[i] << " channel " << c;
-            voxels.add(grad.d_value[i][c], want[c], grad.channel_scale(c), label.str());
-          }
-        }
-        const PolyRay base = trilinear_ray(g, ray, background);
-        for (int c = 0; c < kChannels; ++c) {
-          const std::size_t ch = static_cast<std::size_t>(c);
-          for (const bool density : {true, false}) {
-            PiecewiseLinear& f = (density ? tf.density : tf.color)[ch];
-            const auto& got = (density ? grad.density : grad.color)[ch];
-            for (std::size_t k = 0; k < f.scalar.size(); ++k) {
-              const bool jump_first = k + 1 < f.scalar.size() && f.scalar[k + 1] == f.scalar[k];
-              const bool jump_second = k > 0 && f.scalar[k - 1] == f.scalar[k];
-              for (const bool position : {false, true}) {
-                if (position && jump_second) {
-                  CHECK(got[k].position == 0.0);  // the tie
-                  continue;
-                }
-                double& x = position ? f.scalar[k] : f.value[k];
-                const double x0 = x;
-                const auto at = [&](double h) {
-                  x = x0 + h;
-                  if (position && jump_first) f.scalar[k + 1] = x0 + h;
-                  const Rgb v = reference_intensity(tf, base);
-                  x = x0;
-                  if (position && jump_first) f.scalar[k + 1] = x0;
-                  return v;
-                };
-                const Rgb d = !position && x0 < 2 * kStep ? forward_difference(at, kStep) : difference(at, kStep);
-                std::ostringstream label;
-                label << "scale " << scale << " ray " << r << (density ? " density" : " color") << "[" << c << "]["
-                      << k << "]." << (position ? "position" : "value");
-                nodes.add(position ? got[k].position : got[k].value, d[c], grad.channel_scale(c), label.str());
-              }
-            }
-          }
-        }
+        std::ostringstream where;
+        where << "scale " << scale << " ray " << r;
+        compare_voxels(tf, g, ray, background, grad, 4, 8, where.str(), voxels);
+        compare_nodes(tf, trilinear_ray(g, ray, background), grad, where.str(), nodes);
       }
     }
   std::ostringstream msg;

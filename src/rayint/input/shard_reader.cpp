@@ -58,6 +58,18 @@ struct Reader {
     if (!v.is_array()) fail(field::member_path(path, key), "must be an array");
     return v;
   }
+  // Calls f(element, its path) for each element of the array `a` at `path`; `what` is the
+  // refusal when `a` is not an array (e.g. "must be an array of samples").
+  template <class F>
+  void elements(const nlohmann::json& a, const std::string& path, const char* what, F&& f) const {
+    if (!a.is_array()) fail(path, what);
+    for (std::size_t i = 0; i < a.size(); ++i) f(a[i], field::index_path(path, i));
+  }
+  // The same for the array member `key` of `j`.
+  template <class F>
+  void each(const nlohmann::json& j, const std::string& path, const char* key, F&& f) const {
+    elements(array(j, path, key), field::member_path(path, key), "must be an array", f);
+  }
   std::vector<double> numbers(const nlohmann::json& a, const std::string& path) const {
     if (!a.is_array()) fail(path, "must be an array");
     std::vector<double> v;
@@ -126,11 +138,7 @@ MonteCarloPart monte_carlo_part_from_json(const nlohmann::json& j, const std::st
   p.scores = static_cast<std::size_t>(r.nonneg(j, path, "scores"));
   p.collisions = r.nonneg(j, path, "collisions");
   p.seconds = r.number(j, path, "seconds");
-  const nlohmann::json& nodes = r.array(j, path, "nodes");
-  const std::string np = field::member_path(path, "nodes");
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const std::string ip = field::index_path(np, i);
-    const nlohmann::json& n = nodes[i];
+  r.each(j, path, "nodes", [&](const nlohmann::json& n, const std::string& ip) {
     if (!n.is_array() || n.size() != 5) r.fail(ip, "must be [level, index, samples, [sums], [sums of squares]]");
     const long long level = r.integer(n[0], field::index_path(ip, 0));
     const long long index = r.integer(n[1], field::index_path(ip, 1));
@@ -143,7 +151,7 @@ MonteCarloPart monte_carlo_part_from_json(const nlohmann::json& j, const std::st
                          ScoreSums(std::move(sum), std::move(sum2), samples))
              .second)
       r.fail(ip, "duplicate node");
-  }
+  });
   return p;
 }
 
@@ -151,22 +159,14 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
                                        const std::string& path) {
   const Reader r{source};
   StressPartial part;
-  const nlohmann::json& regimes = r.array(j, path, "regimes");
-  const std::string rp = field::member_path(path, "regimes");
-  for (std::size_t i = 0; i < regimes.size(); ++i) {
-    const std::string ip = field::index_path(rp, i);
-    const nlohmann::json& g = regimes[i];
+  r.each(j, path, "regimes", [&](const nlohmann::json& g, const std::string& ip) {
     StressRegimePartial out;
     out.samples = static_cast<long>(r.nonneg(g, ip, "samples"));
     out.max_reference_rel_bound = r.number(g, ip, "max_reference_rel_bound");
     out.reference_failures = static_cast<long>(r.nonneg(g, ip, "reference_failures"));
     out.first_reference_failure = static_cast<long>(r.integer(g, ip, "first_reference_failure"));
     out.reference_failure = r.string(g, ip, "reference_failure");
-    const nlohmann::json& methods = r.array(g, ip, "methods");
-    const std::string mp = field::member_path(ip, "methods");
-    for (std::size_t k = 0; k < methods.size(); ++k) {
-      const std::string kp = field::index_path(mp, k);
-      const nlohmann::json& m = methods[k];
+    r.each(g, ip, "methods", [&](const nlohmann::json& m, const std::string& kp) {
       StressMethodPartial o;
       o.scored = static_cast<long>(r.nonneg(m, kp, "scored"));
       o.non_finite = static_cast<long>(r.nonneg(m, kp, "non_finite"));
@@ -180,9 +180,9 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
       o.rel = r.numbers(m, kp, "rel");
       o.ulp = r.numbers(m, kp, "ulp");
       out.methods.push_back(std::move(o));
-    }
+    });
     part.regimes.push_back(std::move(out));
-  }
+  });
   return part;
 }
 
@@ -343,22 +343,12 @@ SweepPart sweep_part_from_json(const nlohmann::json& j, const std::string& sourc
   }
   part.reference_seconds = r.number(run, rp, "reference_seconds");
   part.measure_seconds = r.number(run, rp, "measure_seconds");
-  const nlohmann::json& methods = r.array(j, path, "methods");
-  const std::string mp = field::member_path(path, "methods");
-  for (std::size_t a = 0; a < methods.size(); ++a) {
-    const std::string ap = field::index_path(mp, a);
-    if (!methods[a].is_array()) r.fail(ap, "must be an array of settings");
+  r.each(j, path, "methods", [&](const nlohmann::json& method, const std::string& ap) {
     std::vector<SweepSettingSamples> settings;
-    for (std::size_t k = 0; k < methods[a].size(); ++k) {
-      const std::string kp = field::index_path(ap, k);
-      const nlohmann::json& st = methods[a][k];
+    r.elements(method, ap, "must be an array of settings", [&](const nlohmann::json& st, const std::string& kp) {
       SweepSettingSamples out;
       out.wall_seconds = r.number(st, kp, "wall_seconds");
-      const nlohmann::json& cases = r.array(st, kp, "cases");
-      const std::string cp = field::member_path(kp, "cases");
-      for (std::size_t ci = 0; ci < cases.size(); ++ci) {
-        const std::string ip = field::index_path(cp, ci);
-        const nlohmann::json& c = cases[ci];
+      r.each(st, kp, "cases", [&](const nlohmann::json& c, const std::string& ip) {
         SweepCaseSamples cs;
         cs.first_ray = static_cast<std::size_t>(r.nonneg(c, ip, "first_ray"));
         cs.covered = static_cast<std::size_t>(r.nonneg(c, ip, "covered"));
@@ -367,32 +357,29 @@ SweepPart sweep_part_from_json(const nlohmann::json& j, const std::string& sourc
           cs.setup_failed = true;
           cs.setup_failure = r.string(c, ip, "setup_failure");
         }
-        const nlohmann::json& rays = r.array(c, ip, "rays");
-        const std::string yp = field::member_path(ip, "rays");
-        for (std::size_t k2 = 0; k2 < rays.size(); ++k2) {
-          const std::string rp2 = field::index_path(yp, k2);
+        r.each(c, ip, "rays", [&](const nlohmann::json& ray, const std::string& rp2) {
           SweepRaySample s;
-          if (rays[k2].is_object()) {
+          if (ray.is_object()) {
             s.failed = true;
-            s.failure = r.string(rays[k2], rp2, "failure");
+            s.failure = r.string(ray, rp2, "failure");
           } else {
-            const std::vector<double> v = r.numbers(rays[k2], rp2);
+            const std::vector<double> v = r.numbers(ray, rp2);
             if (v.size() != 5) r.fail(rp2, "must be [nonfinite bits, error r, g, b, seconds] or {\"failure\": message}");
-            const long long bits = r.integer(rays[k2][0], field::index_path(rp2, 0));
+            const long long bits = r.integer(ray[0], field::index_path(rp2, 0));
             if (bits < 0 || bits > 7) r.fail(field::index_path(rp2, 0), "must be in [0, 7]");
             s.nonfinite = static_cast<unsigned>(bits);
             s.error = {v[1], v[2], v[3]};
             s.seconds = v[4];
           }
           cs.rays.push_back(std::move(s));
-        }
+        });
         if (!cs.setup_failed && cs.rays.size() != cs.covered) r.fail(ip, "must hold `covered` rays");
         out.cases.push_back(std::move(cs));
-      }
+      });
       settings.push_back(std::move(out));
-    }
+    });
     part.methods.push_back(std::move(settings));
-  }
+  });
   return part;
 }
 
@@ -430,11 +417,7 @@ VolumeComparisonPart volume_comparison_part_from_json(const nlohmann::json& j, c
     }
     img.stats.seconds = r.number(st[4], field::index_path(sp, 4));
   }
-  const nlohmann::json& runs = r.array(j, path, "runs");
-  const std::string rp = field::member_path(path, "runs");
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    const std::string kp = field::index_path(rp, k);
-    const nlohmann::json& m = runs[k];
+  r.each(j, path, "runs", [&](const nlohmann::json& m, const std::string& kp) {
     p.run_index.push_back(static_cast<std::size_t>(r.nonneg(m, kp, "index")));
     MethodRun run;
     run.method = r.string(m, kp, "method");
@@ -448,7 +431,7 @@ VolumeComparisonPart volume_comparison_part_from_json(const nlohmann::json& j, c
     if (run.image.size() != w * static_cast<std::size_t>(p.height))
       r.fail(field::member_path(kp, "image"), "must hold one number per pixel");
     p.runs.push_back(std::move(run));
-  }
+  });
   return p;
 }
 
@@ -462,15 +445,9 @@ CellsSamples cells_samples_from_json(const nlohmann::json& j, const std::string&
     if (v.size() != n) r.fail(p, "must hold " + std::to_string(n) + " numbers");
     return v;
   };
-  const nlohmann::json& cells = r.array(j, path, "cells");
-  const std::string cp = field::member_path(path, "cells");
-  for (std::size_t t = 0; t < cells.size(); ++t) {
-    const std::string tp = field::index_path(cp, t);
-    if (!cells[t].is_array()) r.fail(tp, "must be an array of samples");
+  r.each(j, path, "cells", [&](const nlohmann::json& cell, const std::string& tp) {
     std::vector<CellRaySample> samples;
-    for (std::size_t i = 0; i < cells[t].size(); ++i) {
-      const std::string ip = field::index_path(tp, i);
-      const nlohmann::json& e = cells[t][i];
+    r.elements(cell, tp, "must be an array of samples", [&](const nlohmann::json& e, const std::string& ip) {
       CellRaySample s;
       s.level_error = r.numbers(e, ip, "level_error");
       s.level_segments = r.numbers(e, ip, "level_segments");
@@ -489,21 +466,17 @@ CellsSamples cells_samples_from_json(const nlohmann::json& j, const std::string&
       s.pieces = ref[1];
       s.bound_rel = ref[2];
       samples.push_back(std::move(s));
-    }
+    });
     part.cells.push_back(std::move(samples));
-  }
-  const nlohmann::json& voxels = r.array(j, path, "voxels");
-  const std::string vp = field::member_path(path, "voxels");
-  for (std::size_t g = 0; g < voxels.size(); ++g) {
-    const std::string gp = field::index_path(vp, g);
-    if (!voxels[g].is_array()) r.fail(gp, "must be an array of samples");
+  });
+  r.each(j, path, "voxels", [&](const nlohmann::json& grid, const std::string& gp) {
     std::vector<VoxelRaySample> samples;
-    for (std::size_t i = 0; i < voxels[g].size(); ++i) {
-      const std::vector<double> v = fixed(voxels[g][i], field::index_path(gp, i), 4);
+    r.elements(grid, gp, "must be an array of samples", [&](const nlohmann::json& e, const std::string& ip) {
+      const std::vector<double> v = fixed(e, ip, 4);
       samples.push_back({v[0], v[1], v[2], v[3]});
-    }
+    });
     part.voxels.push_back(std::move(samples));
-  }
+  });
   part.seconds = r.number(j, path, "seconds");
   return part;
 }
