@@ -154,7 +154,9 @@ PixelJacobian pixel_jacobian(const TetTraversal& mesh, const TransferFunctions& 
   RayTrace trace;
   mesh.trace(view, trace);
   const Ray ray = ray_from_trace(trace, background);
-  const RayGradient g = exact_ray_gradient(tf, ray);
+  // The chain below reads the segment blocks only.
+  RayGradient g;
+  exact_ray_gradient(tf, ray, g, GradientBlocks::segments);
   SparseSink sink;
   PixelJacobian out;
   out.intensity = g.intensity;
@@ -208,7 +210,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
     for (int x = 0; x < cam.width; ++x) {
       mesh.trace(cam.ray_for_pixel(x, y), p.trace);
       ray_from_trace(p.trace, mc.background, p.ray);
-      exact_ray_gradient(mc.transfer, p.ray, p.grad);
+      exact_ray_gradient(mc.transfer, p.ray, p.grad, GradientBlocks::segments);
       out.image.at(x, y) = p.grad.intensity;
       LossSink sink;
       bool finite = true;
