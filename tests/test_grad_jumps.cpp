@@ -497,15 +497,20 @@ TEST_CASE("exact gradient across jumps: the segment blocks alone are the full gr
 
 TEST_CASE("psi_table gradient on pieces between two jumps, density and color jumping at one of them",
           "[grad][grad_jump]") {
-  // Density jumps at 0.3, 0.5 and 0.7, colour at 0.5 too: the ray's pieces between 0.3 and 0.5
-  // and between 0.5 and 0.7 have both ends on jumps, so in psi_table's gradient (PieceEnds::moving)
-  // each piece's length moves with the two jumps' positions. Where density and colour both jump
-  // (0.5) moving one of them alone is not differentiable: both position entries are null (NaN)
-  // and `undefined` says why; every other entry is the derivative of psi_table's own forward
-  // (central differences, step 1e-6, as in the test above).
-  const TransferFunctions tf =
-      test::uniform_tf(PiecewiseLinear{{0.1, 0.3, 0.3, 0.5, 0.5, 0.7, 0.7, 0.9}, {0.4, 0.9, 2.2, 1.6, 0.3, 0.8, 1.9, 1.1}},
-                       PiecewiseLinear{{0.0, 0.5, 0.5, 1.0}, {0.2, 0.5, 1.1, 0.7}});
+  // Channel r: density jumps at 0.3, 0.5 and 0.7, colour at 0.5 too, and no other function has a
+  // node in [0.2, 0.8]: the ray's pieces between 0.3 and 0.5 and between 0.5 and 0.7 have both
+  // ends on r's jumps, so in psi_table's gradient (PieceEnds::moving) each piece's length moves
+  // with the two jumps' positions. Where density and colour both jump (0.5) moving one of them
+  // alone is not differentiable: both position entries are null (NaN) and `undefined` says why;
+  // every other entry is the derivative of psi_table's own forward (central differences, step
+  // 1e-6, as in the test above). (The other channels' nodes lie outside [0.2, 0.8]: a breakpoint
+  // shared with another channel splits r's pieces where moving r's node alone does not, a
+  // derivative psi_table_grad.hpp leaves out; so no two functions share a node.)
+  TransferFunctions tf;
+  tf.density = {PiecewiseLinear{{0.1, 0.3, 0.3, 0.5, 0.5, 0.7, 0.7, 0.9}, {0.4, 0.9, 2.2, 1.6, 0.3, 0.8, 1.9, 1.1}},
+                PiecewiseLinear{{0.14, 0.86}, {0.5, 1.5}}, PiecewiseLinear{{0.15, 0.85}, {1.2, 0.4}}};
+  tf.color = {PiecewiseLinear{{0.0, 0.5, 0.5, 1.0}, {0.2, 0.5, 1.1, 0.7}}, PiecewiseLinear{{0.03, 0.97}, {0.3, 0.9}},
+              PiecewiseLinear{{0.05, 0.92}, {0.8, 0.2}}};
   const Ray ray = test::three_segment_ray();  // no end within 1e-2 of a node
   const std::vector<double> bp = tf.breakpoints();
   for (const Segment& seg : ray.segments)
@@ -525,20 +530,21 @@ TEST_CASE("psi_table gradient on pieces between two jumps, density and color jum
     INFO(spec);
     const RayGradient got = method_gradient(parse_method_spec(spec), tf, ray);
     CHECK_FALSE(got.undefined.empty());
-    const auto at_both = [](double s) { return s == 0.5; };
-    const RayGradient fd = test::method_finite_difference(spec, tf, ray, step, at_both);
+    CHECK(std::isnan(got.density[0][3].position));  // first node of the density jump at 0.5
+    CHECK(std::isnan(got.color[0][1].position));    // first node of the colour jump at 0.5
+    // The jumps at 0.3 and 0.7 (density only) carry the moving ends of the pieces beside them.
+    for (const std::size_t k : {std::size_t{1}, std::size_t{5}}) {
+      CHECK(std::fabs(got.density[0][k].position) > 1e-3 * got.channel_scale(0));
+      CHECK(got.density[0][k + 1].position == 0.0);  // the tie
+    }
+    const auto at_both = [](int c, double s) { return c == 0 && s == 0.5; };
     for (int c = 0; c < kChannels; ++c) {
-      CHECK(std::isnan(got.density[c][3].position));  // first node of the density jump at 0.5
-      CHECK(std::isnan(got.color[c][1].position));    // first node of the colour jump at 0.5
-      // The jumps at 0.3 and 0.7 (density only) carry the moving ends of the pieces beside them.
-      for (const std::size_t k : {std::size_t{1}, std::size_t{5}}) {
-        CHECK(std::fabs(got.density[c][k].position) > 1e-3 * got.channel_scale(c));
-        CHECK(got.density[c][k + 1].position == 0.0);  // the tie
-      }
+      const RayGradient fd =
+          test::method_finite_difference(spec, tf, ray, step, [&](double s) { return at_both(c, s); });
       std::string where;
       const double err = gradient_error(got, fd, c, &where, [&](const char* block, std::size_t idx, const char* param) {
         return std::string(param) == "position" &&
-               at_both((std::string(block) == "density" ? tf.density : tf.color)[c].scalar[idx]);
+               at_both(c, (std::string(block) == "density" ? tf.density : tf.color)[c].scalar[idx]);
       });
       INFO("channel " << c << " worst at " << where << ": " << err);
       CHECK(err <= 1e-8);
