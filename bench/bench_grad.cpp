@@ -2,7 +2,9 @@
 // "full gradient at most ~3x the forward exact"), on the same rays:
 //   BM_exact_ray/SET          ExactIntegrator (the default batch path) on every ray of SET;
 //   BM_exact_ray_scalar/SET   exact:path=scalar on the same rays (what the gradient's forward is);
-//   BM_exact_grad/SET         exact_ray_gradient (forward + every derivative) on the same rays.
+//   BM_exact_grad/SET         exact_ray_gradient (forward + every derivative) on the same rays;
+//   BM_exact_grad_segments/SET  the same with GradientBlocks::segments (no node blocks: what the
+//                             mesh and grid image losses compute), storage reused.
 // SET 0: 20 rays of every stress regime (generators/regimes.hpp, seed 28; long_ray cut to 200
 // segments); SET 1: 4 long_ray rays of 10^4 segments. Integrators are built outside the loop.
 #include <benchmark/benchmark.h>
@@ -66,8 +68,19 @@ void BM_exact_grad(benchmark::State& state) {
       benchmark::DoNotOptimize(rayint::exact_ray_gradient(rs.transfer, rs.ray));
 }
 
+void BM_exact_grad_segments(benchmark::State& state) {
+  const RaySet& s = ray_set(static_cast<int>(state.range(0)));
+  rayint::RayGradient g;
+  for (auto _ : state)
+    for (const rayint::RaySample& rs : s.rays) {
+      rayint::exact_ray_gradient(rs.transfer, rs.ray, g, rayint::GradientBlocks::segments);
+      benchmark::DoNotOptimize(g.intensity);
+    }
+}
+
 }  // namespace
 
 BENCHMARK(BM_exact_ray)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_exact_ray_scalar)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_exact_grad)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_exact_grad_segments)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);

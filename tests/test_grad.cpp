@@ -192,3 +192,73 @@ TEST_CASE("exact gradient against the 50-digit reference: every moment method ne
     CHECK(w.err <= test::GradTolerances::exact_vs_reference_rel);
   }
 }
+
+TEST_CASE("exact gradient: a grey channel's piece from another channel's depth is the full computation, bit for bit",
+          "[grad]") {
+  // exact_piece_grad(p, dkappa, same_depth) reuses the moments and weights of a piece with the
+  // same length and densities (the chain's grey medium); it must return what the full
+  // computation returns for every field, in every regime (so in every moment method).
+  std::mt19937_64 rng(2828);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  int pieces = 0;
+  for (const Regime r : all_regimes())
+    for (int i = 0; i < 40; ++i) {
+      const ChannelPiece first = sample_piece(r, rng).piece;
+      ChannelPiece other = first;
+      other.kappa_far = i % 5 == 0 ? 0.0 : 3.0 * U(rng);
+      other.kappa_exit = i % 7 == 0 ? 0.0 : 3.0 * U(rng);
+      const double dkappa = other.kappa_far - other.kappa_exit;
+      const PieceOpticsGrad full = exact_piece_grad(other, dkappa);
+      const PieceOpticsGrad reused = exact_piece_grad(other, dkappa, exact_piece_grad(first, first.kappa_far - first.kappa_exit));
+      INFO(regime_name(r) << " #" << i << " (" << moment_method_name(full.method) << ")");
+      CHECK(reused.optics.emission == full.optics.emission);
+      CHECK(reused.optics.transmittance == full.optics.transmittance);
+      CHECK(reused.optics.weight_exit == full.optics.weight_exit);
+      CHECK(reused.optics.weight_far == full.optics.weight_far);
+      CHECK(reused.de_length == full.de_length);
+      CHECK(reused.de_rho_far == full.de_rho_far);
+      CHECK(reused.de_rho_exit == full.de_rho_exit);
+      CHECK(reused.de_kappa_far == full.de_kappa_far);
+      CHECK(reused.de_kappa_exit == full.de_kappa_exit);
+      CHECK(reused.dt_length == full.dt_length);
+      CHECK(reused.dt_rho_far == full.dt_rho_far);
+      CHECK(reused.dt_rho_exit == full.dt_rho_exit);
+      ++pieces;
+    }
+  CHECK(pieces >= 40 * 10);
+}
+
+TEST_CASE("exact gradient: the segment blocks alone (GradientBlocks::segments) are the full gradient's, bit for bit",
+          "[grad]") {
+  // Over the case corpus (grey and coloured densities, breakpoints inside segments, constant
+  // segments on nodes): intensity, background, length and end-scalar entries equal, the node
+  // blocks left empty; and the intensity is exact:path=scalar's (an independent forward).
+  int rays = 0;
+  for (const std::string& file : list_case_files(RAYINT_SOURCE_DIR + "/cases")) {
+    if (file.find("/mesh-") != std::string::npos || file.find("gates.json") != std::string::npos) continue;
+    const Case cs = read_case_file(file);
+    ExactIntegrator scalar(cs.transfer, ExactIntegrator::Path::scalar);
+    for (std::size_t i = 0; i < cs.rays.size(); ++i) {
+      const RayGradient all = exact_ray_gradient(cs.transfer, cs.rays[i]);
+      RayGradient seg;
+      exact_ray_gradient(cs.transfer, cs.rays[i], seg, GradientBlocks::segments);
+      INFO(cs.name << " ray " << i);
+      const RayResult fwd = scalar.integrate(cs.rays[i], nullptr);
+      for (int c = 0; c < kChannels; ++c) {
+        CHECK(all.intensity[c] == fwd.intensity[c]);
+        CHECK(seg.intensity[c] == all.intensity[c]);
+        CHECK(seg.background[c] == all.background[c]);
+        CHECK(seg.density[c].empty());
+        CHECK(seg.color[c].empty());
+        for (std::size_t j = 0; j < all.length.size(); ++j) {
+          CHECK(seg.length[j][c] == all.length[j][c]);
+          CHECK(seg.scalar_far[j][c] == all.scalar_far[j][c]);
+          CHECK(seg.scalar_exit[j][c] == all.scalar_exit[j][c]);
+        }
+      }
+      CHECK(seg.undefined == all.undefined);
+      ++rays;
+    }
+  }
+  CHECK(rays > 50);
+}

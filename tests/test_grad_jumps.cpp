@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rayint/integrators/exact.hpp"
@@ -432,4 +433,121 @@ TEST_CASE("preintegrated gradient: a grid scalar on a jump leaves its position u
   }
   // size 64 (no grid scalar on 0.5): defined.
   CHECK(method_gradient(parse_method_spec("preintegrated:size=64"), tf, ray).undefined.empty());
+}
+
+TEST_CASE("exact gradient across jumps: the segment blocks alone are the full gradient's, bit for bit",
+          "[grad][grad_jump]") {
+  // GradientBlocks::segments (what the mesh and grid image losses call) on rays that cross and
+  // touch jumps, and on density and color jumping at one scalar: the segment entries are the
+  // full gradient's (NaN where it has NaN), the intensity is exact:path=scalar's. Only the
+  // node blocks' mark differs: where density[c] and color[c] both jump at a crossed scalar the
+  // full gradient's node positions are undefined, which the segment blocks do not contain.
+  std::mt19937_64 rng(2829);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  int rays = 0, nan_entries = 0;
+  for (int i = 0; i < 64; ++i) {
+    TransferFunctions tf;
+    for (int c = 0; c < kChannels; ++c) {
+      tf.density[c] = random_jump_function(rng, i % 2 == 0 ? 1.0 : 8.0);
+      tf.color[c] = i % 4 == 1 ? tf.density[c] : random_jump_function(rng, 1.0);  // both jump at one scalar
+    }
+    if (i % 4 == 2)
+      for (int c = 1; c < kChannels; ++c) tf.density[c] = tf.density[0];  // grey
+    Ray ray;
+    ray.background = {u(rng), u(rng), u(rng)};
+    const int m = 1 + static_cast<int>(rng() % 4);
+    double s = -0.1 + 1.2 * u(rng);
+    for (int j = 0; j < m; ++j) {
+      const double next = rng() % 6 == 0 ? s : -0.1 + 1.2 * u(rng);  // some constant segments
+      ray.segments.push_back({0.05 + 1.5 * u(rng), s, next});
+      s = next;
+    }
+    if (i % 3 == 0) {  // an end (or a constant segment) exactly on a jump: NaN entries
+      const std::vector<double> jumps = jump_positions(tf);
+      ray.segments.back().scalar_exit = jumps[rng() % jumps.size()];
+    }
+    const RayGradient all = exact_ray_gradient(tf, ray);
+    RayGradient seg;
+    exact_ray_gradient(tf, ray, seg, GradientBlocks::segments);
+    const Rgb fwd = exact_intensity(tf, ray);
+    INFO("ray " << i);
+    int ray_nans = 0;
+    for (int c = 0; c < kChannels; ++c) {
+      CHECK(all.intensity[c] == fwd[c]);
+      CHECK(seg.intensity[c] == all.intensity[c]);
+      CHECK(seg.background[c] == all.background[c]);
+      CHECK(seg.density[c].empty());
+      CHECK(seg.color[c].empty());
+      for (std::size_t j = 0; j < ray.segments.size(); ++j) {
+        CHECK(same(seg.length[j][c], all.length[j][c]));
+        CHECK(same(seg.scalar_far[j][c], all.scalar_far[j][c]));
+        CHECK(same(seg.scalar_exit[j][c], all.scalar_exit[j][c]));
+        ray_nans += std::isnan(seg.scalar_far[j][c]) + std::isnan(seg.scalar_exit[j][c]);
+      }
+    }
+    // The scalar entries' NaNs are explained in both; the full one may add the node positions'.
+    CHECK(seg.undefined.empty() == (ray_nans == 0));
+    CHECK(all.undefined.find(seg.undefined) != std::string::npos);
+    nan_entries += ray_nans;
+    ++rays;
+  }
+  CHECK(nan_entries > 0);
+}
+
+TEST_CASE("psi_table gradient on pieces between two jumps, density and color jumping at one of them",
+          "[grad][grad_jump]") {
+  // Channel r: density jumps at 0.3, 0.5 and 0.7, colour at 0.5 too, and no other function has a
+  // node in [0.2, 0.8]: the ray's pieces between 0.3 and 0.5 and between 0.5 and 0.7 have both
+  // ends on r's jumps, so in psi_table's gradient (PieceEnds::moving) each piece's length moves
+  // with the two jumps' positions. Where density and colour both jump (0.5) moving one of them
+  // alone is not differentiable: both position entries are null (NaN) and `undefined` says why;
+  // every other entry is the derivative of psi_table's own forward (central differences, step
+  // 1e-6, as in the test above). (The other channels' nodes lie outside [0.2, 0.8]: a breakpoint
+  // shared with another channel splits r's pieces where moving r's node alone does not, a
+  // derivative psi_table_grad.hpp leaves out; so no two functions share a node.)
+  TransferFunctions tf;
+  tf.density = {PiecewiseLinear{{0.1, 0.3, 0.3, 0.5, 0.5, 0.7, 0.7, 0.9}, {0.4, 0.9, 2.2, 1.6, 0.3, 0.8, 1.9, 1.1}},
+                PiecewiseLinear{{0.14, 0.86}, {0.5, 1.5}}, PiecewiseLinear{{0.15, 0.85}, {1.2, 0.4}}};
+  tf.color = {PiecewiseLinear{{0.0, 0.5, 0.5, 1.0}, {0.2, 0.5, 1.1, 0.7}}, PiecewiseLinear{{0.03, 0.97}, {0.3, 0.9}},
+              PiecewiseLinear{{0.05, 0.92}, {0.8, 0.2}}};
+  const Ray ray = test::three_segment_ray();  // no end within 1e-2 of a node
+  const std::vector<double> bp = tf.breakpoints();
+  for (const Segment& seg : ray.segments)
+    for (const double x : bp) {
+      REQUIRE(std::fabs(seg.scalar_far - x) > 1e-2);
+      REQUIRE(std::fabs(seg.scalar_exit - x) > 1e-2);
+    }
+  // Pieces with both ends on jumps: [0.3, 0.5] and [0.5, 0.7] inside a segment's scalar range
+  // (the first segment holds both, the other two the second).
+  int between = 0;
+  for (const Segment& seg : ray.segments)
+    for (const auto& [x0, x1] : {std::pair{0.3, 0.5}, std::pair{0.5, 0.7}})
+      between += std::min(seg.scalar_far, seg.scalar_exit) < x0 && std::max(seg.scalar_far, seg.scalar_exit) > x1;
+  REQUIRE(between == 4);
+  const double step = 1e-6;
+  for (const char* spec : {"psi_table:size=64", "psi_table:size=512"}) {
+    INFO(spec);
+    const RayGradient got = method_gradient(parse_method_spec(spec), tf, ray);
+    CHECK_FALSE(got.undefined.empty());
+    CHECK(std::isnan(got.density[0][3].position));  // first node of the density jump at 0.5
+    CHECK(std::isnan(got.color[0][1].position));    // first node of the colour jump at 0.5
+    // The jumps at 0.3 and 0.7 (density only) carry the moving ends of the pieces beside them.
+    for (const std::size_t k : {std::size_t{1}, std::size_t{5}}) {
+      CHECK(std::fabs(got.density[0][k].position) > 1e-3 * got.channel_scale(0));
+      CHECK(got.density[0][k + 1].position == 0.0);  // the tie
+    }
+    const auto at_both = [](int c, double s) { return c == 0 && s == 0.5; };
+    for (int c = 0; c < kChannels; ++c) {
+      const RayGradient fd =
+          test::method_finite_difference(spec, tf, ray, step, [&](double s) { return at_both(c, s); });
+      std::string where;
+      const double err = gradient_error(got, fd, c, &where, [&](const char* block, std::size_t idx, const char* param) {
+        return std::string(param) == "position" &&
+               at_both(c, (std::string(block) == "density" ? tf.density : tf.color)[c].scalar[idx]);
+      });
+      INFO("channel " << c << " worst at " << where << ": " << err);
+      CHECK(err <= 1e-8);
+    }
+  }
 }

@@ -304,6 +304,19 @@ Moments dawson_moments(double A, double B, double T) {
   return mo;
 }
 
+// The entries that depend on kappa: d emission / d (length, rho_far, rho_exit), from the moments
+// and transmittance already in g.
+void set_kappa_terms(PieceOpticsGrad& g, const ChannelPiece& p, double dkappa) {
+  const double t = g.optics.transmittance;
+  const double de0_da = -g.m1 + 0.5 * g.m2;
+  const double de0_db = -0.5 * g.m2;
+  const double de_da = dkappa * de0_da + 0.5 * p.kappa_far * t;
+  const double de_db = dkappa * de0_db + 0.5 * p.kappa_far * t;
+  g.de_rho_exit = p.length * de_da;
+  g.de_rho_far = p.length * de_db;
+  g.de_length = p.rho_exit * de_da + p.rho_far * de_db;
+}
+
 }  // namespace
 
 const char* moment_method_name(MomentMethod m) {
@@ -373,18 +386,20 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa) {
   g.method = mo.method;
   g.terms = mo.terms;
   g.converged = mo.converged;
-
-  const double de0_da = -mo.m1 + 0.5 * mo.m2;
-  const double de0_db = -0.5 * mo.m2;
-  const double de_da = dkappa * de0_da + 0.5 * p.kappa_far * t;
-  const double de_db = dkappa * de0_db + 0.5 * p.kappa_far * t;
   g.de_kappa_exit = o.weight_exit;
   g.de_kappa_far = o.weight_far;
-  g.de_rho_exit = p.length * de_da;
-  g.de_rho_far = p.length * de_db;
-  g.de_length = p.rho_exit * de_da + p.rho_far * de_db;
   g.dt_rho_exit = g.dt_rho_far = -0.5 * t * p.length;
   g.dt_length = -0.5 * t * (p.rho_exit + p.rho_far);
+  set_kappa_terms(g, p, dkappa);
+  return g;
+}
+
+PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa, const PieceOpticsGrad& same_depth) {
+  PieceOpticsGrad g = same_depth;
+  // exact_piece's emission, in its arithmetic (a transparent piece keeps its 0).
+  if (g.optics.branch != ExactBranch::transparent)
+    g.optics.emission = p.kappa_exit * g.optics.weight_exit + p.kappa_far * g.optics.weight_far;
+  set_kappa_terms(g, p, dkappa);
   return g;
 }
 
@@ -394,10 +409,13 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
   return grad;
 }
 
-void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad) {
-  detail::chain_ray_gradient(tf, ray, grad, [](const ChannelPiece& cp, double dkappa) {
-    return exact_piece_grad(cp, dkappa);
-  });
+void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, GradientBlocks blocks) {
+  detail::chain_ray_gradient(
+      tf, ray, grad,
+      [](const ChannelPiece& cp, double dkappa, const PieceOpticsGrad* same_depth) {
+        return same_depth ? exact_piece_grad(cp, dkappa, *same_depth) : exact_piece_grad(cp, dkappa);
+      },
+      detail::PieceEnds::fixed_along_segment, blocks);
 }
 
 }  // namespace rayint

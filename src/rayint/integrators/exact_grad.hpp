@@ -43,13 +43,23 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece);
 // The same with kappa_far - kappa_exit given (the ray gradient passes slope * (s_far - s_exit),
 // exact to a few ulps, where the difference of the two rounded end values is not).
 PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece, double kappa_far_minus_exit);
+// The same for a piece whose length, rho_far and rho_exit are those `same_depth` was computed for
+// (another channel of a grey medium, TransferFunctions::grey): its transmittance, weights and
+// moments are taken from it and only the entries that depend on kappa are formed, bit for bit
+// what the call above returns (tests/test_grad.cpp).
+PieceOpticsGrad exact_piece_grad(const ChannelPiece& piece, double kappa_far_minus_exit,
+                                 const PieceOpticsGrad& same_depth);
 
 // The gradient of every channel's intensity with respect to every input of the ray, with the
 // forward intensity of exact:path=scalar (bit for bit). Pieces are those of append_pieces
 // (model/pieces.hpp); compositing far -> near is differentiated in reverse. Throws
 // std::invalid_argument for a non-finite segment length or scalar or background.
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray);
-// The same into `out`, reusing its storage (no allocation per ray once warm).
-void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& out);
+// The same into `out`, reusing its storage (no allocation per ray once warm). With
+// GradientBlocks::segments the node blocks are not computed (left empty): what an image loss
+// with respect to the scene's scalars needs, at a lower cost; every other entry is the same,
+// bit for bit.
+void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& out,
+                        GradientBlocks blocks = GradientBlocks::all);
 
 }  // namespace rayint

@@ -72,7 +72,7 @@ enum class PieceEnds {
 // positions NaN where density[c] and color[c] both jump at x_j.
 inline void add_jump_crossing(const TransferFunctions& tf, const Ray& ray, const PieceRecord& before,
                               const PieceRecord& after, int c, double light, double adjoint, RayGradient& grad,
-                              bool with_term = true) {
+                              bool with_term = true, bool nodes = true) {
   const double e = after.s_far;
   if (before.segment != after.segment || before.s_exit != e) return;
   const PiecewiseLinear& rho = tf.density[c];
@@ -90,6 +90,7 @@ inline void add_jump_crossing(const TransferFunctions& tf, const Ray& ray, const
     grad.scalar_far[after.segment][c] -= dI_dl * l_per_x * (1.0 - phi);
     grad.scalar_exit[after.segment][c] -= dI_dl * l_per_x * phi;
   }
+  if (!nodes) return;  // GradientBlocks::segments: no position entries to fill or mark
   if (jd != kNoJump && jc != kNoJump) {
     grad.density[c][jd].position = std::nan("");
     grad.color[c][jc].position = std::nan("");
@@ -103,7 +104,8 @@ inline void add_jump_crossing(const TransferFunctions& tf, const Ray& ray, const
 
 // NaN (no derivative) where the ray touches a jump at a segment end (see model/ray_gradient.hpp):
 // the jump's position entry and that end's scalar entry, in the channel of the function that jumps.
-inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, RayGradient& grad) {
+// With nodes false (GradientBlocks::segments) only the scalar entries are marked.
+inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, bool nodes = true) {
   static const char* const kChannel[kChannels] = {"r", "g", "b"};
   for (std::size_t j = 0; j < ray.segments.size(); ++j) {
     const Segment& seg = ray.segments[j];
@@ -115,7 +117,7 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
           const double s = far ? seg.scalar_far : seg.scalar_exit;
           const std::size_t i = jump_node(f, s);
           if (i == kNoJump) continue;
-          (density ? grad.density : grad.color)[c][i].position = std::nan("");
+          if (nodes) (density ? grad.density : grad.color)[c][i].position = std::nan("");
           (far ? grad.scalar_far : grad.scalar_exit)[j][c] = std::nan("");
           if (!grad.undefined.empty()) grad.undefined += "; ";
           grad.undefined += "segment " + std::to_string(j) + "'s " + (far ? "far" : "exit") + " scalar lies on the jump of " +
@@ -126,20 +128,46 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
-// piece_grad(const ChannelPiece&, double kappa_far_minus_exit) -> PieceOpticsGrad: the optics of
-// one channel of one piece and their derivatives. Throws std::invalid_argument for a non-finite
-// length, scalar or background.
+// The values of f at a piece's two ends from k = upper_bound(f.scalar, lo), for a piece lo < hi
+// with no breakpoint strictly inside (append_pieces'): at lo the limit from above, at hi the
+// limit from below (the limits from inside the piece), bit for bit PiecewiseLinear::limit's --
+// its searches return this same k (scalar[k-1] <= lo < hi <= scalar[k]) -- without searching.
+inline double limit_above_in(const PiecewiseLinear& f, std::size_t k, double lo) {
+  if (k == 0) return f.value.front();
+  if (k == f.scalar.size()) return f.value.back();
+  return f.interpolate(lo, k);
+}
+inline double limit_below_in(const PiecewiseLinear& f, std::size_t k, double hi) {
+  if (k == 0) return f.value.front();
+  if (k == f.scalar.size()) return f.value.back();
+  return f.scalar[k] == hi ? f.value[k] : f.interpolate(hi, k);
+}
+
+// piece_grad(const ChannelPiece&, double kappa_far_minus_exit, const PieceOpticsGrad* same_depth)
+// -> PieceOpticsGrad: the optics of one channel of one piece and their derivatives. same_depth is
+// non-null when the piece's length, rho_far and rho_exit are those of an earlier channel's result
+// it points to (a grey medium, TransferFunctions::grey): a piece_grad may reuse what depends on
+// them alone, or ignore it. blocks = GradientBlocks::segments leaves the node blocks empty and
+// skips their accumulation. Throws std::invalid_argument for a non-finite length, scalar or
+// background.
 template <class PieceGrad>
 void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grad,
-                        PieceEnds ends_mode = PieceEnds::fixed_along_segment) {
+                        PieceEnds ends_mode = PieceEnds::fixed_along_segment,
+                        GradientBlocks blocks = GradientBlocks::all) {
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("gradient: background must be finite");
+  // The interval of density[c] and color[c] (upper_bound of the scalar that chooses it, see
+  // interval_lo below) a piece-channel's values come from.
+  struct Intervals {
+    std::size_t rho = 0, kappa = 0;
+  };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
     std::vector<double> breakpoints, ends, incoming;
     std::vector<PieceRecord> pieces;
     std::vector<PieceOpticsGrad> optics;
+    std::vector<Intervals> intervals;
   };
   thread_local Scratch scratch;
   std::vector<double>& breakpoints = scratch.breakpoints;
@@ -184,33 +212,82 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     }
   }
 
+  const bool nodes_wanted = blocks == GradientBlocks::all;
   grad.reset(tf, ray);
+  if (!nodes_wanted)
+    for (int c = 0; c < kChannels; ++c) {
+      grad.density[c].clear();
+      grad.color[c].clear();
+    }
+  const bool jumps = tf.has_jump();
+  // Every channel's density is the same function (bit for bit): one depth per piece.
+  const bool grey = tf.grey();
+  const auto upper = [](const PiecewiseLinear& f, double x) {
+    return static_cast<std::size_t>(std::upper_bound(f.scalar.begin(), f.scalar.end(), x) - f.scalar.begin());
+  };
+  // The scalar whose interval a piece's values come from, per function: lo, the smaller end,
+  // except for a constant piece on a jump, which takes the left value (operator()): the interval
+  // below.
+  const auto interval_lo = [jumps](const PiecewiseLinear& f, const PieceRecord& pr, double lo) {
+    return jumps && pr.s_far == pr.s_exit && jump_node(f, lo) != kNoJump
+               ? std::nextafter(lo, -std::numeric_limits<double>::infinity())
+               : lo;
+  };
   const std::size_t n = pieces.size();
   // Forward: the optics of every piece-channel and the light entering it.
   std::vector<PieceOpticsGrad>& optics = scratch.optics;
   std::vector<double>& incoming = scratch.incoming;
+  std::vector<Intervals>& intervals = scratch.intervals;
   if (optics.size() < n * kChannels) {
     optics.resize(n * kChannels);
     incoming.resize(n * kChannels);
+    intervals.resize(n * kChannels);
   }
   Rgb intensity = ray.background;
   for (std::size_t k = 0; k < n; ++k) {
     const PieceRecord& pr = pieces[k];
+    const bool constant = pr.s_far == pr.s_exit;
+    const double lo = std::min(pr.s_far, pr.s_exit), hi = std::max(pr.s_far, pr.s_exit);
+    const bool far_is_lo = pr.s_far < pr.s_exit;
+    double rho_lo = 0.0, rho_hi = 0.0;
     for (int c = 0; c < kChannels; ++c) {
-      // Each end takes the limit from inside the piece (append_pieces': at a jump the value on
-      // the piece's side; a constant piece takes operator()'s, the left value at a jump).
-      const bool far_above = pr.s_far < pr.s_exit, exit_above = pr.s_exit < pr.s_far;
-      const ChannelPiece cp{pr.length, tf.density[c].limit(pr.s_far, far_above),
-                            tf.density[c].limit(pr.s_exit, exit_above), tf.color[c].limit(pr.s_far, far_above),
-                            tf.color[c].limit(pr.s_exit, exit_above)};
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
+      const PiecewiseLinear& rho = tf.density[c];
+      const PiecewiseLinear& kappa = tf.color[c];
+      Intervals& iv = intervals[i];
+      double kappa_lo, kappa_hi;
+      // Each end takes the limit from inside the piece (append_pieces': at a jump the value on
+      // the piece's side); a constant piece takes operator()'s, the left value at a jump.
       // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
       // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
       // multiplied by a density slope of 3e23 in dI/ds).
-      const double lo = std::min(pr.s_far, pr.s_exit);
-      const NodeWeights nk = node_weights(tf.color[c], lo, lo);
-      const double dkappa = nk.count == 2 ? nk.slope * (pr.s_far - pr.s_exit) : 0.0;
-      optics[i] = piece_grad(cp, dkappa);
+      double dkappa;
+      if (constant) {
+        if (!(grey && c > 0)) {
+          iv.rho = upper(rho, interval_lo(rho, pr, lo));
+          rho_lo = rho_hi = rho(lo);
+        }
+        iv.kappa = upper(kappa, interval_lo(kappa, pr, lo));
+        kappa_lo = kappa_hi = kappa(lo);
+        const std::size_t kk = interval_lo(kappa, pr, lo) == lo ? iv.kappa : upper(kappa, lo);
+        dkappa = kk == 0 || kk == kappa.scalar.size() ? 0.0 : interval_slope(kappa, kk) * (pr.s_far - pr.s_exit);
+      } else {
+        if (!(grey && c > 0)) {
+          iv.rho = upper(rho, lo);
+          rho_lo = limit_above_in(rho, iv.rho, lo);
+          rho_hi = limit_below_in(rho, iv.rho, hi);
+        }
+        iv.kappa = upper(kappa, lo);
+        kappa_lo = limit_above_in(kappa, iv.kappa, lo);
+        kappa_hi = limit_below_in(kappa, iv.kappa, hi);
+        dkappa = iv.kappa == 0 || iv.kappa == kappa.scalar.size()
+                     ? 0.0
+                     : interval_slope(kappa, iv.kappa) * (pr.s_far - pr.s_exit);
+      }
+      if (grey && c > 0) iv.rho = intervals[i - static_cast<std::size_t>(c)].rho;
+      const ChannelPiece cp{pr.length, far_is_lo ? rho_lo : rho_hi, far_is_lo ? rho_hi : rho_lo,
+                            far_is_lo ? kappa_lo : kappa_hi, far_is_lo ? kappa_hi : kappa_lo};
+      optics[i] = piece_grad(cp, dkappa, grey && c > 0 ? &optics[i - static_cast<std::size_t>(c)] : nullptr);
       incoming[i] = intensity[c];
       intensity[c] = intensity[c] * optics[i].optics.transmittance + optics[i].optics.emission;
     }
@@ -218,18 +295,9 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   grad.intensity = intensity;
 
   // Reverse: adjoint = transmittance of everything nearer than the piece.
-  const bool jumps = tf.has_jump();
   Rgb adjoint{1.0, 1.0, 1.0};
   for (std::size_t k = n; k-- > 0;) {
     const PieceRecord& pr = pieces[k];
-    const double lo = std::min(pr.s_far, pr.s_exit);
-    // The interval a piece's values come from, per function: the one above lo, except for a
-    // constant piece on a jump, which takes the left value (operator()): the interval below.
-    const auto interval_lo = [&](const PiecewiseLinear& f) {
-      return jumps && pr.s_far == pr.s_exit && jump_node(f, lo) != kNoJump
-                 ? std::nextafter(lo, -std::numeric_limits<double>::infinity())
-                 : lo;
-    };
     for (int c = 0; c < kChannels; ++c) {
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
       const PieceOpticsGrad& g = optics[i];
@@ -248,6 +316,7 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
           (far_side ? grad.scalar_far : grad.scalar_exit)[pr.segment][c] += s_bar;
           return;
         }
+        if (!nodes_wanted) return;
         // A jump owns its breakpoint: moving it moves the crossing (the split); another
         // function's node at the same scalar moved alone leaves the split there.
         if (jumps)
@@ -282,15 +351,22 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       // delta inside a piece changes I by O(delta^2)), without the factor L/(s_exit - s_far)
       // and the cancellation between the two pieces at a breakpoint that the latter carries
       // (it cost 1e-6 of the channel's largest entry on a 7e-13-wide segment of narrow_pulse).
-      const auto through = [&](const PiecewiseLinear& f, std::vector<NodeDerivative>& nodes,
+      // k_f: the interval the piece's values come from (the forward's).
+      const auto through = [&](const PiecewiseLinear& f, std::vector<NodeDerivative>& nodes, std::size_t k_f,
                                double s, double bar, double phi) {
         if (bar == 0.0) return;
-        const NodeWeights nw = node_weights(f, interval_lo(f), s);
-        for (int q = 0; q < nw.count; ++q) {
-          nodes[nw.node[q]].value += bar * nw.w[q];
-          nodes[nw.node[q]].position += bar * nw.dp[q];
+        double slope;
+        if (nodes_wanted) {
+          const NodeWeights nw = node_weights_in(f, k_f, s);
+          for (int q = 0; q < nw.count; ++q) {
+            nodes[nw.node[q]].value += bar * nw.w[q];
+            nodes[nw.node[q]].position += bar * nw.dp[q];
+          }
+          slope = nw.slope;
+        } else {
+          slope = interval_slope(f, k_f);
         }
-        const double s_bar = bar * nw.slope;
+        const double s_bar = bar * slope;
         if (s_bar == 0.0) return;
         if (ends_mode == PieceEnds::moving) {
           route(s == pr.s_far && phi == pr.phi_far, s, s_bar);
@@ -299,20 +375,21 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
         grad.scalar_far[pr.segment][c] += s_bar * (1.0 - phi);
         grad.scalar_exit[pr.segment][c] += s_bar * phi;
       };
-      through(tf.density[c], grad.density[c], pr.s_far, rho_far_bar, pr.phi_far);
-      through(tf.density[c], grad.density[c], pr.s_exit, rho_exit_bar, pr.phi_exit);
-      through(tf.color[c], grad.color[c], pr.s_far, kappa_far_bar, pr.phi_far);
-      through(tf.color[c], grad.color[c], pr.s_exit, kappa_exit_bar, pr.phi_exit);
+      const Intervals& iv = intervals[i];
+      through(tf.density[c], grad.density[c], iv.rho, pr.s_far, rho_far_bar, pr.phi_far);
+      through(tf.density[c], grad.density[c], iv.rho, pr.s_exit, rho_exit_bar, pr.phi_exit);
+      through(tf.color[c], grad.color[c], iv.kappa, pr.s_far, kappa_far_bar, pr.phi_far);
+      through(tf.color[c], grad.color[c], iv.kappa, pr.s_exit, kappa_exit_bar, pr.phi_exit);
       adjoint[c] *= g.optics.transmittance;
       if (jumps && !pr.far_is_end && k > 0)
         add_jump_crossing(tf, ray, pieces[k - 1], pr, c, incoming[i], adjoint[c], grad,
-                          ends_mode == PieceEnds::fixed_along_segment);
+                          ends_mode == PieceEnds::fixed_along_segment, nodes_wanted);
     }
   }
   grad.background = adjoint;
   if (jumps) {
-    tie_jump_positions(tf, grad.density, grad.color);
-    mark_jump_tangencies(tf, ray, grad);
+    if (nodes_wanted) tie_jump_positions(tf, grad.density, grad.color);
+    mark_jump_tangencies(tf, ray, grad, nodes_wanted);
   }
 }
 

@@ -5,6 +5,7 @@
 // from there to the length, the end scalars and the transfer-function nodes.
 #include "rayint/integrators/riemann_grad.hpp"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -26,9 +27,10 @@ struct SamplePoint {
 // interior, so that a sample exactly on a node at a segment end is differentiated like that
 // segment's pieces -- except on a jump of f, where the forward's lookup (PiecewiseLinear's
 // operator()) returns the LEFT value, so the derivative is the left interval's (one-sided: the
-// sum is left-continuous there; see riemann_grad.hpp).
-double interval_key(const PiecewiseLinear& f, const SamplePoint& sp) {
-  return sp.toward < 0.0 || jump_node(f, sp.s) != kNoJump ? std::nextafter(sp.s, -HUGE_VAL) : sp.s;
+// sum is left-continuous there; see riemann_grad.hpp). f_jumps: f.has_jump(), known to the
+// caller (a function without a jump is not searched for one at every sample).
+double interval_key(const PiecewiseLinear& f, bool f_jumps, const SamplePoint& sp) {
+  return sp.toward < 0.0 || (f_jumps && jump_node(f, sp.s) != kNoJump) ? std::nextafter(sp.s, -HUGE_VAL) : sp.s;
 }
 
 struct Step {
@@ -65,6 +67,11 @@ RayGradient march_gradient(const TransferFunctions& tf, const Ray& ray, const st
     }
   }
   g.intensity = I;
+  std::array<bool, kChannels> rho_jumps{}, kappa_jumps{};
+  for (int c = 0; c < kChannels; ++c) {
+    rho_jumps[c] = tf.density[c].has_jump();
+    kappa_jumps[c] = tf.color[c].has_jump();
+  }
   Rgb adjoint{1.0, 1.0, 1.0};
   for (std::size_t k = n; k-- > 0;) {
     const Step& st = steps[k];
@@ -78,8 +85,8 @@ RayGradient march_gradient(const TransferFunctions& tf, const Ray& ray, const st
         const SamplePoint& sp = st.p[i];
         const double rho_bar = x_bar * st.h * sp.w_rho;
         const double kappa_bar = colour_bar * sp.w_kappa;
-        const NodeWeights nr = node_weights(tf.density[c], interval_key(tf.density[c], sp), sp.s);
-        const NodeWeights nk = node_weights(tf.color[c], interval_key(tf.color[c], sp), sp.s);
+        const NodeWeights nr = node_weights(tf.density[c], interval_key(tf.density[c], rho_jumps[c], sp), sp.s);
+        const NodeWeights nk = node_weights(tf.color[c], interval_key(tf.color[c], kappa_jumps[c], sp), sp.s);
         for (int j = 0; j < nr.count; ++j) {
           g.density[c][nr.node[j]].value += rho_bar * nr.w[j];
           g.density[c][nr.node[j]].position += rho_bar * nr.dp[j];

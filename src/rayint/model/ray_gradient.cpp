@@ -37,11 +37,14 @@ double RayGradient::channel_scale(int c) const {
 }
 
 NodeWeights node_weights(const PiecewiseLinear& f, double lo, double s) {
+  // k: the first node with scalar > lo (scalar[k-1] <= lo < scalar[k]).
+  return node_weights_in(
+      f, static_cast<std::size_t>(std::upper_bound(f.scalar.begin(), f.scalar.end(), lo) - f.scalar.begin()), s);
+}
+
+NodeWeights node_weights_in(const PiecewiseLinear& f, std::size_t k, double s) {
   NodeWeights nw;
   const std::size_t n = f.scalar.size();
-  // k: the first node with scalar > lo (scalar[k-1] <= lo < scalar[k]).
-  const auto k = static_cast<std::size_t>(std::upper_bound(f.scalar.begin(), f.scalar.end(), lo) -
-                                          f.scalar.begin());
   if (k == 0 || k == n) {  // constant extension (or a single node)
     nw.count = 1;
     nw.node[0] = k == 0 ? 0 : n - 1;

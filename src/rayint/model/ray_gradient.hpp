@@ -37,6 +37,11 @@
 
 namespace rayint {
 
+// Which blocks a ray gradient computes: all of them, or the segment blocks only (intensity,
+// background, length, scalar_far, scalar_exit; the node blocks left empty), what a loss with
+// respect to the scene's scalars or geometry needs (render/mesh_gradient.hpp).
+enum class GradientBlocks { all, segments };
+
 struct NodeDerivative {
   double position = 0.0;  // dI_c / d scalar of the node
   double value = 0.0;     // dI_c / d value of the node
@@ -94,6 +99,13 @@ struct NodeWeights {
   int count = 0;  // 1 (constant: below the first node, above the last, one node) or 2
 };
 NodeWeights node_weights(const PiecewiseLinear& f, double lo, double s);
+// The same with k = upper_bound(f.scalar, lo) known to the caller (no search), bit for bit.
+NodeWeights node_weights_in(const PiecewiseLinear& f, std::size_t k, double s);
+// df/ds of that interval (node_weights' slope; 0 on the constant extensions).
+inline double interval_slope(const PiecewiseLinear& f, std::size_t k) {
+  if (k == 0 || k == f.scalar.size()) return 0.0;
+  return (f.value[k] - f.value[k - 1]) / (f.scalar[k] - f.scalar[k - 1]);
+}
 
 // The first node of f's jump at scalar x (nodes i, i + 1 both at x), or kNoJump.
 inline constexpr std::size_t kNoJump = static_cast<std::size_t>(-1);

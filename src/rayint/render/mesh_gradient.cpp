@@ -50,10 +50,15 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
       }
       if (!positions) continue;
       // Positions: the face the end lies on (the smallest lambda), or none (the eye inside).
-      std::array<std::size_t, 4> order{0, 1, 2, 3};
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t a, std::size_t b) { return std::fabs(lambda[a]) < std::fabs(lambda[b]); });
-      if (std::fabs(lambda[order[0]]) > kOnFace) {  // interior point: t fixed, s(p) moves
+      // The two smallest |lambda|, the first index among equal ones (the order a stable sort
+      // gives; an end on an edge has two equal zeros, and which face is used must not vary).
+      std::size_t m = 0;
+      for (std::size_t k = 1; k < 4; ++k)
+        if (std::fabs(lambda[k]) < std::fabs(lambda[m])) m = k;
+      std::size_t second = m == 0 ? 1 : 0;
+      for (std::size_t k = second + 1; k < 4; ++k)
+        if (k != m && std::fabs(lambda[k]) < std::fabs(lambda[second])) second = k;
+      if (std::fabs(lambda[m]) > kOnFace) {  // interior point: t fixed, s(p) moves
         if (on_cells) continue;
         const Vec3& grad_s = traversal.gradient(cell);
         for (std::size_t k = 0; k < 4; ++k) {
@@ -64,8 +69,8 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
         }
         continue;
       }
-      if (std::fabs(lambda[order[1]]) <= kOnFace) ++on_edges;
-      const std::size_t m = order[0];  // opposite vertex
+      if (std::fabs(lambda[second]) <= kOnFace) ++on_edges;
+      // m: the vertex opposite the face the end lies on.
       std::array<std::size_t, 3> f{};
       for (std::size_t k = 0, q = 0; k < 4; ++k)
         if (k != m) f[q++] = k;
@@ -154,7 +159,9 @@ PixelJacobian pixel_jacobian(const TetTraversal& mesh, const TransferFunctions& 
   RayTrace trace;
   mesh.trace(view, trace);
   const Ray ray = ray_from_trace(trace, background);
-  const RayGradient g = exact_ray_gradient(tf, ray);
+  // The chain below reads the segment blocks only.
+  RayGradient g;
+  exact_ray_gradient(tf, ray, g, GradientBlocks::segments);
   SparseSink sink;
   PixelJacobian out;
   out.intensity = g.intensity;
@@ -208,7 +215,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
     for (int x = 0; x < cam.width; ++x) {
       mesh.trace(cam.ray_for_pixel(x, y), p.trace);
       ray_from_trace(p.trace, mc.background, p.ray);
-      exact_ray_gradient(mc.transfer, p.ray, p.grad);
+      exact_ray_gradient(mc.transfer, p.ray, p.grad, GradientBlocks::segments);
       out.image.at(x, y) = p.grad.intensity;
       LossSink sink;
       bool finite = true;

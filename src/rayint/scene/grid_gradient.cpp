@@ -18,7 +18,8 @@ double GridPixelJacobian::channel_scale(int c) const {
 GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const TransferFunctions& tf, const ViewRay& view,
                                       const Rgb& background) {
   const Ray ray = ray_segments(grid, view, background);
-  const RayGradient g = exact_ray_gradient(tf, ray);
+  RayGradient g;  // the chain below reads the segment blocks only
+  exact_ray_gradient(tf, ray, g, GradientBlocks::segments);
   GridPixelJacobian out;
   out.intensity = g.intensity;
   out.undefined = g.undefined;
