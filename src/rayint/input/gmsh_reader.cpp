@@ -70,7 +70,7 @@ class MshReader {
 
   TetMesh read() {
     parse();
-    if (tet_nodes_.empty())
+    if (tet_corners_.empty())
       fail_whole("$Elements", "no tetrahedra (type 4 or 11); " + std::to_string(mesh_.info.skipped_cells) +
                                   " elements of dimension 0-2 skipped");
     return finish();
@@ -270,15 +270,34 @@ class MshReader {
 
   // One element, through the cell-type table (cells/cell_types.hpp): tets are kept (nodes by
   // tag, resolved in finish()), dimensions 0-2 skipped and counted, other volume elements refused.
-  void element(long long t, long long type, const std::vector<long long>& nodes, const std::string& f) {
+  // What element() needs of an element type, looked up once per type in a row (a block of a
+  // binary or v4.1 file has one type; issue 33: the lookups and the label were per element).
+  struct TypeCache {
+    long long type = -1;
+    const ElementType* et = nullptr;
+    const CellTypeInfo* row = nullptr;
+    long* count = nullptr;    // mesh_.info.cells_by_type[label] (std::map: the address is stable)
+    long* skipped = nullptr;  // mesh_.info.skipped_by_type[label], for dimensions 0-2
+  };
+  const TypeCache& type_of(long long type, const std::string& f) {
+    if (type == type_cache_.type) return type_cache_;
     const ElementType* et = element_type(type);
     if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
     const CellTypeInfo* row = cell_type_from_gmsh(type);
     const std::string label = row != nullptr ? std::string(row->name) : std::string("gmsh ") + et->name;
-    ++mesh_.info.cells_by_type[label];
+    type_cache_ = TypeCache{type, et, row, &mesh_.info.cells_by_type[label],
+                            et->dim < 3 ? &mesh_.info.skipped_by_type[label] : nullptr};
+    return type_cache_;
+  }
+
+  void element(long long t, long long type, const std::vector<long long>& nodes, const std::string& f) {
+    const TypeCache& tc = type_of(type, f);
+    const ElementType* et = tc.et;
+    const CellTypeInfo* row = tc.row;
+    ++*tc.count;
     if (et->dim < 3) {
       ++mesh_.info.skipped_cells;
-      ++mesh_.info.skipped_by_type[label];
+      ++*tc.skipped;
       return;
     }
     if (row == nullptr)
@@ -292,19 +311,29 @@ class MshReader {
     if (keep_cells_ || (row->support != CellSupport::Traversed && row->support != CellSupport::Quadratic))
       c_.fail(f, unsupported_cell_message(row->vtk_id) + " (gmsh element type " + std::to_string(type) + ")");
     tet_tags_.push_back(t);
-    // VTK's node order (the table's permutation); a linear tet's mid-edge tags stay kNoNode.
-    std::array<long long, 10> v{};
-    v.fill(kNoNode);
-    for (std::size_t k = 0; k < static_cast<std::size_t>(row->nodes); ++k)
-      v[k] = nodes[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
-    quadratic_ = quadratic_ || row->nodes == 10;
-    tet_nodes_.push_back(v);
+    // VTK's node order (the table's permutation). Mid-edge tags only once a 10-node tet comes
+    // (the linear ones before it get kNoNode rows then): a linear mesh holds 4 tags a tet.
+    std::array<long long, 4> v{};
+    for (std::size_t k = 0; k < 4; ++k) v[k] = nodes[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
+    tet_corners_.push_back(v);
+    if (row->nodes == 10) {
+      if (!quadratic_) tet_edges_.assign(tet_corners_.size() - 1, kLinearEdges);
+      quadratic_ = true;
+      std::array<long long, 6>& e = tet_edges_.emplace_back();
+      for (std::size_t k = 0; k < 6; ++k) e[k] = nodes[static_cast<std::size_t>(row->gmsh_to_vtk[4 + k])];
+    } else if (quadratic_) {
+      tet_edges_.push_back(kLinearEdges);
+    }
+  }
+  // Node tag k (VTK's order, 0-9) of tet i; kNoNode for a linear tet's mid-edge nodes.
+  long long tet_node(std::size_t i, std::size_t k) const {
+    return k < 4 ? tet_corners_[i][k] : quadratic_ ? tet_edges_[i][k - 4] : kNoNode;
   }
 
   void elements2() {
     const std::string f = "$Elements";
     const long long n = count(c_.need_words(f, 1, "number of elements")[0], f);
-    tet_nodes_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
+    tet_corners_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
     std::vector<long long> nodes;
     if (binary_) {
       long long done = 0;
@@ -344,7 +373,7 @@ class MshReader {
   void elements4() {
     const std::string f = "$Elements";
     const auto [blocks, n] = section4_header(f, "numEntityBlocks numElements minElementTag maxElementTag", "elements");
-    tet_nodes_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
+    tet_corners_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
     long long seen = 0;
     std::vector<long long> nodes;
     for (long long b = 0; b < blocks; ++b) {
@@ -363,19 +392,33 @@ class MshReader {
       if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
       if (in_block > n - seen) c_.fail(f, "more elements in the blocks than the header's " + std::to_string(n));
       seen += in_block;
-      for (long long i = 0; i < in_block; ++i) {
-        long long t = 0;
+      if (binary_) {
+        // Each element's (1 + nodes) size_t words read in one go (the cursor then moves past them,
+        // as bin_size would have): each value as bin_size checks it (at most kMaxTag).
+        const auto words = static_cast<std::size_t>(1 + et->nodes);
         nodes.assign(static_cast<std::size_t>(et->nodes), 0);
-        if (binary_) {
-          t = bin_size(f);
-          for (auto& x : nodes) x = bin_size(f);
-        } else {
-          const auto w = c_.need_words(f, 1 + nodes.size(), "elementTag nodeTag...");
-          if (w.size() != 1 + nodes.size())
-            c_.fail(f, std::to_string(w.size() - 1) + " node tags for a " + et->name);
-          t = tag(w[0], f);
-          for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k] = tag(w[k + 1], f);
+        for (long long i = 0; i < in_block; ++i) {
+          if (c_.remaining_bytes() < 8 * words) c_.fail(f, "binary data truncated");
+          const char* p = c_.rest().data();
+          long long t = 0;
+          for (std::size_t w = 0; w < words; ++w, p += 8) {
+            std::uint64_t v = 0;
+            std::memcpy(&v, p, 8);
+            if (v > static_cast<std::uint64_t>(kMaxTag)) c_.fail(f, "value " + std::to_string(v) + " out of range");
+            (w == 0 ? t : nodes[w - 1]) = static_cast<long long>(v);
+          }
+          c_.skip_bytes(8 * words);
+          element(t, type, nodes, f);
         }
+        continue;
+      }
+      for (long long i = 0; i < in_block; ++i) {
+        nodes.assign(static_cast<std::size_t>(et->nodes), 0);
+        const auto w = c_.need_words(f, 1 + nodes.size(), "elementTag nodeTag...");
+        if (w.size() != 1 + nodes.size())
+          c_.fail(f, std::to_string(w.size() - 1) + " node tags for a " + et->name);
+        const long long t = tag(w[0], f);
+        for (std::size_t k = 0; k < nodes.size(); ++k) nodes[k] = tag(w[k + 1], f);
         element(t, type, nodes, f);
       }
     }
@@ -466,25 +509,54 @@ class MshReader {
     return true;
   }
 
-  std::int32_t node(long long t, const std::string& field) {
+  // The point index of node tag t, -1 when $Nodes has no such tag: through a table indexed by
+  // the tag when the tags are dense enough (gmsh numbers nodes 1..N; at most 4 slots a node),
+  // else through node_index_.
+  std::int32_t find_node(long long t) {
+    if (!dense_built_) {
+      dense_built_ = true;
+      const std::size_t n = mesh_.points.size();
+      if (static_cast<unsigned long long>(max_node_tag_) <= 4ULL * n + 1024) {
+        dense_.assign(static_cast<std::size_t>(max_node_tag_) + 1, -1);
+        for (const auto& [tag_value, index] : node_index_) {
+          if (tag_value < 0) {  // (MSH 2 binary tags are int32) not a table index: use the map
+            dense_.clear();
+            break;
+          }
+          dense_[static_cast<std::size_t>(tag_value)] = index;
+        }
+      }
+    }
+    if (!dense_.empty()) return t >= 0 && static_cast<unsigned long long>(t) < dense_.size() ? dense_[static_cast<std::size_t>(t)] : -1;
     const auto it = node_index_.find(t);
-    if (it == node_index_.end()) fail_whole(field, "node tag " + std::to_string(t) + " is not in $Nodes");
-    return it->second;
+    return it == node_index_.end() ? -1 : it->second;
+  }
+
+  std::int32_t node(long long t, const std::string& field) {
+    const std::int32_t i = find_node(t);
+    if (i < 0) fail_whole(field, "node tag " + std::to_string(t) + " is not in $Nodes");
+    return i;
+  }
+  // node() for a node of element `element_tag` (the field is named only when it fails).
+  std::int32_t element_node(long long t, long long element_tag) {
+    const std::int32_t i = find_node(t);
+    if (i < 0) node(t, "$Elements (element " + std::to_string(element_tag) + ")");
+    return i;
   }
 
   TetMesh finish() {
-    mesh_.tets.reserve(tet_nodes_.size());
-    for (std::size_t i = 0; i < tet_nodes_.size(); ++i) {
+    mesh_.tets.reserve(tet_corners_.size());
+    mesh_.info.cell_ids.reserve(tet_corners_.size());
+    if (quadratic_) mesh_.edge_nodes.reserve(tet_corners_.size());
+    for (std::size_t i = 0; i < tet_corners_.size(); ++i) {
       std::array<std::int32_t, 4> t{};
-      for (std::size_t k = 0; k < 4; ++k)
-        t[k] = node(tet_nodes_[i][k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
+      for (std::size_t k = 0; k < 4; ++k) t[k] = element_node(tet_corners_[i][k], tet_tags_[i]);
       mesh_.tets.push_back(t);
       mesh_.info.cell_ids.push_back(tet_tags_[i]);
       if (quadratic_) {
         std::array<std::int32_t, 6>& e = mesh_.edge_nodes.emplace_back();
         for (std::size_t k = 0; k < 6; ++k)
-          e[k] = tet_nodes_[i][4 + k] == kNoNode ? -1
-                                           : node(tet_nodes_[i][4 + k], "$Elements (element " + std::to_string(tet_tags_[i]) + ")");
+          e[k] = tet_edges_[i][k] == kNoNode ? -1 : element_node(tet_edges_[i][k], tet_tags_[i]);
       }
     }
     const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
@@ -505,7 +577,7 @@ class MshReader {
       for (const auto& [t, vs] : element_data_.element_values) {
         const auto it = tet_of.find(t);
         if (it == tet_of.end()) continue;  // data on a point, line or triangle element
-        const std::size_t nodes = tet_nodes_[it->second][4] == kNoNode ? 4 : 10;
+        const std::size_t nodes = tet_node(it->second, 4) == kNoNode ? 4 : 10;
         if (vs.size() != nodes)
           fail_whole("$ElementNodeData", "element " + std::to_string(t) + " (a tetrahedron) has " +
                                           std::to_string(vs.size()) + " values, expected " + std::to_string(nodes));
@@ -516,7 +588,7 @@ class MshReader {
           const double v = vs[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
           if (have[i] && value[i] != v)
             fail_whole("$ElementNodeData",
-                    "node " + std::to_string(tet_nodes_[it->second][k]) + " has two values (" + format_number(value[i]) +
+                    "node " + std::to_string(tet_node(it->second, k)) + " has two values (" + format_number(value[i]) +
                         " and " + format_number(v) + "): the field is not continuous");
           value[i] = v;
           have[i] = 1;
@@ -545,15 +617,17 @@ class MshReader {
       fail_whole("$NodeData", what + " (one scalar per node is required; arrays: " + list_arrays(mesh_.info.arrays) + ")");
     }
     mesh_.info.scalar = node_data_.present ? node_data_.name : element_data_.name;
-    std::vector<std::int32_t> used;
-    for (const auto& t : mesh_.tets) used.insert(used.end(), t.begin(), t.end());
+    // Every node of a tet has a value (corners of all tets first, then the mid-edge nodes: the
+    // first one without names the point).
+    const auto need_value = [&](std::int32_t i) {
+      if (i >= 0 && !have[static_cast<std::size_t>(i)])
+        fail_whole(node_data_.present ? "$NodeData" : "$ElementNodeData",
+                   "no value for a node of a tetrahedron (point " + std::to_string(i) + ")");
+    };
+    for (const auto& t : mesh_.tets)
+      for (const std::int32_t i : t) need_value(i);
     for (const auto& e : mesh_.edge_nodes)
-      for (const std::int32_t i : e)
-        if (i >= 0) used.push_back(i);
-    for (const std::int32_t i : used)
-        if (!have[static_cast<std::size_t>(i)])
-          fail_whole(node_data_.present ? "$NodeData" : "$ElementNodeData",
-                  "no value for a node of a tetrahedron (point " + std::to_string(i) + ")");
+      for (const std::int32_t i : e) need_value(i);
     mesh_.scalars = std::move(value);
     validate_tet_mesh_structure(mesh_, c_.source(), MeshFieldNames{"$Nodes", "$NodeData", "$Elements"});
     return std::move(mesh_);
@@ -667,8 +741,13 @@ class MshReader {
   std::unordered_map<long long, std::int32_t> node_index_;
   std::vector<long long> tet_tags_;
   static constexpr long long kNoNode = std::numeric_limits<long long>::min();
-  std::vector<std::array<long long, 10>> tet_nodes_;  // node tags, VTK's order; kNoNode: a linear tet's
+  std::vector<std::array<long long, 4>> tet_corners_;  // node tags of the corners, VTK's order
+  std::vector<std::array<long long, 6>> tet_edges_;    // mid-edge node tags, VTK's order (only when quadratic_)
+  static constexpr std::array<long long, 6> kLinearEdges{kNoNode, kNoNode, kNoNode, kNoNode, kNoNode, kNoNode};
   bool quadratic_ = false;                             // some tet has 10 nodes
+  TypeCache type_cache_;
+  std::vector<std::int32_t> dense_;  // node tag -> point index, -1: none (find_node)
+  bool dense_built_ = false;
   DataBlock node_data_, element_data_, cell_data_;
 };
 

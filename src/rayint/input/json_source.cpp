@@ -253,6 +253,9 @@ std::string read_file_bytes(const std::string& file,
   };
   if (!f) cannot_read();
   std::string bytes;
+  // A regular file's size is known: one allocation instead of a doubling string, which copied
+  // and faulted in about twice the file (a big mesh file: issue 33).
+  if (S_ISREG(st.st_mode)) bytes.reserve(static_cast<std::size_t>(st.st_size));
   char buf[1 << 16];
   std::size_t n = 0;
   while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) {

@@ -32,35 +32,22 @@ std::uint64_t bits(double v) {
 }
 
 // The array taken as the scalar (the rule of mesh_assembly.hpp), or one line naming what exists.
-const RawArray& choose_scalar(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
-                              const RawMeshFields& fields, const MeshFileInfo& info) {
-  const RawArray* chosen = nullptr;
-  if (!options.scalar_name.empty()) {
-    for (int pass = 0; pass < 2 && chosen == nullptr; ++pass)
-      for (const RawArray& a : raw.arrays)
-        if (a.cell == (pass == 1) && a.name == options.scalar_name) {
-          chosen = &a;
-          break;
-        }
-    if (chosen == nullptr)
-      field::fail(source, fields.point_data,
-                  "no array named " + field::quoted(options.scalar_name) + " (arrays: " + list_arrays(info.arrays) + ")");
-    if (chosen->components != 1)
-      field::fail(source, fields.point_data,
-                  "array " + field::quoted(chosen->name) + " has " + std::to_string(chosen->components) +
-                      " components; the scalar needs 1");
-  } else {
-    for (const RawArray& a : raw.arrays)
-      if (!a.cell && a.active && a.components == 1 && !is_marker_array(a.name)) { chosen = &a; break; }
-    for (int pass = 0; pass < 2 && chosen == nullptr; ++pass)
-      for (const RawArray& a : raw.arrays)
-        if (a.cell == (pass == 1) && a.components == 1 && !is_marker_array(a.name)) { chosen = &a; break; }
-    if (chosen == nullptr)
-      field::fail(source, fields.point_data,
-                  "no field to integrate: no one-component point or cell array that is not a region marker (arrays: " +
-                      list_arrays(info.arrays) + ")");
-  }
-  return *chosen;
+RawArray& choose_scalar(RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+                        const RawMeshFields& fields, const MeshFileInfo& info) {
+  const RawArray* chosen = find_scalar_array(raw.arrays, options);
+  if (chosen == nullptr && !options.scalar_name.empty())
+    field::fail(source, fields.point_data,
+                "no array named " + field::quoted(options.scalar_name) + " (arrays: " + list_arrays(info.arrays) + ")");
+  if (chosen == nullptr)
+    field::fail(source, fields.point_data,
+                "no field to integrate: no one-component point or cell array that is not a region marker (arrays: " +
+                    list_arrays(info.arrays) + ")");
+  if (chosen->components != 1)
+    field::fail(source, fields.point_data,
+                "array " + field::quoted(chosen->name) + " has " + std::to_string(chosen->components) +
+                    " components; the scalar needs 1");
+  // One of raw.arrays, which the assembly owns: its values may move into the mesh.
+  return raw.arrays[static_cast<std::size_t>(chosen - raw.arrays.data())];
 }
 
 
@@ -69,8 +56,9 @@ const RawArray& choose_scalar(const RawMesh& raw, const std::string& source, con
 struct Shared {
   std::vector<char> ghost;                 // per cell: a duplicate cell of another piece
   std::vector<std::int32_t> point_map;     // file point index -> mesh point index
+  std::size_t file_points = 0;             // the file's point count (raw.points may have been moved out)
 };
-Shared assemble_shared(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+Shared assemble_shared(RawMesh& raw, const std::string& source, const AssemblyOptions& options,
                        const RawMeshFields& fields, std::vector<Vec3>& points, MeshFileInfo& info) {
   const std::size_t n_cells = raw.types.size();
   if (raw.offsets.size() != n_cells + 1)
@@ -79,6 +67,7 @@ Shared assemble_shared(const RawMesh& raw, const std::string& source, const Asse
   for (const RawArray& a : raw.arrays)
     info.arrays.push_back({a.name, a.cell ? "cell" : "point", static_cast<long>(a.components), is_marker_array(a.name)});
   Shared out;
+  out.file_points = raw.points.size();
   out.ghost.assign(n_cells, 0);
   for (const RawArray& a : raw.arrays)
     if (a.cell && a.name == "vtkGhostType" && a.components == 1 && a.values.size() == n_cells)
@@ -97,7 +86,7 @@ Shared assemble_shared(const RawMesh& raw, const std::string& source, const Asse
       out.point_map[i] = it->second;
     }
   } else {
-    points = raw.points;
+    points = std::move(raw.points);  // the raw points are not used again (file_points counts them)
     for (std::size_t i = 0; i < out.point_map.size(); ++i) out.point_map[i] = static_cast<std::int32_t>(i);
   }
   return out;
@@ -139,7 +128,7 @@ const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& 
 std::int32_t mesh_point(const RawMesh& raw, std::size_t k, std::size_t i, std::size_t local, const Shared& shared,
                         const std::string& source, const RawMeshFields& fields) {
   const long long p = raw.connectivity[k];
-  const auto n_points = static_cast<long long>(raw.points.size());
+  const auto n_points = static_cast<long long>(shared.file_points);
   if (p < 0 || p >= n_points)
     field::fail(source, fields.cells + "[" + std::to_string(i) + "][" + std::to_string(local) + "]",
                 "point index " + std::to_string(p) + " out of range [0, " + std::to_string(n_points) + ")");
@@ -150,25 +139,26 @@ std::int32_t mesh_point(const RawMesh& raw, std::size_t k, std::size_t i, std::s
 // cells, as point values (pieces' shared points must agree), or a cell array averaged to points
 // as vtkCellDataToPointData does (every cell of the dataset that uses the point, boundary cells
 // too, plain average). Returns the field name the values came from, for later messages.
-std::string assign_scalar(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
-                          const RawMeshFields& fields, const Shared& shared, const std::vector<std::size_t>& kept,
-                          std::size_t mesh_points, MeshFileInfo& info, std::vector<double>& scalars,
-                          std::vector<double>& cell_scalars) {
+std::string assign_scalar(RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+                          const RawMeshFields& fields, const Shared& shared, std::size_t mesh_points,
+                          MeshFileInfo& info, std::vector<double>& scalars, std::vector<double>& cell_scalars) {
   const std::size_t n_cells = raw.types.size();
-  const RawArray& chosen = choose_scalar(raw, source, options, fields, info);
+  RawArray& chosen = choose_scalar(raw, source, options, fields, info);
   const std::string where = chosen.cell ? fields.cell_data : fields.point_data;
-  const std::size_t expected = chosen.cell ? n_cells : raw.points.size();
+  const std::size_t expected = chosen.cell ? n_cells : shared.file_points;
   if (chosen.values.size() != expected)
     field::fail(source, where, "array " + field::quoted(chosen.name) + " has " + std::to_string(chosen.values.size()) +
                                    " values for " + std::to_string(expected) + (chosen.cell ? " cells" : " points"));
   info.scalar = chosen.name;
   info.scalar_association = chosen.cell ? "cell" : "point";
   if (chosen.cell && !options.cell_to_point) {
-    for (std::size_t c : kept) cell_scalars.push_back(chosen.values[c]);
+    // The kept cells are info.cell_ids (file cell indices, ascending).
+    cell_scalars.reserve(info.cell_ids.size());
+    for (const long long c : info.cell_ids) cell_scalars.push_back(chosen.values[static_cast<std::size_t>(c)]);
   } else if (chosen.cell) {
     std::vector<double> sum(mesh_points, 0.0);
     std::vector<long> count(mesh_points, 0);
-    const auto n_points = static_cast<long long>(raw.points.size());
+    const auto n_points = static_cast<long long>(shared.file_points);
     for (std::size_t c = 0; c < n_cells; ++c)
       for (std::size_t k = raw.offsets[c]; k < raw.offsets[c + 1] && k < raw.connectivity.size(); ++k) {
         const long long p = raw.connectivity[k];
@@ -184,7 +174,7 @@ std::string assign_scalar(const RawMesh& raw, const std::string& source, const A
   } else if (options.merge_points) {
     scalars.assign(mesh_points, 0.0);
     std::vector<char> set(mesh_points, 0);
-    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+    for (std::size_t i = 0; i < shared.file_points; ++i) {
       const auto j = static_cast<std::size_t>(shared.point_map[i]);
       const double v = chosen.values[i];
       if (set[j] && !(scalars[j] == v))
@@ -195,7 +185,7 @@ std::string assign_scalar(const RawMesh& raw, const std::string& source, const A
       set[j] = 1;
     }
   } else {
-    scalars = chosen.values;
+    scalars = std::move(chosen.values);  // not read again: raw is this assembly's own
   }
   return where;
 }
@@ -206,32 +196,46 @@ std::string assign_scalar(const RawMesh& raw, const std::string& source, const A
 // ("no WHAT (N cells, K of dimension 0-2 skipped, G ghost)"). Then the scalar (assign_scalar),
 // whose field name is returned for later messages.
 template <class Mesh, class Take>
-std::string assemble_cells(const RawMesh& raw, const std::string& source, const AssemblyOptions& options,
+std::string assemble_cells(RawMesh& raw, const std::string& source, const AssemblyOptions& options,
                            const RawMeshFields& fields, Mesh& mesh, const char* what,
                            bool (*accepted)(CellSupport), Take take) {
   const std::size_t n_cells = raw.types.size();
   MeshFileInfo& info = mesh.info;
   const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
-  std::vector<std::size_t> kept;
+  info.cell_ids.reserve(n_cells);
   for (std::size_t i = 0; i < n_cells; ++i) {
     const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, accepted);
     if (row == nullptr) continue;
     take(*row, [&](std::size_t local) {
       return mesh_point(raw, raw.offsets[i] + local, i, local, shared, source, fields);
     });
-    kept.push_back(i);
     info.cell_ids.push_back(static_cast<long long>(i));
   }
-  if (kept.empty())
+  if (info.cell_ids.empty())
     field::fail(source, fields.cells,
                 std::string("no ") + what + " (" + std::to_string(n_cells) + " cells, " +
                     std::to_string(info.skipped_cells) + " of dimension 0-2 skipped, " +
                     std::to_string(info.ghost_cells) + " ghost)");
-  return assign_scalar(raw, source, options, fields, shared, kept, mesh.points.size(), info, mesh.scalars,
+  return assign_scalar(raw, source, options, fields, shared, mesh.points.size(), info, mesh.scalars,
                        mesh.cell_scalars);
 }
 
 }  // namespace
+
+const RawArray* find_scalar_array(const std::vector<RawArray>& arrays, const AssemblyOptions& options) {
+  if (!options.scalar_name.empty()) {  // by name: point data first, then cell data
+    for (int pass = 0; pass < 2; ++pass)
+      for (const RawArray& a : arrays)
+        if (a.cell == (pass == 1) && a.name == options.scalar_name) return &a;
+    return nullptr;
+  }
+  for (const RawArray& a : arrays)
+    if (!a.cell && a.active && a.components == 1 && !is_marker_array(a.name)) return &a;
+  for (int pass = 0; pass < 2; ++pass)
+    for (const RawArray& a : arrays)
+      if (a.cell == (pass == 1) && a.components == 1 && !is_marker_array(a.name)) return &a;
+  return nullptr;
+}
 
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays) {
   if (arrays.empty()) return "none";
@@ -247,7 +251,10 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
                           const RawMeshFields& fields) {
   // Quadratic tetrahedra: corners as a tet, the six mid-edge nodes (VTK's order) beside it.
   TetMesh mesh;
-  bool quadratic = false;
+  mesh.tets.reserve(raw.types.size());
+  // edge_nodes only once a quadratic tet comes: the linear tets before it get -1 rows then, and
+  // a mesh of linear tets never allocates them (24 B a tet that stayed allocated: issue 33).
+  const std::array<std::int32_t, 6> linear{-1, -1, -1, -1, -1, -1};
   const std::string where = assemble_cells(
       raw, source, options, fields, mesh, "tetrahedra",
       [](CellSupport support) { return support == CellSupport::Traversed || support == CellSupport::Quadratic; },
@@ -255,14 +262,17 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
         std::array<std::int32_t, 4> t{};
         for (std::size_t k = 0; k < 4; ++k) t[k] = node(k);
         mesh.tets.push_back(t);
-        std::array<std::int32_t, 6>& e = mesh.edge_nodes.emplace_back();
-        e.fill(-1);
         if (row.support == CellSupport::Quadratic) {
-          quadratic = true;
+          if (mesh.edge_nodes.empty()) {
+            mesh.edge_nodes.reserve(raw.types.size());
+            mesh.edge_nodes.assign(mesh.tets.size() - 1, linear);
+          }
+          std::array<std::int32_t, 6>& e = mesh.edge_nodes.emplace_back();
           for (std::size_t k = 0; k < 6; ++k) e[k] = node(4 + k);
+        } else if (!mesh.edge_nodes.empty()) {
+          mesh.edge_nodes.push_back(linear);
         }
       });
-  if (!quadratic) mesh.edge_nodes.clear();
   validate_tet_mesh_structure(mesh, source, MeshFieldNames{fields.points, where, fields.cells});
   return mesh;
 }

@@ -72,6 +72,11 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
 CellMesh assemble_cell_mesh(RawMesh raw, const std::string& source, const AssemblyOptions& options,
                             const RawMeshFields& fields = {});
 
+// The array the scalar rule above takes from `arrays` (by name, association, components and the
+// active flag: values are not looked at), or nullptr when it takes none (the assembly then
+// refuses the file naming its arrays). Lets a reader decode only the arrays used.
+const RawArray* find_scalar_array(const std::vector<RawArray>& arrays, const AssemblyOptions& options);
+
 // `"name" (point, 1 component), ...` for messages.
 std::string list_arrays(const std::vector<MeshArrayInfo>& arrays);
 

@@ -46,6 +46,7 @@ class VtkCursor {
   }
   // True while bytes remain, without skipping blank lines (a METADATA block ends at one).
   bool more() const { return pos_ < b_.size(); }
+  std::size_t remaining() const { return b_.size() - pos_; }
 
   // One text line without its terminator ('\n' or "\r\n").
   std::string line(const std::string& section) {
@@ -101,6 +102,44 @@ class VtkCursor {
         fail(section + "[" + std::to_string(i) + "]", "not a number: '" + tok.substr(0, 40) + "'");
       out.push_back(v);
     }
+    return out;
+  }
+
+  // True when values() of this array would be integers that integers() reads without doubles:
+  // a BINARY file's integer types up to int64 (unsigned 64-bit ones may exceed it).
+  bool integer_type(const std::string& type) const {
+    return type != "float" && type != "double" && type != "bit" && type != "unsigned_long" && type != "vtktypeuint64";
+  }
+
+  // values() of a BINARY array written straight into `out` (count doubles).
+  void binary_values_into(const std::string& section, const std::string& type, std::size_t count, double* out) {
+    const std::size_t width = type_width(section, type);
+    if (count > (b_.size() - pos_) / width)
+      fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
+                        " values, file has " + std::to_string((b_.size() - pos_) / width));
+    decode_big_endian(type, width, out, count);
+    pos_ += count * width;
+  }
+
+  // values() of a binary integer array (integer_type) as integers, decoded straight from the
+  // big-endian bytes: the same numbers without an array of doubles between (issue 33).
+  std::vector<long long> integers(const std::string& section, const std::string& type, std::size_t count) {
+    const std::size_t width = type_width(section, type);
+    if (count > (b_.size() - pos_) / width)
+      fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
+                        " values, file has " + std::to_string((b_.size() - pos_) / width));
+    std::vector<long long> out(count);
+    const auto* p = reinterpret_cast<const unsigned char*>(b_.data() + pos_);
+    const bool is_signed = type == "char" || type == "signed_char" || type == "short" || type == "int" ||
+                           type == "long" || type == "vtktypeint64" || type == "vtkIdType";
+    const unsigned shift = static_cast<unsigned>(64 - 8 * width);  // sign extension of narrow types
+    for (std::size_t i = 0; i < count; ++i, p += width) {
+      std::uint64_t bits = 0;
+      for (std::size_t b = 0; b < width; ++b) bits = (bits << 8) | p[b];
+      out[i] = is_signed ? static_cast<long long>(static_cast<std::int64_t>(bits << shift) >> shift)
+                         : static_cast<long long>(bits);
+    }
+    pos_ += count * width;
     return out;
   }
 
@@ -243,9 +282,17 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
     if (key == "POINTS" && d.kind == "UNSTRUCTURED_GRID") {
       need_words(c, w, 3, "POINTS n type");
       const std::size_t n = count_of(c, "POINTS", w[1]);
-      const std::vector<double> xyz = c.values("POINTS", w[2], 3 * n, binary);
-      raw.points.resize(n);
-      for (std::size_t i = 0; i < n; ++i) raw.points[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+      if (binary) {  // decoded into the points themselves (Vec3: three packed doubles)
+        static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 holds three doubles, unpadded");
+        if (n > c.remaining() / 3)
+          c.fail("POINTS", "binary data truncated: need " + std::to_string(3 * n) + " " + w[2] + " values");
+        raw.points.resize(n);
+        c.binary_values_into("POINTS", w[2], 3 * n, raw.points.empty() ? nullptr : raw.points.front().data());
+      } else {
+        const std::vector<double> xyz = c.values("POINTS", w[2], 3 * n, false);
+        raw.points.resize(n);
+        for (std::size_t i = 0; i < n; ++i) raw.points[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+      }
       d.have_points = true;
     } else if (key == "DIMENSIONS" && d.kind == "STRUCTURED_POINTS") {
       need_words(c, w, 4, "DIMENSIONS nx ny nz");
@@ -267,55 +314,73 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
       if (version >= 5.0) {  // CELLS n_offsets n_connectivity, then OFFSETS and CONNECTIVITY arrays
         const std::vector<std::string> wo = c.keyword_line("OFFSETS");
         if (wo.size() != 2 || upper(wo[0]) != "OFFSETS") c.fail("CELLS", "expected 'OFFSETS type' (file version 5.x)");
-        const std::vector<double> offsets = c.values("OFFSETS", wo[1], n, binary);
-        const std::vector<std::string> wc = c.keyword_line("CONNECTIVITY");
-        if (wc.size() != 2 || upper(wc[0]) != "CONNECTIVITY")
-          c.fail("CELLS", "expected 'CONNECTIVITY type' (file version 5.x)");
-        const std::vector<double> conn = c.values("CONNECTIVITY", wc[1], size, binary);
-        if (n == 0) c.fail("OFFSETS", "empty (needs cells + 1 entries)");
-        raw.offsets.assign(1, 0);
-        raw.connectivity.clear();
-        raw.offsets.reserve(n);
-        raw.connectivity.reserve(size);
-        for (std::size_t i = 0; i + 1 < n; ++i) {
-          const double a = offsets[i], b = offsets[i + 1];
-          if (!(a >= 0 && b >= a && b <= static_cast<double>(size)))
-            c.fail("OFFSETS[" + std::to_string(i + 1) + "]", "offsets must increase within CONNECTIVITY");
-          for (auto k = static_cast<std::size_t>(a); k < static_cast<std::size_t>(b); ++k)
-            raw.connectivity.push_back(as_index(c, "CONNECTIVITY", k, conn[k]));
-          raw.offsets.push_back(raw.connectivity.size());
-        }
+        // Binary integer arrays are read as integers (VtkCursor::integers), others as doubles.
+        const auto fill = [&](const auto& offsets, const auto& conn) {
+          if (n == 0) c.fail("OFFSETS", "empty (needs cells + 1 entries)");
+          raw.offsets.assign(1, 0);
+          raw.connectivity.clear();
+          raw.offsets.reserve(n);
+          raw.connectivity.reserve(size);
+          for (std::size_t i = 0; i + 1 < n; ++i) {
+            const auto a = static_cast<double>(offsets[i]), b = static_cast<double>(offsets[i + 1]);
+            if (!(a >= 0 && b >= a && b <= static_cast<double>(size)))
+              c.fail("OFFSETS[" + std::to_string(i + 1) + "]", "offsets must increase within CONNECTIVITY");
+            for (auto k = static_cast<std::size_t>(a); k < static_cast<std::size_t>(b); ++k)
+              raw.connectivity.push_back(as_index(c, "CONNECTIVITY", k, static_cast<double>(conn[k])));
+            raw.offsets.push_back(raw.connectivity.size());
+          }
+        };
+        const auto read_connectivity = [&](const auto& offsets) {
+          const std::vector<std::string> wc = c.keyword_line("CONNECTIVITY");
+          if (wc.size() != 2 || upper(wc[0]) != "CONNECTIVITY")
+            c.fail("CELLS", "expected 'CONNECTIVITY type' (file version 5.x)");
+          if (binary && c.integer_type(wc[1])) fill(offsets, c.integers("CONNECTIVITY", wc[1], size));
+          else fill(offsets, c.values("CONNECTIVITY", wc[1], size, binary));
+        };
+        if (binary && c.integer_type(wo[1])) read_connectivity(c.integers("OFFSETS", wo[1], n));
+        else read_connectivity(c.values("OFFSETS", wo[1], n, binary));
         n_cells_read = n - 1;
       } else {
-        const std::vector<double> rawc = c.values("CELLS", "int", size, binary);
-        std::size_t k = 0;
-        raw.offsets.assign(1, 0);
-        raw.connectivity.clear();
-        raw.offsets.reserve(n + 1);
-        raw.connectivity.reserve(size);
-        for (std::size_t i = 0; i < n; ++i) {
-          if (k >= rawc.size())
-            c.fail("CELLS[" + std::to_string(i) + "]", "cell list ends early (size " + std::to_string(size) + ")");
-          const double m = rawc[k++];
-          if (!(m >= 0 && m <= static_cast<double>(rawc.size() - k)))  // m may be huge or NaN
-            c.fail("CELLS[" + std::to_string(i) + "]", "point count " + format_number(m) + " overruns the cell list");
-          for (auto j = static_cast<std::size_t>(m); j > 0; --j) raw.connectivity.push_back(as_index(c, "CELLS", i, rawc[k++]));
-          raw.offsets.push_back(raw.connectivity.size());
-        }
+        // One pass over the cell list; binary files' int32 values are read as integers.
+        const auto fill = [&](const auto& rawc) {
+          std::size_t k = 0;
+          raw.offsets.assign(1, 0);
+          raw.connectivity.clear();
+          raw.offsets.reserve(n + 1);
+          raw.connectivity.reserve(size);
+          for (std::size_t i = 0; i < n; ++i) {
+            if (k >= rawc.size())
+              c.fail("CELLS[" + std::to_string(i) + "]", "cell list ends early (size " + std::to_string(size) + ")");
+            const auto m = static_cast<double>(rawc[k++]);
+            if (!(m >= 0 && m <= static_cast<double>(rawc.size() - k)))  // m may be huge or NaN
+              c.fail("CELLS[" + std::to_string(i) + "]", "point count " + format_number(m) + " overruns the cell list");
+            for (auto j = static_cast<std::size_t>(m); j > 0; --j)
+              raw.connectivity.push_back(as_index(c, "CELLS", i, static_cast<double>(rawc[k++])));
+            raw.offsets.push_back(raw.connectivity.size());
+          }
+          if (k != rawc.size())
+            c.fail("CELLS", "size " + std::to_string(size) + " does not match the cell list (" + std::to_string(k) + " used)");
+        };
+        if (binary) fill(c.integers("CELLS", "int", size));
+        else fill(c.values("CELLS", "int", size, false));
         n_cells_read = n;
-        if (k != rawc.size())
-          c.fail("CELLS", "size " + std::to_string(size) + " does not match the cell list (" + std::to_string(k) + " used)");
       }
       d.have_cells = true;
     } else if (key == "CELL_TYPES" && d.kind == "UNSTRUCTURED_GRID") {
       need_words(c, w, 2, "CELL_TYPES n");
-      const std::vector<double> t = c.values("CELL_TYPES", "int", count_of(c, "CELL_TYPES", w[1]), binary);
-      raw.types.clear();
-      for (std::size_t i = 0; i < t.size(); ++i) {
-        if (!(t[i] >= 0 && t[i] <= 1e6 && t[i] == std::floor(t[i])))
-          c.fail("CELL_TYPES[" + std::to_string(i) + "]", "not a cell type: " + format_number(t[i]));
-        raw.types.push_back(static_cast<long long>(t[i]));
-      }
+      const std::size_t n = count_of(c, "CELL_TYPES", w[1]);
+      const auto fill = [&](const auto& t) {
+        raw.types.clear();
+        raw.types.reserve(t.size());
+        for (std::size_t i = 0; i < t.size(); ++i) {
+          const auto v = static_cast<double>(t[i]);
+          if (!(v >= 0 && v <= 1e6 && v == std::floor(v)))
+            c.fail("CELL_TYPES[" + std::to_string(i) + "]", "not a cell type: " + format_number(v));
+          raw.types.push_back(static_cast<long long>(v));
+        }
+      };
+      if (binary) fill(c.integers("CELL_TYPES", "int", n));
+      else fill(c.values("CELL_TYPES", "int", n, false));
       d.have_types = true;
     } else if (key == "POINT_DATA" || key == "CELL_DATA") {
       need_words(c, w, 2, key + " n");

@@ -5,6 +5,7 @@
 #include <lzma.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -107,6 +108,16 @@ class ByteStream {
  public:
   ByteStream(std::string_view text, bool base64, const Document& doc, std::string field)
       : text_(text), base64_(base64), doc_(doc), field_(std::move(field)) {}
+
+  // The next n bytes of raw (not base64) data, in place.
+  std::string_view view(std::size_t n, const std::string& what) {
+    if (n > available())
+      doc_.fail(field_, what + " truncated: needs " + std::to_string(n) + " bytes, " +
+                            std::to_string(available()) + " left");
+    const std::string_view out = text_.substr(pos_, n);
+    pos_ += n;
+    return out;
+  }
 
   std::string take(std::size_t n, const std::string& what) {
     if (n > available())
@@ -273,7 +284,7 @@ Document::Document(std::string_view bytes, std::string source, const std::string
       if (!is_space(bytes[i])) fail("AppendedData", "expected '_' before the data");
     xml_.assign(bytes.substr(0, gt + 1));
     xml_.append(bytes.substr(close));
-    appended_.assign(bytes.substr(underscore + 1, close - underscore - 1));
+    appended_ = bytes.substr(underscore + 1, close - underscore - 1);
     has_appended_ = true;
   }
   const pugi::xml_parse_result r = doc_.load_buffer(xml_.data(), xml_.size(), pugi::parse_default, pugi::encoding_utf8);
@@ -374,6 +385,16 @@ std::size_t Document::components(pugi::xml_node array, const std::string& field)
 }
 
 std::vector<double> Document::values(pugi::xml_node array, const std::string& field, std::size_t expected) const {
+  std::vector<double> out;
+  values_into(array, field, expected, [&] {
+    out.resize(expected);
+    return out.data();
+  });
+  return out;
+}
+
+void Document::values_into(pugi::xml_node array, const std::string& field, std::size_t expected,
+                           const std::function<double*()>& buffer) const {
   TypeInfo t;
   const std::string type = array.attribute("type").as_string();
   if (!array.attribute("type")) fail(field, "missing attribute type");
@@ -414,7 +435,8 @@ std::vector<double> Document::values(pugi::xml_node array, const std::string& fi
     }
     if (out.size() != expected)
       fail(field, "has " + std::to_string(out.size()) + " values, expected " + std::to_string(expected));
-    return out;
+    std::copy(out.begin(), out.end(), buffer());
+    return;
   }
 
   std::string_view text;
@@ -427,7 +449,7 @@ std::vector<double> Document::values(pugi::xml_node array, const std::string& fi
     if (static_cast<unsigned long long>(offset) > appended_.size())
       fail(field, "offset " + std::to_string(offset) + " is beyond the AppendedData (" +
                       std::to_string(appended_.size()) + " bytes)");
-    text = std::string_view(appended_).substr(static_cast<std::size_t>(offset));
+    text = appended_.substr(static_cast<std::size_t>(offset));
     base64 = appended_base64_;
   } else {
     fail(field, "format \"" + clip(format) + "\": expected ascii, binary or appended");
@@ -440,13 +462,15 @@ std::vector<double> Document::values(pugi::xml_node array, const std::string& fi
     const std::string h = in.take(header_bytes_, what);
     return word(reinterpret_cast<const unsigned char*>(h.data()), header_bytes_, big_endian_);
   };
-  std::string data;
+  std::string data;       // decoded bytes (base64 or compressed)
+  std::string_view bytes;  // the data: raw bytes in place, or `data`
   if (compressor_ == Compressor::none) {
     const std::uint64_t size = header_word("header");
     if (size != data_bytes)
       fail(field, "header says " + std::to_string(size) + " bytes, expected " + std::to_string(data_bytes) + " (" +
                       std::to_string(expected) + " " + type + ")");
-    data = in.take(static_cast<std::size_t>(size), "data");
+    if (base64) data = in.take(static_cast<std::size_t>(size), "data");
+    else bytes = in.view(static_cast<std::size_t>(size), "data");  // no copy of the payload (issue 33)
   } else {
     const std::uint64_t nblocks = header_word("compression header");
     const std::uint64_t block = header_word("compression header");
@@ -482,10 +506,10 @@ std::vector<double> Document::values(pugi::xml_node array, const std::string& fi
                                                : lzma_block(packed, n, *this, field, b);
     }
   }
-  out.resize(expected);
-  const auto* p = reinterpret_cast<const unsigned char*>(data.data());
-  for (std::size_t i = 0; i < expected; ++i, p += t.width) out[i] = to_double(word(p, t.width, big_endian_), t);
-  return out;
+  if (bytes.data() == nullptr) bytes = data;
+  double* into = buffer();
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+  for (std::size_t i = 0; i < expected; ++i, p += t.width) into[i] = to_double(word(p, t.width, big_endian_), t);
 }
 
 }  // namespace rayint::vtk_xml

@@ -30,6 +30,7 @@
 #include <pugixml.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +42,7 @@ enum class Compressor { none, zlib, lz4, lzma };
 class Document {
  public:
   // Parses `bytes` as a VTKFile of type `type` ("UnstructuredGrid", "ImageData"). Throws InputError.
+  // The AppendedData payload is read in place: `bytes` must outlive the Document.
   Document(std::string_view bytes, std::string source, const std::string& type);
   Document(const Document&) = delete;
   Document& operator=(const Document&) = delete;
@@ -63,11 +65,16 @@ class Document {
   std::size_t components(pugi::xml_node array, const std::string& field) const;
   // The array's values, tuples times components of them, decoded and converted to double.
   std::vector<double> values(pugi::xml_node array, const std::string& field, std::size_t expected) const;
+  // values() written where `buffer` says (e.g. straight into an array of points): buffer() is
+  // called once, after the array's size has been checked against the file, and returns room for
+  // `expected` doubles.
+  void values_into(pugi::xml_node array, const std::string& field, std::size_t expected,
+                   const std::function<double*()>& buffer) const;
 
  private:
   std::string source_;
-  std::string xml_;       // the file with the AppendedData payload cut out
-  std::string appended_;  // the AppendedData payload (after '_')
+  std::string xml_;             // the file with the AppendedData payload cut out
+  std::string_view appended_;  // the AppendedData payload (after '_'), in the caller's bytes
   bool appended_base64_ = false;
   bool has_appended_ = false;
   bool big_endian_ = false;

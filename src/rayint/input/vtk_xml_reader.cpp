@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
@@ -74,9 +75,10 @@ std::vector<double> finite_values(const Document& d, pugi::xml_node array, const
 namespace {
 
 // Every DataArray of a PointData / CellData element as RawArrays (values decoded for
-// one-component arrays only: the others can never be the scalar, and are only listed).
+// one-component arrays only: the others can never be the scalar, and are only listed). With
+// `only`, only the arrays it accepts are decoded (the others are listed with no values).
 void data_arrays(const Document& d, pugi::xml_node parent, bool cell, std::size_t tuples, const std::string& field,
-                 std::vector<RawArray>& out) {
+                 std::vector<RawArray>& out, const std::function<bool(const RawArray&)>& only = {}) {
   const std::string active = parent.attribute("Scalars").as_string();
   for (pugi::xml_node a = parent.child("DataArray"); a; a = a.next_sibling("DataArray")) {
     RawArray r;
@@ -85,23 +87,33 @@ void data_arrays(const Document& d, pugi::xml_node parent, bool cell, std::size_
     const std::string f = field + "/DataArray[" + r.name + "]";
     r.components = d.components(a, f);
     r.active = !active.empty() && r.name == active;
-    if (r.components == 1) r.values = d.values(a, f, tuples);
+    if (r.components == 1 && (!only || only(r))) r.values = d.values(a, f, tuples);
     out.push_back(std::move(r));
   }
 }
 
 // One <Piece> of an UnstructuredGrid appended to `raw` (point indices offset by the points
 // already there; arrays matched by name and association across pieces).
-void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string& piece_field, RawMesh& raw) {
+// Only the arrays the assembly reads are decoded (issue 33): the scalar (find_scalar_array on
+// the first piece's arrays, whose choice the assembly makes) and the ghost flags.
+void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string& piece_field, RawMesh& raw,
+                      const AssemblyOptions& options) {
   const auto n_points = static_cast<std::size_t>(d.count_attribute(piece, "NumberOfPoints", piece_field, kMaxIndex));
   const auto n_cells = static_cast<std::size_t>(d.count_attribute(piece, "NumberOfCells", piece_field, kMaxIndex / 4));
   const std::string points_field = piece_field + "/Points/DataArray";
   const pugi::xml_node points = d.only_child(d.only_child(piece, "Points", piece_field), "DataArray", piece_field + "/Points");
   if (d.components(points, points_field) != 3)
     d.fail(points_field, "NumberOfComponents must be 3, got " + std::to_string(d.components(points, points_field)));
-  const std::vector<double> xyz = finite_values(d, points, points_field, 3 * n_points);
+  // Decoded straight into the points (Vec3: three packed doubles), then checked as finite_values does.
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 holds three doubles, unpadded");
   const std::size_t base = raw.points.size();
-  for (std::size_t i = 0; i < n_points; ++i) raw.points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  d.values_into(points, points_field, 3 * n_points, [&]() -> double* {
+    raw.points.resize(base + n_points);
+    return n_points == 0 ? nullptr : raw.points[base].data();
+  });
+  for (std::size_t i = 0; i < 3 * n_points; ++i)
+    if (!std::isfinite(raw.points[base + i / 3][static_cast<Eigen::Index>(i % 3)]))
+      d.fail(points_field, "value " + std::to_string(i) + " is not finite");
 
   const std::string cells_field = piece_field + "/Cells";
   const pugi::xml_node cells = d.only_child(piece, "Cells", piece_field);
@@ -137,10 +149,23 @@ void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string
     raw.offsets.push_back(start + static_cast<std::size_t>(offsets[i]));
   }
 
-  std::vector<RawArray> arrays;
-  if (const pugi::xml_node pd = piece.child("PointData")) data_arrays(d, pd, false, n_points, piece_field + "/PointData", arrays);
-  if (const pugi::xml_node cd = piece.child("CellData")) data_arrays(d, cd, true, n_cells, piece_field + "/CellData", arrays);
   const bool first = base == 0 && start == 0;
+  std::vector<RawArray> arrays;
+  if (first) {  // the listing first, to choose from
+    if (const pugi::xml_node pd = piece.child("PointData"))
+      data_arrays(d, pd, false, n_points, piece_field + "/PointData", arrays, [](const RawArray&) { return false; });
+    if (const pugi::xml_node cd = piece.child("CellData"))
+      data_arrays(d, cd, true, n_cells, piece_field + "/CellData", arrays, [](const RawArray&) { return false; });
+  }
+  const RawArray* scalar = find_scalar_array(first ? arrays : raw.arrays, options);
+  const std::string scalar_name = scalar != nullptr ? scalar->name : "";
+  const bool scalar_cell = scalar != nullptr && scalar->cell;
+  const auto used = [&](const RawArray& a) {
+    return (scalar != nullptr && a.name == scalar_name && a.cell == scalar_cell) || (a.cell && a.name == "vtkGhostType");
+  };
+  arrays.clear();
+  if (const pugi::xml_node pd = piece.child("PointData")) data_arrays(d, pd, false, n_points, piece_field + "/PointData", arrays, used);
+  if (const pugi::xml_node cd = piece.child("CellData")) data_arrays(d, cd, true, n_cells, piece_field + "/CellData", arrays, used);
   if (first) {
     raw.arrays = std::move(arrays);
     return;
@@ -179,14 +204,14 @@ auto assemble_vtu(std::string_view bytes, const std::string& source, const std::
   const std::string piece_field = "UnstructuredGrid/Piece";
   RawMesh raw;
   std::size_t pieces = 0;
-  for (pugi::xml_node piece = d.dataset().child("Piece"); piece; piece = piece.next_sibling("Piece")) {
-    append_vtu_piece(d, piece, pieces == 0 ? piece_field : piece_field + "[" + std::to_string(pieces) + "]", raw);
-    ++pieces;
-  }
-  if (pieces == 0) d.fail(piece_field, "missing");
   AssemblyOptions o;
   o.scalar_name = scalar_name;
   o.cell_to_point = cell_to_point;
+  for (pugi::xml_node piece = d.dataset().child("Piece"); piece; piece = piece.next_sibling("Piece")) {
+    append_vtu_piece(d, piece, pieces == 0 ? piece_field : piece_field + "[" + std::to_string(pieces) + "]", raw, o);
+    ++pieces;
+  }
+  if (pieces == 0) d.fail(piece_field, "missing");
   o.merge_points = pieces > 1;
   return assemble(std::move(raw), source, o, vtu_fields(piece_field));
 }
@@ -239,6 +264,9 @@ auto assemble_pvtu(const std::string& path, const std::string& scalar_name, bool
   RawMesh raw;
   std::size_t pieces = 0;
   std::string last_field = "UnstructuredGrid/Piece";
+  AssemblyOptions o;
+  o.scalar_name = scalar_name;
+  o.cell_to_point = cell_to_point;
   for (const std::string& file : piece_sources(d, d.dataset(), "PUnstructuredGrid", path)) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec))
@@ -246,13 +274,10 @@ auto assemble_pvtu(const std::string& path, const std::string& scalar_name, bool
     const std::string piece_text = json_source::read_text_file(file);
     const Document pd(piece_text, file, "UnstructuredGrid");
     for (pugi::xml_node piece = pd.dataset().child("Piece"); piece; piece = piece.next_sibling("Piece")) {
-      append_vtu_piece(pd, piece, "UnstructuredGrid/Piece", raw);
+      append_vtu_piece(pd, piece, "UnstructuredGrid/Piece", raw, o);
       ++pieces;
     }
   }
-  AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
   o.merge_points = true;
   RawMeshFields f = vtu_fields(last_field);
   return assemble(std::move(raw), path + " (" + std::to_string(pieces) + " pieces)", o, f);

@@ -20,6 +20,24 @@ std::array<std::int32_t, 3> face_key(const TetMesh& mesh, std::size_t t, std::si
   return key;
 }
 
+std::array<std::array<std::int32_t, 3>, 4> face_keys(const TetMesh& mesh, std::size_t t) {
+  const std::array<std::int32_t, 4>& tet = mesh.tets[t];
+  std::array<std::int32_t, 4> s = tet;
+  const auto order = [&s](std::size_t i, std::size_t j) {
+    if (s[j] < s[i]) std::swap(s[i], s[j]);
+  };
+  order(0, 1), order(2, 3), order(0, 2), order(1, 3), order(1, 2);  // a sorting network of 4
+  std::array<std::array<std::int32_t, 3>, 4> keys{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    // Removing one copy of tet[k] from the sorted four leaves the other three sorted (also when
+    // an index repeats: the multiset is the same).
+    const std::size_t drop = s[0] == tet[k] ? 0 : s[1] == tet[k] ? 1 : s[2] == tet[k] ? 2 : 3;
+    for (std::size_t j = 0, o = 0; j < 4; ++j)
+      if (j != drop) keys[k][o++] = s[j];
+  }
+  return keys;
+}
+
 TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
   const std::size_t n = mesh.tets.size();
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 4))
@@ -35,16 +53,16 @@ TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
   // The order is that of sorting by (key, tet_k): the same faces, cells and errors as before.
   std::vector<std::uint32_t> start(mesh.points.size() + 1, 0);
   for (std::size_t t = 0; t < n; ++t)
-    for (std::size_t k = 0; k < 4; ++k) ++start[static_cast<std::size_t>(face_key(mesh, t, k)[0]) + 1];
+    for (const std::array<std::int32_t, 3>& key : face_keys(mesh, t)) ++start[static_cast<std::size_t>(key[0]) + 1];
   for (std::size_t p = 0; p < mesh.points.size(); ++p) start[p + 1] += start[p];
   std::vector<Rec> recs(4 * n);
   {
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < n; ++t)
-      for (std::size_t k = 0; k < 4; ++k) {
-        const std::array<std::int32_t, 3> key = face_key(mesh, t, k);
-        recs[fill[static_cast<std::size_t>(key[0])]++] = Rec{key, static_cast<std::int32_t>(4 * t + k)};
-      }
+    for (std::size_t t = 0; t < n; ++t) {
+      const std::array<std::array<std::int32_t, 3>, 4> keys = face_keys(mesh, t);
+      for (std::size_t k = 0; k < 4; ++k)
+        recs[fill[static_cast<std::size_t>(keys[k][0])]++] = Rec{keys[k], static_cast<std::int32_t>(4 * t + k)};
+    }
   }
   const auto by_rest = [](const Rec& x, const Rec& y) {
     return x.key[1] != y.key[1] ? x.key[1] < y.key[1] : x.key[2] < y.key[2];

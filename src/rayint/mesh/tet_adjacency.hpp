@@ -34,4 +34,8 @@ Vec3 face_plane(const TetMesh& mesh, const std::array<std::int32_t, 3>& sorted_p
 // The sorted point triple of local face k of tet t.
 std::array<std::int32_t, 3> face_key(const TetMesh& mesh, std::size_t t, std::size_t k);
 
+// face_key(mesh, t, k) for k = 0..3 at once: the tet's four indices are sorted once and face k
+// is that order without (one copy of) point k, the same triples as four face_key calls.
+std::array<std::array<std::int32_t, 3>, 4> face_keys(const TetMesh& mesh, std::size_t t);
+
 }  // namespace rayint

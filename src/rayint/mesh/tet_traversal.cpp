@@ -90,8 +90,9 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
     c.first_point = lowest;
     c.second_point = lowest;
     c.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
+    const std::array<std::array<std::int32_t, 3>, 4> keys = face_keys(mesh_, t);
     for (std::size_t k = 0; k < 4; ++k) {
-      const std::array<std::int32_t, 3> key = face_key(mesh_, t, k);
+      const std::array<std::int32_t, 3>& key = keys[k];
       const Vec3 normal = plane(key);
       c.normal[k] = sign_of(key, normal, t, k) > 0 ? normal : Vec3(-normal);
       c.next[k] = neighbors[t][k];
