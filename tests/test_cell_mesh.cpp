@@ -314,16 +314,17 @@ TEST_CASE("CLI: --cells split integrates a .vtr and says split, without it the o
 TEST_CASE("mesh_cell_nodes gives VTK's node count for the cell types a CellMesh holds and 0 for any other", "[cellmesh]") {
   // The counts of VTK's file-format documentation (VTK_TETRA 4, VTK_VOXEL 8, VTK_HEXAHEDRON 8,
   // VTK_WEDGE 6, VTK_PYRAMID 5, VTK_QUADRATIC_TETRA 10, VTK_QUADRATIC_HEXAHEDRON 20,
-  // VTK_QUADRATIC_WEDGE 15, VTK_TRIQUADRATIC_HEXAHEDRON 27, VTK_BIQUADRATIC_QUADRATIC_WEDGE 18).
+  // VTK_QUADRATIC_WEDGE 15, VTK_QUADRATIC_PYRAMID 13, VTK_TRIQUADRATIC_HEXAHEDRON 27,
+  // VTK_BIQUADRATIC_QUADRATIC_WEDGE 18).
   const std::map<int, int> documented{{10, 4}, {11, 8}, {12, 8}, {13, 6}, {14, 5}, {24, 10}, {25, 20}, {26, 15},
-                                      {29, 27}, {32, 18}};
+                                      {27, 13}, {29, 27}, {32, 18}};
   for (const auto& [id, nodes] : documented) {
     INFO("VTK id " << id);
     CHECK(mesh_cell_nodes(id) == nodes);
   }
   // Not a type of MeshCellType: points, lines and faces (1, 3, 5, 9), prisms rayint does not read
-  // (15, 16), the quadratic pyramid (27), the polyhedron (42), unknown ids.
-  for (const long long id : {0LL, 1LL, 3LL, 5LL, 9LL, 15LL, 16LL, 27LL, 42LL, 200LL, -1LL}) {
+  // (15, 16), the triquadratic pyramid (37), the polyhedron (42), unknown ids.
+  for (const long long id : {0LL, 1LL, 3LL, 5LL, 9LL, 15LL, 16LL, 37LL, 42LL, 200LL, -1LL}) {
     INFO("VTK id " << id);
     CHECK(mesh_cell_nodes(id) == 0);
   }

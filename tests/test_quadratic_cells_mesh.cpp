@@ -1,13 +1,14 @@
 // Meshes of quadratic cells as the real tools write them (tests/fixtures/quadratic/, by
 // generate-quadratic.sh: gmsh 4.8 -order 2 on curved geometry -- a cylinder of tet10, a quarter
-// annulus of hex20 and of hex27, a disc of prism15 and of prism18 -- and VTK 9.1's blocks of
-// hex20, wedge15, hex27 and wedge18 with displaced mid-edge (and face-centre) nodes), integrated in their own isoparametric interpolation by the own-cells traversal
+// annulus of hex20 and of hex27, a disc of prism15 and of prism18, a hexahedral block joined to
+// tetrahedra by 13-node pyramids -- and VTK 9.1's blocks of hex20, wedge15, hex27, wedge18 and
+// pyramid13 with displaced mid-edge (and face-centre) nodes; generate-pyramid13.sh), integrated in their own isoparametric interpolation by the own-cells traversal
 // (mesh/cell_traversal.hpp). Tag [quadratic][mesh]. Oracles, none of them rayint's code:
 //   - VTK's own interpolation (EvaluateLocation of vtkQuadraticTetra, vtkQuadraticHexahedron,
 //     vtkQuadraticWedge, vtkTriQuadraticHexahedron, vtkBiQuadraticQuadraticWedge) of r at random parametric points of every file
 //     VTK reads (quadratic-expected.json): reader node order and shape functions;
 //   - gmsh's own legacy .vtk of the same mesh (VTK's node order): the gmsh permutations;
-//   - the 50-digit reference (reference/cell_reference.hpp, ids 24-26, 29, 32) per chord;
+//   - the 50-digit reference (reference/cell_reference.hpp, ids 24-27, 29, 32) per chord;
 //   - for straight-edged tet10, the tetrahedral path's exact quadratic (mesh/quadratic_tets.hpp).
 #include <catch2/catch.hpp>
 
@@ -96,16 +97,27 @@ const char* kMeshes[] = {"cylinder-tet10-41.msh",  "cylinder-tet10-22.msh",  "cy
                          "block-wedge15.vtk",      "annulus-hex27-41.msh",   "annulus-hex27-22.msh",
                          "annulus-hex27-gmsh.vtk", "disc-prism18-41.msh",    "disc-prism18-22.msh",
                          "disc-prism18-gmsh.vtk",  "block-hex27.vtu",        "block-hex27.vtk",
-                         "block-wedge18.vtk",      "block-wedge18.vtu"};
+                         "block-wedge18.vtk",      "block-wedge18.vtu",      "transition-pyramid13-41.msh",
+                         "transition-pyramid13-22.msh", "block-pyramid13.vtu", "block-pyramid13.vtk"};
 
 }  // namespace
 
 TEST_CASE("quadratic cells: every reader's node order and interpolation equal VTK's at random points", "[quadratic][mesh][readers]") {
-  std::ifstream in(kDir + "quadratic-expected.json");
+  // quadratic-expected.json (generate_quadratic.py) and pyramid13-expected.json (generate_pyramid13.py:
+  // vtkQuadraticPyramid on VTK's own pyramid13 blocks, .vtu and legacy .vtk).
+  std::ifstream in(kDir + "quadratic-expected.json"), in13(kDir + "pyramid13-expected.json");
   REQUIRE(in.good());
-  const nlohmann::json j = nlohmann::json::parse(in);
+  REQUIRE(in13.good());
+  nlohmann::json j = nlohmann::json::parse(in);
+  int pyramid_samples = 0;
+  const nlohmann::json j13 = nlohmann::json::parse(in13);
+  for (const auto& s : j13["samples"]) {
+    j["samples"].push_back(s);
+    ++pyramid_samples;
+  }
+  CHECK(pyramid_samples == 80);
   std::map<std::string, CellMesh> meshes;
-  double worst_x = 0.0, worst_r = 0.0;
+  double worst_x = 0.0, worst_r = 0.0, worst_pyramid = 0.0;
   int n = 0;
   for (const auto& s : j["samples"]) {
     const std::string file = s["file"];
@@ -128,13 +140,16 @@ TEST_CASE("quadratic cells: every reader's node order and interpolation equal VT
     }
     worst_x = std::max(worst_x, (xs - x).cwiseAbs().maxCoeff());
     worst_r = std::max(worst_r, std::abs(r - s["r"].get<double>()));
+    if (type == QuadraticCellType::pyramid)
+      worst_pyramid = std::max({worst_pyramid, (xs - x).cwiseAbs().maxCoeff(), std::abs(r - s["r"].get<double>())});
     ++n;
   }
-  CHECK(n >= 440);
+  CHECK(n >= 520);
   CHECK(worst_x <= Tolerances::vtk_abs);
   CHECK(worst_r <= Tolerances::vtk_abs);
   WARN("quadratic cells vs VTK, " << n << " points of " << meshes.size() << " files: worst |x - VTK| " << worst_x
-                                  << ", |r - VTK| " << worst_r);
+                                  << ", |r - VTK| " << worst_r << "; the " << pyramid_samples
+                                  << " quadratic pyramid points: worst of both " << worst_pyramid);
 }
 
 TEST_CASE("quadratic cells: gmsh's .msh read through the cell table equals gmsh's own VTK-order .vtk", "[quadratic][mesh][readers]") {
@@ -255,7 +270,7 @@ TEST_CASE("quadratic cells: rays through shared curved faces, edges and vertices
   // at points of shared faces.
   for (const char* file : {"block-hex20.vtu", "block-wedge15.vtk", "annulus-hex20-41.msh", "disc-prism15-41.msh",
                            "cylinder-tet10-41.msh", "annulus-hex27-41.msh", "disc-prism18-41.msh", "block-hex27.vtu",
-                           "block-wedge18.vtk"}) {
+                           "block-wedge18.vtk", "block-pyramid13.vtu", "transition-pyramid13-41.msh"}) {
     INFO(file);
     const CellTraversal m(read_cell_mesh_file(kDir + file, "r", false), file);
     std::mt19937_64 rng(5);
@@ -362,11 +377,12 @@ TEST_CASE("quadratic cells: a folded cell in a file is refused naming the file a
   CHECK(msg.find('\n') == std::string::npos);
 }
 
-TEST_CASE("CLI: render integrates curved tet10, hex20, prism15, hex27 and prism18 files, --cells split refuses them", "[quadratic][mesh][cli]") {
+TEST_CASE("CLI: render integrates curved tet10, hex20, prism15, hex27, prism18 and pyramid13 files, --cells split refuses them", "[quadratic][mesh][cli]") {
   rayint::test::TempDir dir;
   const std::string tf = R"("transfer_function": {"density": [[-1, 0.2], [1.5, 2]], "color": [[-1, 0.1], [1.5, 1]]})";
   for (const char* file : {"cylinder-tet10-41.msh", "annulus-hex20-41.msh", "disc-prism15-41.msh", "block-hex20.vtu",
-                           "annulus-hex27-41.msh", "disc-prism18-41.msh", "block-hex27.vtu", "block-wedge18.vtk"}) {
+                           "annulus-hex27-41.msh", "disc-prism18-41.msh", "block-hex27.vtu", "block-wedge18.vtk",
+                           "block-pyramid13.vtu", "transition-pyramid13-41.msh", "transition-pyramid13-22.msh"}) {
     INFO(file);
     dir.write("s.json", R"({"name": "s", )" + tf + R"(, "mesh_file": ")" + kDir + file +
                             R"(", "scalar_field": "r", "camera": {"position": [3, 2, 4], "look_at": [0.5, 0.5, 0.3], "fov_deg": 40, "width": 8, "height": 8}})");
@@ -396,4 +412,43 @@ TEST_CASE("CLI: render integrates curved tet10, hex20, prism15, hex27 and prism1
     // Intensities O(0.1-1) composited from chords each within ~1e-14 relative of the reference.
     CHECK(c["max_abs_error"].get<double>() <= 1e-12);
   }
+}
+
+TEST_CASE("quadratic pyramid: gmsh's 13-node pyramids are read as VTK type 27, every mid-edge node at its own edge", "[quadratic][mesh][readers][pyramid]") {
+  // Independent of VTK and of rayint's table: in gmsh's mesh each pyramid's mid-edge node k (VTK
+  // order, vtkQuadraticPyramid.h's edges) lies nearest the midpoint of its own edge among the
+  // cell's 8 edges (the pyramids of the transition sit on the flat interface, their edges straight:
+  // measured at the midpoint to 1e-15). The same cells from .msh 4.1 and 2.2.
+  const int edges[8][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {1, 4}, {2, 4}, {3, 4}};
+  std::vector<std::vector<Vec3>> seen;
+  for (const char* file : {"transition-pyramid13-41.msh", "transition-pyramid13-22.msh"}) {
+    INFO(file);
+    const CellMesh mesh = read_cell_mesh_file(kDir + file, "r", false);
+    int pyramids = 0;
+    double worst = 0.0;
+    std::vector<Vec3> nodes;
+    for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+      if (mesh.types[c] != MeshCellType::quadratic_pyramid) continue;
+      ++pyramids;
+      REQUIRE(mesh.nodes_of(c) == 13);
+      const auto at = [&](int local) { return mesh.points[static_cast<std::size_t>(mesh.cell(c)[local])]; };
+      for (int k = 0; k < 13; ++k) nodes.push_back(at(k));
+      for (int k = 0; k < 8; ++k) {
+        int nearest = -1;
+        double best = 1e300;
+        for (int e = 0; e < 8; ++e) {
+          const double d = (at(5 + k) - 0.5 * (at(edges[e][0]) + at(edges[e][1]))).norm();
+          if (d < best) best = d, nearest = e;
+        }
+        CHECK(nearest == k);
+        worst = std::max(worst, (at(5 + k) - 0.5 * (at(edges[k][0]) + at(edges[k][1]))).norm());
+      }
+    }
+    CHECK(pyramids == 9);
+    CHECK(worst <= 1e-12);
+    seen.push_back(nodes);
+  }
+  REQUIRE(seen.size() == 2);
+  REQUIRE(seen[0].size() == seen[1].size());
+  for (std::size_t i = 0; i < seen[0].size(); ++i) CHECK((seen[0][i] - seen[1][i]).cwiseAbs().maxCoeff() <= 1e-15);
 }

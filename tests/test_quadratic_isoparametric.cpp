@@ -1,7 +1,7 @@
 // VTK's quadratic cells in their own isoparametric interpolation, curved ones included
 // (cells/quadratic_isoparametric.hpp, LinearCellIntegrator::integrate(QuadraticCell)): validity,
 // inverse map, ray-patch hits (watertight on shared curved faces), chords, and the integral
-// against the independent 50-digit reference (reference/cell_reference.hpp, ids 24-26, 29, 32).
+// against the independent 50-digit reference (reference/cell_reference.hpp, ids 24-27, 29, 32).
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
@@ -22,9 +22,9 @@ using rayint::test::QuadraticCellTolerances;
 
 namespace {
 
-const std::array<QuadraticCellType, 5> kTypes = {QuadraticCellType::tetra, QuadraticCellType::hexahedron,
+const std::array<QuadraticCellType, 6> kTypes = {QuadraticCellType::tetra, QuadraticCellType::hexahedron,
                                                  QuadraticCellType::wedge, QuadraticCellType::triquadratic_hexahedron,
-                                                 QuadraticCellType::biquadratic_wedge};
+                                                 QuadraticCellType::biquadratic_wedge, QuadraticCellType::pyramid};
 
 // VTK's reference nodes times 2, corners perturbed by up to `noise`, every mid-edge node at its
 // edge's midpoint plus a displacement of up to `bend` of the edge length (a curved cell), every
@@ -98,7 +98,7 @@ TEST_CASE("quadratic cells: inverse map round trip on curved cells in both orien
         for (int j = 0; j < 10; ++j) {
           const Vec3 p = random_inside(type, rng);
           const InverseMap m = inverse_map(cell, cell_position(cell, p));
-          INFO(quadratic_cell_name(type) << " mirror " << mirror);
+          INFO(quadratic_cell_name(type) << " mirror " << mirror << " p " << p.transpose() << " found " << m.p.transpose());
           REQUIRE(m.converged);
           CHECK((m.p - p).cwiseAbs().maxCoeff() <= QuadraticCellTolerances::round_trip_abs);
         }
@@ -117,8 +117,17 @@ TEST_CASE("quadratic cells: a folded cell is refused, an affine one detected", "
       nodes.push_back(Vec3(0.5, -1.0, 2.0) + A * r);
       values.push_back(r.sum());
     }
-    const QuadraticCell affine = make_quadratic_cell(type, nodes, values);
-    CHECK(affine.affine);
+    if (type == QuadraticCellType::pyramid) {
+      // Never affine (the apex is a collapsed face): a straight pyramid, mid-edge nodes at the
+      // midpoints of its edges, is valid and not affine.
+      const int edges[8][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {1, 4}, {2, 4}, {3, 4}};
+      for (int e = 0; e < 8; ++e)
+        nodes[static_cast<std::size_t>(5 + e)] = 0.5 * (nodes[static_cast<std::size_t>(edges[e][0])] + nodes[static_cast<std::size_t>(edges[e][1])]);
+      CHECK_FALSE(make_quadratic_cell(type, nodes, values).affine);
+    } else {
+      const QuadraticCell affine = make_quadratic_cell(type, nodes, values);
+      CHECK(affine.affine);
+    }
     // A mid-edge node pulled through the opposite corner folds the map.
     const QuadraticFaceNodes f = quadratic_face(type, 0);
     const auto mid = static_cast<std::size_t>(f.mid[0]);
@@ -249,4 +258,46 @@ TEST_CASE("quadratic cells: the double path against the 50-digit reference on cu
       }
   WARN("quadratic cells vs 50-digit reference: worst relative error " << worst << " over " << chords << " chords");
   CHECK(chords >= 30);
+}
+
+TEST_CASE("quadratic pyramid: distorted cells against the 50-digit reference, rays through the apex region too", "[cells][quadratic][isoparametric][reference][pyramid]") {
+  // Corners perturbed by up to 0.15 of the base (and the apex), mid-edge nodes off their edges by
+  // up to 20 % of the edge (curved faces), both orientations; half the rays aimed at points near
+  // the apex (t >= 0.8, where det J -> 0 as (1 - t)^2).
+  const TransferFunctions tf = test::breakpoint_tf();
+  const LinearCellIntegrator integrator(tf);
+  std::mt19937 rng(2729);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const QuadraticCellType type = QuadraticCellType::pyramid;
+  double worst = 0.0;
+  int chords = 0;
+  for (bool mirror : {false, true})
+    for (int k = 0; k < 10; ++k) {
+      const QuadraticCell cell = valid_cell(type, rng, 0.15, 0.1 + 0.1 * u(rng), mirror);
+      Vec3 p = random_inside(type, rng);
+      if (k % 2 == 1) p[2] = 0.8 + 0.15 * u(rng);
+      const Vec3 target = cell_position(cell, p);
+      const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+      const ViewRay ray{target - 8.0 * dir, dir};
+      const Chord ch = quadratic_chord(cell, ray);
+      INFO("cell " << k << " mirror " << mirror);
+      REQUIRE_FALSE(ch.failed);
+      REQUIRE_FALSE(ch.intervals.empty());
+      for (const ChordInterval& iv : ch.intervals) {
+        const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);
+        INFO(d.failure);
+        REQUIRE(d.converged);
+        const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          const double e = std::abs(d.emission[c] - ref.emission[c]), o = std::abs(d.optical_depth[c] - ref.optical_depth[c]);
+          worst = std::max({worst, e / ref.emission[c], o / ref.optical_depth[c]});
+          CHECK(e <= QuadraticCellTolerances::reference_rel * ref.emission[c]);
+          CHECK(o <= QuadraticCellTolerances::reference_rel * ref.optical_depth[c]);
+          CHECK(e + o <= d.error_estimate);
+        }
+        ++chords;
+      }
+    }
+  WARN("distorted quadratic pyramids vs 50-digit reference: worst relative error " << worst << " over " << chords << " chords");
+  CHECK(chords >= 20);
 }

@@ -33,7 +33,9 @@ import tempfile
 
 RAYINT_TYPES = {"vertex": 1, "line": 3, "triangle": 5, "polygon": 7, "pixel": 8, "quad": 9, "tetra": 10, "voxel": 11,
                 "hexahedron": 12, "wedge": 13, "pyramid": 14, "quadratic edge": 21, "quadratic triangle": 22,
-                "quadratic quad": 23, "quadratic tetra": 24, "quadratic hexahedron": 25}
+                "quadratic quad": 23, "quadratic tetra": 24, "quadratic hexahedron": 25, "quadratic wedge": 26,
+                "quadratic pyramid": 27, "biquadratic quad": 28, "triquadratic hexahedron": 29,
+                "biquadratic-quadratic wedge": 32}
 
 
 def run(cmd, timeout):

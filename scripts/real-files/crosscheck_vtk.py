@@ -236,7 +236,7 @@ def main():
         types = {ds.GetCellType(i) for i in range(ds.GetNumberOfCells())} if r["kind"] == "mesh" else set()
         volume = types & {vtk.VTK_TETRA, vtk.VTK_VOXEL, vtk.VTK_HEXAHEDRON, vtk.VTK_WEDGE, vtk.VTK_PYRAMID,
                            vtk.VTK_QUADRATIC_TETRA, vtk.VTK_QUADRATIC_HEXAHEDRON, vtk.VTK_QUADRATIC_WEDGE,
-                           vtk.VTK_TRIQUADRATIC_HEXAHEDRON, vtk.VTK_BIQUADRATIC_QUADRATIC_WEDGE}
+                           vtk.VTK_TRIQUADRATIC_HEXAHEDRON, vtk.VTK_BIQUADRATIC_QUADRATIC_WEDGE, vtk.VTK_QUADRATIC_PYRAMID}
         # quadratic cells: VTK's own quadratic interpolation, through the probe
         if r["kind"] == "mesh" and not volume:
             rows.append((r, None, "no volume cell type this script compares: not compared", ""))

@@ -13,7 +13,8 @@
 //               cells. `--cells split` (the CellMesh path) refuses it: VTK's split is defined
 //               for linear cells;
 //   Isoparametric  a quadratic volume cell other than the tetrahedron (quadratic hexahedron,
-//               quadratic wedge, triquadratic hexahedron, biquadratic-quadratic wedge): read into a CellMesh and integrated in its own isoparametric
+//               quadratic wedge, quadratic pyramid, triquadratic hexahedron, biquadratic-quadratic
+//               wedge): read into a CellMesh and integrated in its own isoparametric
 //               interpolation, curved or not (cells/quadratic_isoparametric.hpp); the
 //               tetrahedral paths and `--cells split` refuse it (unsupported_cell_message);
 //   Skipped     a cell of dimension 0-2 (vertex, line, triangle, quad, ...): boundary and
@@ -23,7 +24,7 @@
 //               pyramid): read into a CellMesh (mesh/cell_mesh.hpp) and integrated after
 //               `--cells split` (mesh/cell_split.hpp, VTK's tetrahedralisation: an approximation);
 //               the tetrahedral path refuses it with unsupported_cell_message(), which says so;
-//   NotYet      a volume cell rayint does not integrate yet (quadratic pyramids, polyhedra):
+//   NotYet      a volume cell rayint does not integrate yet (pentagonal/hexagonal prisms, polyhedra):
 //               refused with unsupported_cell_message().
 // Node order is always VTK's once read: a reader permutes gmsh's order with gmsh_to_vtk
 // (vtk node i = gmsh node gmsh_to_vtk[i]). The permutations are gmsh's documented node numbering
@@ -79,9 +80,19 @@ const CellTypeInfo* cell_type_from_gmsh(long long gmsh_id);
 // For a CellPath row: "cell type hexahedron (VTK id 12): the tetrahedral path integrates only
 // tetrahedra; integrate this file with --cells split (VTK's tetrahedralisation, an approximation
 // of the cell's own interpolation)"; for a NotYet row "cell type X (VTK id N) is not supported
-// yet; only tetrahedra (VTK ids 10 and 24) are integrated"; for an unknown id "cell type N is not a VTK
-// cell type rayint knows".
+// yet; ..."; for a VTK type outside the table "cell type triquadratic pyramid (VTK id 37) is not
+// supported; VTK ids 10-14, 24-27, 29 and 32 are integrated"; for an unknown id "cell type N is
+// not a VTK cell type".
 std::string unsupported_cell_message(long long vtk_id);
+
+// Why `--cells split` refuses a quadratic cell: "--cells split: quadratic pyramid (VTK id 27): VTK's
+// vtkDataSetTriangleFilter splits quadratic cells into linear tetrahedra on all their nodes in a
+// way that depends on point ids and positions, which rayint does not reproduce; integrate this
+// file without --cells split (its own isoparametric interpolation)". VTK 9.1 measured
+// (python3-vtk9): vtkCell::Triangulate gives 8 (tet10), 22 (hex20), 16 (wedge15), 14 (pyramid13),
+// 48 (hex27), 24 (wedge18) tetrahedra, and 12 to 20 different splits of one cell over 20 random
+// point-id orders and perturbations, for every quadratic type.
+std::string quadratic_split_message(long long vtk_id);
 
 // "triangle" etc. for a VTK id, "VTK id N" for an unknown one.
 std::string cell_type_label(long long vtk_id);

@@ -83,6 +83,7 @@ const Basis& basis(QuadraticCellType type) {
     case QuadraticCellType::wedge: return wedge;
     case QuadraticCellType::triquadratic_hexahedron: return hexahedron27;
     case QuadraticCellType::biquadratic_wedge: return wedge18;
+    case QuadraticCellType::pyramid: break;  // not a Vandermonde basis (pyramid_functions)
   }
   return tetra;
 }
@@ -143,6 +144,77 @@ void product_functions(QuadraticCellType type, const Vec3& p, double* N, double*
   }
 }
 
+// VTK's quadratic pyramid (vtkQuadraticPyramid::InterpolationFunctions, header), on any number
+// type T (double, or Dual below for exact derivatives).
+template <class T>
+void pyramid_functions(const T& pr, const T& ps, const T& pt, T* w) {
+  const T a = 2.0 * pr - 1.0, b = 2.0 * ps - 1.0, c = 2.0 * pt - 1.0;
+  const T am = 1.0 - a, ap = 1.0 + a, bm = 1.0 - b, bp = 1.0 + b, cm = 1.0 - c;
+  const T ab = a * b, ac = a * c, bc = b * c, abc = ab * c;
+  w[0] = -(am * bm * cm * (4.0 + 3.0 * a + 3.0 * b + 2.0 * ab + 2.0 * c + ac + bc + 2.0 * abc)) / 16.0;
+  w[1] = -(ap * bm * cm * (4.0 - 3.0 * a + 3.0 * b - 2.0 * ab + 2.0 * c - ac + bc - 2.0 * abc)) / 16.0;
+  w[2] = -(ap * bp * cm * (4.0 - 3.0 * a - 3.0 * b + 2.0 * ab + 2.0 * c - ac - bc + 2.0 * abc)) / 16.0;
+  w[3] = -(am * bp * cm * (4.0 + 3.0 * a - 3.0 * b - 2.0 * ab + 2.0 * c + ac - bc - 2.0 * abc)) / 16.0;
+  w[4] = c * (1.0 + c) / 2.0;
+  const T a2 = 1.0 - a * a, b2 = 1.0 - b * b, c2 = 1.0 - c * c;
+  w[5] = a2 * bm * cm * (2.0 + b + bc) / 8.0;
+  w[6] = ap * b2 * cm * (2.0 - a - ac) / 8.0;
+  w[7] = a2 * bp * cm * (2.0 - b - bc) / 8.0;
+  w[8] = am * b2 * cm * (2.0 + a + ac) / 8.0;
+  w[9] = am * bm * c2 / 4.0;
+  w[10] = ap * bm * c2 / 4.0;
+  w[11] = ap * bp * c2 / 4.0;
+  w[12] = am * bp * c2 / 4.0;
+}
+
+// A value and its gradient in (r, s, t): the pyramid's derivatives by the chain and product rules.
+struct Dual {
+  double v = 0.0;
+  std::array<double, 3> g{};
+  Dual() = default;
+  Dual(double x) : v(x) {}  // NOLINT: constants enter the formula as duals
+};
+Dual operator+(const Dual& x, const Dual& y) {
+  Dual o(x.v + y.v);
+  for (std::size_t k = 0; k < 3; ++k) o.g[k] = x.g[k] + y.g[k];
+  return o;
+}
+Dual operator-(const Dual& x, const Dual& y) {
+  Dual o(x.v - y.v);
+  for (std::size_t k = 0; k < 3; ++k) o.g[k] = x.g[k] - y.g[k];
+  return o;
+}
+Dual operator-(const Dual& x) { return Dual(0.0) - x; }
+Dual operator*(const Dual& x, const Dual& y) {
+  Dual o(x.v * y.v);
+  for (std::size_t k = 0; k < 3; ++k) o.g[k] = x.g[k] * y.v + x.v * y.g[k];
+  return o;
+}
+Dual operator/(const Dual& x, double d) {
+  Dual o(x.v / d);
+  for (std::size_t k = 0; k < 3; ++k) o.g[k] = x.g[k] / d;
+  return o;
+}
+Dual operator+(double x, const Dual& y) { return Dual(x) + y; }
+Dual operator-(double x, const Dual& y) { return Dual(x) - y; }
+Dual operator*(double x, const Dual& y) { return Dual(x) * y; }
+Dual operator-(const Dual& x, double y) { return x - Dual(y); }
+
+void pyramid_derivatives(const Vec3& p, double* dN) {
+  Dual r(p[0]), s(p[1]), t(p[2]), w[13];
+  r.g[0] = 1.0, s.g[1] = 1.0, t.g[2] = 1.0;
+  pyramid_functions(r, s, t, w);
+  for (int i = 0; i < 13; ++i)
+    for (int k = 0; k < 3; ++k) dN[13 * k + i] = w[i].g[static_cast<std::size_t>(k)];
+}
+
+const std::vector<Vec3>& pyramid_nodes() {  // vtkQuadraticPyramid::GetParametricCoords
+  static const std::vector<Vec3> nodes = {{0, 0, 0},   {1, 0, 0},   {1, 1, 0},   {0, 1, 0}, {0, 0, 1},
+                                          {0.5, 0, 0}, {1, 0.5, 0}, {0.5, 1, 0}, {0, 0.5, 0},
+                                          {0, 0, 0.5}, {1, 0, 0.5}, {1, 1, 0.5}, {0, 1, 0.5}};
+  return nodes;
+}
+
 bool is_product(QuadraticCellType type) {
   return type == QuadraticCellType::triquadratic_hexahedron || type == QuadraticCellType::biquadratic_wedge;
 }
@@ -171,16 +243,19 @@ void p2_triangle(double r, double s, double* N, double* dr, double* ds) {
 }
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type) {
-  if ((vtk_id < 24 || vtk_id > 26) && vtk_id != 29 && vtk_id != 32) return false;
+  if ((vtk_id < 24 || vtk_id > 27) && vtk_id != 29 && vtk_id != 32) return false;
   type = static_cast<QuadraticCellType>(vtk_id);
   return true;
 }
 
-int quadratic_node_count(QuadraticCellType type) { return static_cast<int>(basis(type).nodes.size()); }
+int quadratic_node_count(QuadraticCellType type) { return static_cast<int>(quadratic_reference_nodes(type).size()); }
 
-const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type) { return basis(type).nodes; }
+const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type) {
+  return type == QuadraticCellType::pyramid ? pyramid_nodes() : basis(type).nodes;
+}
 
 void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N) {
+  if (type == QuadraticCellType::pyramid) return pyramid_functions(p[0], p[1], p[2], N);
   if (is_product(type)) return product_functions(type, p, N, nullptr);
   const Basis& b = basis(type);
   const auto n = static_cast<Eigen::Index>(b.nodes.size());
@@ -195,6 +270,7 @@ void quadratic_shape_functions(QuadraticCellType type, const Vec3& p, double* N)
 }
 
 void quadratic_shape_derivatives(QuadraticCellType type, const Vec3& p, double* dN) {
+  if (type == QuadraticCellType::pyramid) return pyramid_derivatives(p, dN);
   if (is_product(type)) {
     double N[27];
     return product_functions(type, p, N, dN);

@@ -27,6 +27,23 @@
 // parametric points per type (tests/fixtures/cells/vtk_quadratic_cells.json, written by
 // scripts/cells/vtk_quadratic_fixture.py): parametric nodes identical; worst |N - VTK| 1.8e-16
 // (tetra), 1.1e-15 (hexahedron), 4.4e-16 (wedge); worst |dN - VTK| 0, 1.8e-15, 5.6e-16.
+//
+// Quadratic pyramid (vtkQuadraticPyramid, 13 nodes: corners 0-4, then the mid-edge nodes of
+// (0,1) (1,2) (2,3) (3,0) (0,4) (1,4) (2,4) (3,4)): VTK's domain is the unit cube whose top face
+// t = 1 collapses onto the apex (as vtkPyramid); its InterpolationFunctions are polynomials of
+// degree <= 2 in each of r, s, t (in (a, b, c) = 2p - 1: corners -(1 -+ a)(1 -+ b)(1 - c)(...)/16,
+// base mid-edge nodes (1 - a^2)(1 -+ b)(1 - c)(2 +- b +- bc)/8 and the like, the apex
+// c(1 + c)/2, the apex edges (1 -+ a)(1 -+ b)(1 - c^2)/4), written here as VTK writes them and
+// evaluated on a forward-mode dual number, so dN is the exact derivative of N. VTK's own
+// InterpolationDerivs are NOT the derivatives of its functions (VTK 9.1 and 9.2 keep the
+// derivatives of an older set: they differ from central differences of InterpolationFunctions
+// by up to 0.79 at 200 random points, measured with python3-vtk9 9.1); VTK's probe uses the
+// functions (EvaluateLocation) and its Newton the inconsistent derivatives, which still converge
+// to the functions' inverse, only slower. The functions' traces on the faces are the 8-node
+// serendipity quadrilateral (base, t = 0) and the 6-node P2 triangle in the collapsed
+// coordinates (the four sides), so a pyramid13 shares its faces exactly with hex20, wedge15 and
+// tet10 neighbours. Accuracy: |N - VTK| and |dN - central differences of VTK's N| in
+// tests [cells][quadratic] (measured figures there).
 // The gmsh permutations of the cell-type table (cells/cell_types.cpp) are checked there too,
 // against gmsh's documented edge lists.
 #include <vector>
@@ -36,11 +53,14 @@
 namespace rayint {
 
 // VTK's type ids: quadratic tetra, quadratic hexahedron, quadratic wedge, triquadratic hexahedron
-// (27 nodes), biquadratic-quadratic wedge (18 nodes).
-enum class QuadraticCellType : int { tetra = 24, hexahedron = 25, wedge = 26, triquadratic_hexahedron = 29, biquadratic_wedge = 32 };
+// (27 nodes), biquadratic-quadratic wedge (18 nodes),
+// quadratic pyramid (27, 13 nodes).
+enum class QuadraticCellType : int {
+  tetra = 24, hexahedron = 25, wedge = 26, pyramid = 27, triquadratic_hexahedron = 29, biquadratic_wedge = 32
+};
 
 bool quadratic_cell_type_from_vtk(int vtk_id, QuadraticCellType& type);
-int quadratic_node_count(QuadraticCellType type);  // 10, 20, 15, 27, 18
+int quadratic_node_count(QuadraticCellType type);  // 10, 20, 15, 27, 18; pyramid 13
 // VTK's parametric node coordinates (vtkCell::GetParametricCoords), VTK's node order.
 const std::vector<Vec3>& quadratic_reference_nodes(QuadraticCellType type);
 // N[i] for every node at parametric point p (N has quadratic_node_count entries).

@@ -1,8 +1,8 @@
 #pragma once
 // VTK's quadratic volume cells -- quadratic tetra (VTK id 24, 10 nodes), quadratic hexahedron
-// (25, 20 nodes), quadratic wedge (26, 15 nodes), triquadratic hexahedron (29, 27 nodes: gmsh's
-// default order-2 hexahedron), biquadratic-quadratic wedge (32, 18 nodes: gmsh's default order-2
-// prism) -- in their own isoparametric interpolation,
+// (25, 20 nodes), quadratic wedge (26, 15 nodes), quadratic pyramid (27, 13 nodes), triquadratic
+// hexahedron (29, 27 nodes: gmsh's default order-2 hexahedron), biquadratic-quadratic wedge (32,
+// 18 nodes: gmsh's default order-2 prism) -- in their own isoparametric interpolation,
 // curved edges and faces included: x(p) = sum_i N_i(p) x_i, f(p) = sum_i N_i(p) f_i with VTK's
 // quadratic shape functions (cells/quadratic_cells.hpp, checked against VTK 9.1). What
 // cells/linear_cells.hpp does for the linear cells, for these: the inverse map, the faces as
@@ -20,13 +20,15 @@
 //
 // Faces: the corners of face f are linear_face(corner type, f) (VTK's face tables, same index),
 // the mid-edge nodes are the cell's nodes on those corner edges (VTK's edge lists of
-// vtkQuadraticTetra, vtkQuadraticHexahedron, vtkQuadraticWedge). A face is the trace of the cell
+// vtkQuadraticTetra, vtkQuadraticHexahedron, vtkQuadraticWedge, vtkQuadraticPyramid). A face is the trace of the cell
 // map on it: a 6-node quadratic triangle (P2: corners A, B, C at (0,0), (1,0), (0,1) in (u, v),
 // mid-edge nodes AB, BC, CA) or an 8-node serendipity quadrilateral (corners A, B, C, D at
 // (0,0), (1,0), (1,1), (0,1), mid-edge nodes AB, BC, CD, DA). Two cells sharing a face see the
 // same patch (the trace depends on the face's nodes only). The quadrilaterals of the 27-node
 // hexahedron and of the 18-node wedge also have a face-centre node: their trace is the 9-node
-// biquadratic Lagrange quadrilateral (the centre at (1/2, 1/2)), its triangles stay P2.
+// biquadratic Lagrange quadrilateral (the centre at (1/2, 1/2)), its triangles stay P2. The
+// quadratic pyramid's base is the serendipity quadrilateral and its sides P2 triangles in the
+// collapsed coordinates (quadratic_cells.hpp): the same patches. A pyramid is never affine.
 //
 // Ray-patch hits (intersect_quadratic_face): with e1, e2 orthonormal and perpendicular to the ray,
 // the hits are the zeros of G(u, v) = (e1 . (P(u, v) - o), e2 . (P(u, v) - o)), a quadratic

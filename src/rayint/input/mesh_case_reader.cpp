@@ -237,11 +237,11 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     if (options.split_cells) {
       CellSplitCounts counts;
       CellMesh cells = read_cell_mesh_file(mc.mesh_source, name, cell_to_point);
-      for (std::size_t c = 0; c < cells.cell_count(); ++c)  // VTK's split is for linear cells
+      for (std::size_t c = 0; c < cells.cell_count(); ++c)  // VTK's split of them is not reproduced
         if (is_quadratic(cells.types[c]))
           throw InputError(mc.mesh_source + ": cells[" +
                            std::to_string(c < cells.info.cell_ids.size() ? cells.info.cell_ids[c] : static_cast<long long>(c)) +
-                           "]: " + unsupported_cell_message(static_cast<int>(cells.types[c])));
+                           "]: " + quadratic_split_message(static_cast<int>(cells.types[c])));
       mc.mesh = split_cells(cells, &counts);
       mc.split = counts;
     } else {

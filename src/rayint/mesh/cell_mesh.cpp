@@ -85,6 +85,7 @@ const char* mesh_cell_name(MeshCellType type) {
     case MeshCellType::quadratic_tetra: return "quadratic tetra";
     case MeshCellType::quadratic_hexahedron: return "quadratic hexahedron";
     case MeshCellType::quadratic_wedge: return "quadratic wedge";
+    case MeshCellType::quadratic_pyramid: return "quadratic pyramid";
     case MeshCellType::triquadratic_hexahedron: return "triquadratic hexahedron";
     case MeshCellType::biquadratic_quadratic_wedge: return "biquadratic-quadratic wedge";
   }
@@ -196,6 +197,7 @@ int cell_orientation(const CellMesh& mesh, std::size_t c) {
     case MeshCellType::triquadratic_hexahedron: return corner_signs(mesh, p, kHexCorners);
     case MeshCellType::quadratic_wedge:
     case MeshCellType::biquadratic_quadratic_wedge: return corner_signs(mesh, p, kWedgeCorners);
+    case MeshCellType::quadratic_pyramid: return corner_signs(mesh, p, kPyramidCorners);
   }
   return 0;
 }

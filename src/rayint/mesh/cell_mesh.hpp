@@ -25,18 +25,18 @@
 namespace rayint {
 
 // VTK type ids of the cells a CellMesh holds (vtkCellType.h).
-// The quadratic ones (24-26, 29, 32: tet10, hex20, wedge15, hex27, wedge18; corners first, then
+// The quadratic ones (24-27, 29, 32: tet10, hex20, wedge15, pyramid13, hex27, wedge18; corners first, then
 // the mid-edge nodes, then face and cell centres, VTK's order) are integrated in their own
 // isoparametric interpolation only (cells/quadratic_isoparametric.hpp).
 enum class MeshCellType : std::uint8_t {
   tetra = 10, voxel = 11, hexahedron = 12, wedge = 13, pyramid = 14,
-  quadratic_tetra = 24, quadratic_hexahedron = 25, quadratic_wedge = 26,
+  quadratic_tetra = 24, quadratic_hexahedron = 25, quadratic_wedge = 26, quadratic_pyramid = 27,
   triquadratic_hexahedron = 29, biquadratic_quadratic_wedge = 32
 };
-// Whether the type is one of the quadratic cells (24-26, 29, 32).
+// Whether the type is one of the quadratic cells (24-27, 29, 32).
 bool is_quadratic(MeshCellType type);
 
-// Nodes of a cell type (4, 8, 8, 6, 5; quadratic 10, 20, 15, 27, 18); 0 for an id that is not one.
+// Nodes of a cell type (4, 8, 8, 6, 5; quadratic 10, 20, 15, 13, 27, 18); 0 for an id that is not one.
 int mesh_cell_nodes(long long vtk_id);
 // "tetra", "voxel", "hexahedron", "wedge", "pyramid" (the table's names).
 const char* mesh_cell_name(MeshCellType type);

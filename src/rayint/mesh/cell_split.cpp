@@ -40,8 +40,8 @@ TetMesh split_cells(const CellMesh& mesh, CellSplitCounts* counts) {
   std::array<std::int64_t, 8> ids{};
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     const MeshCellType type = mesh.types[c];
-    if (is_quadratic(type))  // VTK's split is defined for linear cells (cells/cell_types.hpp)
-      throw InputError("cells[" + std::to_string(file_id(c)) + "]: " + unsupported_cell_message(static_cast<int>(type)));
+    if (is_quadratic(type))  // VTK splits them by ids and positions (cells/cell_types.hpp)
+      throw InputError("cells[" + std::to_string(file_id(c)) + "]: " + quadratic_split_message(static_cast<int>(type)));
     const std::int32_t* p = mesh.cell(c);
     ++n.cells[mesh_cell_name(type)];
     if (type == MeshCellType::tetra) {

@@ -57,6 +57,7 @@ int node_count(int id) {
     case 24: return 10;
     case 25: return 20;
     case 26: return 15;
+    case 27: return 13;
     case 29: return 27;
     case 32: return 18;
     default: return 0;
@@ -165,6 +166,38 @@ void quadratic_shape(int id, const R3& p, Dual* N) {
       for (int i = 0; i < 18; ++i) N[i] = tri[node[i][0]] * lt[node[i][1]];
       return;
     }
+    case 27: {  // vtkQuadraticPyramid: on (a, b, c) = 2 p - 1, corners (0,0) (1,0) (1,1) (0,1) of
+                // the base as signs (-1,-1) (1,-1) (1,1) (-1,1) of (a, b), the apex, then mid-edge nodes
+                // of the base's edges and of the four edges to the apex. VTK's formulas, factored:
+                // corner k: -(1 + sa a)(1 + sb b)(1 - c)(4 - 3 sa a - 3 sb b + 2 sa sb a b + 2c
+                //                                       - sa a c - sb b c + 2 sa sb a b c) / 16.
+      const Dual a = Real(2) * r - one, b = Real(2) * s - one, c = Real(2) * t - one;
+      static const int corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      const Dual cm = one - c;
+      for (int k = 0; k < 4; ++k) {
+        const Dual A = Real(corner[k][0]) * a, B = Real(corner[k][1]) * b;  // sa a, sb b
+        const Dual inner = constant(Real(4)) - Real(3) * A - Real(3) * B + Real(2) * (A * B) + Real(2) * c - A * c -
+                           B * c + Real(2) * (A * B * c);
+        N[k] = Real(-1) / 16 * ((one + A) * (one + B) * cm * inner);
+      }
+      N[4] = Real(0.5) * (c * (one + c));
+      // Base edges: (0,1) b = -1, (1,2) a = +1, (2,3) b = +1, (3,0) a = -1.
+      const Dual a2 = one - a * a, b2 = one - b * b;
+      for (int k = 0; k < 4; ++k) {
+        const Real side(k == 0 || k == 3 ? -1 : 1);
+        if (k % 2 == 0) {  // along a, at b = side
+          const Dual B = side * b;
+          N[5 + k] = Real(1) / 8 * (a2 * (one + B) * cm * (constant(Real(2)) - B - B * c));
+        } else {           // along b, at a = side
+          const Dual A = side * a;
+          N[5 + k] = Real(1) / 8 * (b2 * (one + A) * cm * (constant(Real(2)) - A - A * c));
+        }
+      }
+      const Dual c2 = one - c * c;
+      for (int k = 0; k < 4; ++k)
+        N[9 + k] = Real(0.25) * ((one + Real(corner[k][0]) * a) * (one + Real(corner[k][1]) * b) * c2);
+      return;
+    }
     default: throw std::invalid_argument("reference_cell_chord: unknown cell type");
   }
 }
@@ -246,7 +279,7 @@ R3 cramer(const R3& c0, const R3& c1, const R3& c2, const R3& rhs) {  // [c0 c1 
 class Cell {
  public:
   Cell(const CellReferenceInput& in) : id_(in.vtk_id), n_(node_count(in.vtk_id)) {
-    if (n_ == 0) throw std::invalid_argument("reference_cell_chord: vtk_id must be 10..14, 24..26, 29 or 32");
+    if (n_ == 0) throw std::invalid_argument("reference_cell_chord: vtk_id must be 10..14, 24..27, 29 or 32");
     if (static_cast<int>(in.nodes.size()) != n_ || static_cast<int>(in.values.size()) != n_)
       throw std::invalid_argument("reference_cell_chord: node and value counts do not match the type");
     for (int i = 0; i < n_; ++i) {
@@ -271,7 +304,7 @@ class Cell {
     if (scale_ == 0) scale_ = 1;
     start_ = (id_ == 10 || id_ == 24) ? R3{Real(0.25), Real(0.25), Real(0.25)}
              : (id_ == 13 || id_ == 26 || id_ == 32) ? R3{Real(1) / 3, Real(1) / 3, Real(0.5)}
-             : id_ == 14 ? R3{Real(0.5), Real(0.5), Real(0.25)}
+             : (id_ == 14 || id_ == 27) ? R3{Real(0.5), Real(0.5), Real(0.25)}
                          : R3{Real(0.5), Real(0.5), Real(0.5)};
   }
 

@@ -8,9 +8,9 @@
 // Independence from the double path: nothing here includes cells/ (this area cannot see it). The
 // shape functions are written again from VTK's definitions (vtkTetra, vtkVoxel, vtkHexahedron,
 // vtkWedge, vtkPyramid InterpolationFunctions), in cpp_bin_float_50; the quadratic cells' (ids
-// 24-26, 29, 32, curved ones too) from the textbook P2 tetrahedron, 20-node serendipity brick,
+// 24-27, 29, 32, curved ones too) from the textbook P2 tetrahedron, 20-node serendipity brick,
 // 15-node serendipity prism, 27-node Lagrange brick and 18-node (P2 x Lagrange) prism on VTK's
-// parametric nodes, differentiated by forward-mode dual numbers (the
+// parametric nodes, and vtkQuadraticPyramid's own formulas (sign-factored per node), differentiated by forward-mode dual numbers (the
 // double path builds them from a Vandermonde inverse instead, cells/quadratic_cells.hpp); the inverse map is Newton
 // with Cramer's rule in 50 digits; the crossings and critical points are found on the true
 // scalar (each evaluation an inverse map), not on an interpolant; the quadrature is Boost's
@@ -29,8 +29,8 @@ namespace rayint {
 
 struct CellReferenceInput {
   int vtk_id = 12;  // 10 tetra, 11 voxel, 12 hexahedron, 13 wedge, 14 pyramid; quadratic: 24 tetra,
-                    // 25 hexahedron, 26 wedge, 29 triquadratic hexahedron, 32 biquadratic-
-                    // quadratic wedge (VTK's node order, curved cells too)
+                    // 25 hexahedron, 26 wedge, 27 pyramid, 29 triquadratic hexahedron, 32
+                    // biquadratic-quadratic wedge (VTK's node order, curved cells too)
   std::vector<std::array<double, 3>> nodes;      // VTK node order
   std::vector<double> values;                    // node scalars
   std::array<double, 3> origin{}, direction{};   // ray origin + t direction

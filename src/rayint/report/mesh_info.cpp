@@ -89,10 +89,11 @@ constexpr const char* kCellsIntegrated =
     "in each cell's own interpolation (default, \"mode\": \"own\"); --cells split integrates VTK's "
     "vtkDataSetTriangleFilter tetrahedralisation instead (an approximation of it)";
 
-// Quadratic cells (tet10, hex20, wedge15) have no VTK split: say so instead of offering it.
+// Quadratic cells: VTK's split of them depends on point ids and positions and is not reproduced
+// (cells/cell_types.hpp, quadratic_split_message): say so instead of offering it.
 constexpr const char* kQuadraticCellsIntegrated =
     "in each cell's own interpolation (\"mode\": \"own\"; quadratic cells isoparametric, curved edges "
-    "and faces included); --cells split refuses the quadratic cells (VTK's split is for linear cells)";
+    "and faces included); --cells split refuses the quadratic cells (VTK's split of them is not reproduced)";
 
 const char* cells_integrated(const CellMesh& m) {
   for (MeshCellType t : m.types)
