@@ -22,7 +22,7 @@ for n in ${SIZES:-6 13 28}; do
     /usr/bin/time -f "$L $n $fmt quick %U %S %M" $BIN mesh info ball-$n.$fmt --quick-check --format json >/dev/null
     /usr/bin/time -f "$L $n $fmt load %U %S %M" $BIN render case-$n-$fmt-16.json -o /tmp/perf_sc/o16.png -q
   done
-  if [ -z "$NORENDER" ]; then
+  if [ -z "${NORENDER:-}" ]; then
     mk $n 512 vtk
     /usr/bin/time -f "$L $n vtk render512 %U %S %M" $BIN render case-$n-vtk-512.json -o /tmp/perf_sc/o512-$L-$n.png -q --threads 2
   fi
