@@ -300,6 +300,11 @@ TEST_CASE("mesh gradient: image loss against differences of the 50-digit loss", 
   CHECK(scalars_only.d_position.empty());
   for (std::size_t i = 0; i < lg.d_scalar.size(); ++i)
     CHECK(std::fabs(scalars_only.d_scalar[i] - lg.d_scalar[i]) <= 1e-14 * scale);
+  // Rows go to fixed workers (parallel_for_striped): a second run on 2 threads, the same bits.
+  const LossGradient again = image_loss_gradient(mc, t, target, 2);
+  CHECK(again.loss == lg.loss);
+  CHECK(again.d_scalar == lg.d_scalar);
+  CHECK(again.d_position == lg.d_position);
 }
 
 namespace {

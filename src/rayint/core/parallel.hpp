@@ -113,7 +113,21 @@ void parallel_for(long long count, unsigned threads, Fn&& fn) {
   detail::run_pool<Fn, void()>(count, workers, fn, 0.0, nullptr);
 }
 
-// The same, with a monitor: the calling thread runs no items but calls tick() every
+// Like parallel_for, but item i always goes to worker i % parallel_workers(count, threads): what
+// a worker adds up then depends on the thread count alone, not on which rows it happened to take,
+// so sums of per-worker parts are the same bit for bit from run to run (the loss gradients,
+// render/mesh_gradient.cpp and scene/grid_loss_gradient.cpp). Rows of an image interleave, so
+// the workers' shares stay balanced.
+template <class Fn>
+void parallel_for_striped(long long count, unsigned threads, Fn&& fn) {
+  if (count <= 0) return;
+  const unsigned workers = parallel_workers(count, threads);
+  parallel_for(workers, workers, [&](long long stripe, unsigned) {
+    for (long long i = stripe; i < count; i += workers) detail::call_item(fn, i, static_cast<unsigned>(stripe));
+  });
+}
+
+// The same as parallel_for, with a monitor: the calling thread runs no items but calls tick() every
 // `tick_seconds` while the workers run (not after they are done), so a progress callback runs
 // on the caller's thread only and needs no locking. An exception from tick() is carried like
 // one from an item.

@@ -30,14 +30,6 @@ struct LinearTetField {
 // (validate_tet_mesh rejects those).
 LinearTetField fit_linear_tet(const std::array<Vec3, 4>& x, const std::array<double, 4>& s);
 
-// a^-1 b as Eigen 3.4's a.fullPivLu().solve(b) computes it: the same operations in the same
-// order, so the same doubles bit for bit (complete pivoting; a rank-deficient a gives the
-// solution with the non-pivot unknowns 0, as Eigen's). Written out because Eigen's generic
-// version was ~12% of loading a big mesh (issue 33; fit_linear_tet once per tet) and this one
-// is several times faster. Tests ([mesh][lu]) compare it with Eigen's on random, scaled,
-// nearly singular and singular systems, bit for bit.
-Vec3 full_pivot_lu_solve(const Eigen::Matrix3d& a, const Eigen::Vector3d& b);
-
 // Eq. 13 for a ray entering the cell at `entry` along the unit vector `direction`:
 // v = S_c(entry), w = gradient . direction, so S_c(entry + t direction) = v + w t.
 struct Eq13 {

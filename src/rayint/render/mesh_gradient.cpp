@@ -209,7 +209,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
     p.d_scalar.assign(n_scalar, 0.0);
     if (positions) p.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
   }
-  parallel_for(cam.height, threads, [&](long long row, unsigned id) {
+  parallel_for_striped(cam.height, threads, [&](long long row, unsigned id) {
     Part& p = parts[id];
     const int y = static_cast<int>(row);
     for (int x = 0; x < cam.width; ++x) {
@@ -236,7 +236,8 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
   });
   out.d_scalar.assign(n_scalar, 0.0);
   if (positions) out.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
-  // Summed in worker order; which rows a worker took varies, so the last bits may vary run to run.
+  // Summed in worker order; each worker took fixed rows (parallel_for_striped): the same sums,
+  // bit for bit, on every run with the same thread count.
   for (const Part& p : parts) {
     for (std::size_t i = 0; i < n_scalar; ++i) out.d_scalar[i] += p.d_scalar[i];
     for (std::size_t i = 0; i < out.d_position.size(); ++i)

@@ -62,7 +62,7 @@ GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const I
   };
   std::vector<Part> parts(workers);
   for (Part& p : parts) p.d_value.assign(n, 0.0);
-  parallel_for(height, threads, [&](long long row, unsigned id) {
+  parallel_for_striped(height, threads, [&](long long row, unsigned id) {
     Part& p = parts[id];
     std::vector<std::size_t> index;
     std::vector<Rgb> d_value;
@@ -113,7 +113,8 @@ GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const I
   });
   out.d_value.assign(n, 0.0);
   long long first = -1;
-  // Summed in worker order; which rows a worker took varies, so the last bits may vary run to run.
+  // Summed in worker order; each worker took fixed rows (parallel_for_striped): the same sums,
+  // bit for bit, on every run with the same thread count.
   for (const Part& p : parts) {
     for (std::size_t i = 0; i < n; ++i) out.d_value[i] += p.d_value[i];
     out.loss += p.loss;
