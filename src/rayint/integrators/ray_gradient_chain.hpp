@@ -261,7 +261,8 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
       // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
       // multiplied by a density slope of 3e23 in dI/ds).
-      double dkappa;
+      // (A constant piece has s_far == s_exit: no difference at all.)
+      double dkappa = 0.0;
       if (constant) {
         if (!(grey && c > 0)) {
           iv.rho = upper(rho, interval_lo(rho, pr, lo));
@@ -269,8 +270,6 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
         }
         iv.kappa = upper(kappa, interval_lo(kappa, pr, lo));
         kappa_lo = kappa_hi = kappa(lo);
-        const std::size_t kk = interval_lo(kappa, pr, lo) == lo ? iv.kappa : upper(kappa, lo);
-        dkappa = kk == 0 || kk == kappa.scalar.size() ? 0.0 : interval_slope(kappa, kk) * (pr.s_far - pr.s_exit);
       } else {
         if (!(grey && c > 0)) {
           iv.rho = upper(rho, lo);
@@ -280,9 +279,7 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
         iv.kappa = upper(kappa, lo);
         kappa_lo = limit_above_in(kappa, iv.kappa, lo);
         kappa_hi = limit_below_in(kappa, iv.kappa, hi);
-        dkappa = iv.kappa == 0 || iv.kappa == kappa.scalar.size()
-                     ? 0.0
-                     : interval_slope(kappa, iv.kappa) * (pr.s_far - pr.s_exit);
+        dkappa = interval_slope(kappa, iv.kappa) * (pr.s_far - pr.s_exit);  // 0 on the extensions
       }
       if (grey && c > 0) iv.rho = intervals[i - static_cast<std::size_t>(c)].rho;
       const ChannelPiece cp{pr.length, far_is_lo ? rho_lo : rho_hi, far_is_lo ? rho_hi : rho_lo,
