@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -138,6 +139,23 @@ TEST_CASE("VTK legacy reader: every problem is one line naming the file and sect
     const std::string bin = encode_vtk_legacy(g.mesh, VtkWriteOptions{});
     const std::string msg = error_of(bin.substr(0, bin.size() / 2));
     CHECK(msg.rfind("m.vtk: CELLS: binary data truncated", 0) == 0);
+  }
+  SECTION("truncated binary POINTS say how many values the file has") {
+    const GeneratedMesh g = generate_mesh("ball", 1, 1);
+    const std::string bin = encode_vtk_legacy(g.mesh, VtkWriteOptions{});
+    const std::size_t at = bin.find("POINTS ");
+    REQUIRE(at != std::string::npos);
+    const std::size_t eol = bin.find('\n', at);
+    std::istringstream header(bin.substr(at, eol - at));
+    std::string word, type;
+    std::size_t n = 0;
+    header >> word >> n >> type;
+    REQUIRE((type == "double" || type == "float"));
+    const std::size_t width = type == "double" ? 8 : 4;
+    // Ten whole values and three bytes of the eleventh.
+    const std::string msg = error_of(bin.substr(0, eol + 1 + 10 * width + 3));
+    CHECK(msg == "m.vtk: POINTS: binary data truncated: need " + std::to_string(3 * n) + " " + type +
+                     " values, file has 10");
   }
 }
 

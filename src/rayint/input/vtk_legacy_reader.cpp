@@ -48,6 +48,18 @@ class VtkCursor {
   bool more() const { return pos_ < b_.size(); }
   std::size_t remaining() const { return b_.size() - pos_; }
 
+  // Fails unless `count` binary values of `type` (`width` bytes each) remain: checked before any
+  // memory is taken for them, and the message says how many the file has.
+  void binary_room(const std::string& section, const std::string& type, std::size_t count,
+                   std::size_t width) const {
+    if (count > remaining() / width)
+      fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
+                        " values, file has " + std::to_string(remaining() / width));
+  }
+  void binary_room(const std::string& section, const std::string& type, std::size_t count) const {
+    binary_room(section, type, count, type_width(section, type));
+  }
+
   // One text line without its terminator ('\n' or "\r\n").
   std::string line(const std::string& section) {
     if (pos_ >= b_.size()) fail(section, "unexpected end of file");
@@ -74,9 +86,7 @@ class VtkCursor {
     std::vector<double> out;
     const std::size_t width = type_width(section, type);
     if (binary) {
-      if (count > (b_.size() - pos_) / width)
-        fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
-                          " values, file has " + std::to_string((b_.size() - pos_) / width));
+      binary_room(section, type, count, width);
       out.resize(count);
       decode_big_endian(type, width, out.data(), count);  // one type dispatch per array, not per value
       pos_ += count * width;
@@ -114,9 +124,7 @@ class VtkCursor {
   // values() of a BINARY array written straight into `out` (count doubles).
   void binary_values_into(const std::string& section, const std::string& type, std::size_t count, double* out) {
     const std::size_t width = type_width(section, type);
-    if (count > (b_.size() - pos_) / width)
-      fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
-                        " values, file has " + std::to_string((b_.size() - pos_) / width));
+    binary_room(section, type, count, width);
     decode_big_endian(type, width, out, count);
     pos_ += count * width;
   }
@@ -125,9 +133,7 @@ class VtkCursor {
   // big-endian bytes: the same numbers without an array of doubles between (issue 33).
   std::vector<long long> integers(const std::string& section, const std::string& type, std::size_t count) {
     const std::size_t width = type_width(section, type);
-    if (count > (b_.size() - pos_) / width)
-      fail(section, "binary data truncated: need " + std::to_string(count) + " " + type +
-                        " values, file has " + std::to_string((b_.size() - pos_) / width));
+    binary_room(section, type, count, width);
     std::vector<long long> out(count);
     const auto* p = reinterpret_cast<const unsigned char*>(b_.data() + pos_);
     const bool is_signed = type == "char" || type == "signed_char" || type == "short" || type == "int" ||
@@ -284,8 +290,7 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
       const std::size_t n = count_of(c, "POINTS", w[1]);
       if (binary) {  // decoded into the points themselves (Vec3: three packed doubles)
         static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 holds three doubles, unpadded");
-        if (n > c.remaining() / 3)
-          c.fail("POINTS", "binary data truncated: need " + std::to_string(3 * n) + " " + w[2] + " values");
+        c.binary_room("POINTS", w[2], 3 * n);  // before the points take memory
         raw.points.resize(n);
         c.binary_values_into("POINTS", w[2], 3 * n, raw.points.empty() ? nullptr : raw.points.front().data());
       } else {
