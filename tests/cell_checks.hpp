@@ -65,7 +65,8 @@ struct ReferenceChordSweep {
   // Every interval of `ch`, the chord of `cell` along `ray`; `label` names the cell in a failure.
   // Returns the intervals' integrals, for the caller's own checks.
   template <class Cell>
-  std::vector<CellPieceIntegral> check(const Cell& cell, const ViewRay& ray, const Chord& ch, const std::string& label) {
+  std::vector<CellPieceIntegral> check(const Cell& cell, const ViewRay& ray, const Chord& ch,
+                                       const std::string& label) {
     std::vector<CellPieceIntegral> done;
     for (const ChordInterval& iv : ch.intervals) {
       const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);

@@ -144,8 +144,9 @@ void check_rays(const TetMesh& m, const TransferFunctions& tf, const std::vector
       all.merge(check_scalars(m, tf, rays[r], bg, j, label));
     }
   }
-  WARN("mesh " << (positions ? "position" : "scalar") << " Jacobian vs 4th-order differences of the 50-digit render: worst "
-               << all.worst << " at " << all.where << " (" << all.entries << " entries, " << rays.size() << " rays)");
+  WARN("mesh " << (positions ? "position" : "scalar")
+               << " Jacobian vs 4th-order differences of the 50-digit render: worst " << all.worst << " at "
+               << all.where << " (" << all.entries << " entries, " << rays.size() << " rays)");
   CHECK(all.worst <= (positions ? kPositionTol : kScalarTol));
 }
 
