@@ -3,8 +3,10 @@
 // (__builtin_trap), so libFuzzer saves the input as a crash artifact. A refusal must be one
 // InputError line starting "<source>: " (the file it names, as the CLI prints it).
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rayint/core/error.hpp"
@@ -71,6 +73,21 @@ inline Case fig2_case(const std::vector<std::size_t>& segments) {
   }
   for (const std::size_t m : segments) c.rays.emplace_back().segments.resize(m);
   return c;
+}
+
+// A candidate parser's target (candidate_parser, grad_candidate_parser): the input, as the text of
+// the file `source`, through `parse` (parse_candidate_text or parse_grad_candidate_text); what it
+// accepts names a case and `source`, and passes `check` (the format's guarantees, then the match
+// against a fig2_case). Refusals are one line starting "<source>: ". Returns 0.
+template <class Parsed>
+int check_candidate_parser(Parsed (*parse)(std::string_view, const std::string&), void (*check)(const Parsed&),
+                           const std::uint8_t* data, std::size_t size, const std::string& source) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  return refusals_are_one_line(source, [&] {
+    const Parsed c = parse(text, source);
+    require(!c.case_name.empty() && c.source == source);
+    check(c);
+  });
 }
 
 }  // namespace rayint::fuzz

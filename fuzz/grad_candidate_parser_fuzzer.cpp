@@ -14,31 +14,37 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <string>
-#include <string_view>
 
 #include "rayint/input/candidate_reader.hpp"
 #include "fuzz_checks.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using rayint::fuzz::require;
-  static const char* const kSource = "fuzz-grad-candidate.json";
+using rayint::fuzz::require;
+
+namespace {
+
+// What check_candidate_parser leaves to this format: at least one ray, every entry finite or
+// NaN, scalar and length blocks of one size; then the match against the case, every block
+// shaped like it.
+void check_grad_candidate(const rayint::GradCandidate& c) {
+  require(!c.rays.empty());
+  for (const rayint::RayGradient& g : c.rays) {
+    require(g.length.size() == g.scalar_far.size() && g.length.size() == g.scalar_exit.size());
+    for (int ch = 0; ch < rayint::kChannels; ++ch)
+      g.for_each(ch, [](double v, const char*, std::size_t, const char*) { require(std::isfinite(v) || std::isnan(v)); });
+  }
   static const rayint::Case kCase = rayint::fuzz::fig2_case({1, 2, 1});
-  const std::string_view text(reinterpret_cast<const char*>(data), size);
-  return rayint::fuzz::refusals_are_one_line(kSource, [&] {
-    const rayint::GradCandidate c = rayint::parse_grad_candidate_text(text, kSource);
-    require(!c.case_name.empty() && !c.rays.empty() && c.source == kSource);
-    for (const rayint::RayGradient& g : c.rays) {
-      require(g.length.size() == g.scalar_far.size() && g.length.size() == g.scalar_exit.size());
-      for (int ch = 0; ch < rayint::kChannels; ++ch)
-        g.for_each(ch, [](double v, const char*, std::size_t, const char*) { require(std::isfinite(v) || std::isnan(v)); });
-    }
-    rayint::require_grad_candidate_matches(c, kCase);
-    require(c.rays.size() == kCase.rays.size());
-    for (std::size_t i = 0; i < c.rays.size(); ++i) {
-      require(c.rays[i].length.size() == kCase.rays[i].segments.size());
-      for (int ch = 0; ch < rayint::kChannels; ++ch)
-        require(c.rays[i].density[ch].size() == 2 && c.rays[i].color[ch].size() == 2);
-    }
-  });
+  rayint::require_grad_candidate_matches(c, kCase);
+  require(c.rays.size() == kCase.rays.size());
+  for (std::size_t i = 0; i < c.rays.size(); ++i) {
+    require(c.rays[i].length.size() == kCase.rays[i].segments.size());
+    for (int ch = 0; ch < rayint::kChannels; ++ch)
+      require(c.rays[i].density[ch].size() == 2 && c.rays[i].color[ch].size() == 2);
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return rayint::fuzz::check_candidate_parser(&rayint::parse_grad_candidate_text, &check_grad_candidate, data, size,
+                                              "fuzz-grad-candidate.json");
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the tests that run the real `rayint` binary (RAYINT_CLI_PATH): a scratch folder
-// removed on destruction, a file reader, one CLI run with exit status, stdout and stderr, and the
-// check of a command line refused as a usage error.
+// removed on destruction, a file reader, one CLI run with exit status, stdout and stderr, a run
+// that must succeed, and the checks of a run that fails with one line and of a usage error.
 #include <sys/wait.h>
 #include <unistd.h>
 #include "test_paths.hpp"
@@ -84,12 +84,26 @@ inline CliRun run_cli(const fs::path& dir, const std::string& args) {
   return r;
 }
 
+// run_cli that must succeed: the test stops, showing the command and its stderr, unless it exits 0.
+inline CliRun run_cli_ok(const fs::path& dir, const std::string& args) {
+  CliRun r = run_cli(dir, args);
+  INFO("rayint " << args << "\nstderr: " << r.err);
+  REQUIRE(r.status == 0);
+  return r;
+}
+
+// How rayint fails on bad input or a failed write: exit 2 and one line on stderr.
+inline void check_one_line_exit(const CliRun& r) {
+  INFO("stderr: " << r.err);
+  CHECK(r.status == 2);
+  CHECK(line_count(r.err) == 1);
+}
+
 // A command line refused as a usage error: exit 2, nothing on stdout, one stderr line starting
 // "rayint: error: ".
 inline void check_usage_error(const CliRun& r) {
-  CHECK(r.status == 2);
+  check_one_line_exit(r);
   CHECK(r.out.empty());
-  CHECK(line_count(r.err) == 1);
   CHECK(r.err.rfind("rayint: error: ", 0) == 0);
 }
 

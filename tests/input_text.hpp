@@ -1,7 +1,9 @@
 #pragma once
-// Shared by the tests of bad input files (case_reader, check, the CLI): the Fig. 2 case text,
-// a one-place text substitution, and the one-line `<file>: <path>: <what>` InputError message.
+// Shared by the tests of bad input files (case_reader, check, the CLI, the mesh readers): the
+// Fig. 2 case text, a one-place text substitution, the one-line `<file>: <path>: <what>` InputError
+// message, and tables of bad inputs with the start of the message each must give.
 #include <catch2/catch.hpp>
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -54,6 +56,24 @@ inline void check_one_line_error(const std::string& msg, const std::string& sour
   CHECK(msg.rfind(source + ": " + path + ": ", 0) == 0);
   CHECK(msg.find(what) != std::string::npos);
   CHECK(msg.find('\n') == std::string::npos);
+}
+
+// A bad input file's text and the start of the message it must be refused with.
+struct BadText {
+  std::string text, expect;
+};
+
+// Every row of `rows` (a bad input and `expect`) refused with one line starting with its
+// `expect`: error_of(row) is the message (or "(no error)", which fails).
+template <class Row, std::size_t N, class ErrorOf>
+void check_refusal_table(const Row (&rows)[N], ErrorOf&& error_of) {
+  for (const Row& row : rows) {
+    INFO(row.expect);
+    const std::string msg = error_of(row);
+    INFO("got: " << msg);
+    CHECK(msg.rfind(row.expect, 0) == 0);
+    CHECK(msg.find('\n') == std::string::npos);
+  }
 }
 
 }  // namespace rayint::test

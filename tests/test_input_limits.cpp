@@ -10,14 +10,14 @@
 
 #include "test_paths.hpp"
 #include "cli_harness.hpp"
+#include "cli_refusal.hpp"
 #include "input_text.hpp"
 #include "rayint/core/format.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/render/float_image.hpp"
 
-using rayint::test::CliRun;
+using rayint::test::check_refusals;
 using rayint::test::line_count;
-using rayint::test::run_cli;
 using rayint::test::TempDir;
 
 TEST_CASE("JSON nested deeper than the limit is refused at the limit, not before",
@@ -35,19 +35,11 @@ TEST_CASE("The CLI refuses devices, oversized and over-nested inputs with one li
   const TempDir dir;
   dir.copy_case("paper-figure-2");
   dir.write("deep.json", std::string(100000, '[') + std::string(100000, ']'));
-  const struct {
-    std::string args, line;
-  } refusals[] = {
-      {"eval /dev/zero", "rayint: error: /dev/zero: cannot read file (is a device, not an input file)\n"},
-      {"eval deep.json", "rayint: error: deep.json: (root): nested deeper than 256 levels (the limit)\n"},
-  };
-  for (const auto& r : refusals) {
-    const CliRun run = run_cli(dir.path, r.args + " -o out.json");
-    INFO(r.args);
-    CHECK(run.status == 2);
-    CHECK(run.err == r.line);
-    CHECK_FALSE(rayint::test::fs::exists(dir.path / "out.json"));
-  }
+  // Nothing written (check_refused: the folder as it was, so no out.json).
+  check_refusals(dir,
+                 {{"eval /dev/zero -o out.json", "/dev/zero: cannot read file (is a device, not an input file)"},
+                  {"eval deep.json -o out.json", "deep.json: (root): nested deeper than 256 levels (the limit)"}},
+                 true);
   const std::size_t size = rayint::test::fs::file_size(dir.path / "paper-figure-2.json");
   const std::string env = "RAYINT_MAX_INPUT_BYTES=" + std::to_string(size - 1);
   const std::string cmd = "cd '" + dir.path.string() + "' && " + env + " '" + RAYINT_CLI_PATH

@@ -394,32 +394,18 @@ TEST_CASE("cell reference: a linear scalar along the chord matches the 50-digit 
 TEST_CASE("cell reference: the double path on distorted cells of every type, both wedge orientations", "[cells][isoparametric]") {
   // The sample of this test is small (the reference costs ~0.1 s a chord); the measured figures
   // over 200 rays per family are in reports/cells/accuracy.md (tools/cell_accuracy.cpp).
-  const TransferFunctions tf = breakpoint_tf();
-  const LinearCellIntegrator integrator(tf);
-  std::mt19937 rng(2029);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  double worst = 0.0;
-  int chords = 0;
+  test::ReferenceChordSweep sweep(LinearCellTolerances::reference_rel, 2029);
   for (LinearCellType type : kTypes)
     for (bool mirror : {false, true})
       for (int k = 0; k < 3; ++k) {
-        const LinearCell cell = random_cell(type, rng, 0.1 + 0.2 * u(rng), mirror);
-        const Vec3 target = cell_position(cell, random_inside(type, rng));
-        const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
-        const ViewRay ray{target - 8.0 * dir, dir};
+        const LinearCell cell = random_cell(type, sweep.rng, 0.1 + 0.2 * sweep.uniform(), mirror);
+        const ViewRay ray = sweep.ray_at(cell_position(cell, random_inside(type, sweep.rng)));
         const Chord ch = chord(cell, ray);
         REQUIRE_FALSE(ch.failed);
-        for (const ChordInterval& iv : ch.intervals) {
-          const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);
-          INFO(linear_cell_name(type) << " mirror " << mirror << ": " << d.failure);
-          REQUIRE(d.converged);
-          const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
-          worst = std::max(worst, test::check_against_reference(d, ref, LinearCellTolerances::reference_rel));
-          ++chords;
-        }
+        sweep.check(cell, ray, ch, std::string(linear_cell_name(type)) + " mirror " + std::to_string(mirror));
       }
-  INFO("worst relative error " << worst << " over " << chords << " chords");
-  CHECK(chords >= 30);
+  INFO("worst relative error " << sweep.worst << " over " << sweep.chords << " chords");
+  CHECK(sweep.chords >= 30);
 }
 
 TEST_CASE("vtk split: the recorded tables give VTK's own tetrahedra on distorted cells with random ids", "[cells][isoparametric]") {

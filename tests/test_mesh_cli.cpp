@@ -11,6 +11,7 @@
 #include "rayint/input/vtk_legacy_reader.hpp"
 
 using rayint::test::run_cli;
+using rayint::test::run_cli_ok;
 using rayint::test::slurp;
 using rayint::test::TempDir;
 namespace fs = std::filesystem;
@@ -50,8 +51,7 @@ void expect_bad(const TempDir& dir, const std::string& args, const std::string& 
 TEST_CASE("CLI: eval on a mesh case gives per-ray JSON, a missing ray only the background", "[mesh]") {
   TempDir dir;
   dir.write("tiny.json", kMeshCase);
-  const auto r = run_cli(dir.path, "eval tiny.json --methods exact --no-timing");
-  REQUIRE(r.status == 0);
+  const auto r = run_cli_ok(dir.path, "eval tiny.json --methods exact --no-timing");
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["cases"].size() == 1);
   const auto& rays = j["cases"][0]["rays"];
@@ -68,15 +68,12 @@ TEST_CASE("CLI: eval on a mesh case with only a camera evaluates one ray per pix
            {"origin": [5, 5, 5], "direction": [0, 0, 1]}],)", "");
   c = with(c, R"("width": 12, "height": 10)", R"("width": 3, "height": 2)");
   dir.write("cam.json", c);
-  const auto r = run_cli(dir.path, "eval cam.json --methods exact --no-timing");
-  INFO(r.err);
-  REQUIRE(r.status == 0);
+  const auto r = run_cli_ok(dir.path, "eval cam.json --methods exact --no-timing");
   CHECK(nlohmann::json::parse(r.out)["cases"][0]["rays"].size() == 6);
 }
 
 TEST_CASE("CLI: eval on the bundled mesh cases (mesh_file relative to the case)", "[mesh]") {
-  const auto r = run_cli(fs::path(RAYINT_SOURCE_DIR), "eval cases/mesh-ring-nonconvex.json --methods exact --no-timing");
-  REQUIRE(r.status == 0);
+  const auto r = run_cli_ok(fs::path(RAYINT_SOURCE_DIR), "eval cases/mesh-ring-nonconvex.json --methods exact --no-timing");
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["cases"][0]["rays"].size() == 5);
 }
@@ -84,9 +81,7 @@ TEST_CASE("CLI: eval on the bundled mesh cases (mesh_file relative to the case)"
 TEST_CASE("CLI: render a mesh case with --compare and --stats", "[mesh]") {
   TempDir dir;
   dir.write("tiny.json", kMeshCase);
-  const auto r = run_cli(dir.path, "render tiny.json -o img.png --compare riemann:n=8 --stats s.json --threads 2");
-  INFO(r.err);
-  REQUIRE(r.status == 0);
+  const auto r = run_cli_ok(dir.path, "render tiny.json -o img.png --compare riemann:n=8 --stats s.json --threads 2");
   CHECK(fs::file_size(dir.path / "img.png") > 0);
   CHECK(fs::file_size(dir.path / "img.error.png") > 0);
   const auto s = nlohmann::json::parse(slurp(dir.path / "s.json"));
@@ -98,8 +93,7 @@ TEST_CASE("CLI: render a mesh case with --compare and --stats", "[mesh]") {
 
 TEST_CASE("CLI: generate-mesh writes a VTK file the reader accepts", "[mesh]") {
   TempDir dir;
-  const auto r = run_cli(dir.path, "generate-mesh ring --n 1 -o ring.vtk --ascii");
-  REQUIRE(r.status == 0);
+  run_cli_ok(dir.path, "generate-mesh ring --n 1 -o ring.vtk --ascii");
   const rayint::TetMesh m = rayint::read_vtk_legacy((dir.path / "ring.vtk").string());
   CHECK(m.tets.size() == 504);  // (100 - 16) cubes x 6
   expect_bad(dir, "generate-mesh torus -o t.vtk", "kind: torus not in");

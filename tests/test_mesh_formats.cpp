@@ -237,21 +237,12 @@ TEST_CASE("TetGen reader: every problem is one line naming the file and the fiel
       {kNode, replace(kEle, "1 1 2 3 4", "1 1 2 3"), "t.ele: ele[0], line 2: expected index n1 n2 n3 n4 [...] (5 numbers), got 4"},
       {kNode, "", "t.ele: header: unexpected end of file"},
   };
-  for (const Bad& b : bad) {
-    INFO(b.expect);
-    const std::string msg = tetgen_error(b.node, b.ele);
-    INFO("got: " << msg);
-    CHECK(msg.rfind(b.expect, 0) == 0);
-    CHECK(msg.find('\n') == std::string::npos);
-  }
+  test::check_refusal_table(bad, [](const Bad& b) { return tetgen_error(b.node, b.ele); });
 }
 
 TEST_CASE("gmsh reader: every problem is one line naming the file and the section", "[mesh][formats]") {
   REQUIRE(gmsh_error(kMsh22) == "(no error)");
-  struct Bad {
-    std::string msh, expect;
-  };
-  const Bad bad[] = {
+  const test::BadText bad[] = {
       {replace(kMsh22, "2.2 0 8", "3.0 0 8"), "g.msh: $MeshFormat, line 2: version \"3.0\" is not read"},
       {replace(kMsh22, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", ""), "g.msh: $Nodes, line 1: the file must start with $MeshFormat"},
       {replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 5 2 0 1 1 2 3 4"), "g.msh: $Elements, line 14: element 2: 9 numbers, a 8-node hexahedron with 2 tags needs 13"},
@@ -267,13 +258,7 @@ TEST_CASE("gmsh reader: every problem is one line naming the file and the sectio
       {kMsh22.substr(0, kMsh22.find("$NodeData")), "g.msh: $NodeData: no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"},
       {kMsh22.substr(0, kMsh22.find("$Elements")), "g.msh: $Elements: missing"},
   };
-  for (const Bad& b : bad) {
-    INFO(b.expect);
-    const std::string msg = gmsh_error(b.msh);
-    INFO("got: " << msg);
-    CHECK(msg.rfind(b.expect, 0) == 0);
-    CHECK(msg.find('\n') == std::string::npos);
-  }
+  test::check_refusal_table(bad, [](const test::BadText& b) { return gmsh_error(b.text); });
   SECTION("binary files cut short") {
     const std::string bin = slurp_file(kDir + "meshio-box-41-binary.msh");
     for (const std::size_t cut : {bin.size() / 5, bin.size() / 2, bin.size() - 40}) {
@@ -305,21 +290,15 @@ TEST_CASE("CLI: bad TetGen and gmsh files exit 2 with one line and no output", "
   dir.write("g.msh", replace(kMsh22, "2 4 2 0 1 1 2 3 4", "2 5 2 0 1 1 2 3 4 1 2 3 4"));
   dir.write("g.json", R"({"name": "g", )" + tf + R"(, "mesh_file": "g.msh",
     "rays": [{"origin": [0.1, 0.1, 5], "direction": [0, 0, -1]}]})");
-  const struct {
-    std::string args, prefix;
-  } runs[] = {
-      {"eval t.json -o out.json", "t.node: node[1], line 4: expected index x y z [attributes] [marker] (5 numbers), got 4"},
-      // g.msh's one hexahedron repeats its bottom face as its top: zero volume, nothing to
-      // integrate in the own mode (mesh/cell_mesh.hpp drop_zero_volume_cells); --methods on a
-      // real hexahedral mesh is refused in [cellmesh][cli].
-      {"eval g.json --methods exact -o out.json", "g.msh: cells: every cell has zero volume"},
-  };
-  for (const auto& run : runs) {
-    const auto r = test::check_refused(dir, run.args);
-    INFO(run.args << "\nstderr: " << r.err);
-    CHECK(r.out.empty());
-    CHECK(r.err.rfind("rayint: error: " + run.prefix, 0) == 0);
-  }
+  test::check_refusals(
+      dir,
+      {{"eval t.json -o out.json",
+        "t.node: node[1], line 4: expected index x y z [attributes] [marker] (5 numbers), got 4"},
+       // g.msh's one hexahedron repeats its bottom face as its top: zero volume, nothing to
+       // integrate in the own mode (mesh/cell_mesh.hpp drop_zero_volume_cells); --methods on a
+       // real hexahedral mesh is refused in [cellmesh][cli].
+       {"eval g.json --methods exact -o out.json", "g.msh: cells: every cell has zero volume"}},
+      false);
 }
 
 TEST_CASE("CLI: eval and render --stats report the reoriented and dropped tets", "[mesh][formats]") {

@@ -67,6 +67,14 @@ struct Compare {
       }
     }
   }
+  // Another comparison folded in: its worst if that is worse (or NaN), its entries added.
+  void merge(const Compare& c) {
+    if (!(c.worst <= worst)) {
+      worst = c.worst;
+      where = c.where;
+    }
+    entries += c.entries;
+  }
 };
 
 Rgb lookup_scalar(const PixelJacobian& j, std::int32_t i) {
@@ -117,6 +125,31 @@ Compare check_positions(const TetMesh& m, const TransferFunctions& tf, const Vie
   return cmp;
 }
 
+// The pixel Jacobian of each of `rays` through `m`, w.r.t. the vertex scalars or (`positions`) the
+// vertex positions, against the differences: the worst over all rays ("ray <index>") within
+// kScalarTol or kPositionTol, and shown in a WARN line.
+void check_rays(const TetMesh& m, const TransferFunctions& tf, const std::vector<ViewRay>& rays, const Rgb& bg,
+                bool positions) {
+  const TetTraversal t(m);
+  Compare all;
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    const PixelJacobian j = pixel_jacobian(t, tf, rays[r], bg);
+    const std::string label = "ray " + std::to_string(r);
+    if (positions) {
+      REQUIRE(j.ends_on_edges == 0);
+      REQUIRE(!j.position_index.empty());
+      all.merge(check_positions(m, tf, rays[r], bg, j, label));
+    } else {
+      REQUIRE(!j.index.empty());
+      all.merge(check_scalars(m, tf, rays[r], bg, j, label));
+    }
+  }
+  WARN("mesh " << (positions ? "position" : "scalar")
+               << " Jacobian vs 4th-order differences of the 50-digit render: worst " << all.worst << " at "
+               << all.where << " (" << all.entries << " entries, " << rays.size() << " rays)");
+  CHECK(all.worst <= (positions ? kPositionTol : kScalarTol));
+}
+
 ViewRay toward(const Vec3& from, const Vec3& to) { return {from, (to - from).normalized()}; }
 
 std::vector<ViewRay> generic_rays() {
@@ -129,7 +162,6 @@ std::vector<ViewRay> generic_rays() {
 TEST_CASE("mesh gradient: vertex scalars against differences of the 50-digit render", "[grad][mesh]") {
   const TransferFunctions tf = test::kinked_tf();
   const TetMesh m = small_mesh(28);
-  const TetTraversal t(m);
   const Rgb bg{0.2, 0.1, 0.4};
   std::vector<ViewRay> rays = generic_rays();
   // Through vertices: the box diagonal (corner, the centre vertex, corner; along Kuhn edges) and
@@ -137,37 +169,14 @@ TEST_CASE("mesh gradient: vertex scalars against differences of the 50-digit ren
   rays.push_back(toward({-2, -2, -2}, {1, 1, 1}));
   rays.push_back(toward({-1, 2.5, -1}, m.points[13]));
   rays.push_back(toward({0, -2, 3}, {0, -1, 1}));  // through a boundary edge's vertex
-  Compare all;
-  for (std::size_t r = 0; r < rays.size(); ++r) {
-    const PixelJacobian j = pixel_jacobian(t, tf, rays[r], bg);
-    REQUIRE(!j.index.empty());
-    const Compare c = check_scalars(m, tf, rays[r], bg, j, "ray " + std::to_string(r));
-    if (!(c.worst <= all.worst)) { all.worst = c.worst; all.where = c.where; }
-    all.entries += c.entries;
-  }
-  WARN("mesh scalar Jacobian vs 4th-order differences of the 50-digit render: worst " << all.worst << " at "
-       << all.where << " (" << all.entries << " entries, " << rays.size() << " rays, 27 vertices)");
-  CHECK(all.worst <= kScalarTol);
+  check_rays(m, tf, rays, bg, false);  // 27 vertices
 }
 
 TEST_CASE("mesh gradient: vertex positions against differences of the 50-digit render", "[grad][mesh]") {
   const TransferFunctions tf = test::kinked_tf();
   const TetMesh m = small_mesh(29);
-  const TetTraversal t(m);
   const Rgb bg{0.2, 0.1, 0.4};
-  std::vector<ViewRay> rays = generic_rays();  // the last one starts inside the mesh
-  Compare all;
-  for (std::size_t r = 0; r < rays.size(); ++r) {
-    const PixelJacobian j = pixel_jacobian(t, tf, rays[r], bg);
-    REQUIRE(j.ends_on_edges == 0);
-    REQUIRE(!j.position_index.empty());
-    const Compare c = check_positions(m, tf, rays[r], bg, j, "ray " + std::to_string(r));
-    if (!(c.worst <= all.worst)) { all.worst = c.worst; all.where = c.where; }
-    all.entries += c.entries;
-  }
-  WARN("mesh position Jacobian vs 4th-order differences of the 50-digit render: worst " << all.worst << " at "
-       << all.where << " (" << all.entries << " entries, " << rays.size() << " rays)");
-  CHECK(all.worst <= kPositionTol);
+  check_rays(m, tf, generic_rays(), bg, true);  // the last ray starts inside the mesh
 }
 
 TEST_CASE("mesh gradient: cell data scalars and positions", "[grad][mesh]") {

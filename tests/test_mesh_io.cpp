@@ -93,10 +93,7 @@ TEST_CASE("VTK legacy reader: extra arrays, named scalars, CELL_DATA, version 5.
 
 TEST_CASE("VTK legacy reader: every problem is one line naming the file and section", "[mesh]") {
   const std::string base = kOneTetAscii;
-  struct Bad {
-    std::string vtk, expect;
-  };
-  const Bad bad[] = {
+  const test::BadText bad[] = {
       {replace(base, "# vtk DataFile", "# vtx DataFile"), "m.vtk: header: not a VTK legacy file"},
       {replace(base, "UNSTRUCTURED_GRID", "STRUCTURED_POINTS"), "m.vtk: DATASET: STRUCTURED_POINTS is image data, not a mesh"},
       {replace(base, "CELL_TYPES 1\n10", "CELL_TYPES 1\n12"), "m.vtk: CELL_TYPES[0]: cell type hexahedron (VTK id 12): the tetrahedral path integrates only tetrahedra; integrate this file with --cells split (VTK's tetrahedralisation, an approximation of the cell's own interpolation)"},
@@ -110,21 +107,16 @@ TEST_CASE("VTK legacy reader: every problem is one line naming the file and sect
       {replace(base, "CELL_TYPES 1\n10\n", ""), "m.vtk: CELL_TYPES: missing"},
       {replace(base, "POINTS 4 float", "POINTS 4 quaternion"), "m.vtk: POINTS: unknown data type 'quaternion'"},
   };
-  for (const Bad& b : bad) {
-    INFO(b.expect);
-    const std::string msg = error_of(b.vtk);
-    CHECK(msg.rfind(b.expect, 0) == 0);
-    CHECK(msg.find('\n') == std::string::npos);
-  }
+  test::check_refusal_table(bad, [](const test::BadText& b) { return error_of(b.text); });
   SECTION("strict (--strict-mesh): inverted and degenerate tets are refused by validate_tet_mesh") {
-    const Bad strict[] = {
+    const test::BadText strict[] = {
         {replace(base, "4 0 1 2 3", "4 0 1 3 2"), "m.vtk: CELLS[0]: inverted tetrahedron"},
         {replace(base, "4 0 1 2 3", "4 0 1 2 2"), "m.vtk: CELLS[0]: degenerate tetrahedron: point 2 appears twice"},
         {replace(base, "0 0 1\n", "1 1 0\n"), "m.vtk: CELLS[0]: degenerate tetrahedron (volume 0"},
     };
-    for (const Bad& b : strict) {
+    for (const test::BadText& b : strict) {
       INFO(b.expect);
-      const TetMesh m = parse_vtk_legacy(b.vtk, "m.vtk");  // the reader checks structure only
+      const TetMesh m = parse_vtk_legacy(b.text, "m.vtk");  // the reader checks structure only
       std::string msg = "(no error)";
       try {
         validate_tet_mesh(m, "m.vtk", MeshFieldNames{"POINTS", "POINT_DATA", "CELLS"});

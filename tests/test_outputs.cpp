@@ -18,6 +18,7 @@
 #include "rayint/core/atomic_file.hpp"
 
 namespace fs = std::filesystem;
+using rayint::test::check_one_line_exit;
 using rayint::test::CliRun;
 using rayint::test::line_count;
 using rayint::test::run_cli;
@@ -92,8 +93,7 @@ TEST_CASE("A directory as an output file is refused with one line", "[reliabilit
   dir.copy_case("paper-figure-2");
   fs::create_directory(dir.path / "out.json");
   const CliRun r = run_cli(dir.path, "eval paper-figure-2.json --no-timing -o out.json");
-  CHECK(r.status == 2);
-  CHECK(line_count(r.err) == 1);
+  check_one_line_exit(r);
   CHECK(r.err == "rayint: error: out.json: is a directory, not an output file\n");
   CHECK(fs::is_directory(dir.path / "out.json"));
 }
@@ -103,9 +103,7 @@ TEST_CASE("A failed write to standard output exits non-zero with one line",
   const TempDir dir;
   dir.copy_case("paper-figure-2");
   const CliRun r = run_shell(dir.path, "\"$RAYINT\" eval paper-figure-2.json --no-timing > /dev/full");
-  INFO(r.err);
-  CHECK(r.status == 2);
-  CHECK(line_count(r.err) == 1);
+  check_one_line_exit(r);
   CHECK(r.err.find("standard output: cannot write (No space left on device)") != std::string::npos);
 }
 

@@ -81,10 +81,6 @@ Vec3 random_inside(QuadraticCellType type, std::mt19937& rng) {
   return test::random_inside(quadratic_corner_type(type), rng);
 }
 
-CellReferenceInput reference_input(const QuadraticCell& cell, const ViewRay& ray, double t_near, double t_far) {
-  return cell_reference_input(cell, ray.origin, ray.direction, t_near, t_far);
-}
-
 }  // namespace
 
 TEST_CASE("quadratic cells: inverse map round trip on curved cells in both orientations", "[cells][quadratic][isoparametric]") {
@@ -230,68 +226,45 @@ TEST_CASE("quadratic cells: two curved hexahedra sharing a curved face, the exit
 }
 
 TEST_CASE("quadratic cells: the double path against the 50-digit reference on curved cells", "[cells][quadratic][isoparametric][reference]") {
-  const TransferFunctions tf = test::breakpoint_tf();
-  const LinearCellIntegrator integrator(tf);
-  std::mt19937 rng(2030);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  double worst = 0.0;
-  int chords = 0;
+  test::ReferenceChordSweep sweep(QuadraticCellTolerances::reference_rel, 2030);
   for (QuadraticCellType type : kTypes)
     for (bool mirror : {false, true})
       for (int k = 0; k < 3; ++k) {
-        const QuadraticCell cell = valid_cell(type, rng, 0.1, 0.1 + 0.1 * u(rng), mirror);
-        const Vec3 target = cell_position(cell, random_inside(type, rng));
-        const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
-        const ViewRay ray{target - 8.0 * dir, dir};
+        const QuadraticCell cell = valid_cell(type, sweep.rng, 0.1, 0.1 + 0.1 * sweep.uniform(), mirror);
+        const ViewRay ray = sweep.ray_at(cell_position(cell, random_inside(type, sweep.rng)));
         const Chord ch = quadratic_chord(cell, ray);
         REQUIRE_FALSE(ch.failed);
         REQUIRE_FALSE(ch.intervals.empty());
-        for (const ChordInterval& iv : ch.intervals) {
-          const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);
-          INFO(quadratic_cell_name(type) << " mirror " << mirror << ": " << d.failure);
-          REQUIRE(d.converged);
+        const std::string label = std::string(quadratic_cell_name(type)) + " mirror " + std::to_string(mirror);
+        for (const CellPieceIntegral& d : sweep.check(cell, ray, ch, label)) {
+          INFO(label);
           CHECK(d.path == CellPath::isoparametric);
-          const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
-          worst = std::max(worst, test::check_against_reference(d, ref, QuadraticCellTolerances::reference_rel));
-          ++chords;
         }
       }
-  WARN("quadratic cells vs 50-digit reference: worst relative error " << worst << " over " << chords << " chords");
-  CHECK(chords >= 30);
+  WARN("quadratic cells vs 50-digit reference: worst relative error " << sweep.worst << " over " << sweep.chords
+                                                                       << " chords");
+  CHECK(sweep.chords >= 30);
 }
 
 TEST_CASE("quadratic pyramid: distorted cells against the 50-digit reference, rays through the apex region too", "[cells][quadratic][isoparametric][reference][pyramid]") {
   // Corners perturbed by up to 0.15 of the base (and the apex), mid-edge nodes off their edges by
   // up to 20 % of the edge (curved faces), both orientations; half the rays aimed at points near
   // the apex (t >= 0.8, where det J -> 0 as (1 - t)^2).
-  const TransferFunctions tf = test::breakpoint_tf();
-  const LinearCellIntegrator integrator(tf);
-  std::mt19937 rng(2729);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  test::ReferenceChordSweep sweep(QuadraticCellTolerances::reference_rel, 2729);
   const QuadraticCellType type = QuadraticCellType::pyramid;
-  double worst = 0.0;
-  int chords = 0;
   for (bool mirror : {false, true})
     for (int k = 0; k < 10; ++k) {
-      const QuadraticCell cell = valid_cell(type, rng, 0.15, 0.1 + 0.1 * u(rng), mirror);
-      Vec3 p = random_inside(type, rng);
-      if (k % 2 == 1) p[2] = 0.8 + 0.15 * u(rng);
-      const Vec3 target = cell_position(cell, p);
-      const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
-      const ViewRay ray{target - 8.0 * dir, dir};
+      const QuadraticCell cell = valid_cell(type, sweep.rng, 0.15, 0.1 + 0.1 * sweep.uniform(), mirror);
+      Vec3 p = random_inside(type, sweep.rng);
+      if (k % 2 == 1) p[2] = 0.8 + 0.15 * sweep.uniform();
+      const ViewRay ray = sweep.ray_at(cell_position(cell, p));
       const Chord ch = quadratic_chord(cell, ray);
       INFO("cell " << k << " mirror " << mirror);
       REQUIRE_FALSE(ch.failed);
       REQUIRE_FALSE(ch.intervals.empty());
-      for (const ChordInterval& iv : ch.intervals) {
-        const CellPieceIntegral d = integrator.integrate(cell, ray, iv.t_near, iv.t_far);
-        INFO(d.failure);
-        REQUIRE(d.converged);
-        const CellReference ref = reference_cell_chord(tf, reference_input(cell, ray, iv.t_near, iv.t_far));
-        worst = std::max(worst, test::check_against_reference(d, ref, QuadraticCellTolerances::reference_rel));
-        ++chords;
-      }
+      sweep.check(cell, ray, ch, quadratic_cell_name(type));
     }
-  WARN("distorted quadratic pyramids vs 50-digit reference: worst relative error " << worst << " over " << chords << " chords");
-  CHECK(chords >= 20);
+  WARN("distorted quadratic pyramids vs 50-digit reference: worst relative error " << sweep.worst << " over "
+                                                                                    << sweep.chords << " chords");
+  CHECK(sweep.chords >= 20);
 }

@@ -35,9 +35,7 @@ const std::string kScene = R"({
 TEST_CASE("scene image check: the scene's own render passes, one pixel off by 1e-3 fails and replays", "[image][scene]") {
   TempDir dir;
   dir.write("scene.json", kScene);
-  const CliRun rr = run_cli(dir.path, "render scene.json -o render.npy --quiet --threads 2");
-  INFO(rr.err);
-  REQUIRE(rr.status == 0);
+  const CliRun rr = run_cli_ok(dir.path, "render scene.json -o render.npy --quiet --threads 2");
   fs::create_directories(dir.path / "art");
   const CliRun ok = run_cli(dir.path, "check scene.json --candidate-image render.npy --artifacts art -o diff.json --threads 2");
   INFO(ok.err);
@@ -90,7 +88,7 @@ TEST_CASE("scene image check: the scene's own render passes, one pixel off by 1e
   CHECK(rp["worst_pixels"][0]["channel"] == "g");
   CHECK(rp["worst_pixels"][0]["expected"].get<double>() == Approx(w["expected"].get<double>()).epsilon(1e-12));
   // And rendered by the scene's methods it gives the pixel of the full render.
-  REQUIRE(run_cli(dir.path, "render art/worst_pixel_0.json -o one_render.npy --quiet").status == 0);
+  run_cli_ok(dir.path, "render art/worst_pixel_0.json -o one_render.npy --quiet");
   const Image r1 = read_image((dir.path / "one_render.npy").string());
   const Image full = read_image((dir.path / "render.npy").string());
   for (int c = 0; c < 3; ++c) CHECK(r1.at(0, 0)[c] == Approx(full.at(7, 3)[c]).epsilon(1e-12));
@@ -100,8 +98,8 @@ TEST_CASE("scene image check: z-test mode, wrong size and slab scenes", "[image]
   TempDir dir;
   dir.write("scene.json", kScene);
   fs::create_directories(dir.path / "art");
-  REQUIRE(run_cli(dir.path, "render scene.json -o render.npy --quiet").status == 0);
-  REQUIRE(run_cli(dir.path, "check scene.json --candidate-image render.npy --artifacts art -o d.json").status == 0);
+  run_cli_ok(dir.path, "render scene.json -o render.npy --quiet");
+  run_cli_ok(dir.path, "check scene.json --candidate-image render.npy --artifacts art -o d.json");
   const Image ref = read_image((dir.path / "art" / "reference.npy").string());
   // 1 sigma off everywhere (variance of the mean 1e-8): passes; 10 sigma: fails.
   write_z_test_candidates(dir.path, ref, 1e-8, 1e-4, 1e-3);

@@ -8,12 +8,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <type_traits>
 
 #include <vtkDataArray.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
@@ -27,6 +29,17 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kDir = fs::path(RAYINT_SOURCE_DIR) / "tests" / "fixtures" / "vtkxml";
+
+// What VTK's reader `Reader` makes of `file`, which it must read without error (the data set
+// outlives the reader).
+template <class Reader>
+auto vtk_read(const fs::path& file) {
+  vtkNew<Reader> reader;
+  reader->SetFileName(file.string().c_str());
+  reader->Update();
+  REQUIRE(reader->GetErrorCode() == 0);
+  return vtkSmartPointer<std::remove_pointer_t<decltype(reader->GetOutput())>>(reader->GetOutput());
+}
 
 std::vector<fs::path> fixtures(const std::string& ext) {
   std::vector<fs::path> out;
@@ -43,11 +56,7 @@ TEST_CASE("rayint's .vtu reader agrees with vtkXMLUnstructuredGridReader bit for
   REQUIRE(files.size() >= 16);
   for (const fs::path& file : files) {
     INFO(file.filename().string());
-    vtkNew<vtkXMLUnstructuredGridReader> reader;
-    reader->SetFileName(file.string().c_str());
-    reader->Update();
-    REQUIRE(reader->GetErrorCode() == 0);
-    vtkUnstructuredGrid* grid = reader->GetOutput();
+    const auto grid = vtk_read<vtkXMLUnstructuredGridReader>(file);
     vtkPointData* pd = grid->GetPointData();
     int compared = 0;
     for (int a = 0; a < pd->GetNumberOfArrays(); ++a) {
@@ -81,11 +90,7 @@ TEST_CASE("rayint's .vti reader agrees with vtkXMLImageDataReader bit for bit", 
   for (const fs::path& file : files) {
     if (file.filename() == "image-direction.vti") continue;  // refused by rayint (rotated)
     INFO(file.filename().string());
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(file.string().c_str());
-    reader->Update();
-    REQUIRE(reader->GetErrorCode() == 0);
-    vtkImageData* img = reader->GetOutput();
+    const auto img = vtk_read<vtkXMLImageDataReader>(file);
     int dims[3];
     img->GetDimensions(dims);
     double first[3];
