@@ -97,6 +97,12 @@ struct CellTraversalStats {
   long budget_exhausted = 0;
   void add(const CellTraversalStats& o);
 };
+// Every counter of CellTraversalStats, in the order of the shard format (report/shard_json.cpp,
+// input/shard_reader.cpp): one list for add() and both.
+inline constexpr std::array<long CellTraversalStats::*, 7> kCellTraversalCounters{
+    &CellTraversalStats::rays,       &CellTraversalStats::chords,            &CellTraversalStats::face_steps,
+    &CellTraversalStats::star_steps, &CellTraversalStats::first_hit_queries, &CellTraversalStats::failed_chords,
+    &CellTraversalStats::budget_exhausted};
 
 // The integral of one ray: front-to-back composite of its chords, background behind.
 struct CellRayResult {

@@ -90,6 +90,12 @@ struct TraversalStats {
   long budget_exhausted = 0;   // rays cut short by the hard step budget (should stay 0)
   void add(const TraversalStats& o);
 };
+// Every counter of TraversalStats, in the order of the shard format (report/shard_json.cpp,
+// input/shard_reader.cpp): one list for add() and both.
+inline constexpr std::array<long TraversalStats::*, 7> kTraversalCounters{
+    &TraversalStats::rays,          &TraversalStats::crossings,         &TraversalStats::face_steps,
+    &TraversalStats::zero_length_steps, &TraversalStats::star_searches, &TraversalStats::first_hit_queries,
+    &TraversalStats::budget_exhausted};
 
 class TetTraversal {
  public:

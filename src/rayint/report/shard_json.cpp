@@ -21,6 +21,14 @@ nlohmann::json pixels(const std::vector<Rgb>& v) {
   return a;
 }
 
+// A stats struct's counters, in the order of its counter list, as an array.
+template <class Stats, std::size_t N>
+nlohmann::json counters(const Stats& s, const std::array<long Stats::*, N>& list) {
+  nlohmann::json a = nlohmann::json::array();
+  for (long Stats::*counter : list) a.push_back(s.*counter);
+  return a;
+}
+
 nlohmann::json worst_json(const StressCandidate& c) {
   const WorstSample& w = c.sample;
   nlohmann::json stats = nlohmann::json::object();
@@ -100,9 +108,7 @@ nlohmann::json to_json(const MeshRenderPart& p) {
                         {"segments", c.segments},
                         {"pieces", c.pieces},
                         {"threads", c.threads},
-                        {"traversal",
-                         {t.rays, t.crossings, t.face_steps, t.zero_length_steps, t.star_searches,
-                          t.first_hit_queries, t.budget_exhausted}}}}};
+                        {"traversal", counters(t, kTraversalCounters)}}}};
   if (p.compared) {
     j["compared_image"] = pixels(p.compared_image);
     j["rel_error"] = numbers(p.rel_error);
@@ -126,8 +132,7 @@ nlohmann::json to_json(const CellMeshRenderPart& p) {
                       {"max_error_estimate", exact_json(p.max_error_estimate)},
                       {"seconds", {exact_json(p.wall_seconds), exact_json(p.traversal_seconds), exact_json(p.integration_seconds)}},
                       {"threads", p.threads},
-                      {"traversal", {t.rays, t.chords, t.face_steps, t.star_steps, t.first_hit_queries, t.failed_chords,
-                                     t.budget_exhausted}}};
+                      {"traversal", counters(t, kCellTraversalCounters)}};
   if (p.compared) {
     j["compared_image"] = pixels(p.compared_image);
     j["rel_error"] = numbers(p.rel_error);
