@@ -226,24 +226,36 @@ class MshReader {
     return {blocks, n};
   }
 
+  // The header of an MSH 4 entity block of $Nodes or $Elements: entityDim entityTag <third>
+  // <count> (`layout` names them). Binary: three ints and a size_t. Text: four words, entityDim
+  // read (0-3) only when `read_dim`, the third in [0, third_max], the count as count().
+  struct BlockHeader {
+    long long dim = 0, third = 0, count = 0;
+  };
+  BlockHeader block_header(const std::string& f, const char* layout, bool read_dim, long long third_max) {
+    BlockHeader b;
+    if (binary_) {
+      b.dim = bin_int(f);
+      bin_int(f);
+      b.third = bin_int(f);
+      b.count = bin_size(f);
+    } else {
+      const auto h = c_.need_words(f, 4, layout);
+      if (read_dim) b.dim = c_.integer(h[0], f, 0, 3);
+      b.third = c_.integer(h[2], f, 0, third_max);
+      b.count = count(h[3], f);
+    }
+    return b;
+  }
+
   void nodes4() {
     const std::string f = "$Nodes";
     const auto [blocks, n] = section4_header(f, "numEntityBlocks numNodes minNodeTag maxNodeTag", "nodes");
     mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
     long long seen = 0;
     for (long long b = 0; b < blocks; ++b) {
-      long long dim = 0, parametric = 0, in_block = 0;
-      if (binary_) {
-        dim = bin_int(f);
-        bin_int(f);
-        parametric = bin_int(f);
-        in_block = bin_size(f);
-      } else {
-        const auto h = c_.need_words(f, 4, "entityDim entityTag parametric numNodesInBlock");
-        dim = c_.integer(h[0], f, 0, 3);
-        parametric = c_.integer(h[2], f, 0, 1);
-        in_block = count(h[3], f);
-      }
+      const BlockHeader h = block_header(f, "entityDim entityTag parametric numNodesInBlock", true, 1);
+      const long long dim = h.dim, parametric = h.third, in_block = h.count;
       if (dim < 0 || dim > 3) c_.fail(f, "entityDim must be 0-3");
       if (in_block > n - seen) c_.fail(f, "more nodes in the blocks than the header's " + std::to_string(n));
       seen += in_block;
@@ -381,17 +393,8 @@ class MshReader {
     long long seen = 0;
     std::vector<long long> nodes;
     for (long long b = 0; b < blocks; ++b) {
-      long long type = 0, in_block = 0;
-      if (binary_) {
-        bin_int(f);
-        bin_int(f);
-        type = bin_int(f);
-        in_block = bin_size(f);
-      } else {
-        const auto h = c_.need_words(f, 4, "entityDim entityTag elementType numElementsInBlock");
-        type = c_.integer(h[2], f, 0, 100000);
-        in_block = count(h[3], f);
-      }
+      const BlockHeader h = block_header(f, "entityDim entityTag elementType numElementsInBlock", false, 100000);
+      const long long type = h.third, in_block = h.count;
       const ElementType* et = element_type(type);
       if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
       if (in_block > n - seen) c_.fail(f, "more elements in the blocks than the header's " + std::to_string(n));
