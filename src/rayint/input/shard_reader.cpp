@@ -95,11 +95,11 @@ struct Reader {
   // The array member `key` of `j` into the counters `list` of `stats` (its length, integers).
   template <class Stats, std::size_t N>
   void counters(const nlohmann::json& j, const std::string& path, const char* key, Stats& stats,
-                const std::array<long Stats::*, N>& list) const {
+                const std::array<Counter<Stats>, N>& list) const {
     const nlohmann::json& t = array(j, path, key);
     const std::string tp = field::member_path(path, key);
     if (t.size() != N) fail(tp, "must hold " + std::to_string(N) + " counts");
-    for (std::size_t i = 0; i < N; ++i) stats.*list[i] = static_cast<long>(integer(t[i], field::index_path(tp, i)));
+    for (std::size_t i = 0; i < N; ++i) stats.*list[i].member = static_cast<long>(integer(t[i], field::index_path(tp, i)));
   }
   std::map<std::string, long> counts(const nlohmann::json& j, const std::string& path, const char* key) const {
     const nlohmann::json& v = at(j, path, key);

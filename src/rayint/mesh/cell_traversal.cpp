@@ -16,7 +16,7 @@
 namespace rayint {
 
 void CellTraversalStats::add(const CellTraversalStats& o) {
-  for (long CellTraversalStats::*counter : kCellTraversalCounters) this->*counter += o.*counter;
+  add_counters(*this, o, kCellTraversalCounters);
 }
 
 LinearCellType linear_type_of(MeshCellType type) {

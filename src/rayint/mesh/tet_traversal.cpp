@@ -17,7 +17,7 @@
 namespace rayint {
 
 void TraversalStats::add(const TraversalStats& o) {
-  for (long TraversalStats::*counter : kTraversalCounters) this->*counter += o.*counter;
+  add_counters(*this, o, kTraversalCounters);
 }
 
 namespace {

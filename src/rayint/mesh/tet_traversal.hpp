@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/counters.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/quadratic_tets.hpp"
@@ -90,12 +91,16 @@ struct TraversalStats {
   long budget_exhausted = 0;   // rays cut short by the hard step budget (should stay 0)
   void add(const TraversalStats& o);
 };
-// Every counter of TraversalStats, in the order of the shard format (report/shard_json.cpp,
-// input/shard_reader.cpp): one list for add() and both.
-inline constexpr std::array<long TraversalStats::*, 7> kTraversalCounters{
-    &TraversalStats::rays,          &TraversalStats::crossings,         &TraversalStats::face_steps,
-    &TraversalStats::zero_length_steps, &TraversalStats::star_searches, &TraversalStats::first_hit_queries,
-    &TraversalStats::budget_exhausted};
+// Every counter of TraversalStats (core/counters.hpp), in the shard format's order.
+inline constexpr std::array<Counter<TraversalStats>, 7> kTraversalCounters{{
+    {"rays", &TraversalStats::rays},
+    {"crossings", &TraversalStats::crossings},
+    {"face_steps", &TraversalStats::face_steps},
+    {"zero_length_steps", &TraversalStats::zero_length_steps},
+    {"star_searches", &TraversalStats::star_searches},
+    {"first_hit_queries", &TraversalStats::first_hit_queries},
+    {"budget_exhausted", &TraversalStats::budget_exhausted},
+}};
 
 class TetTraversal {
  public:

@@ -23,9 +23,9 @@ nlohmann::json pixels(const std::vector<Rgb>& v) {
 
 // A stats struct's counters, in the order of its counter list, as an array.
 template <class Stats, std::size_t N>
-nlohmann::json counters(const Stats& s, const std::array<long Stats::*, N>& list) {
+nlohmann::json counters(const Stats& s, const std::array<Counter<Stats>, N>& list) {
   nlohmann::json a = nlohmann::json::array();
-  for (long Stats::*counter : list) a.push_back(s.*counter);
+  for (const Counter<Stats>& c : list) a.push_back(s.*c.member);
   return a;
 }
 
