@@ -221,18 +221,8 @@ LinearCell make_linear_cell(LinearCellType type, const std::vector<Vec3>& nodes,
                                 std::to_string(n) + " nodes and values");
   LinearCell c;
   c.type = type;
-  double magnitude = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    if (!nodes[k].allFinite() || !std::isfinite(values[k]))
-      throw std::invalid_argument("linear cell: node coordinates and values must be finite");
-    c.x[k] = nodes[k];
-    c.value[k] = values[k];
-    magnitude = std::max(magnitude, nodes[k].cwiseAbs().maxCoeff());
-  }
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j)
-      c.extent = std::max(c.extent, (c.x[static_cast<std::size_t>(i)] - c.x[static_cast<std::size_t>(j)]).norm());
+  const double magnitude = copy_finite_nodes(c, nodes, values, n, "linear cell");
+  c.extent = largest_distance(c.x.data(), n);
   if (!(c.extent > 0.0)) throw std::invalid_argument("linear cell: all nodes coincide");
 
   // Affine test: the nodes at p = 0 and at the three unit points define the candidate map.
@@ -242,15 +232,10 @@ LinearCell make_linear_cell(LinearCellType type, const std::vector<Vec3>& nodes,
     for (int i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a)
         if (ref[static_cast<std::size_t>(i)] == Vec3::Unit(a)) axis_node[a] = i;
-    Eigen::Matrix3d A;
-    for (int a = 0; a < 3; ++a) A.col(a) = c.x[static_cast<std::size_t>(axis_node[a])] - c.x[0];
-    double residual = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      residual = std::max(residual, (c.x[k] - c.x[0] - A * ref[k]).cwiseAbs().maxCoeff());
-    }
+    const AffineFit fit = fit_affine(c.x.data(), ref, n, axis_node);
+    const Eigen::Matrix3d& A = fit.A;
     const double scale = A.col(0).norm() * A.col(1).norm() * A.col(2).norm();
-    if (residual <= kAffineTolerance * magnitude && std::abs(A.determinant()) > 1e-12 * scale) {
+    if (fit.residual <= kAffineTolerance * magnitude && std::abs(A.determinant()) > 1e-12 * scale) {
       c.affine = true;
       c.affine_inverse = A.inverse();
       c.affine_origin = c.x[0];
@@ -259,23 +244,9 @@ LinearCell make_linear_cell(LinearCellType type, const std::vector<Vec3>& nodes,
   return c;
 }
 
-Vec3 cell_position(const LinearCell& cell, const Vec3& p) {
-  double N[kMaxLinearNodes];
-  linear_shape_functions(cell.type, p, N);
-  return weighted_position(cell.x.data(), N, linear_node_count(cell.type));
-}
-
-double cell_scalar(const LinearCell& cell, const Vec3& p) {
-  double N[kMaxLinearNodes];
-  linear_shape_functions(cell.type, p, N);
-  return weighted_value(cell.value.data(), N, linear_node_count(cell.type));
-}
-
-Eigen::Matrix3d cell_jacobian(const LinearCell& cell, const Vec3& p) {
-  double dN[3 * kMaxLinearNodes];
-  linear_shape_derivatives(cell.type, p, dN);
-  return jacobian_from_derivatives(cell.x.data(), dN, linear_node_count(cell.type));
-}
+Vec3 cell_position(const LinearCell& cell, const Vec3& p) { return isoparametric_position(cell, p); }
+double cell_scalar(const LinearCell& cell, const Vec3& p) { return isoparametric_scalar(cell, p); }
+Eigen::Matrix3d cell_jacobian(const LinearCell& cell, const Vec3& p) { return isoparametric_jacobian(cell, p); }
 
 Vec3 cell_scalar_gradient(const LinearCell& cell, const Vec3& p) {
   const int n = linear_node_count(cell.type);
@@ -288,10 +259,7 @@ Vec3 cell_scalar_gradient(const LinearCell& cell, const Vec3& p) {
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world, const Vec3& start) {
-  return isoparametric_inverse_map(cell, linear_node_count(cell.type), world, start, [&](const Vec3& p, double* N, double* dN) {
-    linear_shape_functions(cell.type, p, N);
-    linear_shape_derivatives(cell.type, p, dN);
-  });
+  return isoparametric_inverse_map(cell, world, start);
 }
 
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world) {

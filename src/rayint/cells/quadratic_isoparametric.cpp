@@ -246,23 +246,9 @@ QuadraticFaceNodes quadratic_face(QuadraticCellType type, int face) {
 
 Vec3 quadratic_reference_centre(QuadraticCellType type) { return linear_reference_centre(quadratic_corner_type(type)); }
 
-Vec3 cell_position(const QuadraticCell& cell, const Vec3& p) {
-  double N[kMaxQuadraticNodes];
-  quadratic_shape_functions(cell.type, p, N);
-  return weighted_position(cell.x.data(), N, quadratic_node_count(cell.type));
-}
-
-double cell_scalar(const QuadraticCell& cell, const Vec3& p) {
-  double N[kMaxQuadraticNodes];
-  quadratic_shape_functions(cell.type, p, N);
-  return weighted_value(cell.value.data(), N, quadratic_node_count(cell.type));
-}
-
-Eigen::Matrix3d cell_jacobian(const QuadraticCell& cell, const Vec3& p) {
-  double dN[3 * kMaxQuadraticNodes];
-  quadratic_shape_derivatives(cell.type, p, dN);
-  return jacobian_from_derivatives(cell.x.data(), dN, quadratic_node_count(cell.type));
-}
+Vec3 cell_position(const QuadraticCell& cell, const Vec3& p) { return isoparametric_position(cell, p); }
+double cell_scalar(const QuadraticCell& cell, const Vec3& p) { return isoparametric_scalar(cell, p); }
+Eigen::Matrix3d cell_jacobian(const QuadraticCell& cell, const Vec3& p) { return isoparametric_jacobian(cell, p); }
 
 QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3>& nodes,
                                   const std::vector<double>& values) {
@@ -272,19 +258,9 @@ QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3
     throw std::invalid_argument("a " + name + " needs " + std::to_string(n) + " nodes and values");
   QuadraticCell c;
   c.type = type;
-  double magnitude = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    if (!nodes[k].allFinite() || !std::isfinite(values[k]))
-      throw std::invalid_argument(name + ": node coordinates and values must be finite");
-    c.x[k] = nodes[k];
-    c.value[k] = values[k];
-    magnitude = std::max(magnitude, nodes[k].cwiseAbs().maxCoeff());
-  }
+  const double magnitude = copy_finite_nodes(c, nodes, values, n, name);
   const int corners = corner_count(type);
-  for (int i = 0; i < corners; ++i)
-    for (int j = i + 1; j < corners; ++j)
-      c.extent = std::max(c.extent, (c.x[static_cast<std::size_t>(i)] - c.x[static_cast<std::size_t>(j)]).norm());
+  c.extent = largest_distance(c.x.data(), corners);
   if (!(c.extent > 0.0)) throw std::invalid_argument(name + ": all corners coincide");
 
   // det J on the lattice i / (kJacobianSamples - 1) of the domain (corners, mid-edge nodes, faces
@@ -337,16 +313,10 @@ QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3
     for (int a = 0; a < 3; ++a)
       if (axis_node[a] < 0 && ref[static_cast<std::size_t>(i)] == Vec3::Unit(a)) axis_node[a] = i;
   if (axis_node[0] >= 0 && axis_node[1] >= 0 && axis_node[2] >= 0) {
-    Eigen::Matrix3d A;
-    for (int a = 0; a < 3; ++a) A.col(a) = c.x[static_cast<std::size_t>(axis_node[a])] - c.x[0];
-    double residual = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      residual = std::max(residual, (c.x[k] - c.x[0] - A * ref[k]).cwiseAbs().maxCoeff());
-    }
-    if (residual <= kAffineTolerance * magnitude) {
+    const AffineFit fit = fit_affine(c.x.data(), ref, n, axis_node);
+    if (fit.residual <= kAffineTolerance * magnitude) {
       c.affine = true;
-      c.affine_inverse = A.inverse();
+      c.affine_inverse = fit.A.inverse();
       c.affine_origin = c.x[0];
     }
   }
@@ -354,10 +324,7 @@ QuadraticCell make_quadratic_cell(QuadraticCellType type, const std::vector<Vec3
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world, const Vec3& start) {
-  return isoparametric_inverse_map(cell, quadratic_node_count(cell.type), world, start, [&](const Vec3& p, double* N, double* dN) {
-    quadratic_shape_functions(cell.type, p, N);
-    quadratic_shape_derivatives(cell.type, p, dN);
-  });
+  return isoparametric_inverse_map(cell, world, start);
 }
 
 InverseMap inverse_map(const QuadraticCell& cell, const Vec3& world) {

@@ -70,22 +70,23 @@ class MshReader {
 
   TetMesh read() {
     parse();
-    if (tet_corners_.empty())
-      fail_whole("$Elements", "no tetrahedra (type 4 or 11); " + std::to_string(mesh_.info.skipped_cells) +
-                                  " elements of dimension 0-2 skipped");
+    if (tet_corners_.empty()) fail_no_elements("no tetrahedra (type 4 or 11)");
     return finish();
   }
 
   // keep_cells: every linear volume element (tetrahedra, hexahedra, prisms, pyramids).
   CellMesh read_cells() {
     parse();
-    if (cells_.empty())
-      fail_whole("$Elements", "no volume elements; " + std::to_string(mesh_.info.skipped_cells) +
-                                  " elements of dimension 0-2 skipped");
+    if (cells_.empty()) fail_no_elements("no volume elements");
     return finish_cells();
   }
 
  private:
+  // read() and read_cells() found none of the elements they keep.
+  [[noreturn]] void fail_no_elements(const std::string& what) const {
+    fail_whole("$Elements", what + "; " + std::to_string(mesh_.info.skipped_cells) + " elements of dimension 0-2 skipped");
+  }
+
   void parse() {
     bool have_format = false, have_nodes = false, have_elements = false;
     for (;;) {
@@ -225,24 +226,36 @@ class MshReader {
     return {blocks, n};
   }
 
+  // The header of an MSH 4 entity block of $Nodes or $Elements: entityDim entityTag <third>
+  // <count> (`layout` names them). Binary: three ints and a size_t. Text: four words, entityDim
+  // read (0-3) only when `read_dim`, the third in [0, third_max], the count as count().
+  struct BlockHeader {
+    long long dim = 0, third = 0, count = 0;
+  };
+  BlockHeader block_header(const std::string& f, const char* layout, bool read_dim, long long third_max) {
+    BlockHeader b;
+    if (binary_) {
+      b.dim = bin_int(f);
+      bin_int(f);
+      b.third = bin_int(f);
+      b.count = bin_size(f);
+    } else {
+      const auto h = c_.need_words(f, 4, layout);
+      if (read_dim) b.dim = c_.integer(h[0], f, 0, 3);
+      b.third = c_.integer(h[2], f, 0, third_max);
+      b.count = count(h[3], f);
+    }
+    return b;
+  }
+
   void nodes4() {
     const std::string f = "$Nodes";
     const auto [blocks, n] = section4_header(f, "numEntityBlocks numNodes minNodeTag maxNodeTag", "nodes");
     mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
     long long seen = 0;
     for (long long b = 0; b < blocks; ++b) {
-      long long dim = 0, parametric = 0, in_block = 0;
-      if (binary_) {
-        dim = bin_int(f);
-        bin_int(f);
-        parametric = bin_int(f);
-        in_block = bin_size(f);
-      } else {
-        const auto h = c_.need_words(f, 4, "entityDim entityTag parametric numNodesInBlock");
-        dim = c_.integer(h[0], f, 0, 3);
-        parametric = c_.integer(h[2], f, 0, 1);
-        in_block = count(h[3], f);
-      }
+      const BlockHeader h = block_header(f, "entityDim entityTag parametric numNodesInBlock", true, 1);
+      const long long dim = h.dim, parametric = h.third, in_block = h.count;
       if (dim < 0 || dim > 3) c_.fail(f, "entityDim must be 0-3");
       if (in_block > n - seen) c_.fail(f, "more nodes in the blocks than the header's " + std::to_string(n));
       seen += in_block;
@@ -380,17 +393,8 @@ class MshReader {
     long long seen = 0;
     std::vector<long long> nodes;
     for (long long b = 0; b < blocks; ++b) {
-      long long type = 0, in_block = 0;
-      if (binary_) {
-        bin_int(f);
-        bin_int(f);
-        type = bin_int(f);
-        in_block = bin_size(f);
-      } else {
-        const auto h = c_.need_words(f, 4, "entityDim entityTag elementType numElementsInBlock");
-        type = c_.integer(h[2], f, 0, 100000);
-        in_block = count(h[3], f);
-      }
+      const BlockHeader h = block_header(f, "entityDim entityTag elementType numElementsInBlock", false, 100000);
+      const long long type = h.third, in_block = h.count;
       const ElementType* et = element_type(type);
       if (!et) c_.fail(f, "unknown element type " + std::to_string(type));
       if (in_block > n - seen) c_.fail(f, "more elements in the blocks than the header's " + std::to_string(n));
@@ -547,6 +551,34 @@ class MshReader {
     return i;
   }
 
+  // What finish() and finish_cells() say when no data block gives the scalar.
+  std::string no_scalar_text() const {
+    return scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
+                                : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
+                                      field::quoted(scalar_name_);
+  }
+
+  // $NodeData into value (have[i] = 1 for each point given one); nodes not saved are skipped.
+  void node_data_values(MeshFileInfo& info, std::vector<double>& value, std::vector<char>& have) {
+    for (const auto& [t, v] : node_data_.node_values) {
+      if (unsaved_node(t, info)) continue;
+      const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
+      value[i] = v;
+      have[i] = 1;
+    }
+  }
+
+  // One $ElementNodeData value v for point i; a point given two different values is refused,
+  // naming it as `noun` + `label` ("node <tag>" or "point <index>").
+  void element_node_value(std::vector<double>& value, std::vector<char>& have, std::size_t i, double v,
+                          const char* noun, long long label) const {
+    if (have[i] && value[i] != v)
+      fail_whole("$ElementNodeData", noun + std::to_string(label) + " has two values (" + format_number(value[i]) +
+                                         " and " + format_number(v) + "): the field is not continuous");
+    value[i] = v;
+    have[i] = 1;
+  }
+
   TetMesh finish() {
     mesh_.tets.reserve(tet_corners_.size());
     mesh_.info.cell_ids.reserve(tet_corners_.size());
@@ -562,18 +594,10 @@ class MshReader {
           e[k] = tet_edges_[i][k] == kNoNode ? -1 : element_node(tet_edges_[i][k], tet_tags_[i]);
       }
     }
-    const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
-                                                  : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
-                                                        field::quoted(scalar_name_);
     std::vector<double> value(mesh_.points.size(), 0.0);
     std::vector<char> have(mesh_.points.size(), 0);
     if (node_data_.present) {
-      for (const auto& [t, v] : node_data_.node_values) {
-        if (unsaved_node(t, mesh_.info)) continue;
-        const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
-        value[i] = v;
-        have[i] = 1;
-      }
+      node_data_values(mesh_.info, value, have);
     } else if (element_data_.present) {
       std::unordered_map<long long, std::size_t> tet_of;
       for (std::size_t i = 0; i < tet_tags_.size(); ++i) tet_of.emplace(tet_tags_[i], i);
@@ -588,13 +612,8 @@ class MshReader {
         for (std::size_t k = 0; k < nodes; ++k) {
           // vtk node k is gmsh node gmsh_to_vtk[k]: its value is vs[gmsh_to_vtk[k]].
           const auto i = static_cast<std::size_t>(k < 4 ? mesh_.tets[it->second][k] : mesh_.edge_nodes[it->second][k - 4]);
-          const double v = vs[static_cast<std::size_t>(row->gmsh_to_vtk[k])];
-          if (have[i] && value[i] != v)
-            fail_whole("$ElementNodeData",
-                    "node " + std::to_string(tet_node(it->second, k)) + " has two values (" + format_number(value[i]) +
-                        " and " + format_number(v) + "): the field is not continuous");
-          value[i] = v;
-          have[i] = 1;
+          element_node_value(value, have, i, vs[static_cast<std::size_t>(row->gmsh_to_vtk[k])], "node ",
+                             tet_node(it->second, k));
         }
       }
     } else if (cell_data_.present) {
@@ -617,7 +636,7 @@ class MshReader {
       validate_tet_mesh_structure(mesh_, c_.source(), MeshFieldNames{"$Nodes", "$ElementData", "$Elements"});
       return std::move(mesh_);
     } else {
-      fail_whole("$NodeData", what + " (one scalar per node is required; arrays: " + list_arrays(mesh_.info.arrays) + ")");
+      fail_whole("$NodeData", no_scalar_text() + " (one scalar per node is required; arrays: " + list_arrays(mesh_.info.arrays) + ")");
     }
     mesh_.info.scalar = node_data_.present ? node_data_.name : element_data_.name;
     // Every node of a tet has a value (corners of all tets first, then the mid-edge nodes: the
@@ -651,19 +670,11 @@ class MshReader {
       m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
       m.info.cell_ids.push_back(rc.tag);
     }
-    const std::string what = scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
-                                                  : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
-                                                        field::quoted(scalar_name_);
     std::vector<double> value(m.points.size(), 0.0);
     std::vector<char> have(m.points.size(), 0);
     std::string data_field = "$NodeData";
     if (node_data_.present) {
-      for (const auto& [t, v] : node_data_.node_values) {
-        if (unsaved_node(t, m.info)) continue;
-        const auto i = static_cast<std::size_t>(node(t, "$NodeData"));
-        value[i] = v;
-        have[i] = 1;
-      }
+      node_data_values(m.info, value, have);
       m.info.scalar = node_data_.name;
     } else if (element_data_.present) {
       data_field = "$ElementNodeData";
@@ -679,12 +690,8 @@ class MshReader {
         const std::int32_t* p = m.connectivity.data() + m.offsets[it->second];
         for (std::size_t k = 0; k < vs.size(); ++k) {
           const auto i = static_cast<std::size_t>(p[k]);
-          const double v = vs[static_cast<std::size_t>(rc.row->gmsh_to_vtk[k])];
-          if (have[i] && value[i] != v)
-            fail_whole("$ElementNodeData", "point " + std::to_string(i) + " has two values (" + format_number(value[i]) +
-                                               " and " + format_number(v) + "): the field is not continuous");
-          value[i] = v;
-          have[i] = 1;
+          element_node_value(value, have, i, vs[static_cast<std::size_t>(rc.row->gmsh_to_vtk[k])], "point ",
+                             static_cast<long long>(i));
         }
       }
       m.info.scalar = element_data_.name;
@@ -717,7 +724,7 @@ class MshReader {
       validate_cell_mesh_structure(m, c_.source(), MeshFieldNames{"$Nodes", "$ElementData", "$Elements"});
       return m;
     } else {
-      fail_whole("$NodeData", what + " (one scalar per node is required; arrays: " + list_arrays(m.info.arrays) + ")");
+      fail_whole("$NodeData", no_scalar_text() + " (one scalar per node is required; arrays: " + list_arrays(m.info.arrays) + ")");
     }
     for (const std::int32_t i : m.connectivity)
       if (!have[static_cast<std::size_t>(i)])

@@ -92,6 +92,15 @@ struct Reader {
     for (std::size_t i = 0; i < n; ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
     return out;
   }
+  // The array member `key` of `j` into the counters `list` of `stats` (its length, integers).
+  template <class Stats, std::size_t N>
+  void counters(const nlohmann::json& j, const std::string& path, const char* key, Stats& stats,
+                const std::array<Counter<Stats>, N>& list) const {
+    const nlohmann::json& t = array(j, path, key);
+    const std::string tp = field::member_path(path, key);
+    if (t.size() != N) fail(tp, "must hold " + std::to_string(N) + " counts");
+    for (std::size_t i = 0; i < N; ++i) stats.*list[i].member = static_cast<long>(integer(t[i], field::index_path(tp, i)));
+  }
   std::map<std::string, long> counts(const nlohmann::json& j, const std::string& path, const char* key) const {
     const nlohmann::json& v = at(j, path, key);
     const std::string p = field::member_path(path, key);
@@ -227,13 +236,7 @@ MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::st
   cost.segments = static_cast<long>(r.nonneg(c, cp, "segments"));
   cost.pieces = static_cast<long>(r.nonneg(c, cp, "pieces"));
   cost.threads = static_cast<unsigned>(r.nonneg(c, cp, "threads"));
-  const nlohmann::json& t = r.array(c, cp, "traversal");
-  const std::string tp = field::member_path(cp, "traversal");
-  if (t.size() != 7) r.fail(tp, "must hold 7 counts");
-  long* fields[] = {&cost.traversal.rays, &cost.traversal.crossings, &cost.traversal.face_steps,
-                    &cost.traversal.zero_length_steps, &cost.traversal.star_searches,
-                    &cost.traversal.first_hit_queries, &cost.traversal.budget_exhausted};
-  for (std::size_t i = 0; i < 7; ++i) *fields[i] = static_cast<long>(r.integer(t[i], field::index_path(tp, i)));
+  r.counters(c, cp, "traversal", cost.traversal, kTraversalCounters);
   return p;
 }
 
@@ -267,12 +270,7 @@ CellMeshRenderPart cell_mesh_render_part_from_json(const nlohmann::json& j, cons
   p.traversal_seconds = sec[1];
   p.integration_seconds = sec[2];
   p.threads = static_cast<unsigned>(r.nonneg(j, path, "threads"));
-  const nlohmann::json& t = r.array(j, path, "traversal");
-  const std::string tp = field::member_path(path, "traversal");
-  if (t.size() != 7) r.fail(tp, "must hold 7 counts");
-  CellTraversalStats& s = p.traversal;
-  long* tf[] = {&s.rays, &s.chords, &s.face_steps, &s.star_steps, &s.first_hit_queries, &s.failed_chords, &s.budget_exhausted};
-  for (std::size_t i = 0; i < 7; ++i) *tf[i] = static_cast<long>(r.integer(t[i], field::index_path(tp, i)));
+  r.counters(j, path, "traversal", p.traversal, kCellTraversalCounters);
   return p;
 }
 

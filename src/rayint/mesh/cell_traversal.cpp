@@ -16,13 +16,7 @@
 namespace rayint {
 
 void CellTraversalStats::add(const CellTraversalStats& o) {
-  rays += o.rays;
-  chords += o.chords;
-  face_steps += o.face_steps;
-  star_steps += o.star_steps;
-  first_hit_queries += o.first_hit_queries;
-  failed_chords += o.failed_chords;
-  budget_exhausted += o.budget_exhausted;
+  add_counters(*this, o, kCellTraversalCounters);
 }
 
 LinearCellType linear_type_of(MeshCellType type) {

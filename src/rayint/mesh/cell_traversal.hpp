@@ -59,6 +59,7 @@
 #include "rayint/cells/cell_integral.hpp"
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/cells/quadratic_isoparametric.hpp"
+#include "rayint/core/counters.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/model/transfer_function.hpp"
@@ -97,6 +98,16 @@ struct CellTraversalStats {
   long budget_exhausted = 0;
   void add(const CellTraversalStats& o);
 };
+// Every counter of CellTraversalStats (core/counters.hpp), in the shard format's order.
+inline constexpr std::array<Counter<CellTraversalStats>, 7> kCellTraversalCounters{{
+    {"rays", &CellTraversalStats::rays},
+    {"chords", &CellTraversalStats::chords},
+    {"face_steps", &CellTraversalStats::face_steps},
+    {"star_steps", &CellTraversalStats::star_steps},
+    {"first_hit_queries", &CellTraversalStats::first_hit_queries},
+    {"failed_chords", &CellTraversalStats::failed_chords},
+    {"budget_exhausted", &CellTraversalStats::budget_exhausted},
+}};
 
 // The integral of one ray: front-to-back composite of its chords, background behind.
 struct CellRayResult {

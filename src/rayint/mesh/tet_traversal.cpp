@@ -17,13 +17,7 @@
 namespace rayint {
 
 void TraversalStats::add(const TraversalStats& o) {
-  rays += o.rays;
-  crossings += o.crossings;
-  face_steps += o.face_steps;
-  zero_length_steps += o.zero_length_steps;
-  star_searches += o.star_searches;
-  first_hit_queries += o.first_hit_queries;
-  budget_exhausted += o.budget_exhausted;
+  add_counters(*this, o, kTraversalCounters);
 }
 
 namespace {

@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/counters.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/quadratic_tets.hpp"
@@ -90,6 +91,16 @@ struct TraversalStats {
   long budget_exhausted = 0;   // rays cut short by the hard step budget (should stay 0)
   void add(const TraversalStats& o);
 };
+// Every counter of TraversalStats (core/counters.hpp), in the shard format's order.
+inline constexpr std::array<Counter<TraversalStats>, 7> kTraversalCounters{{
+    {"rays", &TraversalStats::rays},
+    {"crossings", &TraversalStats::crossings},
+    {"face_steps", &TraversalStats::face_steps},
+    {"zero_length_steps", &TraversalStats::zero_length_steps},
+    {"star_searches", &TraversalStats::star_searches},
+    {"first_hit_queries", &TraversalStats::first_hit_queries},
+    {"budget_exhausted", &TraversalStats::budget_exhausted},
+}};
 
 class TetTraversal {
  public:

@@ -11,6 +11,22 @@
 #include "rayint/core/shard.hpp"
 
 namespace rayint {
+namespace {
+
+// A worker's or a shard part's counters added to the render's: counts, seconds and traversal
+// statistics summed, the largest error estimate kept.
+template <class Counts>
+void add_counts(CellMeshRender& out, const Counts& c) {
+  out.rays += c.rays;
+  out.chords += c.chords;
+  out.failed_pixels += c.failed_pixels;
+  out.max_error_estimate = std::max(out.max_error_estimate, c.max_error_estimate);
+  out.traversal_seconds += c.traversal_seconds;
+  out.integration_seconds += c.integration_seconds;
+  out.traversal.add(c.traversal);
+}
+
+}  // namespace
 
 CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, const MeshRenderSettings& settings) {
   using Clock = std::chrono::steady_clock;
@@ -27,9 +43,9 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
   const LinearCellIntegrator integrator(mc.transfer);
   struct Worker {
     CellTrace trace;
-    CellTraversalStats stats;
-    long rays = 0, chords = 0, failed = 0;
-    double max_estimate = 0.0, traversal_seconds = 0.0, integration_seconds = 0.0;
+    CellTraversalStats traversal;
+    long rays = 0, chords = 0, failed_pixels = 0;
+    double max_error_estimate = 0.0, traversal_seconds = 0.0, integration_seconds = 0.0;
   };
   std::vector<Worker> workers(threads);
   std::atomic<int> rows_done{0};
@@ -38,7 +54,7 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
     Worker& w = workers[id];
     for (int x = 0; x < width; ++x) {
       const auto t0 = Clock::now();
-      mesh.trace(cam.ray_for_pixel(x, y), w.trace, &w.stats);
+      mesh.trace(cam.ray_for_pixel(x, y), w.trace, &w.traversal);
       const auto t1 = Clock::now();
       const CellRayResult r = mesh.integrate(w.trace, integrator, mc.background);
       w.integration_seconds += seconds(Clock::now() - t1);
@@ -48,12 +64,12 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
       if (r.converged) {
         out.image.pixels[i] = r.intensity;
-        w.max_estimate = std::max(w.max_estimate, r.error_estimate);
+        w.max_error_estimate = std::max(w.max_error_estimate, r.error_estimate);
       } else {
         const double nan = std::numeric_limits<double>::quiet_NaN();
         out.image.pixels[i] = Rgb{nan, nan, nan};
         out.failed[i] = 1;
-        ++w.failed;
+        ++w.failed_pixels;
       }
     }
     rows_done.fetch_add(1);
@@ -66,15 +82,7 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
   if (settings.progress) settings.progress(band, band);
   out.wall_seconds = seconds(Clock::now() - start);
   out.threads = threads;
-  for (const Worker& w : workers) {
-    out.rays += w.rays;
-    out.chords += w.chords;
-    out.failed_pixels += w.failed;
-    out.max_error_estimate = std::max(out.max_error_estimate, w.max_estimate);
-    out.traversal_seconds += w.traversal_seconds;
-    out.integration_seconds += w.integration_seconds;
-    out.traversal.add(w.stats);
-  }
+  for (const Worker& w : workers) add_counts(out, w);
   return out;
 }
 
@@ -139,29 +147,18 @@ CellMeshRenderPart cell_mesh_render_part(const CellMeshRender& r, const ShardSpe
 
 CellMeshRender assemble_cell_mesh_render(const std::vector<CellMeshRenderPart>& parts) {
   CellMeshRender out;
-  const std::vector<const CellMeshRenderPart*> ordered = order_bands(parts, out, "cell mesh render");
-  const bool compared = parts.front().compared;
-  out.failed.assign(out.image.pixels.size(), 0);
-  std::vector<std::size_t> pixel;
-  int covered_to = 0;
   out.threads = 0;
-  for (const CellMeshRenderPart* p : ordered) {
-    if (p->failed.size() != p->image.size()) throw std::invalid_argument("cell mesh render: parts of different renders, or overlapping");
-    const std::size_t first = place_band(*p, out, covered_to, "cell mesh render");
-    std::copy(p->failed.begin(), p->failed.end(), out.failed.begin() + static_cast<long>(first));
-    if (compared)
-      for (std::size_t i = 0; i < p->rel_error.size(); ++i) pixel.push_back(first + i);
-    out.failed_pixels += p->failed_pixels;
-    out.rays += p->rays;
-    out.chords += p->chords;
-    out.max_error_estimate = std::max(out.max_error_estimate, p->max_error_estimate);
-    out.wall_seconds += p->wall_seconds;
-    out.traversal_seconds += p->traversal_seconds;
-    out.integration_seconds += p->integration_seconds;
-    out.threads = std::max(out.threads, p->threads);
-    out.traversal.add(p->traversal);
-  }
-  if (compared && !pixel.empty()) out.error = own_error_summary(out, pixel);
+  const std::vector<std::size_t> pixel =
+      assemble_bands(parts, out, "cell mesh render", [&](const CellMeshRenderPart& p, std::size_t first) {
+        if (p.failed.size() != p.image.size())
+          throw std::invalid_argument("cell mesh render: parts of different renders, or overlapping");
+        out.failed.resize(out.image.pixels.size(), 0);  // sized with the image, at the first part
+        std::copy(p.failed.begin(), p.failed.end(), out.failed.begin() + static_cast<long>(first));
+        add_counts(out, p);
+        out.wall_seconds += p.wall_seconds;
+        out.threads = std::max(out.threads, p.threads);
+      });
+  if (!pixel.empty()) out.error = own_error_summary(out, pixel);
   return out;
 }
 

@@ -192,19 +192,8 @@ MeshRenderPart mesh_render_part(const MeshRender& r, const ShardSpec& shard) {
 
 MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts) {
   MeshRender out;
-  const std::vector<const MeshRenderPart*> ordered = order_bands(parts, out, "mesh render");
-  const bool compared = parts.front().compared;
-  std::vector<std::size_t> pixel;
-  std::vector<double> rel;
-  int covered_to = 0;
-  for (const MeshRenderPart* p : ordered) {
-    const std::size_t first = place_band(*p, out, covered_to, "mesh render");
-    if (compared)
-      for (std::size_t i = 0; i < p->rel_error.size(); ++i) {
-        pixel.push_back(first + i);
-        rel.push_back(p->rel_error[i]);
-      }
-    const MeshRenderCost& c = p->cost;
+  std::vector<std::size_t> pixel = assemble_bands(parts, out, "mesh render", [&](const MeshRenderPart& p, std::size_t) {
+    const MeshRenderCost& c = p.cost;
     out.cost.wall_seconds += c.wall_seconds;
     out.cost.traversal_seconds += c.traversal_seconds;
     out.cost.integration_seconds += c.integration_seconds;
@@ -213,8 +202,12 @@ MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts) {
     out.cost.pieces += c.pieces;
     out.cost.threads = std::max(out.cost.threads, c.threads);
     out.cost.traversal.add(c.traversal);
+  });
+  if (!pixel.empty()) {
+    std::vector<double> rel;  // the placed pixels' errors, in their order
+    for (const std::size_t i : pixel) rel.push_back(out.rel_error[i]);
+    summarize_errors(out, rel, std::move(pixel));
   }
-  if (compared && !pixel.empty()) summarize_errors(out, rel, pixel);
   return out;
 }
 

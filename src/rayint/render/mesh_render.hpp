@@ -142,6 +142,23 @@ std::size_t place_band(const Part& p, Render& out, int& covered_to, const char* 
   }
   return static_cast<std::size_t>(first);
 }
+// assemble_bands: the assembly both mesh renders share: every part's band into `out` in row order
+// (order_bands, place_band), then merge(part, its first pixel) for the rest of each part.
+// Returns the placed pixels when the parts are compared (for the error summary), else none.
+template <class Part, class Render, class Merge>
+std::vector<std::size_t> assemble_bands(const std::vector<Part>& parts, Render& out, const char* what, Merge&& merge) {
+  const std::vector<const Part*> ordered = order_bands(parts, out, what);
+  const bool compared = parts.front().compared;
+  std::vector<std::size_t> pixel;
+  int covered_to = 0;
+  for (const Part* p : ordered) {
+    const std::size_t first = place_band(*p, out, covered_to, what);
+    if (compared)
+      for (std::size_t i = 0; i < p->rel_error.size(); ++i) pixel.push_back(first + i);
+    merge(*p, first);
+  }
+  return pixel;
+}
 // The render from its parts (all of them: the single run's render exactly; some: a partial
 // merge, the missing rows black and left out of the error summary).
 MeshRender assemble_mesh_render(const std::vector<MeshRenderPart>& parts);

@@ -16,13 +16,9 @@ nlohmann::json own_cells_json(const CellTraversal& mesh) {
 }
 
 nlohmann::json to_json(const CellTraversalStats& s) {
-  return {{"rays", s.rays},
-          {"chords", s.chords},
-          {"face_steps", s.face_steps},
-          {"star_steps", s.star_steps},
-          {"first_hit_queries", s.first_hit_queries},
-          {"failed_chords", s.failed_chords},
-          {"budget_exhausted", s.budget_exhausted}};
+  nlohmann::json j = nlohmann::json::object();
+  for (const Counter<CellTraversalStats>& c : kCellTraversalCounters) j[c.name] = s.*c.member;
+  return j;
 }
 
 nlohmann::json cell_mesh_render_json(const MeshCase& mc, const CellTraversal& mesh, const CellMeshRender& r,

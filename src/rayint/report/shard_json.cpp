@@ -21,6 +21,27 @@ nlohmann::json pixels(const std::vector<Rgb>& v) {
   return a;
 }
 
+// A stats struct's counters, in the order of its counter list, as an array.
+template <class Stats, std::size_t N>
+nlohmann::json counters(const Stats& s, const std::array<Counter<Stats>, N>& list) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const Counter<Stats>& c : list) a.push_back(s.*c.member);
+  return a;
+}
+
+// The band both mesh renders' parts share (input/shard_reader.cpp read_band reads it back): its
+// size and rows, the image and, when compared, the compared image and per-pixel errors.
+template <class Part>
+nlohmann::json band_json(const Part& p) {
+  nlohmann::json j = {{"width", p.width},       {"height", p.height},   {"row_begin", p.row_begin},
+                      {"row_end", p.row_end},   {"compared", p.compared}, {"image", pixels(p.image)}};
+  if (p.compared) {
+    j["compared_image"] = pixels(p.compared_image);
+    j["rel_error"] = numbers(p.rel_error);
+  }
+  return j;
+}
+
 nlohmann::json worst_json(const StressCandidate& c) {
   const WorstSample& w = c.sample;
   nlohmann::json stats = nlohmann::json::object();
@@ -85,53 +106,29 @@ nlohmann::json to_json(const StressPartial& partial) {
 
 nlohmann::json to_json(const MeshRenderPart& p) {
   const MeshRenderCost& c = p.cost;
-  const TraversalStats& t = c.traversal;
-  nlohmann::json j = {{"width", p.width},
-                      {"height", p.height},
-                      {"row_begin", p.row_begin},
-                      {"row_end", p.row_end},
-                      {"compared", p.compared},
-                      {"image", pixels(p.image)},
-                      {"cost",
-                       {{"wall_seconds", c.wall_seconds},
-                        {"traversal_seconds", c.traversal_seconds},
-                        {"integration_seconds", c.integration_seconds},
-                        {"rays", c.rays},
-                        {"segments", c.segments},
-                        {"pieces", c.pieces},
-                        {"threads", c.threads},
-                        {"traversal",
-                         {t.rays, t.crossings, t.face_steps, t.zero_length_steps, t.star_searches,
-                          t.first_hit_queries, t.budget_exhausted}}}}};
-  if (p.compared) {
-    j["compared_image"] = pixels(p.compared_image);
-    j["rel_error"] = numbers(p.rel_error);
-  }
+  nlohmann::json j = band_json(p);
+  j["cost"] = {{"wall_seconds", c.wall_seconds},
+               {"traversal_seconds", c.traversal_seconds},
+               {"integration_seconds", c.integration_seconds},
+               {"rays", c.rays},
+               {"segments", c.segments},
+               {"pieces", c.pieces},
+               {"threads", c.threads},
+               {"traversal", counters(c.traversal, kTraversalCounters)}};
   return j;
 }
 
 nlohmann::json to_json(const CellMeshRenderPart& p) {
-  const CellTraversalStats& t = p.traversal;
   nlohmann::json failed = nlohmann::json::array();
   for (std::uint8_t f : p.failed) failed.push_back(f != 0 ? 1 : 0);
-  nlohmann::json j = {{"mode", "own"},
-                      {"width", p.width},
-                      {"height", p.height},
-                      {"row_begin", p.row_begin},
-                      {"row_end", p.row_end},
-                      {"compared", p.compared},
-                      {"image", pixels(p.image)},
-                      {"failed", failed},
-                      {"counts", {p.failed_pixels, p.rays, p.chords}},
-                      {"max_error_estimate", exact_json(p.max_error_estimate)},
-                      {"seconds", {exact_json(p.wall_seconds), exact_json(p.traversal_seconds), exact_json(p.integration_seconds)}},
-                      {"threads", p.threads},
-                      {"traversal", {t.rays, t.chords, t.face_steps, t.star_steps, t.first_hit_queries, t.failed_chords,
-                                     t.budget_exhausted}}};
-  if (p.compared) {
-    j["compared_image"] = pixels(p.compared_image);
-    j["rel_error"] = numbers(p.rel_error);
-  }
+  nlohmann::json j = band_json(p);
+  j["mode"] = "own";
+  j["failed"] = failed;
+  j["counts"] = {p.failed_pixels, p.rays, p.chords};
+  j["max_error_estimate"] = exact_json(p.max_error_estimate);
+  j["seconds"] = {exact_json(p.wall_seconds), exact_json(p.traversal_seconds), exact_json(p.integration_seconds)};
+  j["threads"] = p.threads;
+  j["traversal"] = counters(p.traversal, kCellTraversalCounters);
   return j;
 }
 

@@ -72,6 +72,16 @@ MethodRun run_method(const char* method, int grid, int bins, const Camera& cam, 
   r.gather_seconds = since(t1);
   return r;
 }
+
+// A method's options (DiscreteOrdinatesOptions, ZonalOptions, DiffusionOptions) for one run: its
+// grid, and the comparison's threads.
+template <class Options>
+Options on_grid(int grid, unsigned threads) {
+  Options options;
+  options.grid = grid;
+  options.threads = threads;
+  return options;
+}
 }  // namespace
 
 namespace {
@@ -128,19 +138,15 @@ VolumeComparisonPart compare_volume_methods_part(const ScatteringVolume& v, cons
     MethodRun r;
     if (p.diffusion) {
       say("diffusion grid " + std::to_string(p.grid));
-      DiffusionOptions df;
-      df.grid = p.grid;
-      df.threads = o.threads;
+      const auto df = on_grid<DiffusionOptions>(p.grid, o.threads);
       r = run_method(
           "diffusion", p.grid, 0, cam, o.threads, [&] { return solve_diffusion(v, df); },
           [&](const DiffusionSolution& sol, const ViewRay& ray) { return gather_diffusion(v, sol, ray); });
     } else if (!p.zonal) {
       const int g = p.grid, b = p.bins_per_edge;
       say("discrete ordinates grid " + std::to_string(g) + " bins " + std::to_string(6 * b * b));
-      DiscreteOrdinatesOptions d;
-      d.grid = g;
+      auto d = on_grid<DiscreteOrdinatesOptions>(g, o.threads);
       d.bins_per_edge = b;
-      d.threads = o.threads;
       r = run_method(
           "discrete_ordinates", g, 6 * b * b, cam, o.threads, [&] { return solve_discrete_ordinates(v, d); },
           [&](const DiscreteOrdinatesSolution& sol, const ViewRay& ray) {
@@ -148,9 +154,7 @@ VolumeComparisonPart compare_volume_methods_part(const ScatteringVolume& v, cons
           });
     } else {
       say("zonal grid " + std::to_string(p.grid));
-      ZonalOptions z;
-      z.grid = p.grid;
-      z.threads = o.threads;
+      const auto z = on_grid<ZonalOptions>(p.grid, o.threads);
       r = run_method(
           "zonal", p.grid, 0, cam, o.threads, [&] { return solve_zonal(v, z); },
           [&](const ZonalSolution& sol, const ViewRay& ray) { return gather_zonal(v, sol, ray); });
