@@ -1,9 +1,12 @@
 // rayint check CASE.json --candidate THEIRS.json -- another renderer's per-ray intensities
 // against the exact values; writes a JSON diff (docs/candidate-format.md). Exit 0 when every
-// channel of every ray is within tolerance, 1 when one is not, 2 on bad input.
+// channel of every ray is within tolerance, 1 when one is not, 2 on bad input. Mesh cases of cells
+// other than tetrahedra are checked against the cells' own interpolation (check_candidate_own).
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "check_image.hpp"
@@ -102,11 +105,21 @@ void set_check_command(CLI::App& app) {
     }
     if (candidate_json->count() == 0)
       throw CLI::RequiredError("--candidate or --candidate-image");
-    const Case c = read_case_file(opt->case_file, opt->mesh);
-    const Candidate candidate = read_candidate_file(opt->candidate_file, c);
+    // A mesh case of cells other than tetrahedra comes back in `own` (no segments): its expected
+    // values are the cells' own interpolation (studies/check.hpp check_candidate_own).
+    std::optional<MeshCase> own;
+    const Case c = read_case_file(opt->case_file, opt->mesh, nullptr, &own);
+    if (own && own->shading.enabled)
+      throw InputError(opt->case_file + ": shading: not available in the own mode of cells other than tetrahedra");
+    const Candidate candidate =
+        own ? read_candidate_file(opt->candidate_file, own->name, own->source, evaluation_rays(*own).size())
+            : read_candidate_file(opt->candidate_file, c);
     CheckOptions co = opt->check;
     co.with_reference = !opt->no_reference;
-    const CheckResult result = check_candidate(c, candidate, co);
+    if (own && !opt->image.quiet)
+      std::fprintf(stderr, "rayint check: mode own: the expected intensities integrate the cells in their own "
+                   "(isoparametric) interpolation (--cells split: VTK's tetrahedralisation)\n");
+    const CheckResult result = own ? check_candidate_own(*own, candidate, co) : check_candidate(c, candidate, co);
     emit(check_report_json(result).dump(2), opt->output);
     if (!opt->image.junit.empty())
       write_file_atomically(opt->image.junit, junit_xml({check_junit(result)}));

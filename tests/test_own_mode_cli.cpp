@@ -1,14 +1,18 @@
 // The own mode of non-tetrahedral cells (mesh/cell_traversal.hpp) through the CLI: `render
 // --shard` + `rayint merge` give the single run's image byte for byte, `render --compare METHOD`
 // measures the method on VTK's split against the own interpolation, and zero-volume cells are
-// dropped and counted (eval JSON, render --stats, mesh info) or refused with --strict-mesh
-// (tag [celltraversal][cli]).
+// dropped and counted (eval JSON, render --stats, mesh info) or refused with --strict-mesh, and
+// `check --candidate` compares a renderer's per-ray intensities with the own interpolation
+// (tag [celltraversal][cli]; the check ones also [check]).
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "test_paths.hpp"
 #include "cli_harness.hpp"
@@ -154,4 +158,151 @@ TEST_CASE("own mode: a zero-volume cell is dropped and counted, or refused with 
   CHECK(test::line_count(strict.err) == 1);
   CHECK(strict.err.find("cells[2]: a hexahedron of zero volume") != std::string::npos);
   CHECK(dir.entries() == before);
+}
+
+namespace {
+
+// A candidate file for `rayint check` of case `name` with one [r, g, b] per ray.
+std::string candidate_of(const std::string& name, const std::vector<std::array<double, 3>>& rays) {
+  nlohmann::json j = {{"case", name}, {"renderer", "test"}, {"rays", nlohmann::json::array()}};
+  for (const auto& v : rays) j["rays"].push_back({{"intensity", {v[0], v[1], v[2]}}});
+  return j.dump(1);
+}
+
+// The per-ray 50-digit reference column of `rayint eval`'s own-mode JSON: independent of the
+// double path check_candidate_own takes its expected values from (reference/cell_reference.hpp).
+std::vector<std::array<double, 3>> eval_reference_column(const fs::path& dir, const std::string& case_file) {
+  const auto e = test::run_cli(dir, "eval " + case_file + " -q");
+  INFO(e.err);
+  REQUIRE(e.status == 0);
+  const auto j = nlohmann::json::parse(e.out);
+  REQUIRE(j["mode"] == "own");
+  std::vector<std::array<double, 3>> out;
+  for (const auto& r : j["cases"][0]["rays"]) {
+    REQUIRE(r["reference"].is_array());
+    out.push_back({r["reference"][0].get<double>(), r["reference"][1].get<double>(), r["reference"][2].get<double>()});
+  }
+  return out;
+}
+
+// A case of the gmsh wedge mesh (tests/fixtures/readers/cells-prism.geo: a square prism of
+// wedges, z in [0, 0.65]) seen by a 6 x 5 camera from above.
+std::string prism_case(const std::string& mesh_file) {
+  return R"({"name": "prism", "transfer_function": {"density": [[0, 0.5], [0.5, 3.0], [1, 1.0]],
+    "color": [[0, 1.0], [0.5, 0.2], [1, 0.7]]},
+    "mesh_file": ")" + mesh_file + R"(", "background": [0.1, 0.2, 0.3],
+    "camera": {"position": [0.2, 0.1, 3.0], "look_at": [0, 0, 0.3], "fov_deg": 40, "width": 6, "height": 5}})";
+}
+
+}  // namespace
+
+TEST_CASE("own mode: check --candidate passes the 50-digit reference's intensities and names a spoiled ray", "[celltraversal][cli][check]") {
+  TempDir dir;
+  struct Mesh {
+    const char* case_name;
+    std::string json;
+  };
+  for (const Mesh& m : {Mesh{"twisted", twisted_case(kReaders + "cells-twisted.vts")},
+                        Mesh{"prism", prism_case(kReaders + "cells-prism-41.msh")}}) {
+    INFO(m.case_name);
+    dir.write("case.json", m.json);
+    const std::vector<std::array<double, 3>> ref = eval_reference_column(dir.path, "case.json");
+    REQUIRE(ref.size() >= 2);
+    // The rays see the volume: not every intensity is the background (or 0).
+    const auto bg = nlohmann::json::parse(m.json).value("background", std::vector<double>{0, 0, 0});
+    long seen = 0;
+    for (const auto& v : ref) seen += std::fabs(v[0] - bg[0]) > 1e-3 ? 1 : 0;
+    CHECK(seen > 0);
+
+    // (1) The reference's intensities pass at the default tolerance (rel 1e-6), exit 0.
+    dir.write("cand.json", candidate_of(m.case_name, ref));
+    const auto pass = test::run_cli(dir.path, "check case.json --candidate cand.json -o pass.json --junit pass.xml");
+    INFO(pass.err);
+    CHECK(pass.status == 0);
+    CHECK(pass.err.find("mode own") != std::string::npos);
+    CHECK(pass.err.find("PASS") != std::string::npos);
+    const auto pj = nlohmann::json::parse(bytes_of(dir.path / "pass.json"));
+    CHECK(pj["pass"] == true);
+    CHECK(pj["expected"] == "own");
+    CHECK(pj["summary"]["rays"].get<std::size_t>() == ref.size());
+    CHECK(pj["summary"]["expected_failed_rays"] == 0);
+    CHECK(pj["summary"]["reference_failed_rays"] == 0);
+    // The expected values (the double path) agree with the reference they are checked against.
+    CHECK(pj["summary"]["expected_max_rel_uncertainty"].get<double>() < 1e-10);
+    CHECK(bytes_of(dir.path / "pass.xml").find("failures=\"0\"") != std::string::npos);
+
+    // (2) One ray spoiled by 1e-3: exit 1, that ray named as the worst, the only one failing.
+    const std::size_t bad = ref.size() / 2;
+    std::vector<std::array<double, 3>> spoiled = ref;
+    spoiled[bad][1] += 1e-3;
+    dir.write("spoiled.json", candidate_of(m.case_name, spoiled));
+    const auto fail = test::run_cli(dir.path, "check case.json --candidate spoiled.json -o fail.json --junit fail.xml");
+    INFO(fail.err);
+    CHECK(fail.status == 1);
+    CHECK(fail.err.find("FAIL") != std::string::npos);
+    CHECK(fail.err.find("worst: ray " + std::to_string(bad) + " channel g") != std::string::npos);
+    const auto fj = nlohmann::json::parse(bytes_of(dir.path / "fail.json"));
+    CHECK(fj["pass"] == false);
+    CHECK(fj["summary"]["failed_rays"] == 1);
+    CHECK(fj["summary"]["worst"]["ray"].get<std::size_t>() == bad);
+    CHECK(fj["rays"][bad]["pass"] == false);
+    CHECK(fj["rays"][bad]["channels"][1]["abs_error"].get<double>() == Approx(1e-3).epsilon(1e-6));
+    CHECK(bytes_of(dir.path / "fail.xml").find("ray[" + std::to_string(bad) + "] channel g") != std::string::npos);
+
+    // (3) One ray too few: bad input, one line naming the candidate file and its field, exit 2.
+    std::vector<std::array<double, 3>> short_ref(ref.begin(), ref.end() - 1);
+    dir.write("short.json", candidate_of(m.case_name, short_ref));
+    const auto bad_input = test::run_cli(dir.path, "check case.json --candidate short.json -o short-diff.json");
+    test::check_one_line_exit(bad_input);
+    CHECK(bad_input.err.find("short.json: rays: has " + std::to_string(ref.size() - 1) + " entries but the case file") !=
+          std::string::npos);
+    CHECK_FALSE(fs::exists(dir.path / "short-diff.json"));
+  }
+}
+
+TEST_CASE("own mode: check --candidate fails rays whose own integration did not converge", "[celltraversal][cli][check]") {
+  TempDir dir;
+  // The bow-tie hexahedron of [celltraversal] (top face nodes 6 and 7 swapped): Newton cannot
+  // locate points in it, so some rays have no expected value. Whatever the candidate says there,
+  // the check fails (exit 1), those rays marked with why, their errors null, never 0.
+  dir.write("bow.vtk", "# vtk DataFile Version 3.0\nh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n"
+                       "0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1\nCELLS 1 9\n8 0 1 2 3 4 5 7 6\n"
+                       "CELL_TYPES 1\n12\nPOINT_DATA 8\nSCALARS s float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n");
+  dir.write("bow.json", R"({"name": "bow", "transfer_function": {"density": [[0, 1], [7, 2]], "color": [[0, 1]]},
+    "mesh_file": "bow.vtk", "camera": {"position": [0.5, 0.3, 4], "look_at": [0.5, 0.5, 0.5], "fov_deg": 40, "width": 12, "height": 12}})");
+  const auto e = test::run_cli(dir.path, "eval bow.json -q --no-reference");
+  REQUIRE(e.status == 1);
+  const auto ej = nlohmann::json::parse(e.out);
+  const long failed = ej["cases"][0]["failed"].get<long>();
+  REQUIRE(failed > 0);
+  // The candidate: eval's values where it converged, 0 where it did not (what a renderer that
+  // drew nothing there would give).
+  std::vector<std::array<double, 3>> cand;
+  for (const auto& r : ej["cases"][0]["rays"])
+    cand.push_back(r["intensity"].is_null() ? std::array<double, 3>{0, 0, 0}
+                                            : std::array<double, 3>{r["intensity"][0].get<double>(), r["intensity"][1].get<double>(),
+                                                                    r["intensity"][2].get<double>()});
+  dir.write("cand.json", candidate_of("bow", cand));
+  const auto c = test::run_cli(dir.path, "check bow.json --candidate cand.json --no-reference -o diff.json -q --junit j.xml");
+  CHECK(c.status == 1);
+  const auto d = nlohmann::json::parse(bytes_of(dir.path / "diff.json"));
+  CHECK(d["pass"] == false);
+  CHECK(d["summary"]["expected_failed_rays"].get<long>() == failed);
+  CHECK(d["summary"]["failed_rays"].get<long>() == failed);
+  long marked = 0;
+  for (std::size_t i = 0; i < d["rays"].size(); ++i) {
+    const auto& r = d["rays"][i];
+    const bool no_value = ej["cases"][0]["rays"][i]["intensity"].is_null();
+    CHECK(r["pass"] == !no_value);
+    if (!no_value) continue;
+    ++marked;
+    CHECK_FALSE(r["expected_failure"].get<std::string>().empty());
+    for (const auto& ch : r["channels"]) {
+      CHECK(ch["expected"].is_null());
+      CHECK(ch["abs_error"].is_null());
+      CHECK(ch["pass"] == false);
+    }
+  }
+  CHECK(marked == failed);
+  CHECK(bytes_of(dir.path / "j.xml").find("no expected value: ") != std::string::npos);
 }

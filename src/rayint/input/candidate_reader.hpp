@@ -29,6 +29,10 @@ void require_candidate_matches(const Candidate& candidate, const Case& c);
 
 // Reads `path`, parses it and requires it to match `c`. Throws InputError.
 Candidate read_candidate_file(const std::string& path, const Case& c);
+// The same for a case given by its name, file and ray count (a mesh case of cells in their own
+// interpolation: its evaluation rays, mesh/mesh_case.hpp). Throws InputError.
+Candidate read_candidate_file(const std::string& path, const std::string& case_name, const std::string& case_source,
+                              std::size_t rays);
 
 // Gradients. Structure only: known fields, types, finite numbers or null, consistent block sizes
 // within a ray. Throws InputError.

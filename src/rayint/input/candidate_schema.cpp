@@ -54,15 +54,20 @@ Root walk(const JsonSchema& s, const json& root, const char* key, const std::str
 }
 
 void require_case_matches(const std::string& source, const std::string& case_name, std::size_t entries,
-                          const Case& c) {
-  if (case_name != c.name)
+                          const std::string& name, const std::string& case_source, std::size_t rays) {
+  if (case_name != name)
     json_source::fail(source, "case",
-                      "is " + json_source::quoted(case_name) + " but the case file " + c.source + " is named " +
-                          json_source::quoted(c.name));
-  if (entries != c.rays.size())
+                      "is " + json_source::quoted(case_name) + " but the case file " + case_source + " is named " +
+                          json_source::quoted(name));
+  if (entries != rays)
     json_source::fail(source, "rays",
-                      "has " + std::to_string(entries) + " entries but the case file " + c.source + " has " +
-                          std::to_string(c.rays.size()) + " rays (one entry per ray, in order)");
+                      "has " + std::to_string(entries) + " entries but the case file " + case_source + " has " +
+                          std::to_string(rays) + " rays (one entry per ray, in order)");
+}
+
+void require_case_matches(const std::string& source, const std::string& case_name, std::size_t entries,
+                          const Case& c) {
+  require_case_matches(source, case_name, entries, c.name, c.source, c.rays.size());
 }
 
 }  // namespace rayint::candidate_schema

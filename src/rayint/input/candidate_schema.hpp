@@ -35,6 +35,10 @@ Root walk(const JsonSchema& s, const nlohmann::json& root, const char* key, cons
 // The candidate (file `source`) answers case `c`: the same name and `entries` == its ray count.
 void require_case_matches(const std::string& source, const std::string& case_name, std::size_t entries,
                           const Case& c);
+// The same against a case given by its name, file and ray count (a mesh case of cells in their
+// own interpolation has no segment rays: its evaluation rays, mesh/mesh_case.hpp).
+void require_case_matches(const std::string& source, const std::string& case_name, std::size_t entries,
+                          const std::string& name, const std::string& case_source, std::size_t rays);
 
 // Parses `text` (file `source`) and walks its root (walk above) into a candidate C (fields
 // source, case_name, renderer): entry(s, candidate, value, path) reads each ray's `key` value.

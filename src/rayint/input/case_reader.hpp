@@ -18,7 +18,8 @@ namespace rayint {
 // `*repairs` (when given) receives what reading its mesh reoriented and dropped.
 // A mesh case whose file holds cells other than tetrahedra (without --cells split) has no
 // segments: with `own_cells` given, its MeshCase goes there (MeshCase::cells set; eval integrates
-// it in the cells' own interpolation, studies/own_cells_eval.hpp) and the Case returned holds only
+// it in the cells' own interpolation, studies/own_cells_eval.hpp; check compares a candidate with
+// that, studies/check.hpp check_candidate_own) and the Case returned holds only
 // its name and transfer functions; without, it is refused with one line naming the mesh file.
 Case parse_case_text(std::string_view text, const std::string& source, const MeshReadOptions& mesh = {},
                      std::optional<TetRepairs>* repairs = nullptr, std::optional<MeshCase>* own_cells = nullptr);

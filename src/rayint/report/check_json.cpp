@@ -42,19 +42,28 @@ nlohmann::ordered_json check_report_json(const CheckResult& r) {
                    {"worst", {{"ray", s.worst_ray}, {"channel", kChannelNames[s.worst_channel]}}}};
   if (with_ref)
     summary["expected_max_rel_uncertainty"] = number_or_null(s.expected_max_rel_uncertainty);
+  const bool own = r.expected_method != "exact";  // own interpolation: its failures are counted
+  if (own) {
+    summary["expected_failed_rays"] = s.expected_failed_rays;
+    if (with_ref) summary["reference_failed_rays"] = s.reference_failed_rays;
+  }
   ojson rays = ojson::array();
   for (std::size_t i = 0; i < r.rays.size(); ++i) {
     ojson channels = ojson::array();
     for (int k = 0; k < kChannels; ++k)
       channels.push_back(channel_json(r.rays[i].channel[static_cast<std::size_t>(k)], k, with_ref));
-    rays.push_back({{"index", i}, {"pass", r.rays[i].pass}, {"channels", channels}});
+    ojson ray = {{"index", i}, {"pass", r.rays[i].pass}};
+    if (!r.rays[i].expected_failure.empty()) ray["expected_failure"] = r.rays[i].expected_failure;
+    if (!r.rays[i].reference_failure.empty()) ray["reference_failure"] = r.rays[i].reference_failure;
+    ray["channels"] = channels;
+    rays.push_back(ray);
   }
   return {{"tool", "rayint"},
           {"report", "check"},
           {"pass", r.pass},
           {"case", {{"name", r.case_name}, {"file", r.case_source}}},
           {"candidate", {{"file", r.candidate_source}, {"renderer", r.renderer}}},
-          {"expected", "exact"},
+          {"expected", r.expected_method},
           {"rule",
            "pass if |got - expected| <= max(abs_tol, rel_tol * |expected|) "
            "for every channel of every ray"},

@@ -13,7 +13,10 @@ std::string check_summary_line(const CheckResult& r) {
          std::to_string(s.channels) + " channels in " + std::to_string(s.failed_rays) + " of " +
          std::to_string(s.rays) + " rays outside tolerance; max rel error " + g3(s.max_rel_error) +
          ", max abs error " + g3(s.max_abs_error) + " (worst: ray " + std::to_string(s.worst_ray) +
-         " channel " + channel_names[s.worst_channel] + ")";
+         " channel " + channel_names[s.worst_channel] + ")" +
+         (s.expected_failed_rays > 0 ? "; " + std::to_string(s.expected_failed_rays) +
+                                           " rays without an expected value (own interpolation did not converge)"
+                                     : std::string());
 }
 
 }  // namespace rayint

@@ -100,6 +100,7 @@ JUnitSuite check_junit(const CheckResult& r) {
       t.message = "ray[" + std::to_string(i) + "] channel " + kChannelNames[worst] +
                   ": |got - expected| " + junit_measure(ch.abs_error, ch.allowed) + " (expected " +
                   g3(ch.expected) + ", got " + g3(ch.got) + ")";
+      if (!ray.expected_failure.empty()) t.message += "; no expected value: " + ray.expected_failure;
     }
     s.cases.push_back(t);
   }

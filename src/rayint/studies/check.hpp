@@ -19,6 +19,8 @@
 
 namespace rayint {
 
+struct MeshCase;  // mesh/mesh_case.hpp
+
 // Another renderer's answer for one case: one intensity per ray of the case, in its order.
 struct Candidate {
   std::string case_name;       // must equal Case::name
@@ -50,6 +52,10 @@ struct ChannelCheck {
 struct RayCheck {
   std::array<ChannelCheck, kChannels> channel{};
   bool pass = false;  // all channels pass
+  // Own-interpolation cases (check_candidate_own): why the expected value could not be computed
+  // (a chord that did not converge; its channels are then NaN and fail), and why the 50-digit
+  // reference could not (context only). Empty: it was.
+  std::string expected_failure, reference_failure;
 };
 
 struct CheckSummary {
@@ -62,10 +68,16 @@ struct CheckSummary {
   // Largest |expected - reference| / |reference| over all channels (NaN without the reference):
   // tolerances below it cannot be judged by this check.
   double expected_max_rel_uncertainty = std::numeric_limits<double>::quiet_NaN();
+  // Rays whose expected value failed (counted in failed_rays too) and rays whose reference
+  // failed (their channels are left out of expected_max_rel_uncertainty). Always 0 for `exact`.
+  std::size_t expected_failed_rays = 0, reference_failed_rays = 0;
 };
 
 struct CheckResult {
   std::string case_name, case_source, candidate_source, renderer;
+  // What `expected` is: "exact" (the exact method on the case's segments) or "own" (cells other
+  // than tetrahedra integrated in their own interpolation, check_candidate_own).
+  std::string expected_method = "exact";
   CheckOptions options;
   std::vector<RayCheck> rays;
   CheckSummary summary;
@@ -79,5 +91,13 @@ bool within_tolerance(double got, double expected, double rel_tol, double abs_to
 // CLI check them on input and report InputErrors): one candidate entry per ray of `c`, and
 // finite tolerances >= 0; otherwise throws std::invalid_argument. A non-finite `got` fails.
 CheckResult check_candidate(const Case& c, const Candidate& candidate, const CheckOptions& opt);
+
+// The same check on a mesh case of cells other than tetrahedra (MeshCase::cells set, "mode":
+// "own"): `expected` is each evaluation ray's intensity integrated in the cells' own interpolation
+// in double, and the reference the same chords by the 50-digit cell reference -- both as `rayint
+// eval` computes them (studies/own_cells_eval.hpp, evaluate_own_cells). A ray whose integration
+// did not converge has NaN expected channels, fails, and says why (RayCheck::expected_failure).
+// Same preconditions as check_candidate, with the case's evaluation rays (mesh/mesh_case.hpp).
+CheckResult check_candidate_own(const MeshCase& mesh_case, const Candidate& candidate, const CheckOptions& opt);
 
 }  // namespace rayint
