@@ -126,7 +126,9 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
   // A hexahedron is integrated in its own interpolation ("mode": "own"); the segment methods do
   // not apply there, and commands that need segments name --cells split.
   expect_bad(dir, "eval hex.json --methods exact -o out.json", "hex.json: --methods: the own interpolation of cells other than tetrahedra is one method");
-  expect_bad(dir, "bench hex.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra; this command takes them only with --cells split, because it needs linear segments");
+  expect_bad(dir, "bench hex.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give");
+  // grad has no --cells option: the line must not tell its user to pass one to it.
+  expect_bad(dir, "grad hex.json -o out.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give (rayint eval, render and check integrate them in it; eval, render, check and bench take VTK's tetrahedralisation of them with --cells split)");
   dir.write("nocam.json", with(kMeshCase, R"("camera": {"position": [0.3, 0.3, 4], "look_at": [0.3, 0.3, 0], "fov_deg": 30, "width": 12, "height": 10})", R"("description": "")"));
   expect_bad(dir, "render nocam.json -o out.png", "nocam.json: camera: required to render a mesh case");
   dir.write("tiny.json", kMeshCase);

@@ -118,7 +118,7 @@ TEST_CASE("CLI: bench refuses own-cells meshes (hex27, prism18, pyramid13) sayin
     INFO(b.err);
     CHECK(b.status == 2);
     CHECK(b.err.find("holds cells other than tetrahedra") != std::string::npos);
-    CHECK(b.err.find("because it needs linear segments") != std::string::npos);
+    CHECK(b.err.find("this command needs linear segments") != std::string::npos);
     CHECK(one_line(b.err));
     CHECK_FALSE(fs::exists(dir.path / "bench.json"));
     const auto e = rayint::test::run_cli(dir.path, "eval cases/e.json -q");

@@ -120,9 +120,9 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
     if (mc.cells) {  // cells other than tetrahedra, in their own interpolation: no segments
       if (!own_cells)
         throw InputError(source + ": mesh_file: " + mc.mesh_source +
-                         " holds cells other than tetrahedra; this command takes them only with --cells split, because "
-                         "it needs linear segments and their own interpolation has none (VTK's tetrahedralisation gives "
-                         "them; rayint eval, render and check integrate them in their own interpolation)");
+                         " holds cells other than tetrahedra: this command needs linear segments, which their own "
+                         "interpolation does not give (rayint eval, render and check integrate them in it; eval, render, "
+                         "check and bench take VTK's tetrahedralisation of them with --cells split)");
       Case c;
       c.name = mc.name;
       c.description = mc.description;
