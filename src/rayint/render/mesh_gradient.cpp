@@ -29,6 +29,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
     const std::size_t j = n - 1 - i;  // the segment of this crossing (segments run far -> near)
     const auto cell = static_cast<std::size_t>(x.cell);
     const auto& tet = mesh.tets[cell];
+    const TetFrame frame = tet_frame(mesh, cell);  // both ends lie in this cell
     for (int end = 0; end < 2; ++end) {  // 0: exit (t_in, nearer the eye), 1: far end (t_out)
       const double t = end == 0 ? x.t_in : x.t_out;
       Rgb g_t{}, g_s{};
@@ -37,7 +38,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
         g_s[c] = end == 0 ? g.scalar_exit[j][c] : g.scalar_far[j][c];
       }
       const Vec3 p = trace.origin + t * trace.direction;
-      const std::array<double, 4> lambda = barycentric(mesh, cell, p);
+      const std::array<double, 4> lambda = barycentric(frame, p);
       // Scalars.
       if (on_cells) {
         sink.scalar(x.cell, g_s);
@@ -223,8 +224,9 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
         const double r = p.grad.intensity[c] - target.at(x, y)[c];
         sink.weight[c] = 2.0 * r;
         p.loss += r * r;
-        finite = finite && std::isfinite(r) && std::isfinite(p.grad.channel_scale(c));
+        finite = finite && std::isfinite(r);
       }
+      finite = finite && p.grad.all_finite();  // what a finite channel_scale of every channel says
       if (!finite || !p.grad.undefined.empty()) {  // undefined: a derivative does not exist (a jump)
         ++p.failed;
         continue;
