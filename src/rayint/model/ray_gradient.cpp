@@ -37,13 +37,14 @@ double RayGradient::channel_scale(int c) const {
 }
 
 bool RayGradient::all_finite() const {
-  const auto rgb = [](const Rgb& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+  // Bitwise &, not &&: no branch per entry.
+  const auto rgb = [](const Rgb& v) { return std::isfinite(v[0]) & std::isfinite(v[1]) & std::isfinite(v[2]); };
   bool ok = rgb(background);
   for (const auto* block : {&length, &scalar_far, &scalar_exit})
-    for (const Rgb& v : *block) ok = ok && rgb(v);
+    for (const Rgb& v : *block) ok &= rgb(v);
   for (int c = 0; c < kChannels; ++c)
     for (const auto* nodes : {&density[c], &color[c]})
-      for (const NodeDerivative& d : *nodes) ok = ok && std::isfinite(d.position) && std::isfinite(d.value);
+      for (const NodeDerivative& d : *nodes) ok &= std::isfinite(d.position) & std::isfinite(d.value);
   return ok;
 }
 
