@@ -234,6 +234,46 @@ TEST_CASE("well_conditioned: the decision by squares is the one by norms at and 
   CHECK(flips < 2 * compared / 3);
 }
 
+TEST_CASE("RayGradient::all_finite says what a finite channel_scale of every channel says", "[grad][mesh]") {
+  // The image loss counts a pixel as failed by all_finite (one pass) where it asked channel_scale
+  // per channel: a NaN or an Inf in any block and channel must fail both, finite entries neither.
+  RayGradient g;
+  g.background = {0.1, -0.2, 0.3};
+  g.length.assign(3, Rgb{1.0, -2.0, 3.0});
+  g.scalar_far.assign(3, Rgb{-1e300, 2.0, 0.0});
+  g.scalar_exit.assign(3, Rgb{4.0, 5.0, -6.0});
+  for (int c = 0; c < kChannels; ++c) {
+    g.density[c].assign(2, NodeDerivative{0.5, -0.5});
+    g.color[c].assign(3, NodeDerivative{1.5, 2.5});
+  }
+  const auto scales_finite = [](const RayGradient& r) {
+    bool ok = true;
+    for (int c = 0; c < kChannels; ++c) ok = ok && std::isfinite(r.channel_scale(c));
+    return ok;
+  };
+  CHECK(g.all_finite());
+  CHECK(scales_finite(g));
+  int cases = 0;
+  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL})
+    for (int c = 0; c < kChannels; ++c) {
+      std::vector<std::function<void(RayGradient&)>> places = {
+          [&](RayGradient& r) { r.background[c] = bad; },
+          [&](RayGradient& r) { r.length[2][c] = bad; },
+          [&](RayGradient& r) { r.scalar_far[0][c] = bad; },
+          [&](RayGradient& r) { r.scalar_exit[1][c] = bad; },
+          [&](RayGradient& r) { r.density[c][1].position = bad; },
+          [&](RayGradient& r) { r.color[c][2].value = bad; }};
+      for (const auto& place : places) {
+        RayGradient b = g;
+        place(b);
+        CHECK_FALSE(b.all_finite());
+        CHECK_FALSE(scales_finite(b));
+        ++cases;
+      }
+    }
+  CHECK(cases == 54);
+}
+
 TEST_CASE("mesh gradient: a wrong candidate is caught by the same comparison", "[grad][mesh]") {
   // Two plausible mistakes of a hand-written adjoint: (a) each segment end's dI/ds shared equally
   // among the cell's 4 vertices instead of by barycentric weights; (b) positions moving only the
