@@ -201,6 +201,88 @@ TEST_CASE("mesh gradient: cell data scalars and positions", "[grad][mesh]") {
   CHECK(worst_p <= kPositionTol);
 }
 
+TEST_CASE("well_conditioned: the decision by squares is the one by norms at and around the threshold",
+          "[grad][mesh]") {
+  // The reference decision, as mesh/gradients.hpp defines it (three norms, this rounding order),
+  // written here again: |det| > kSolveVolumeRatio |a| |b| |c|.
+  const auto by_norms = [](double det, const Vec3& a, const Vec3& b, const Vec3& c) {
+    return std::isfinite(det) && std::fabs(det) > kSolveVolumeRatio * a.norm() * b.norm() * c.norm();
+  };
+  std::mt19937_64 rng(28);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), e(-35.0, 35.0);
+  long compared = 0, flips = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    // Columns of scales 1e-35 .. 1e35 (squares outside [1e-60, 1e60] take the norms' form).
+    const double sa = std::pow(10.0, e(rng)), sb = std::pow(10.0, e(rng)), sc = std::pow(10.0, e(rng));
+    const Vec3 a = sa * Vec3(u(rng), u(rng), u(rng)), b = sb * Vec3(u(rng), u(rng), u(rng)),
+               c = sc * Vec3(u(rng), u(rng), u(rng));
+    // det stepped ulp by ulp through the norms' threshold R, 3000 ulps each way (the margin,
+    // 1e-12, is ~4500 ulps: both sides of the squares' fallback band and the band itself), both signs.
+    const double R = kSolveVolumeRatio * a.norm() * b.norm() * c.norm();
+    double lo = R, hi = R;
+    for (int k = 0; k < 3000; ++k) {
+      for (double det : {lo, hi, -lo, -hi}) {
+        const bool want = by_norms(det, a, b, c);
+        flips += want ? 1 : 0;
+        ++compared;
+        if (well_conditioned(det, a, b, c) != want) {
+          FAIL_CHECK("det " << det << " R " << R << " |a| " << a.norm() << " |b| " << b.norm() << " |c| " << c.norm());
+          break;
+        }
+      }
+      lo = std::nextafter(lo, 0.0), hi = std::nextafter(hi, HUGE_VAL);
+    }
+    // Far from the threshold, and not finite.
+    for (double f : {1e-9, 1e-3, 0.5, 2.0, 1e3, 1e9})
+      CHECK(well_conditioned(f * R, a, b, c) == by_norms(f * R, a, b, c));
+    CHECK_FALSE(well_conditioned(std::nan(""), a, b, c));
+    CHECK_FALSE(well_conditioned(HUGE_VAL, a, b, c));
+  }
+  INFO("compared " << compared << ", well-conditioned " << flips);
+  CHECK(flips > compared / 3);  // both decisions were exercised (about half are above R)
+  CHECK(flips < 2 * compared / 3);
+}
+
+TEST_CASE("RayGradient::all_finite says what a finite channel_scale of every channel says", "[grad][mesh]") {
+  // The image loss counts a pixel as failed by all_finite (one pass) where it asked channel_scale
+  // per channel: a NaN or an Inf in any block and channel must fail both, finite entries neither.
+  RayGradient g;
+  g.background = {0.1, -0.2, 0.3};
+  g.length.assign(3, Rgb{1.0, -2.0, 3.0});
+  g.scalar_far.assign(3, Rgb{-1e300, 2.0, 0.0});
+  g.scalar_exit.assign(3, Rgb{4.0, 5.0, -6.0});
+  for (int c = 0; c < kChannels; ++c) {
+    g.density[c].assign(2, NodeDerivative{0.5, -0.5});
+    g.color[c].assign(3, NodeDerivative{1.5, 2.5});
+  }
+  const auto scales_finite = [](const RayGradient& r) {
+    bool ok = true;
+    for (int c = 0; c < kChannels; ++c) ok = ok && std::isfinite(r.channel_scale(c));
+    return ok;
+  };
+  CHECK(g.all_finite());
+  CHECK(scales_finite(g));
+  int cases = 0;
+  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL})
+    for (int c = 0; c < kChannels; ++c) {
+      std::vector<std::function<void(RayGradient&)>> places = {
+          [&](RayGradient& r) { r.background[c] = bad; },
+          [&](RayGradient& r) { r.length[2][c] = bad; },
+          [&](RayGradient& r) { r.scalar_far[0][c] = bad; },
+          [&](RayGradient& r) { r.scalar_exit[1][c] = bad; },
+          [&](RayGradient& r) { r.density[c][1].position = bad; },
+          [&](RayGradient& r) { r.color[c][2].value = bad; }};
+      for (const auto& place : places) {
+        RayGradient b = g;
+        place(b);
+        CHECK_FALSE(b.all_finite());
+        CHECK_FALSE(scales_finite(b));
+        ++cases;
+      }
+    }
+  CHECK(cases == 54);
+}
+
 TEST_CASE("mesh gradient: a wrong candidate is caught by the same comparison", "[grad][mesh]") {
   // Two plausible mistakes of a hand-written adjoint: (a) each segment end's dI/ds shared equally
   // among the cell's 4 vertices instead of by barycentric weights; (b) positions moving only the

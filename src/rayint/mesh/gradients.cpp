@@ -25,23 +25,29 @@ GradientMode parse_gradient_mode(const std::string& name) {
   throw std::invalid_argument("must be \"cell\", \"vertex_average\" or \"inverse_distance\", got \"" + name + "\"");
 }
 
-bool well_conditioned(double det, const Vec3& a, const Vec3& b, const Vec3& c) {
+bool well_conditioned_by_norms(double det, const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::isfinite(det) && std::fabs(det) > kSolveVolumeRatio * a.norm() * b.norm() * c.norm();
 }
 
-std::array<double, 4> barycentric(const TetMesh& mesh, std::size_t cell, const Vec3& p) {
+TetFrame tet_frame(const TetMesh& mesh, std::size_t cell) {
   const auto& t = mesh.tets[cell];
-  const Vec3& x0 = mesh.points[t[0]];
-  const Vec3 e1 = mesh.points[t[1]] - x0, e2 = mesh.points[t[2]] - x0, e3 = mesh.points[t[3]] - x0;
-  const Vec3 r = p - x0;
-  const Vec3 c23 = e2.cross(e3);
-  const double det = e1.dot(c23);
-  if (well_conditioned(det, e1, e2, e3)) {
-    const double l1 = r.dot(c23) / det, l2 = e1.dot(r.cross(e3)) / det, l3 = e1.dot(e2.cross(r)) / det;
+  TetFrame f;
+  f.x0 = mesh.points[t[0]];
+  f.e1 = mesh.points[t[1]] - f.x0, f.e2 = mesh.points[t[2]] - f.x0, f.e3 = mesh.points[t[3]] - f.x0;
+  f.c23 = f.e2.cross(f.e3);
+  f.det = f.e1.dot(f.c23);
+  f.cramer = well_conditioned(f.det, f.e1, f.e2, f.e3);
+  return f;
+}
+
+std::array<double, 4> barycentric(const TetFrame& f, const Vec3& p) {
+  const Vec3 r = p - f.x0;
+  if (f.cramer) {
+    const double l1 = r.dot(f.c23) / f.det, l2 = f.e1.dot(r.cross(f.e3)) / f.det, l3 = f.e1.dot(f.e2.cross(r)) / f.det;
     return {1.0 - l1 - l2 - l3, l1, l2, l3};
   }
   Eigen::Matrix3d e;
-  e.col(0) = e1, e.col(1) = e2, e.col(2) = e3;
+  e.col(0) = f.e1, e.col(1) = f.e2, e.col(2) = f.e3;
   const Vec3 l = e.fullPivLu().solve(r);
   return {1.0 - l[0] - l[1] - l[2], l[0], l[1], l[2]};
 }

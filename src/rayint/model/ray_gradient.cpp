@@ -36,6 +36,18 @@ double RayGradient::channel_scale(int c) const {
   return m;
 }
 
+bool RayGradient::all_finite() const {
+  // Bitwise &, not &&: no branch per entry.
+  const auto rgb = [](const Rgb& v) { return std::isfinite(v[0]) & std::isfinite(v[1]) & std::isfinite(v[2]); };
+  bool ok = rgb(background);
+  for (const auto* block : {&length, &scalar_far, &scalar_exit})
+    for (const Rgb& v : *block) ok &= rgb(v);
+  for (int c = 0; c < kChannels; ++c)
+    for (const auto* nodes : {&density[c], &color[c]})
+      for (const NodeDerivative& d : *nodes) ok &= std::isfinite(d.position) & std::isfinite(d.value);
+  return ok;
+}
+
 NodeWeights node_weights(const PiecewiseLinear& f, double lo, double s) {
   // k: the first node with scalar > lo (scalar[k-1] <= lo < scalar[k]).
   return node_weights_in(

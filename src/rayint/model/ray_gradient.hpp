@@ -66,6 +66,9 @@ struct RayGradient {
   // relative errors); NaN if an entry is NaN, except the entries `undefined` explains, which are
   // skipped when it is non-empty.
   double channel_scale(int c) const;
+  // Whether every entry of every block and channel is finite (channel_scale of each channel is
+  // then finite too, with `undefined` empty): one pass, no per-entry callback.
+  bool all_finite() const;
   // Calls f(entry_c, block, index, parameter) over channel c's entries in a fixed order:
   // background; length, scalar_far, scalar_exit per segment; density, color per node
   // (parameter "position" / "value"; "" for the segment and background blocks).

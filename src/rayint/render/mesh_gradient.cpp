@@ -29,6 +29,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
     const std::size_t j = n - 1 - i;  // the segment of this crossing (segments run far -> near)
     const auto cell = static_cast<std::size_t>(x.cell);
     const auto& tet = mesh.tets[cell];
+    const TetFrame frame = tet_frame(mesh, cell);  // both ends lie in this cell
     for (int end = 0; end < 2; ++end) {  // 0: exit (t_in, nearer the eye), 1: far end (t_out)
       const double t = end == 0 ? x.t_in : x.t_out;
       Rgb g_t{}, g_s{};
@@ -37,7 +38,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
         g_s[c] = end == 0 ? g.scalar_exit[j][c] : g.scalar_far[j][c];
       }
       const Vec3 p = trace.origin + t * trace.direction;
-      const std::array<double, 4> lambda = barycentric(mesh, cell, p);
+      const std::array<double, 4> lambda = barycentric(frame, p);
       // Scalars.
       if (on_cells) {
         sink.scalar(x.cell, g_s);
@@ -52,13 +53,24 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
       // Positions: the face the end lies on (the smallest lambda), or none (the eye inside).
       // The two smallest |lambda|, the first index among equal ones (the order a stable sort
       // gives; an end on an edge has two equal zeros, and which face is used must not vary).
+      // Selected by conditional moves, not branches (which face is random from end to end).
+      std::array<double, 4> abs_lambda{};
+      for (std::size_t k = 0; k < 4; ++k) abs_lambda[k] = std::fabs(lambda[k]);
       std::size_t m = 0;
-      for (std::size_t k = 1; k < 4; ++k)
-        if (std::fabs(lambda[k]) < std::fabs(lambda[m])) m = k;
+      double abs_m = abs_lambda[0];
+      for (std::size_t k = 1; k < 4; ++k) {
+        const bool smaller = abs_lambda[k] < abs_m;
+        m = smaller ? k : m;
+        abs_m = smaller ? abs_lambda[k] : abs_m;
+      }
       std::size_t second = m == 0 ? 1 : 0;
-      for (std::size_t k = second + 1; k < 4; ++k)
-        if (k != m && std::fabs(lambda[k]) < std::fabs(lambda[second])) second = k;
-      if (std::fabs(lambda[m]) > kOnFace) {  // interior point: t fixed, s(p) moves
+      double abs_second = abs_lambda[second];
+      for (std::size_t k = second + 1; k < 4; ++k) {
+        const bool smaller = k != m && abs_lambda[k] < abs_second;
+        second = smaller ? k : second;
+        abs_second = smaller ? abs_lambda[k] : abs_second;
+      }
+      if (abs_m > kOnFace) {  // interior point: t fixed, s(p) moves
         if (on_cells) continue;
         const Vec3& grad_s = traversal.gradient(cell);
         for (std::size_t k = 0; k < 4; ++k) {
@@ -69,7 +81,7 @@ long chain_trace(const TetTraversal& traversal, const RayTrace& trace, const Ray
         }
         continue;
       }
-      if (std::fabs(lambda[second]) <= kOnFace) ++on_edges;
+      if (abs_second <= kOnFace) ++on_edges;
       // m: the vertex opposite the face the end lies on.
       std::array<std::size_t, 3> f{};
       for (std::size_t k = 0, q = 0; k < 4; ++k)
@@ -130,17 +142,20 @@ struct LossSink {
   Rgb weight{};
   std::vector<double>* d_scalar = nullptr;
   std::vector<std::array<double, 3>>* d_position = nullptr;
+  // The sums are formed in locals before the stores: a store into the arrays could alias
+  // `weight` for the compiler, which would reload it after each one.
   void scalar(std::int32_t i, const Rgb& d) {
     double s = 0.0;
     for (int c = 0; c < kChannels; ++c) s += weight[c] * d[c];
     (*d_scalar)[static_cast<std::size_t>(i)] += s;
   }
   void position(std::int32_t i, const std::array<Rgb, 3>& d) {
-    for (int a = 0; a < 3; ++a) {
-      double s = 0.0;
-      for (int c = 0; c < kChannels; ++c) s += weight[c] * d[a][c];
-      (*d_position)[static_cast<std::size_t>(i)][static_cast<std::size_t>(a)] += s;
-    }
+    const Rgb w = weight;
+    std::array<double, 3> s{};
+    for (std::size_t a = 0; a < 3; ++a)
+      for (int c = 0; c < kChannels; ++c) s[a] += w[c] * d[a][c];
+    std::array<double, 3>& e = (*d_position)[static_cast<std::size_t>(i)];
+    for (std::size_t a = 0; a < 3; ++a) e[a] += s[a];
   }
 };
 
@@ -223,8 +238,9 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
         const double r = p.grad.intensity[c] - target.at(x, y)[c];
         sink.weight[c] = 2.0 * r;
         p.loss += r * r;
-        finite = finite && std::isfinite(r) && std::isfinite(p.grad.channel_scale(c));
+        finite = finite && std::isfinite(r);
       }
+      finite = finite && p.grad.all_finite();  // what a finite channel_scale of every channel says
       if (!finite || !p.grad.undefined.empty()) {  // undefined: a derivative does not exist (a jump)
         ++p.failed;
         continue;
