@@ -9,7 +9,7 @@
 //  - inverse_distance: as vertex_average, but each centroid gradient is weighted by
 //                      1 / |centroid - vertex| (the paper's "more accurate" average).
 // On a field linear over the whole mesh all three return that field's gradient exactly up to
-// rounding (tests/test_mesh_gradients.cpp, [mesh]: <= 1e-12 relative).
+// rounding (tests/test_mesh_traversal.cpp, "Gradients (Sec. 3.2): ...", [mesh]: <= 1e-12).
 #include <array>
 #include <cmath>
 #include <string>
