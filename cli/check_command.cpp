@@ -109,8 +109,6 @@ void set_check_command(CLI::App& app) {
     // values are the cells' own interpolation (studies/check.hpp check_candidate_own).
     std::optional<MeshCase> own;
     const Case c = read_case_file(opt->case_file, opt->mesh, nullptr, &own);
-    if (own && own->shading.enabled)
-      throw InputError(opt->case_file + ": shading: not available in the own mode of cells other than tetrahedra");
     const Candidate candidate =
         own ? read_candidate_file(opt->candidate_file, own->name, own->source, evaluation_rays(*own).size())
             : read_candidate_file(opt->candidate_file, c);

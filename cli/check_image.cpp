@@ -253,8 +253,6 @@ void run_scene_image_check(const ImageCheckOptions& o, const nlohmann::json& roo
 // Cells other than tetrahedra in their own interpolation (mesh/cell_traversal.hpp): the expected
 // image is the own render; a pixel whose chords failed is NaN there and makes the check fail.
 void run_own_cells_image_check(const ImageCheckOptions& o, MeshCase& mc, const Image& candidate, const Image& variance) {
-  if (mc.shading.enabled)
-    throw InputError(o.case_file + ": shading: not available in the own mode of cells other than tetrahedra");
   const CellTraversal mesh(std::move(*mc.cells), mc.mesh_source);
   MeshRenderSettings settings;
   settings.threads = o.threads;

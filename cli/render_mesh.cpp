@@ -214,8 +214,6 @@ namespace rayint::cli {
 namespace {
 
 void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_source::InputFileLog& read) {
-  if (mc.shading.enabled)
-    throw InputError(options.input + ": shading: not available in the own mode of cells other than tetrahedra");
   const std::string fitted = options.fit ? fit_camera_to_mesh(mc) : std::string();
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
   check_camera_reaches_mesh(mc, options.input);

@@ -127,6 +127,16 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
   // not apply there, and commands that need segments name --cells split.
   expect_bad(dir, "eval hex.json --methods exact -o out.json", "hex.json: --methods: the own interpolation of cells other than tetrahedra is one method");
   expect_bad(dir, "bench hex.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give");
+  // Surface shading is not simulated in the own mode: every command refuses it rather than
+  // integrating the case without it (eval did, exit 0).
+  dir.write("hexshade.json", R"({"name": "h", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
+    "shading": {"surfaces": [[0.4, 0.5]]}, "mesh_file": "hex.vtk",
+    "camera": {"position": [0.5, 0.5, 5], "look_at": [0.5, 0.5, 0.5], "fov_deg": 30, "width": 4, "height": 4}})");
+  const std::string shade = "hexshade.json: shading: not available in the own mode of cells other than tetrahedra";
+  expect_bad(dir, "eval hexshade.json -o out.json", shade);
+  expect_bad(dir, "render hexshade.json -o out.npy", shade);
+  expect_bad(dir, "check hexshade.json --candidate-image nosuch.npy -o out.json", shade);
+  expect_bad(dir, "check hexshade.json --candidate nosuch.json -o out.json", shade);
   // grad has no --cells option: the line must not tell its user to pass one to it.
   expect_bad(dir, "grad hex.json -o out.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give (rayint eval, render and check integrate them in it; eval, render, check and bench take VTK's tetrahedralisation of them with --cells split)");
   dir.write("nocam.json", with(kMeshCase, R"("camera": {"position": [0.3, 0.3, 4], "look_at": [0.3, 0.3, 0], "fov_deg": 30, "width": 12, "height": 10})", R"("description": "")"));

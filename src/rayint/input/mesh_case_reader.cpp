@@ -309,6 +309,10 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     refuse_far_origins(mc, source);
   }
   if (const json* sh = s.optional(root, "shading")) mc.shading = shading(s, *sh, "shading");
+  // Every command that integrates the own mode would otherwise drop the shading without a word.
+  if (mc.cells && mc.shading.enabled)
+    s.fail("shading", "not available in the own mode of cells other than tetrahedra (--cells split shades VTK's "
+                      "tetrahedralisation of them)");
   return mc;
 }
 
