@@ -100,12 +100,8 @@ void set_eval_command(CLI::App& app) {
     if (!own.empty()) {
       // Cells other than tetrahedra in their own interpolation (mesh/cell_traversal.hpp): the
       // methods take linear segments, so these cases are evaluated alone.
-      if (!cases.empty())
-        throw InputError(own.front().source + ": mesh_file: cells other than tetrahedra (own interpolation) cannot be "
-                         "evaluated together with segment cases (" + cases.front().source + "); run them separately or use --cells split");
-      if (!opt->methods.empty())
-        throw InputError(own.front().source + ": --methods: the own interpolation of cells other than tetrahedra is one "
-                         "method (cells/cell_integral.hpp); --cells split evaluates the methods on VTK's split");
+      require_own_cases_alone(own, cases.empty() ? std::string() : cases.front().source, !opt->methods.empty(),
+                              "--methods", "--cells split");
       std::vector<OwnCaseEvaluation> own_results;
       long failed = 0;
       for (const MeshCase& mc : own) {

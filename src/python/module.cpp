@@ -3,9 +3,12 @@
 // Every function calls the library code the CLI calls, so the numbers are the CLI's bit for bit:
 //   _exact_pieces   integrators/exact_batch (exact_piece in a loop), GIL released;
 //   _exact_grad, _exact_ray_grad  integrators/exact_grad (a piece's / a ray's exact gradient);
-//   _evaluate       studies/evaluate_case + report/eval_report_json (`rayint eval`);
+//   _evaluate       studies/evaluate_case + report/eval_report_json (`rayint eval`); a mesh of
+//                   cells other than tetrahedra: studies/evaluate_own_cells + report/own_eval_json;
 //   _reference      studies/reference_rays + report/to_json(ReferenceRay);
-//   _check          studies/check_candidate + report/check_report_json (`rayint check`);
+//   _check          studies/check_candidate (own cells: check_candidate_own) +
+//                   report/check_report_json (`rayint check`);
+// The three take `split` (`--cells split`: VTK's tetrahedralisation of such cells).
 //   _integrate      any registered method by its spec on arrays of segments;
 //   _composite      integrators/nerf (nerf_composite, pl_nerf_composite) on explicit samples;
 //   _mixed_regime_pieces, _regime_names  the benchmark's pieces (generators/), for timing.
@@ -36,10 +39,12 @@
 #include "rayint/integrators/exact_grad.hpp"
 #include "rayint/integrators/integrator.hpp"
 #include "rayint/integrators/nerf.hpp"
+#include "rayint/report/cell_render_json.hpp"
 #include "rayint/report/check_json.hpp"
 #include "rayint/report/evaluation_json.hpp"
 #include "rayint/studies/check.hpp"
 #include "rayint/studies/evaluate.hpp"
+#include "rayint/studies/own_cells_eval.hpp"
 
 namespace py = pybind11;
 using rayint::Case;
@@ -55,29 +60,47 @@ struct Document {
   std::string source;
 };
 
-// For a mesh case, `*repairs` (when given) receives what reading its mesh reoriented and dropped.
-Case load_case(const Document& d, std::optional<rayint::TetRepairs>* repairs = nullptr) {
-  return d.is_path ? rayint::read_case_file(d.text, {}, repairs)
-                   : rayint::parse_case_text(d.text, d.source, {}, repairs);
+// `split`: cells other than tetrahedra through VTK's tetrahedralisation (`--cells split`).
+rayint::MeshReadOptions mesh_options(bool split) {
+  rayint::MeshReadOptions o;
+  o.split_cells = split;
+  return o;
+}
+
+// For a mesh case, `*repairs` (when given) receives what reading its mesh reoriented and dropped;
+// a mesh of cells other than tetrahedra (not split) goes to `*own` when given (refused without).
+Case load_case(const Document& d, bool split, std::optional<rayint::TetRepairs>* repairs = nullptr,
+               std::optional<rayint::MeshCase>* own = nullptr) {
+  return d.is_path ? rayint::read_case_file(d.text, mesh_options(split), repairs, own)
+                   : rayint::parse_case_text(d.text, d.source, mesh_options(split), repairs, own);
 }
 
 // Every case the documents name (a folder: every case file in it, as `rayint eval`), each with
-// its mesh repairs (empty for a case without a mesh).
-std::vector<Case> load_cases(const std::vector<Document>& docs,
-                             std::vector<std::optional<rayint::TetRepairs>>& repairs) {
+// its mesh repairs (empty for a case without a mesh); cases of cells other than tetrahedra in
+// their own interpolation go to `own` instead.
+std::vector<Case> load_cases(const std::vector<Document>& docs, bool split,
+                             std::vector<std::optional<rayint::TetRepairs>>& repairs,
+                             std::vector<rayint::MeshCase>& own) {
   std::vector<Case> cases;
   const auto add = [&](auto&& read) {
     repairs.emplace_back();
-    cases.push_back(read(&repairs.back()));
+    std::optional<rayint::MeshCase> own_case;
+    Case c = read(&repairs.back(), &own_case);
+    if (own_case) {
+      repairs.pop_back();
+      own.push_back(std::move(*own_case));
+    } else {
+      cases.push_back(std::move(c));
+    }
   };
   for (const Document& d : docs) {
     if (d.is_path && std::filesystem::is_directory(d.text)) {
       const std::vector<std::string> files = rayint::list_case_files(d.text);
       if (files.empty()) throw rayint::InputError(d.text + ": folder holds no case files (*.json)");
       for (const auto& f : files)
-        add([&](std::optional<rayint::TetRepairs>* r) { return rayint::read_case_file(f, {}, r); });
+        add([&](auto* r, auto* o) { return rayint::read_case_file(f, mesh_options(split), r, o); });
     } else {
-      add([&](std::optional<rayint::TetRepairs>* r) { return load_case(d, r); });
+      add([&](auto* r, auto* o) { return load_case(d, split, r, o); });
     }
   }
   return cases;
@@ -238,11 +261,19 @@ py::tuple exact_ray_grad(const Array& length, const Array& scalar_far, const Arr
 }
 
 std::string evaluate(const std::vector<Document>& docs, const std::string& methods_csv,
-                     bool timing, unsigned threads) {
+                     bool timing, unsigned threads, bool split) {
   const std::vector<rayint::MethodSpec> methods = methods_of(methods_csv);
   py::gil_scoped_release release;
   std::vector<std::optional<rayint::TetRepairs>> repairs;
-  const std::vector<Case> cases = load_cases(docs, repairs);  // validate all before evaluating any
+  std::vector<rayint::MeshCase> own;
+  const std::vector<Case> cases = load_cases(docs, split, repairs, own);  // validate all before evaluating any
+  if (!own.empty()) {  // as `rayint eval`: alone, one method (the own interpolation), with its reference
+    rayint::require_own_cases_alone(own, cases.empty() ? std::string() : cases.front().source,
+                                    !methods_csv.empty(), "methods", "cells='split'");
+    std::vector<rayint::OwnCaseEvaluation> results;
+    for (const rayint::MeshCase& mc : own) results.push_back(rayint::evaluate_own_cells(mc, true, threads));
+    return rayint::own_eval_json(results, true).dump();
+  }
   rayint::EvalOptions eo;
   eo.measure_time = timing;
   eo.threads = threads;
@@ -254,9 +285,14 @@ std::string evaluate(const std::vector<Document>& docs, const std::string& metho
   return rayint::eval_report_json(results).dump();
 }
 
-std::string reference(const Document& doc, unsigned threads) {
+std::string reference(const Document& doc, unsigned threads, bool split) {
   py::gil_scoped_release release;
-  const Case c = load_case(doc);
+  std::optional<rayint::MeshCase> own;
+  const Case c = load_case(doc, split, nullptr, &own);
+  if (own)
+    throw rayint::InputError(own->source + ": mesh_file: cells other than tetrahedra: their 50-digit reference in "
+                             "the own interpolation comes with evaluate() (each ray's \"reference\"); "
+                             "cells='split' gives VTK's tetrahedralisation");
   nlohmann::json rays = nlohmann::json::array();
   for (const auto& r : rayint::reference_rays(c, threads)) rays.push_back(rayint::to_json(r));
   return nlohmann::json{{"case", c.name}, {"rays", rays}}.dump();
@@ -264,11 +300,20 @@ std::string reference(const Document& doc, unsigned threads) {
 
 std::pair<std::string, bool> check(const Document& case_doc, const Document& candidate_doc,
                                    double rel_tol, double abs_tol, bool with_reference,
-                                   unsigned threads) {
+                                   unsigned threads, bool split) {
   py::gil_scoped_release release;
-  const Case c = load_case(case_doc);
+  std::optional<rayint::MeshCase> own;  // cells other than tetrahedra: studies/check.hpp check_candidate_own
+  const Case c = load_case(case_doc, split, nullptr, &own);
   rayint::Candidate candidate;
-  if (candidate_doc.is_path) {
+  if (own) {
+    const std::size_t rays = rayint::evaluation_rays(*own).size();
+    if (candidate_doc.is_path) {
+      candidate = rayint::read_candidate_file(candidate_doc.text, own->name, own->source, rays);
+    } else {
+      candidate = rayint::parse_candidate_text(candidate_doc.text, candidate_doc.source);
+      rayint::require_candidate_matches(candidate, own->name, own->source, rays);
+    }
+  } else if (candidate_doc.is_path) {
     candidate = rayint::read_candidate_file(candidate_doc.text, c);
   } else {
     candidate = rayint::parse_candidate_text(candidate_doc.text, candidate_doc.source);
@@ -283,7 +328,8 @@ std::pair<std::string, bool> check(const Document& case_doc, const Document& can
   co.abs_tol = abs_tol;
   co.with_reference = with_reference;
   co.threads = threads;
-  const rayint::CheckResult result = rayint::check_candidate(c, candidate, co);
+  const rayint::CheckResult result =
+      own ? rayint::check_candidate_own(*own, candidate, co) : rayint::check_candidate(c, candidate, co);
   return {rayint::check_report_json(result).dump(), result.pass};
 }
 
@@ -330,7 +376,7 @@ py::tuple integrate(const std::string& method, const Document& doc, const Array&
   std::vector<double> intensity, transmittance;
   {
     py::gil_scoped_release release;
-    const Case c = load_case(doc);
+    const Case c = load_case(doc, false);
     const std::vector<rayint::Ray>& rays = from_arrays ? arrays_rays : c.rays;
     const auto integrator = rayint::make_integrator(spec, c.transfer);
     intensity.resize(rays.size() * 3);

@@ -145,6 +145,69 @@ def test_check_is_the_cli_bit_for_bit(tmp_path):
         rayint.check(path, str(cand_file))
 
 
+def twisted_case(tmp_path):
+    """The twisted VTK grid (24 hexahedra, tests/fixtures/readers/cells-twisted.vts) with two rays,
+    as a case file in tmp_path: cells other than tetrahedra, integrated in their own interpolation."""
+    doc = {"name": "twisted",
+           "transfer_function": {"density": [[0.2, 0.5], [0.45, 4.0], [0.7, 1.0]],
+                                 "color": [[0.2, 1.0], [0.5, 0.1], [0.7, 0.8]]},
+           "mesh_file": os.path.join(SOURCE, "tests", "fixtures", "readers", "cells-twisted.vts"),
+           "rays": [{"origin": [0.05, 0.02, -1], "direction": [0.1, 0.05, 1]},
+                    {"origin": [-0.3, 0.1, -1], "direction": [0.2, -0.1, 1]}]}
+    path = tmp_path / "twisted.json"
+    path.write_text(json.dumps(doc))
+    return str(path), doc
+
+
+def test_evaluate_and_check_take_cells_in_their_own_interpolation(tmp_path):
+    path, doc = twisted_case(tmp_path)
+    r = cli("eval", path, "--quiet")
+    assert r.returncode == 0, r.stderr
+    by_cli = json.loads(r.stdout)["cases"][0]
+    own = rayint.evaluate(path)["cases"][0]
+    assert own["mode"] == "own" and by_cli["mode"] == "own"
+    assert own["rays"] == by_cli["rays"]  # bit for bit (the reference included)
+    assert rayint.evaluate(doc)["cases"][0]["rays"] == own["rays"]
+    # A candidate made of the 50-digit own-interpolation reference passes; one ray 1e-3 off fails,
+    # and the diff is the CLI's.
+    rays = [{"intensity": ray["reference"]} for ray in own["rays"]]
+    candidate = {"case": "twisted", "renderer": "test", "rays": rays}
+    assert rayint.check(path, candidate, rel_tol=1e-12)["pass"] is True
+    rays[1]["intensity"] = [x * (1 + 1e-3) for x in rays[1]["intensity"]]
+    cand_file = tmp_path / "cand.json"
+    cand_file.write_text(json.dumps(candidate))
+    r = cli("check", path, "--candidate", str(cand_file), "--rel-tol", "1e-6", "--quiet")
+    assert r.returncode == 1, r.stderr
+    diff = rayint.check(path, str(cand_file), rel_tol=1e-6)
+    assert diff == json.loads(r.stdout)
+    assert diff["pass"] is False and diff["summary"]["failed_rays"] == 1
+    with pytest.raises(rayint.InputError, match="cand.json: rays: has 1 entries"):
+        cand_file.write_text(json.dumps(dict(candidate, rays=rays[:1])))
+        rayint.check(path, str(cand_file))
+
+
+def test_cells_split_is_the_cli_split(tmp_path):
+    path, _ = twisted_case(tmp_path)
+    r = cli("eval", path, "--cells", "split", "--methods", "exact", "--no-timing", "--quiet")
+    assert r.returncode == 0, r.stderr
+    split = rayint.evaluate(path, methods="exact", timing=False, cells="split")
+    assert split == json.loads(r.stdout)
+    ref = rayint.reference(path, cells="split")["rays"]
+    assert [x["intensity"] for x in ref] == [x["reference"]["intensity"] for x in split["cases"][0]["rays"]]
+
+
+def test_own_cells_refusals(tmp_path):
+    path, _ = twisted_case(tmp_path)
+    with pytest.raises(rayint.InputError, match="twisted.json: mesh_file: .*comes with evaluate"):
+        rayint.reference(path)
+    with pytest.raises(rayint.InputError, match="twisted.json: methods: the own interpolation"):
+        rayint.evaluate(path, methods="exact")
+    with pytest.raises(rayint.InputError, match="cannot be evaluated together with segment cases"):
+        rayint.evaluate([path, os.path.join(CASES, "paper-figure-2.json")])
+    with pytest.raises(ValueError, match="cells must be 'own' or 'split'"):
+        rayint.evaluate(path, cells="tets")
+
+
 def test_integrate_on_arrays_matches_the_case():
     path = os.path.join(CASES, "paper-figure-2.json")
     with open(path) as f:

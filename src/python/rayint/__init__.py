@@ -119,7 +119,14 @@ def exact_ray_grad(length, scalar_far, scalar_exit, background, density, color):
             "scalar_exit": d_exit, "density": list(nodes[:3]), "color": list(nodes[3:])}
 
 
-def evaluate(case, methods=None, timing=True, threads=0):
+def _split(cells):
+    """cells="own" (default) or "split", as the CLI's `--cells`."""
+    if cells not in ("own", "split"):
+        raise ValueError(f"cells must be 'own' or 'split', got {cells!r}")
+    return cells == "split"
+
+
+def evaluate(case, methods=None, timing=True, threads=0, cells="own"):
     """`rayint eval` on one case (a path or a dict), a folder of cases, or a list of them.
 
     methods: a list of spec strings ("exact", "riemann:n=64", "nerf:n=32", ...) or one
@@ -128,24 +135,33 @@ def evaluate(case, methods=None, timing=True, threads=0):
     failed on a ray has null intensity and errors there, "failed": true and its "failure" text;
     each case's "summary" counts the failed rays per method, and the top-level "failed" counts
     every failed method-ray. An invalid spec raises InputError before anything runs.
+
+    A mesh of cells other than tetrahedra (hexahedra, wedges, pyramids, voxels, quadratic cells)
+    is integrated in the cells' own interpolation, as `rayint eval` does ("mode": "own": one
+    method, with its 50-digit reference; such cases go alone and take no methods);
+    cells="split" integrates VTK's tetrahedralisation of them with the methods instead.
     """
     docs = [_document(c, "case") for c in (case if isinstance(case, (list, tuple)) else [case])]
-    return json.loads(_rayint._evaluate(docs, _methods_csv(methods), bool(timing), int(threads)))
+    return json.loads(_rayint._evaluate(docs, _methods_csv(methods), bool(timing), int(threads), _split(cells)))
 
 
-def reference(case, threads=0):
+def reference(case, threads=0, cells="own"):
     """The independent 50-digit reference of every ray of a case: {"case": name, "rays": [...]},
-    each ray as in `rayint eval`'s "reference" field (intensity, transmittance, error bound)."""
-    return json.loads(_rayint._reference(_document(case, "case"), int(threads)))
+    each ray as in `rayint eval`'s "reference" field (intensity, transmittance, error bound).
+    A mesh of cells other than tetrahedra needs cells="split" here (its own-interpolation
+    reference comes with evaluate())."""
+    return json.loads(_rayint._reference(_document(case, "case"), int(threads), _split(cells)))
 
 
-def check(case, candidate, rel_tol=1e-6, abs_tol=0.0, with_reference=True, threads=0):
+def check(case, candidate, rel_tol=1e-6, abs_tol=0.0, with_reference=True, threads=0, cells="own"):
     """`rayint check`: another renderer's per-ray intensities against the exact values.
 
     candidate: a path or a dict in the candidate format (docs/candidate-format.md). Returns the
-    diff `rayint check` writes (a dict with "pass", "summary", "rays", ...)."""
+    diff `rayint check` writes (a dict with "pass", "summary", "rays", ...). On a mesh of cells
+    other than tetrahedra the expected values are the cells' own interpolation (one per camera
+    pixel or ray, as `rayint check`); cells="split": VTK's tetrahedralisation."""
     text, _ = _rayint._check(_document(case, "case"), _document(candidate, "candidate"),
-                             float(rel_tol), float(abs_tol), bool(with_reference), int(threads))
+                             float(rel_tol), float(abs_tol), bool(with_reference), int(threads), _split(cells))
     return json.loads(text)
 
 

@@ -28,15 +28,21 @@ void require_candidate_matches(const Candidate& candidate, const Case& c) {
   candidate_schema::require_case_matches(candidate.source, candidate.case_name, candidate.intensity.size(), c);
 }
 
+void require_candidate_matches(const Candidate& candidate, const std::string& case_name,
+                               const std::string& case_source, std::size_t rays) {
+  candidate_schema::require_case_matches(candidate.source, candidate.case_name, candidate.intensity.size(), case_name,
+                                         case_source, rays);
+}
+
 Candidate read_candidate_file(const std::string& path, const Case& c) {
-  return candidate_schema::read_file(path, c, parse_candidate_text, require_candidate_matches);
+  return candidate_schema::read_file(path, c, parse_candidate_text,
+                                     static_cast<void (*)(const Candidate&, const Case&)>(require_candidate_matches));
 }
 
 Candidate read_candidate_file(const std::string& path, const std::string& case_name, const std::string& case_source,
                               std::size_t rays) {
   Candidate candidate = parse_candidate_text(json_source::read_text_file(path), path);
-  candidate_schema::require_case_matches(candidate.source, candidate.case_name, candidate.intensity.size(), case_name,
-                                         case_source, rays);
+  require_candidate_matches(candidate, case_name, case_source, rays);
   return candidate;
 }
 

@@ -26,11 +26,14 @@ Candidate parse_candidate_text(std::string_view text, const std::string& source)
 // The candidate answers case `c`: the same case name and one entry per ray. Throws InputError
 // naming the candidate's file and field (and the case file).
 void require_candidate_matches(const Candidate& candidate, const Case& c);
+// The same for a case given by its name, file and ray count (a mesh case of cells in their own
+// interpolation: its evaluation rays, mesh/mesh_case.hpp).
+void require_candidate_matches(const Candidate& candidate, const std::string& case_name,
+                               const std::string& case_source, std::size_t rays);
 
 // Reads `path`, parses it and requires it to match `c`. Throws InputError.
 Candidate read_candidate_file(const std::string& path, const Case& c);
-// The same for a case given by its name, file and ray count (a mesh case of cells in their own
-// interpolation: its evaluation rays, mesh/mesh_case.hpp). Throws InputError.
+// The same for a case given by its name, file and ray count (see above). Throws InputError.
 Candidate read_candidate_file(const std::string& path, const std::string& case_name, const std::string& case_source,
                               std::size_t rays);
 

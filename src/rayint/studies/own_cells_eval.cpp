@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rayint/core/error.hpp"
 #include "rayint/core/parallel.hpp"
 #include "rayint/reference/cell_reference.hpp"
 
@@ -115,6 +116,18 @@ OwnCaseEvaluation evaluate_own_cells(const MeshCase& mc, bool with_reference, un
     else if (e.converged) out.max_abs_error = std::max(out.max_abs_error, e.abs_error);
   }
   return out;
+}
+
+void require_own_cases_alone(const std::vector<MeshCase>& own, const std::string& first_segment_case_source,
+                             bool methods_given, const std::string& methods_field, const std::string& split_option) {
+  if (own.empty()) return;
+  if (!first_segment_case_source.empty())
+    throw InputError(own.front().source + ": mesh_file: cells other than tetrahedra (own interpolation) cannot be "
+                     "evaluated together with segment cases (" + first_segment_case_source + "); run them separately or use " +
+                     split_option);
+  if (methods_given)
+    throw InputError(own.front().source + ": " + methods_field + ": the own interpolation of cells other than tetrahedra is one "
+                     "method (cells/cell_integral.hpp); " + split_option + " evaluates the methods on VTK's split");
 }
 
 }  // namespace rayint

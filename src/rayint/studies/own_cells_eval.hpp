@@ -58,4 +58,11 @@ CellReferenceInput cell_reference_input(const QuadraticCell& cell, const Vec3& o
 // `mesh_case.cells` must be set. threads: for the reference (0 = all cores).
 OwnCaseEvaluation evaluate_own_cells(const MeshCase& mesh_case, bool with_reference, unsigned threads = 0);
 
+// Cases in the own interpolation are evaluated alone: the methods take linear segments, so they
+// cannot be mixed with segment cases nor given methods. Throws InputError naming the first own
+// case's file and `methods_field` (the caller's spelling: "--methods" for the CLI, "methods" in
+// Python); `split_option` is how the caller asks for VTK's split ("--cells split").
+void require_own_cases_alone(const std::vector<MeshCase>& own, const std::string& first_segment_case_source,
+                             bool methods_given, const std::string& methods_field, const std::string& split_option);
+
 }  // namespace rayint
