@@ -267,35 +267,17 @@ void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const {
 
 void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const { append_columns(seg, out); }
 
-void PieceChannelColumns::clear() {
-  for (auto* col : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->clear();
+void PieceChannelColumns::grow() {
+  const std::size_t n = std::max<std::size_t>(64 * kChannels, 2 * length.size());
+  for (auto* col : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(n);
 }
 
-void PieceChannelColumns::push(double len, const double* far, const double* exit) {
-  for (int c = 0; c < kChannels; ++c) {
-    length.push_back(len);
-    rho_far.push_back(far[c]);
-    rho_exit.push_back(exit[c]);
-    kappa_far.push_back(far[c + kChannels]);
-    kappa_exit.push_back(exit[c + kChannels]);
-  }
-}
-
-void GreyPieceColumns::clear() {
-  for (auto* col : {&length, &rho_far, &rho_exit}) col->clear();
-  for (int c = 0; c < kChannels; ++c) {
-    kappa_far[static_cast<std::size_t>(c)].clear();
-    kappa_exit[static_cast<std::size_t>(c)].clear();
-  }
-}
-
-void GreyPieceColumns::push(double len, const double* far, const double* exit) {
-  length.push_back(len);
-  rho_far.push_back(far[0]);
-  rho_exit.push_back(exit[0]);
-  for (int c = 0; c < kChannels; ++c) {
-    kappa_far[static_cast<std::size_t>(c)].push_back(far[c + kChannels]);
-    kappa_exit[static_cast<std::size_t>(c)].push_back(exit[c + kChannels]);
+void GreyPieceColumns::grow() {
+  const std::size_t n = std::max<std::size_t>(64, 2 * length.size());
+  for (auto* col : {&length, &rho_far, &rho_exit}) col->resize(n);
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    kappa_far[c].resize(n);
+    kappa_exit[c].resize(n);
   }
 }
 

@@ -53,22 +53,54 @@ std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray);
 // Pieces as channel columns, piece-major: entry kChannels * k + c holds channel c of piece k
 // (its length, and rho and kappa at its far and exit ends): the layout a batch of single-channel
 // integrals reads (integrators/exact_batch.hpp's PieceColumns), written without Piece structs.
+// The columns hold size() entries; the vectors may be longer (they grow in steps and are never
+// shrunk by clear()), so that push() checks the capacity once per piece, not once per column
+// (issue 33: the nine push_backs of a grey piece took ~4% of a mesh render).
 struct PieceChannelColumns {
   std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
-  void clear();
-  std::size_t size() const { return length.size(); }
-  void push(double len, const double* far, const double* exit);  // far/exit: rho r, g, b, kappa r, g, b
+  void clear() { n_ = 0; }
+  std::size_t size() const { return n_; }
+  void push(double len, const double* far, const double* exit) {  // far/exit: rho r, g, b, kappa r, g, b
+    if (n_ + kChannels > length.size()) grow();
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      length[n_ + c] = len;
+      rho_far[n_ + c] = far[c];
+      rho_exit[n_ + c] = exit[c];
+      kappa_far[n_ + c] = far[c + kChannels];
+      kappa_exit[n_ + c] = exit[c + kChannels];
+    }
+    n_ += kChannels;
+  }
+
+ private:
+  void grow();
+  std::size_t n_ = 0;
 };
 
 // Pieces of a grey medium (TransferFunctions::grey()) as columns, one entry per piece: its
 // length, its one density at the far and exit ends, and each channel's kappa (the layout of
 // integrators/exact_batch.hpp's GreyPieceView). The density is channel 0's.
+// Sized like PieceChannelColumns (size() entries, longer vectors).
 struct GreyPieceColumns {
   std::vector<double> length, rho_far, rho_exit;
   std::array<std::vector<double>, kChannels> kappa_far, kappa_exit;
-  void clear();
-  std::size_t size() const { return length.size(); }
-  void push(double len, const double* far, const double* exit);  // far/exit: rho r, g, b, kappa r, g, b
+  void clear() { n_ = 0; }
+  std::size_t size() const { return n_; }
+  void push(double len, const double* far, const double* exit) {  // far/exit: rho r, g, b, kappa r, g, b
+    if (n_ == length.size()) grow();
+    length[n_] = len;
+    rho_far[n_] = far[0];
+    rho_exit[n_] = exit[0];
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      kappa_far[c][n_] = far[c + kChannels];
+      kappa_exit[c][n_] = exit[c + kChannels];
+    }
+    ++n_;
+  }
+
+ private:
+  void grow();
+  std::size_t n_ = 0;
 };
 
 // What every piece-wise integrator needs: the transfer functions' breakpoints, collected once,
