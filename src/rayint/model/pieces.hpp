@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "rayint/model/ray.hpp"
@@ -127,6 +128,10 @@ class PieceSplitter {
   // The same pieces as grey columns (for a grey transfer(): the densities of channels 1 and 2
   // are dropped, so they must be channel 0's).
   void append(const Segment& segment, GreyPieceColumns& out) const;
+  // The pieces of every segment in order, as the per-segment append()s give them; faster along a
+  // ray, whose consecutive segment ends mostly lie between the same two breakpoints (RegionHint).
+  void append(const std::vector<Segment>& segments, PieceChannelColumns& out) const;
+  void append(const std::vector<Segment>& segments, GreyPieceColumns& out) const;
   const TransferFunctions& transfer() const { return *tf_; }
   // transfer().grey(), computed once: the grey columns may be asked for.
   bool grey() const { return grey_; }
@@ -153,16 +158,24 @@ class PieceSplitter {
   // The region of s, 0..2m: (number of breakpoints < s) + (number <= s); `lt` and `le` get the
   // two counts (the append_pieces bounds lower_bound and upper_bound). s is not NaN.
   std::size_t region(double s, std::size_t& lt, std::size_t& le) const;
+  // The last region found strictly between two breakpoints, lo < s < hi (lo = -inf below the
+  // first, hi = +inf above the last), as its count j = lt = le: an end s inside it needs two
+  // comparisons instead of the counts. NaN bounds (the start) never match.
+  struct RegionHint {
+    double lo = std::numeric_limits<double>::quiet_NaN(), hi = std::numeric_limits<double>::quiet_NaN();
+    std::size_t j = 0;
+  };
+  std::size_t region(double s, std::size_t& lt, std::size_t& le, RegionHint& hint) const;
   // The six functions at s, in the row of its region, as operator() gives them, in function order
   // (rho r, g, b, kappa r, g, b).
   void eval(const Row& row, double s, double* v) const;
   // The pieces of a segment with finite scalar ends, each handed to
   // put(length, s_far, s_exit, far values, exit values); both append()s are this.
   template <class Put>
-  void split(const Segment& segment, Put&& put) const;
+  void split(const Segment& segment, Put&& put, RegionHint& hint) const;
   // The column append()s: split(), or append_pieces for a NaN scalar end.
   template <class Columns>
-  void append_columns(const Segment& segment, Columns& out) const;
+  void append_columns(const Segment& segment, Columns& out, RegionHint& hint) const;
 
   const TransferFunctions* tf_;
   std::vector<double> breakpoints_;
