@@ -179,8 +179,11 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
   const Vec3 p = w.o + t * w.d;
   const double tol = kStarTolerance * diagonal_;
   const double tol_t = kStarTolerance * (diagonal_ + std::fabs(t));
-  std::vector<std::int32_t> queue{from};
-  std::vector<std::int32_t> seen{from};
+  // Per-thread scratch: a star search ends most rays (their exit through a boundary face), and
+  // two fresh vectors per search were a malloc and a free each.
+  thread_local std::vector<std::int32_t> queue, seen;
+  queue.assign(1, from);
+  seen.assign(1, from);
   constexpr std::size_t kMaxStar = 4096;
   bool found = false;
   double best = t;

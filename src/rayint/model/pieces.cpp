@@ -203,7 +203,7 @@ inline M2 load(const std::int64_t* p) {
 }
 
 template <class Put>
-void PieceSplitter::split(const Segment& seg, Put&& put, RegionHint& hint) const {
+[[gnu::always_inline]] inline void PieceSplitter::split(const Segment& seg, Put&& put, RegionHint& hint) const {
   // The steps of append_pieces (above), with the ends evaluated through the rows.
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
   std::size_t lt0 = 0, le0 = 0, lt1 = 0, le1 = 0;
