@@ -171,34 +171,53 @@ TEST_CASE("PieceSplitter's channel and grey columns hold append_pieces' pieces b
     tf.density[1] = tf.density[2] = tf.density[0];  // grey, so the grey columns may be asked for
     const std::vector<double> bps = tf.breakpoints();
     const PieceSplitter splitter(tf);
-    PieceChannelColumns channels;
-    GreyPieceColumns grey;
+    PieceChannelColumns channels, ray_channels;
+    GreyPieceColumns grey, ray_grey;
     std::vector<Piece> expected;
-    for (int i = 0; i < 500; ++i) {
+    std::vector<Segment> segments;
+    double s_walk = 0.5;
+    for (int i = 0; i < 1000; ++i) {
       Segment seg{2.0 * u(rng), 1.4 * u(rng) - 0.2, 1.4 * u(rng) - 0.2};
+      if (i >= 500) {  // a ray-like walk: each end near the last, some exactly on a breakpoint
+        seg.scalar_far = s_walk + 0.02 * (u(rng) - 0.5);
+        s_walk = i % 13 == 0 && !bps.empty() ? bps[static_cast<std::size_t>(i) % bps.size()] : seg.scalar_far + 0.1 * (u(rng) - 0.5);
+        seg.scalar_exit = s_walk;
+        if (i % 29 == 0) seg.scalar_far = seg.scalar_exit;  // constant scalar
+      }
       if (i % 97 == 0) seg.scalar_far = nan;  // the append_pieces fallback
       append_pieces(tf, seg, bps, expected);
       splitter.append(seg, channels);
       splitter.append(seg, grey);
+      segments.push_back(seg);
     }
+    // The whole sequence at once (the region hint along a ray) gives the same pieces.
+    splitter.append(segments, ray_channels);
+    splitter.append(segments, ray_grey);
     REQUIRE(grey.size() == expected.size());
+    REQUIRE(ray_grey.size() == expected.size());
     REQUIRE(channels.size() == kChannels * expected.size());
+    REQUIRE(ray_channels.size() == kChannels * expected.size());
     for (std::size_t k = 0; k < expected.size(); ++k) {
       const Piece& p = expected[k];
       INFO("tf " << t << " piece " << k);
-      CHECK(bits_equal(grey.length[k], p.length));
-      CHECK(bits_equal(grey.rho_far[k], p.rho_far[0]));
-      CHECK(bits_equal(grey.rho_exit[k], p.rho_exit[0]));
-      for (std::size_t c = 0; c < kChannels; ++c) {
-        const std::size_t i = kChannels * k + c;
-        CHECK(bits_equal(grey.kappa_far[c][k], p.kappa_far[c]));
-        CHECK(bits_equal(grey.kappa_exit[c][k], p.kappa_exit[c]));
-        CHECK(bits_equal(channels.length[i], p.length));
-        CHECK(bits_equal(channels.rho_far[i], p.rho_far[c]));
-        CHECK(bits_equal(channels.rho_exit[i], p.rho_exit[c]));
-        CHECK(bits_equal(channels.kappa_far[i], p.kappa_far[c]));
-        CHECK(bits_equal(channels.kappa_exit[i], p.kappa_exit[c]));
+      for (const GreyPieceColumns* g : {&grey, &ray_grey}) {
+        CHECK(bits_equal(g->length[k], p.length));
+        CHECK(bits_equal(g->rho_far[k], p.rho_far[0]));
+        CHECK(bits_equal(g->rho_exit[k], p.rho_exit[0]));
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          CHECK(bits_equal(g->kappa_far[c][k], p.kappa_far[c]));
+          CHECK(bits_equal(g->kappa_exit[c][k], p.kappa_exit[c]));
+        }
       }
+      for (const PieceChannelColumns* ch : {&channels, &ray_channels})
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          const std::size_t i = kChannels * k + c;
+          CHECK(bits_equal(ch->length[i], p.length));
+          CHECK(bits_equal(ch->rho_far[i], p.rho_far[c]));
+          CHECK(bits_equal(ch->rho_exit[i], p.rho_exit[c]));
+          CHECK(bits_equal(ch->kappa_far[i], p.kappa_far[c]));
+          CHECK(bits_equal(ch->kappa_exit[i], p.kappa_exit[c]));
+        }
     }
     pieces += static_cast<long>(expected.size());
   }

@@ -180,7 +180,7 @@ RayResult ExactIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag)
   };
   thread_local Columns col;
   col.pieces.clear();
-  for (const auto& seg : ray.segments) splitter_.append(seg, col.pieces);
+  splitter_.append(ray.segments, col.pieces);
   const std::size_t n = col.pieces.size();
   if (col.transmittance.size() < n) {
     col.transmittance.resize(n);
@@ -227,7 +227,7 @@ RayResult ExactIntegrator::integrate_grey(const Ray& ray) const {
   };
   thread_local Columns col;
   col.pieces.clear();
-  for (const auto& seg : ray.segments) splitter_.append(seg, col.pieces);
+  splitter_.append(ray.segments, col.pieces);
   const GreyPieceColumns& p = col.pieces;
   const std::size_t n = p.size();
   if (col.transmittance.size() < n) {

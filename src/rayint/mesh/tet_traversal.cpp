@@ -179,8 +179,11 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
   const Vec3 p = w.o + t * w.d;
   const double tol = kStarTolerance * diagonal_;
   const double tol_t = kStarTolerance * (diagonal_ + std::fabs(t));
-  std::vector<std::int32_t> queue{from};
-  std::vector<std::int32_t> seen{from};
+  // Per-thread scratch: a star search ends most rays (their exit through a boundary face), and
+  // two fresh vectors per search were a malloc and a free each.
+  thread_local std::vector<std::int32_t> queue, seen;
+  queue.assign(1, from);
+  seen.assign(1, from);
   constexpr std::size_t kMaxStar = 4096;
   bool found = false;
   double best = t;
@@ -260,7 +263,13 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
       c.s_out = q[0] + L * (q[1] + L * q[2]);
       c.q = q[2];
     } else {
-      const LinearTetField f = field(static_cast<std::size_t>(cell));
+      // field(cell) and ray_parameters, written out so that they are inlined (the same arithmetic).
+      const auto ci = static_cast<std::size_t>(cell);
+      const auto p0 = static_cast<std::size_t>(mesh_.tets[ci][0]);
+      LinearTetField f;
+      f.anchor = mesh_.points[p0];
+      f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[ci];
+      f.gradient = gradients_[ci];
       const Eq13 e = ray_parameters(f, w.o + a * d, d);
       c.s_in = e.v;
       c.s_out = e.v + e.w * (t_out - a);
@@ -286,18 +295,26 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
       const CellRecord& r = cells_[c];
       double t_min = std::numeric_limits<double>::infinity();
       int k_min = -1;
+      // Without a branch per face (whether the ray leaves through it is a coin toss, and its
+      // mispredictions cost more than the crossing parameters of the faces it enters through):
+      // every face's t_f is computed, and only those with n.d > 0 are taken. The values, and so
+      // the face chosen (the first of the smallest), are those of a loop that skips the others.
+      const Vec3& p_first = mesh_.points[static_cast<std::size_t>(r.first_point)];
+      const Vec3& p_second = mesh_.points[static_cast<std::size_t>(r.second_point)];
       for (int k = 0; k < 4; ++k) {
         const Vec3& normal = r.normal[static_cast<std::size_t>(k)];
         const double nd = normal.dot(d);  // sign * n.d, exactly
-        if (nd <= 0.0) continue;
-        // The ray leaves through one of these faces: start loading the cells behind them now.
-        __builtin_prefetch(&cells_[static_cast<std::size_t>(std::max(r.next[static_cast<std::size_t>(k)], 0))]);
+        const bool leaves = nd > 0.0;
+        // The ray leaves through one of these faces: start loading the cells behind them now
+        // (for a face it enters through, the current cell's record again).
+        const std::int32_t behind = r.next[static_cast<std::size_t>(k)];
+        __builtin_prefetch(&cells_[leaves && behind >= 0 ? static_cast<std::size_t>(behind) : c]);
         // crossing(w, c, k) with its denominator (the same expression, w.d == d) computed once.
-        const double tf = normal.dot(face_point(r, k) - w.o) / nd;
-        if (tf < t_min) {
-          t_min = tf;
-          k_min = k;
-        }
+        const Vec3& point = k == r.k_second ? p_second : p_first;
+        const double tf = normal.dot(point - w.o) / nd;
+        const bool take = leaves & (tf < t_min);
+        t_min = take ? tf : t_min;
+        k_min = take ? k : k_min;
       }
       const double t_out = std::max(t_in, t_min);
       if (k_min < 0 || !std::isfinite(t_out)) break;  // cannot happen for a valid tet and d != 0

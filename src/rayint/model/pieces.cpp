@@ -186,19 +186,35 @@ inline M2 load(const std::int64_t* p) {
   }
 }
 
+[[gnu::always_inline]] inline std::size_t PieceSplitter::region(double s, std::size_t& lt, std::size_t& le,
+                                                                RegionHint& hint) const {
+  if (s > hint.lo && s < hint.hi) {
+    lt = le = hint.j;
+    return 2 * hint.j;
+  }
+  const std::size_t r = region(s, lt, le);
+  if (lt == le) {  // strictly between breakpoints lt - 1 and lt
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    hint.j = lt;
+    hint.lo = lt > 0 ? breakpoints_[lt - 1] : -inf;
+    hint.hi = lt < breakpoints_.size() ? breakpoints_[lt] : inf;
+  }
+  return r;
+}
+
 template <class Put>
-void PieceSplitter::split(const Segment& seg, Put&& put) const {
+[[gnu::always_inline]] inline void PieceSplitter::split(const Segment& seg, Put&& put, RegionHint& hint) const {
   // The steps of append_pieces (above), with the ends evaluated through the rows.
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
   std::size_t lt0 = 0, le0 = 0, lt1 = 0, le1 = 0;
-  const Row& row0 = rows_[region(s0, lt0, le0)];
+  const Row& row0 = rows_[region(s0, lt0, le0, hint)];
   alignas(16) double v_far[kFunctions];
   eval(row0, s0, v_far);
   if (s0 == s1) {
     put(seg.length, s0, s1, v_far, v_far);
     return;
   }
-  const Row& row1 = rows_[region(s1, lt1, le1)];
+  const Row& row1 = rows_[region(s1, lt1, le1, hint)];
   alignas(16) double v_exit[kFunctions];
   eval(row1, s1, v_exit);
   // An end on a breakpoint (lt < le) takes the limit from inside the segment: the row holds the
@@ -238,13 +254,17 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
     return;
   }
   static_assert(kFunctions == 6 && kChannels == 3);  // Piece's constructor takes rho r, g, b, kappa r, g, b
-  split(seg, [&out](double length, double s_far, double s_exit, const double* far, const double* exit) {
-    out.emplace_back(length, s_far, s_exit, far, exit);
-  });
+  RegionHint hint;
+  split(
+      seg,
+      [&out](double length, double s_far, double s_exit, const double* far, const double* exit) {
+        out.emplace_back(length, s_far, s_exit, far, exit);
+      },
+      hint);
 }
 
 template <class Columns>
-void PieceSplitter::append_columns(const Segment& seg, Columns& out) const {
+void PieceSplitter::append_columns(const Segment& seg, Columns& out, RegionHint& hint) const {
   if (!(seg.length > 0.0)) return;
   if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit)) {
     std::vector<Piece> pieces;
@@ -258,44 +278,42 @@ void PieceSplitter::append_columns(const Segment& seg, Columns& out) const {
     }
     return;
   }
-  split(seg, [&out](double length, double, double, const double* far, const double* exit) {
-    out.push(length, far, exit);
-  });
+  split(
+      seg, [&out](double length, double, double, const double* far, const double* exit) { out.push(length, far, exit); },
+      hint);
 }
 
-void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const { append_columns(seg, out); }
-
-void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const { append_columns(seg, out); }
-
-void PieceChannelColumns::clear() {
-  for (auto* col : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->clear();
+void PieceSplitter::append(const Segment& seg, PieceChannelColumns& out) const {
+  RegionHint hint;
+  append_columns(seg, out, hint);
 }
 
-void PieceChannelColumns::push(double len, const double* far, const double* exit) {
-  for (int c = 0; c < kChannels; ++c) {
-    length.push_back(len);
-    rho_far.push_back(far[c]);
-    rho_exit.push_back(exit[c]);
-    kappa_far.push_back(far[c + kChannels]);
-    kappa_exit.push_back(exit[c + kChannels]);
-  }
+void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const {
+  RegionHint hint;
+  append_columns(seg, out, hint);
 }
 
-void GreyPieceColumns::clear() {
-  for (auto* col : {&length, &rho_far, &rho_exit}) col->clear();
-  for (int c = 0; c < kChannels; ++c) {
-    kappa_far[static_cast<std::size_t>(c)].clear();
-    kappa_exit[static_cast<std::size_t>(c)].clear();
-  }
+void PieceSplitter::append(const std::vector<Segment>& segments, PieceChannelColumns& out) const {
+  RegionHint hint;
+  for (const Segment& seg : segments) append_columns(seg, out, hint);
 }
 
-void GreyPieceColumns::push(double len, const double* far, const double* exit) {
-  length.push_back(len);
-  rho_far.push_back(far[0]);
-  rho_exit.push_back(exit[0]);
-  for (int c = 0; c < kChannels; ++c) {
-    kappa_far[static_cast<std::size_t>(c)].push_back(far[c + kChannels]);
-    kappa_exit[static_cast<std::size_t>(c)].push_back(exit[c + kChannels]);
+void PieceSplitter::append(const std::vector<Segment>& segments, GreyPieceColumns& out) const {
+  RegionHint hint;
+  for (const Segment& seg : segments) append_columns(seg, out, hint);
+}
+
+void PieceChannelColumns::grow() {
+  const std::size_t n = std::max<std::size_t>(64 * kChannels, 2 * length.size());
+  for (auto* col : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) col->resize(n);
+}
+
+void GreyPieceColumns::grow() {
+  const std::size_t n = std::max<std::size_t>(64, 2 * length.size());
+  for (auto* col : {&length, &rho_far, &rho_exit}) col->resize(n);
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    kappa_far[c].resize(n);
+    kappa_exit[c].resize(n);
   }
 }
 
