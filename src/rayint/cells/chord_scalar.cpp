@@ -67,7 +67,33 @@ MultilinearCell multilinear_form(const LinearCell& cell) {
 
 ChordScalar::ChordScalar(const LinearCell& cell, const ViewRay& ray)
     : m_(multilinear_form(cell)), cell_(&cell), o_(ray.origin), d_(ray.direction),
-      start_(linear_reference_centre(cell.type)) {}
+      start_(linear_reference_centre(cell.type)) {
+  // f's monomial coefficients, as x's (Moebius inversion of f at the cube's corners): used only
+  // for taylor_tail's bound, never for a value of f.
+  std::array<double, 8> fc{};
+  double N[kMaxLinearNodes];
+  const int n = linear_node_count(cell.type);
+  for (int q = 0; q < 8; ++q) {
+    linear_shape_functions(cell.type, Vec3((q & 1) ? 1.0 : 0.0, (q & 2) ? 1.0 : 0.0, (q & 4) ? 1.0 : 0.0), N);
+    for (int i = 0; i < n; ++i) fc[static_cast<std::size_t>(q)] += N[i] * cell.value[static_cast<std::size_t>(i)];
+  }
+  constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};
+  for (int slot = 0; slot < 8; ++slot)
+    for (int q = 0; q < 8; ++q)
+      if ((q & ~kBits[slot]) == 0)
+        F_[static_cast<std::size_t>(slot)] +=
+            (__builtin_popcount(static_cast<unsigned>(kBits[slot] ^ q)) % 2 == 0 ? 1.0 : -1.0) * fc[static_cast<std::size_t>(q)];
+}
+
+double ChordScalar::taylor_tail(int n) const {
+  if (!converged_) return std::numeric_limits<double>::infinity();
+  // The series' truncation: every |P_k| h^k beyond order_ taken as kTaylorNegligible, times f's
+  // linear coefficients, and 4x for the products and the rest of the (geometric) tail.
+  double sum = 4 * kTaylorNegligible * (std::abs(F_[1]) + std::abs(F_[2]) + std::abs(F_[3]) + std::abs(F_[4]) +
+                                        std::abs(F_[5]) + std::abs(F_[6]) + std::abs(F_[7]));
+  for (int k = n + 1; k <= order_; ++k) sum += std::abs(f_series_[static_cast<std::size_t>(k)]);
+  return sum;
+}
 
 // linear_cells.cpp's inverse_map on the multilinear form: the same tolerances and budget.
 // With `step_first` the residual test is skipped before the first step: a point that passes it
@@ -92,6 +118,7 @@ bool ChordScalar::newton(const Vec3& target, Vec3& p, bool step_first) {
 
 bool ChordScalar::expand(double a, double b) {
   order_ = -1;
+  converged_ = false;
   t_c_ = 0.5 * (a + b);
   const double h = 0.5 * (b - a);
   Vec3 p0 = start_;
@@ -131,10 +158,35 @@ bool ChordScalar::expand(double a, double b) {
     U[K] = Uk + r0 * Pk[1] + Pk[0] * s0;
     V[K] = Vk + r0 * Pk[2] + Pk[0] * t0;
     W[K] = Wk + s0 * Pk[2] + Pk[1] * t0;
+    const double X = Xk + q0.rs * Pk[2] + (r0 * Pk[1] + Pk[0] * s0) * t0;  // rst's coefficient
     order_ = k;
     hk *= h;
+    f_series_[K] = hk * (F_[1] * Pk[0] + F_[2] * Pk[1] + F_[3] * Pk[2] + F_[4] * U[K] + F_[5] * V[K] + F_[6] * W[K] + F_[7] * X);
     small = (Pk.cwiseAbs().maxCoeff() * hk <= kTaylorNegligible) ? small + 1 : 0;
-    if (small >= 2) break;
+    if (small >= 2) {
+      converged_ = true;
+      break;
+    }
+  }
+  // Contraction of the simplified step p += J(P_0)^-1 (target - x(p)) on the interval: its
+  // error map is I - J(P_0)^-1 J(p), and J(p) - J(P_0) is bounded entrywise through
+  // D >= max |p - P_0| (the series' terms, plus the truncated rest): with |ds|, |dt| <= D the
+  // first column moves by <= D |x_4| + D |x_5| + D (|s0| + |t0| + D) |x_7|, and so on.
+  J0inv_ = Jinv;
+  contraction_ = 1.0;
+  if (converged_) {
+    double D = 4 * kTaylorNegligible, hp = 1.0;
+    for (int k = 1; k <= order_; ++k) {
+      hp *= h;
+      D += P_[static_cast<std::size_t>(k)].cwiseAbs().maxCoeff() * hp;
+    }
+    const auto ax = [&](int m) { return m_.x[static_cast<std::size_t>(m)].cwiseAbs(); };
+    Eigen::Matrix3d B;
+    B.col(0) = D * (ax(4) + ax(5)) + D * (std::abs(s0) + std::abs(t0) + D) * ax(7);
+    B.col(1) = D * (ax(4) + ax(6)) + D * (std::abs(r0) + std::abs(t0) + D) * ax(7);
+    B.col(2) = D * (ax(5) + ax(6)) + D * (std::abs(r0) + std::abs(s0) + D) * ax(7);
+    const double q = (Jinv.cwiseAbs() * B).rowwise().sum().maxCoeff();
+    if (q < 0.5) contraction_ = q;
   }
   return true;
 }
@@ -151,6 +203,20 @@ bool ChordScalar::sample(double t, double& f) {
     if (pred.allFinite() && inside_reference(cell_->type, pred, 0.25)) {
       p = pred;
       from_prediction = true;
+    }
+  }
+  // One simplified step from the prediction: where the steps contract by q < 1/2 on this
+  // interval (expand), the point after a step s is within q / (1 - q) |s| of the root; accepted
+  // when that is <= kSimplifiedResidual (~6e-17 parametric). Otherwise Newton as below.
+  if (from_prediction && contraction_ < 0.5) {
+    const Vec3 step = J0inv_ * (target - position(m_, Monomials(p)));
+    ++newton_steps;
+    if (step.allFinite() && contraction_ / (1.0 - contraction_) * step.cwiseAbs().maxCoeff() <= kSimplifiedResidual) {
+      p += step;
+      ++predicted;
+      start_ = p;
+      f = cell_scalar(*cell_, p);
+      return true;
     }
   }
   const int steps_before = newton_steps;
