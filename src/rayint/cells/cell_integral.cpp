@@ -359,6 +359,10 @@ bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target
           break;
         }
       }
+      if (f.exact_degree >= 0 && static_cast<std::size_t>(f.exact_degree) + 1 < keep) {
+        keep = static_cast<std::size_t>(f.exact_degree) + 1;  // the rest is rounding, in the tail already
+        dropped = 0.0;
+      }
       I.c.resize(keep);
       I.tail += dropped;
       out.push_back(std::move(I));
@@ -502,7 +506,7 @@ CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell,
     sampler.scalar.emplace(cell, ray);
   else
     sampler.exact_degree = 3;
-  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton ? 8 : 4,
+  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, 8,
                            use_newton ? CellPath::isoparametric : CellPath::polynomial);
 }
 

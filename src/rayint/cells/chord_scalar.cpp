@@ -33,56 +33,65 @@ Eigen::Matrix3d jacobian(const MultilinearCell& m, const Monomials& q) {
 
 }  // namespace
 
+namespace {
+
+// The coefficients of a per-node quantity (positions, scalars) in the monomials 1, r, s, t, rs,
+// rt, st, rst: its values at the corners q of the unit cube (bit 0: r, bit 1: s, bit 2: t) from
+// the nodal form, then Moebius inversion (the coefficient of the monomial with exponent bits m
+// is the alternating sum over the corners q contained in m). A hexahedron's or voxel's corners
+// are its nodes (the shape functions are exactly 0 and 1 there, so reading the node is the
+// same value bit for bit); a wedge's, pyramid's or tetra's corners outside the domain come
+// from the shape functions, which are polynomials.
+template <class V>
+std::array<V, 8> monomial_coefficients(LinearCellType type, const V* node, const V& zero) {
+  constexpr int kHexCorner[8] = {0, 1, 3, 2, 4, 5, 7, 6};  // node at corner q
+  const int n = linear_node_count(type);
+  std::array<V, 8> corner;
+  double N[kMaxLinearNodes];
+  for (int q = 0; q < 8; ++q) {
+    const auto Q = static_cast<std::size_t>(q);
+    if (type == LinearCellType::hexahedron) {
+      corner[Q] = node[kHexCorner[q]];
+    } else if (type == LinearCellType::voxel) {
+      corner[Q] = node[q];
+    } else {
+      linear_shape_functions(type, Vec3((q & 1) ? 1.0 : 0.0, (q & 2) ? 1.0 : 0.0, (q & 4) ? 1.0 : 0.0), N);
+      V v = zero;
+      for (int i = 0; i < n; ++i) v += N[i] * node[i];
+      corner[Q] = v;
+    }
+  }
+  constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};  // slots 1, r, s, t, rs, rt, st, rst
+  std::array<V, 8> out;
+  for (int slot = 0; slot < 8; ++slot) {
+    const int bits = kBits[slot];
+    V v = zero;
+    for (int q = 0; q < 8; ++q) {
+      if ((q & ~bits) != 0) continue;
+      const int parity = __builtin_popcount(static_cast<unsigned>(bits ^ q)) % 2;
+      v += (parity == 0 ? 1.0 : -1.0) * corner[static_cast<std::size_t>(q)];
+    }
+    out[static_cast<std::size_t>(slot)] = v;
+  }
+  return out;
+}
+
+}  // namespace
+
 MultilinearCell multilinear_form(const LinearCell& cell) {
   MultilinearCell m;
   m.type = cell.type;
   const int n = linear_node_count(cell.type);
   for (int i = 0; i < n; ++i) m.magnitude = std::max(m.magnitude, cell.x[static_cast<std::size_t>(i)].cwiseAbs().maxCoeff());
-  // Positions at the corners q of the unit cube (bit 0: r, bit 1: s, bit 2: t) from the nodal form;
-  // the shape functions are polynomials, so corners outside a wedge's or tetra's domain are fine.
-  std::array<Vec3, 8> xc;
-  double N[kMaxLinearNodes];
-  for (int q = 0; q < 8; ++q) {
-    const Vec3 p((q & 1) ? 1.0 : 0.0, (q & 2) ? 1.0 : 0.0, (q & 4) ? 1.0 : 0.0);
-    linear_shape_functions(cell.type, p, N);
-    Vec3 x = Vec3::Zero();
-    for (int i = 0; i < n; ++i) x += N[i] * cell.x[static_cast<std::size_t>(i)];
-    xc[static_cast<std::size_t>(q)] = x;
-  }
-  // Moebius inversion: the coefficient of the monomial with exponent bits m is the alternating
-  // sum over the corners q contained in m. Monomial slots: 1, r, s, t, rs, rt, st, rst.
-  constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};
-  for (int slot = 0; slot < 8; ++slot) {
-    const int bits = kBits[slot];
-    Vec3 x = Vec3::Zero();
-    for (int q = 0; q < 8; ++q) {
-      if ((q & ~bits) != 0) continue;
-      const int parity = __builtin_popcount(static_cast<unsigned>(bits ^ q)) % 2;
-      x += (parity == 0 ? 1.0 : -1.0) * xc[static_cast<std::size_t>(q)];
-    }
-    m.x[static_cast<std::size_t>(slot)] = x;
-  }
+  m.x = monomial_coefficients<Vec3>(cell.type, cell.x.data(), Vec3::Zero());
   return m;
 }
 
 ChordScalar::ChordScalar(const LinearCell& cell, const ViewRay& ray)
     : m_(multilinear_form(cell)), cell_(&cell), o_(ray.origin), d_(ray.direction),
       start_(linear_reference_centre(cell.type)) {
-  // f's monomial coefficients, as x's (Moebius inversion of f at the cube's corners): used only
-  // for taylor_tail's bound, never for a value of f.
-  std::array<double, 8> fc{};
-  double N[kMaxLinearNodes];
-  const int n = linear_node_count(cell.type);
-  for (int q = 0; q < 8; ++q) {
-    linear_shape_functions(cell.type, Vec3((q & 1) ? 1.0 : 0.0, (q & 2) ? 1.0 : 0.0, (q & 4) ? 1.0 : 0.0), N);
-    for (int i = 0; i < n; ++i) fc[static_cast<std::size_t>(q)] += N[i] * cell.value[static_cast<std::size_t>(i)];
-  }
-  constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};
-  for (int slot = 0; slot < 8; ++slot)
-    for (int q = 0; q < 8; ++q)
-      if ((q & ~kBits[slot]) == 0)
-        F_[static_cast<std::size_t>(slot)] +=
-            (__builtin_popcount(static_cast<unsigned>(kBits[slot] ^ q)) % 2 == 0 ? 1.0 : -1.0) * fc[static_cast<std::size_t>(q)];
+  // f's monomial coefficients, as x's: used only for taylor_tail's bound, never for a value of f.
+  F_ = monomial_coefficients<double>(cell.type, cell.value.data(), 0.0);
 }
 
 double ChordScalar::taylor_tail(int n) const {
