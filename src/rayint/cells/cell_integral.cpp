@@ -461,8 +461,8 @@ LinearCellIntegrator::LinearCellIntegrator(const TransferFunctions& tf)
     : tf_(&tf), breakpoints_(tf.breakpoints()), splitter_(tf) {}
 
 CellPieceIntegral LinearCellIntegrator::integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
-                                            double t_far) const {
-  if (cell.type != LinearCellType::tetra) return integrate_curved(cell, ray, t_near, t_far, !cell.affine);
+                                            double t_far, const Vec3* start) const {
+  if (cell.type != LinearCellType::tetra) return integrate_curved(cell, ray, t_near, t_far, !cell.affine, start);
   CellPieceIntegral out;
   out.path = CellPath::linear_exact;
   const Vec3 x_near = ray.origin + t_near * ray.direction, x_far = ray.origin + t_far * ray.direction;
@@ -497,13 +497,14 @@ CellPieceIntegral LinearCellIntegrator::integrate_isoparametric(const LinearCell
 }
 
 CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell, const ViewRay& ray,
-                                                   double t_near, double t_far, bool use_newton) const {
+                                                   double t_near, double t_far, bool use_newton,
+                                                   const Vec3* start) const {
   double value_scale = 0.0;
   for (int i = 0; i < linear_node_count(cell.type); ++i)
     value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
   Sampler sampler{&cell, &ray, use_newton, std::nullopt};
   if (use_newton)
-    sampler.scalar.emplace(cell, ray);
+    sampler.scalar.emplace(cell, ray, start);
   else
     sampler.exact_degree = 3;
   return integrate_sampled(sampler, value_scale, ray, t_near, t_far, 8,

@@ -109,8 +109,10 @@ class LinearCellIntegrator {
   explicit LinearCellIntegrator(const TransferFunctions& tf);
   // The chord [t_near, t_far] (t_near <= t_far, both inside the cell, e.g. from chord()) of
   // ray.origin + t ray.direction; lengths are world lengths (|direction| need not be 1).
+  // `start`, if given and finite: a parametric point near the chord's centre (ChordInterval::p_mid),
+  // the first Newton solve's start instead of the cell's centre (the result is the same root).
   CellPieceIntegral integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
-                              double t_far) const;
+                              double t_far, const Vec3* start = nullptr) const;
   // Forces the isoparametric (Newton) path on an affine cell too (for tests and measurements).
   CellPieceIntegral integrate_isoparametric(const LinearCell& cell, const ViewRay& ray,
                                             double t_near, double t_far) const;
@@ -122,7 +124,7 @@ class LinearCellIntegrator {
 
  private:
   CellPieceIntegral integrate_curved(const LinearCell& cell, const ViewRay& ray, double t_near,
-                                     double t_far, bool use_newton) const;
+                                     double t_far, bool use_newton, const Vec3* start = nullptr) const;
   // Steps 1-3 above for any scalar along the chord (F: double operator()(double t), members
   // `samples` and `ok`), n0 the first Chebyshev degree.
   template <class F>

@@ -87,9 +87,10 @@ MultilinearCell multilinear_form(const LinearCell& cell) {
   return m;
 }
 
-ChordScalar::ChordScalar(const LinearCell& cell, const ViewRay& ray)
+ChordScalar::ChordScalar(const LinearCell& cell, const ViewRay& ray, const Vec3* start)
     : m_(multilinear_form(cell)), cell_(&cell), o_(ray.origin), d_(ray.direction),
       start_(linear_reference_centre(cell.type)) {
+  if (start != nullptr && start->allFinite() && inside_reference(cell.type, *start, 0.25)) start_ = *start;
   // f's monomial coefficients, as x's: used only for taylor_tail's bound, never for a value of f.
   F_ = monomial_coefficients<double>(cell.type, cell.value.data(), 0.0);
 }
@@ -177,26 +178,6 @@ bool ChordScalar::expand(double a, double b) {
       break;
     }
   }
-  // Contraction of the simplified step p += J(P_0)^-1 (target - x(p)) on the interval: its
-  // error map is I - J(P_0)^-1 J(p), and J(p) - J(P_0) is bounded entrywise through
-  // D >= max |p - P_0| (the series' terms, plus the truncated rest): with |ds|, |dt| <= D the
-  // first column moves by <= D |x_4| + D |x_5| + D (|s0| + |t0| + D) |x_7|, and so on.
-  J0inv_ = Jinv;
-  contraction_ = 1.0;
-  if (converged_) {
-    double D = 4 * kTaylorNegligible, hp = 1.0;
-    for (int k = 1; k <= order_; ++k) {
-      hp *= h;
-      D += P_[static_cast<std::size_t>(k)].cwiseAbs().maxCoeff() * hp;
-    }
-    const auto ax = [&](int m) { return m_.x[static_cast<std::size_t>(m)].cwiseAbs(); };
-    Eigen::Matrix3d B;
-    B.col(0) = D * (ax(4) + ax(5)) + D * (std::abs(s0) + std::abs(t0) + D) * ax(7);
-    B.col(1) = D * (ax(4) + ax(6)) + D * (std::abs(r0) + std::abs(t0) + D) * ax(7);
-    B.col(2) = D * (ax(5) + ax(6)) + D * (std::abs(r0) + std::abs(s0) + D) * ax(7);
-    const double q = (Jinv.cwiseAbs() * B).rowwise().sum().maxCoeff();
-    if (q < 0.5) contraction_ = q;
-  }
   return true;
 }
 
@@ -212,20 +193,6 @@ bool ChordScalar::sample(double t, double& f) {
     if (pred.allFinite() && inside_reference(cell_->type, pred, 0.25)) {
       p = pred;
       from_prediction = true;
-    }
-  }
-  // One simplified step from the prediction: where the steps contract by q < 1/2 on this
-  // interval (expand), the point after a step s is within q / (1 - q) |s| of the root; accepted
-  // when that is <= kSimplifiedResidual (~6e-17 parametric). Otherwise Newton as below.
-  if (from_prediction && contraction_ < 0.5) {
-    const Vec3 step = J0inv_ * (target - position(m_, Monomials(p)));
-    ++newton_steps;
-    if (step.allFinite() && contraction_ / (1.0 - contraction_) * step.cwiseAbs().maxCoeff() <= kSimplifiedResidual) {
-      p += step;
-      ++predicted;
-      start_ = p;
-      f = cell_scalar(*cell_, p);
-      return true;
     }
   }
   const int steps_before = newton_steps;

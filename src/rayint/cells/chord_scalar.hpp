@@ -40,7 +40,6 @@ namespace rayint {
 
 inline constexpr int kTaylorMaxOrder = 24;
 inline constexpr double kTaylorNegligible = 1e-17;
-inline constexpr double kSimplifiedResidual = kNewtonStepTolerance / 64;  // ~6e-17
 
 // x(p) = sum_m x[m] mono_m(p), mono = 1, r, s, t, rs, rt, st, rst.
 struct MultilinearCell {
@@ -52,7 +51,9 @@ MultilinearCell multilinear_form(const LinearCell& cell);
 
 class ChordScalar {
  public:
-  ChordScalar(const LinearCell& cell, const ViewRay& ray);
+  // `start`: Newton's first start (a point near the chord, e.g. ChordInterval::p_mid) when given,
+  // finite and within 0.25 of the domain; else the cell's centre.
+  ChordScalar(const LinearCell& cell, const ViewRay& ray, const Vec3* start = nullptr);
   // Sets the Taylor predictor about the centre of [a, b] (a Newton solve there). Returns false
   // when that solve did not converge (sampling still works, from warm starts only).
   bool expand(double a, double b);
@@ -81,8 +82,6 @@ class ChordScalar {
   std::array<Vec3, kTaylorMaxOrder + 1> P_{};
   std::array<double, kTaylorMaxOrder + 1> f_series_{};  // a_k = f_k h^k
   std::array<double, 8> F_{};  // f's monomial coefficients (1, r, s, t, rs, rt, st, rst)
-  Eigen::Matrix3d J0inv_;      // J(P_0)^-1
-  double contraction_ = 1.0;   // bound of |I - J0inv_ J(p)| on the interval (1: none)
 };
 
 }  // namespace rayint

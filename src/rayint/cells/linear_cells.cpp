@@ -438,7 +438,7 @@ Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* glob
     if (!out.intervals.empty() && out.intervals.back().t_far == ts[k])
       out.intervals.back().t_far = ts[k + 1];
     else
-      out.intervals.push_back({ts[k], ts[k + 1]});
+      out.intervals.push_back({ts[k], ts[k + 1], start});
   }
   return out;
 }

@@ -218,6 +218,9 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
 // caller clips to t >= 0. `failed` is set when an inverse map of a midpoint did not converge.
 struct ChordInterval {
   double t_near = 0.0, t_far = 0.0;  // t_near < t_far
+  // The parametric point at the midpoint of the interval's first stretch (the classification's
+  // Newton solve): a warm start for the integral's inverse maps (cell_integral.hpp); NaN if none.
+  Vec3 p_mid = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 struct ChordFaceHit {
   double t = 0.0;
