@@ -34,21 +34,53 @@ struct RuleSums {
   Channels kronrod{}, error{}, l1{};
 };
 
+using GK15 = boost::math::quadrature::gauss_kronrod<double, 15>;
+using G7 = boost::math::quadrature::gauss<double, 7>;
+
+// The integrand at the 15 Gauss-Kronrod nodes c, c -+ h x[j] (x: 0 and the 7 positive nodes;
+// the embedded 7-point Gauss rule's nodes at even indices), filled Gauss nodes first.
+struct KronrodValues {
+  Channels centre{};
+  std::array<Channels, 8> minus{}, plus{};
+};
+
 template <class F>
-RuleSums gauss_kronrod_15(F& f, double a, double b) {
-  using GK = boost::math::quadrature::gauss_kronrod<double, 15>;
-  using G = boost::math::quadrature::gauss<double, 7>;
-  static const auto& x = GK::abscissa();  // 0 and the 7 positive nodes; Gauss nodes at even indices
-  static const auto& wk = GK::weights();
-  static const auto& wg = G::weights();
+void gauss_7_nodes(F& f, double a, double b, KronrodValues& v) {
+  static const auto& x = GK15::abscissa();
   const double c = 0.5 * (a + b), h = 0.5 * (b - a);
-  const Channels f0 = f(c);
+  v.centre = f(c);
+  for (std::size_t j = 2; j < x.size(); j += 2) v.minus[j] = f(c - h * x[j]), v.plus[j] = f(c + h * x[j]);
+}
+
+// The 7-point Gauss rule from those nodes, and the integral of |f| by it.
+void gauss_7_sums(const KronrodValues& v, double a, double b, Channels& value, Channels& l1) {
+  static const auto& wg = G7::weights();
+  const double h = 0.5 * (b - a);
+  for (std::size_t ch = 0; ch < kChannels; ++ch) {
+    double sum = wg[0] * v.centre[ch], abs_sum = wg[0] * std::abs(v.centre[ch]);
+    for (std::size_t j = 2; j < 8; j += 2) {
+      sum += wg[j / 2] * (v.minus[j][ch] + v.plus[j][ch]);
+      abs_sum += wg[j / 2] * (std::abs(v.minus[j][ch]) + std::abs(v.plus[j][ch]));
+    }
+    value[ch] = h * sum, l1[ch] = h * abs_sum;
+  }
+}
+
+// `gauss`: the Gauss nodes' values already computed (gauss_7_nodes on the same [a, b]).
+template <class F>
+RuleSums gauss_kronrod_15(F& f, double a, double b, const KronrodValues* gauss = nullptr) {
+  static const auto& x = GK15::abscissa();
+  static const auto& wk = GK15::weights();
+  static const auto& wg = G7::weights();
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  const Channels f0 = gauss != nullptr ? gauss->centre : f(c);
   Channels K{}, Gs{}, L1{};
   for (std::size_t ch = 0; ch < kChannels; ++ch) {
     K[ch] = wk[0] * f0[ch], Gs[ch] = wg[0] * f0[ch], L1[ch] = wk[0] * std::abs(f0[ch]);
   }
   for (std::size_t j = 1; j < x.size(); ++j) {
-    const Channels fm = f(c - h * x[j]), fp = f(c + h * x[j]);
+    const bool known = gauss != nullptr && j % 2 == 0;
+    const Channels fm = known ? gauss->minus[j] : f(c - h * x[j]), fp = known ? gauss->plus[j] : f(c + h * x[j]);
     for (std::size_t ch = 0; ch < kChannels; ++ch) {
       K[ch] += wk[j] * (fm[ch] + fp[ch]);
       L1[ch] += wk[j] * (std::abs(fm[ch]) + std::abs(fp[ch]));
@@ -69,8 +101,8 @@ RuleSums gauss_kronrod_15(F& f, double a, double b) {
 // see integrate_curved), at most kMaxSubintervals. Returns false when the budget ran out first.
 template <class F>
 bool adaptive_integral(F& f, double a, double b, double tol, const Channels& floor, Channels& value,
-                       Channels& error) {
-  std::vector<RuleSums> parts{gauss_kronrod_15(f, a, b)};
+                       Channels& error, const KronrodValues* gauss = nullptr) {
+  std::vector<RuleSums> parts{gauss_kronrod_15(f, a, b, gauss)};
   const double rel = std::max(tol, 8 * std::numeric_limits<double>::epsilon());
   for (;;) {
     Channels K{}, E{}, L1{};
@@ -99,23 +131,18 @@ bool adaptive_integral(F& f, double a, double b, double tol, const Channels& flo
   }
 }
 
-// N-point Gauss-Legendre rule (Boost.Math's nodes) on [a, b], all channels, with the integral
-// of |f| (the tolerance's scale) from the same nodes.
+// N-point Gauss-Legendre rule (Boost.Math's nodes, N even) on [a, b], all channels, with the
+// integral of |f| (the tolerance's scale) from the same nodes.
 template <int N, class F>
 void gauss_rule(F& f, double a, double b, Channels& value, Channels& l1) {
+  static_assert(N % 2 == 0, "odd rules: gauss_7_nodes");
   using G = boost::math::quadrature::gauss<double, N>;
-  static const auto& x = G::abscissa();  // the positive nodes (and 0 first when N is odd)
+  static const auto& x = G::abscissa();  // the positive nodes
   static const auto& w = G::weights();
   const double c = 0.5 * (a + b), h = 0.5 * (b - a);
   value = Channels{};
   l1 = Channels{};
-  std::size_t j = 0;
-  if (N % 2 == 1) {
-    const Channels f0 = f(c);
-    for (std::size_t ch = 0; ch < kChannels; ++ch) value[ch] = w[0] * f0[ch], l1[ch] = w[0] * std::abs(f0[ch]);
-    j = 1;
-  }
-  for (; j < x.size(); ++j) {
+  for (std::size_t j = 0; j < x.size(); ++j) {
     const Channels fm = f(c - h * x[j]), fp = f(c + h * x[j]);
     for (std::size_t ch = 0; ch < kChannels; ++ch) {
       value[ch] += w[j] * (fm[ch] + fp[ch]);
@@ -591,19 +618,28 @@ CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double val
             if (!std::isfinite(piece_emission[c]) || !(bound[c] <= std::max(rel * l1[c], floor[c]))) return false;
           return true;
         };
-        // The 7-point rule is tried only when its bound is below the rounding floor (it then
-        // passes unless a value is not finite), else the 10-point rule.
-        bool done = false, floor7 = true;
-        for (std::size_t c = 0; c < kChannels; ++c) floor7 = floor7 && bounds.n7[c] <= floor[c];
-        if (floor7) {
-          gauss_rule<7>(integrand, x0, x1, piece_emission, l1);
-          if (within(bounds.n7)) quadrature_error = bounds.n7, done = true;
+        // No evaluation is wasted: the 10-point rule is used only where its bound is below the
+        // rounding floor (known before evaluating: it passes unless a value is not finite) and
+        // the 7-point one's is not; otherwise the 7-point rule's nodes are the Gauss-Kronrod
+        // rule's Gauss nodes, which the adaptive rule reuses when the bound misses.
+        bool done = false, floor7 = true, floor10 = true;
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          floor7 = floor7 && bounds.n7[c] <= floor[c];
+          floor10 = floor10 && bounds.n10[c] <= floor[c];
         }
-        if (!done) {
+        KronrodValues nodes;
+        bool have_nodes = false;
+        if (!floor7 && floor10) {
           gauss_rule<10>(integrand, x0, x1, piece_emission, l1);
           if (within(bounds.n10)) quadrature_error = bounds.n10, done = true;
+        } else {
+          gauss_7_nodes(integrand, x0, x1, nodes);
+          have_nodes = true;
+          gauss_7_sums(nodes, x0, x1, piece_emission, l1);
+          if (within(bounds.n7)) quadrature_error = bounds.n7, done = true;
         }
-        if (!done && !adaptive_integral(integrand, x0, x1, kQuadratureTolerance, floor, piece_emission, quadrature_error)) {
+        if (!done && !adaptive_integral(integrand, x0, x1, kQuadratureTolerance, floor, piece_emission, quadrature_error,
+                                        have_nodes ? &nodes : nullptr)) {
           out.converged = false;
           out.failure = "emission quadrature missed its tolerance";
         }
