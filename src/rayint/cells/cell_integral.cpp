@@ -534,7 +534,9 @@ CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell,
     sampler.scalar.emplace(cell, ray, start);
   else
     sampler.exact_degree = 3;
-  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, 8,
+  // Degree 8 first where taylor_tail can accept it (hexahedra, voxels; affine cells: exact_degree).
+  const bool hex = cell.type == LinearCellType::hexahedron || cell.type == LinearCellType::voxel;
+  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton && !hex ? 16 : 8,
                            use_newton ? CellPath::isoparametric : CellPath::polynomial);
 }
 

@@ -63,7 +63,8 @@ class ChordScalar {
   // expand()'s [a, b] in x = (t - t_c) / h: f(t) = sum_k a_k x^k. It bounds the Chebyshev
   // coefficients above degree n (x^k = sum_j b_kj T_j with sum_j |b_kj| = 1), so degree-n
   // interpolation is off by at most twice it (plus the series' own truncation, whose terms were
-  // below kTaylorNegligible). Infinite when the series was not expanded to convergence.
+  // below kTaylorNegligible). Infinite when the series was not expanded to convergence, and
+  // for wedges and pyramids (see chord_scalar.cpp).
   double taylor_tail(int n) const;
 
   int samples = 0;           // sample() calls
