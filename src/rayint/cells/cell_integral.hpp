@@ -29,10 +29,10 @@
 //      (rounding noise of f is ~eps max|f_i|); otherwise the interval is halved (depth
 //      budget kMaxBisections = 6) and each half interpolated alone. The tail (|c_{n-1}| + |c_n|)
 //      is kept as the interpolant's error estimate e_f. Below degree kTrustedDegree = 16 the
-//      two-coefficient test alone is not trusted: a linear cell's degree 8 is accepted only when
-//      the Taylor series of f about the chord's centre (chord_scalar.hpp taylor_tail) bounds the
-//      coefficients above 8 by half the target, and twice that bound joins e_f (quadratic
-//      cells start at 16, or at 8 when affine, as before). Trailing coefficients whose absolute
+//      two-coefficient test alone is not trusted: a hexahedron's or voxel's degree 8 is accepted
+//      only when the Taylor series of f about the chord's centre (chord_scalar.hpp taylor_tail)
+//      bounds the coefficients above 8 by half the target, and twice that bound joins e_f
+//      (wedges, pyramids and quadratic cells start at 16, affine quadratic ones at 8, as before). Trailing coefficients whose absolute
 //      sum is <= kChopFraction = 1/64 of the tail target (so <= eps max|f_i|) are then dropped
 //      and their sum added to e_f (|T_k| <= 1); where the Taylor bound of f's part above a
 //      degree m is below that same fraction, the coefficients above m are dropped too (they are
