@@ -9,6 +9,8 @@
 //   BM_mesh/own_trace_only  the traversal alone (its share of BM_mesh/own)
 //   BM_mesh/split  the same CellMesh through split_cells (VTK's structured 5-tet rule), then
 //                  TetTraversal + the `exact` method: what `--cells split` pays
+//   BM_mesh/own_box, BM_mesh/own_box_trace_only, BM_mesh/split_box   the same on the untwisted
+//                  grid (axis-aligned cubes: affine cells, the own path's polynomial branch)
 // Time per iteration = 256 rays; the ratio own / split is the figure.
 // Run: build/bench/rayint_bench --benchmark_filter=BM_mesh/ --benchmark_repetitions=3
 //      --benchmark_report_aggregates_only=true      (quote the medians)
@@ -27,11 +29,12 @@ namespace {
 
 using namespace rayint;
 
-CellMesh twisted_grid(int n) {
+// twist: degrees per k-layer (0: axis-aligned cubes).
+CellMesh twisted_grid(int n, double twist = 3.0) {
   CellMesh m;
   const int np = n + 1;
   for (int k = 0; k < np; ++k) {
-    const double z = static_cast<double>(k) / n, a = 3.0 * k * M_PI / 180.0;
+    const double z = static_cast<double>(k) / n, a = twist * k * M_PI / 180.0;
     for (int j = 0; j < np; ++j)
       for (int i = 0; i < np; ++i) {
         const double x = static_cast<double>(i) / n - 0.5, y = static_cast<double>(j) / n - 0.5;
@@ -65,7 +68,7 @@ std::vector<ViewRay> bench_rays() {
 
 void BM_mesh_own(benchmark::State& state) {
   const TransferFunctions tf = test::breakpoint_tf();
-  const CellTraversal mesh(twisted_grid(12), "bench");
+  const CellTraversal mesh(twisted_grid(12, static_cast<double>(state.range(0))), "bench");
   const LinearCellIntegrator integrator(tf);
   const std::vector<ViewRay> rays = bench_rays();
   CellTrace trace;
@@ -84,11 +87,12 @@ void BM_mesh_own(benchmark::State& state) {
   state.counters["chords_per_ray"] = static_cast<double>(chords) / static_cast<double>(state.iterations() * 256);
   state.counters["failed_rays"] = static_cast<double>(failed);
 }
-BENCHMARK(BM_mesh_own)->Name("BM_mesh/own")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_mesh_own)->Name("BM_mesh/own")->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_mesh_own)->Name("BM_mesh/own_box")->Arg(0)->Unit(benchmark::kMillisecond);
 
 // The traversal alone (chords found, not integrated): its share of BM_mesh/own.
 void BM_mesh_own_trace(benchmark::State& state) {
-  const CellTraversal mesh(twisted_grid(12), "bench");
+  const CellTraversal mesh(twisted_grid(12, static_cast<double>(state.range(0))), "bench");
   const std::vector<ViewRay> rays = bench_rays();
   CellTrace trace;
   for (auto _ : state) {
@@ -100,11 +104,12 @@ void BM_mesh_own_trace(benchmark::State& state) {
     benchmark::DoNotOptimize(n);
   }
 }
-BENCHMARK(BM_mesh_own_trace)->Name("BM_mesh/own_trace_only")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_mesh_own_trace)->Name("BM_mesh/own_trace_only")->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_mesh_own_trace)->Name("BM_mesh/own_box_trace_only")->Arg(0)->Unit(benchmark::kMillisecond);
 
 void BM_mesh_split(benchmark::State& state) {
   const TransferFunctions tf = test::breakpoint_tf();
-  const TetTraversal mesh(split_cells(twisted_grid(12)), "bench");
+  const TetTraversal mesh(split_cells(twisted_grid(12, static_cast<double>(state.range(0)))), "bench");
   const auto exact = make_integrator(parse_method_spec("exact"), tf);
   const std::vector<ViewRay> rays = bench_rays();
   RayTrace trace;
@@ -122,6 +127,7 @@ void BM_mesh_split(benchmark::State& state) {
   }
   state.counters["segments_per_ray"] = static_cast<double>(segments) / static_cast<double>(state.iterations() * 256);
 }
-BENCHMARK(BM_mesh_split)->Name("BM_mesh/split")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_mesh_split)->Name("BM_mesh/split")->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_mesh_split)->Name("BM_mesh/split_box")->Arg(0)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "rayint/cells/chord_scalar.hpp"
@@ -22,6 +23,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxDegree = 64;
 constexpr int kMaxSubintervals = 256;
+constexpr int kTrustedDegree = 16;
 
 using Channels = std::array<double, kChannels>;
 
@@ -32,21 +34,53 @@ struct RuleSums {
   Channels kronrod{}, error{}, l1{};
 };
 
+using GK15 = boost::math::quadrature::gauss_kronrod<double, 15>;
+using G7 = boost::math::quadrature::gauss<double, 7>;
+
+// The integrand at the 15 Gauss-Kronrod nodes c, c -+ h x[j] (x: 0 and the 7 positive nodes;
+// the embedded 7-point Gauss rule's nodes at even indices), filled Gauss nodes first.
+struct KronrodValues {
+  Channels centre{};
+  std::array<Channels, 8> minus{}, plus{};
+};
+
 template <class F>
-RuleSums gauss_kronrod_15(F& f, double a, double b) {
-  using GK = boost::math::quadrature::gauss_kronrod<double, 15>;
-  using G = boost::math::quadrature::gauss<double, 7>;
-  static const auto& x = GK::abscissa();  // 0 and the 7 positive nodes; Gauss nodes at even indices
-  static const auto& wk = GK::weights();
-  static const auto& wg = G::weights();
+void gauss_7_nodes(F& f, double a, double b, KronrodValues& v) {
+  static const auto& x = GK15::abscissa();
   const double c = 0.5 * (a + b), h = 0.5 * (b - a);
-  const Channels f0 = f(c);
+  v.centre = f(c);
+  for (std::size_t j = 2; j < x.size(); j += 2) v.minus[j] = f(c - h * x[j]), v.plus[j] = f(c + h * x[j]);
+}
+
+// The 7-point Gauss rule from those nodes, and the integral of |f| by it.
+void gauss_7_sums(const KronrodValues& v, double a, double b, Channels& value, Channels& l1) {
+  static const auto& wg = G7::weights();
+  const double h = 0.5 * (b - a);
+  for (std::size_t ch = 0; ch < kChannels; ++ch) {
+    double sum = wg[0] * v.centre[ch], abs_sum = wg[0] * std::abs(v.centre[ch]);
+    for (std::size_t j = 2; j < 8; j += 2) {
+      sum += wg[j / 2] * (v.minus[j][ch] + v.plus[j][ch]);
+      abs_sum += wg[j / 2] * (std::abs(v.minus[j][ch]) + std::abs(v.plus[j][ch]));
+    }
+    value[ch] = h * sum, l1[ch] = h * abs_sum;
+  }
+}
+
+// `gauss`: the Gauss nodes' values already computed (gauss_7_nodes on the same [a, b]).
+template <class F>
+RuleSums gauss_kronrod_15(F& f, double a, double b, const KronrodValues* gauss = nullptr) {
+  static const auto& x = GK15::abscissa();
+  static const auto& wk = GK15::weights();
+  static const auto& wg = G7::weights();
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  const Channels f0 = gauss != nullptr ? gauss->centre : f(c);
   Channels K{}, Gs{}, L1{};
   for (std::size_t ch = 0; ch < kChannels; ++ch) {
     K[ch] = wk[0] * f0[ch], Gs[ch] = wg[0] * f0[ch], L1[ch] = wk[0] * std::abs(f0[ch]);
   }
   for (std::size_t j = 1; j < x.size(); ++j) {
-    const Channels fm = f(c - h * x[j]), fp = f(c + h * x[j]);
+    const bool known = gauss != nullptr && j % 2 == 0;
+    const Channels fm = known ? gauss->minus[j] : f(c - h * x[j]), fp = known ? gauss->plus[j] : f(c + h * x[j]);
     for (std::size_t ch = 0; ch < kChannels; ++ch) {
       K[ch] += wk[j] * (fm[ch] + fp[ch]);
       L1[ch] += wk[j] * (std::abs(fm[ch]) + std::abs(fp[ch]));
@@ -67,8 +101,8 @@ RuleSums gauss_kronrod_15(F& f, double a, double b) {
 // see integrate_curved), at most kMaxSubintervals. Returns false when the budget ran out first.
 template <class F>
 bool adaptive_integral(F& f, double a, double b, double tol, const Channels& floor, Channels& value,
-                       Channels& error) {
-  std::vector<RuleSums> parts{gauss_kronrod_15(f, a, b)};
+                       Channels& error, const KronrodValues* gauss = nullptr) {
+  std::vector<RuleSums> parts{gauss_kronrod_15(f, a, b, gauss)};
   const double rel = std::max(tol, 8 * std::numeric_limits<double>::epsilon());
   for (;;) {
     Channels K{}, E{}, L1{};
@@ -95,6 +129,38 @@ bool adaptive_integral(F& f, double a, double b, double tol, const Channels& flo
     parts[worst] = gauss_kronrod_15(f, w.a, m);
     parts.push_back(gauss_kronrod_15(f, m, w.b));
   }
+}
+
+// N-point Gauss-Legendre rule (Boost.Math's nodes, N even) on [a, b], all channels, with the
+// integral of |f| (the tolerance's scale) from the same nodes.
+template <int N, class F>
+void gauss_rule(F& f, double a, double b, Channels& value, Channels& l1) {
+  static_assert(N % 2 == 0, "odd rules: gauss_7_nodes");
+  using G = boost::math::quadrature::gauss<double, N>;
+  static const auto& x = G::abscissa();  // the positive nodes
+  static const auto& w = G::weights();
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  value = Channels{};
+  l1 = Channels{};
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const Channels fm = f(c - h * x[j]), fp = f(c + h * x[j]);
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      value[ch] += w[j] * (fm[ch] + fp[ch]);
+      l1[ch] += w[j] * (std::abs(fm[ch]) + std::abs(fp[ch]));
+    }
+  }
+  for (std::size_t ch = 0; ch < kChannels; ++ch) value[ch] *= h, l1[ch] *= h;
+}
+
+// sum_k |c_k| R^k: a bound of |sum_k c_k T_k(z)| on the Bernstein ellipse E_R of [-1, 1]
+// (|T_k| <= (R^k + R^-k) / 2 <= R^k there), so on every complex z with |z| <= (R - 1/R) / 2.
+double ellipse_bound(const std::vector<double>& c, double R) {
+  double sum = 0.0, Rk = 1.0;
+  for (const double ck : c) {
+    sum += std::abs(ck) * Rk;
+    Rk *= R;
+  }
+  return sum;
 }
 
 // Chebyshev series sum_k c[k] T_k(x) on x in [-1, 1].
@@ -178,6 +244,63 @@ LinearPart linear_part(const PiecewiseLinear& f, double f_mid) {
   return {v0, (v1 - v0) / (s1 - s0), s0, std::max(v0, v1)};
 }
 
+// A-priori error bounds of the 7- and 10-point Gauss rules for the emission integrand
+// g(x) = kappa(f(x)) rho(f(x)) exp(-tau(x)) on a piece [x0, x1] of an interpolant (c, its
+// antiderivative P, P0 = P(x0), h world length per unit x). g is entire (f and P are
+// polynomials, each transfer function is its linear part on the piece), so with y = (x - m) / r
+// (m, r the piece's centre and half-length) and M = max |g| on the Bernstein ellipse E_rho of y:
+// |I - G_N| <= r (64/15) M rho^(-2N) / (rho^2 - 1) (Trefethen, Approximation Theory and
+// Approximation Practice, Thm 19.3). On E_rho, |x| <= A = |m| + r (rho + 1/rho) / 2, so x lies in
+// the ellipse E_R of [-1, 1] with R = A + sqrt(A^2 + 1) (semi-minor axis A): |f| <= ellipse_bound(c,
+// R), |P| likewise, |x - x0| <= A + |x0|, and |exp(-tau)| <= exp(|tau|). Per channel the smallest
+// bound over rho in kGaussEllipses; infinite when nothing is finite.
+struct GaussBounds {
+  Channels n7{}, n10{};
+};
+struct GaussEllipse {
+  double rho, scale7, scale10;  // (64/15) rho^-2N / (rho^2 - 1) for N = 7, 10
+};
+constexpr GaussEllipse gauss_ellipse(double rho) {
+  double p7 = 1.0, p10 = 1.0;
+  for (int k = 0; k < 14; ++k) p7 /= rho;
+  for (int k = 0; k < 20; ++k) p10 /= rho;
+  return {rho, (64.0 / 15.0) * p7 / (rho * rho - 1.0), (64.0 / 15.0) * p10 / (rho * rho - 1.0)};
+}
+constexpr std::array<GaussEllipse, 4> kGaussEllipses = {gauss_ellipse(4.0), gauss_ellipse(8.0), gauss_ellipse(16.0),
+                                                        gauss_ellipse(32.0)};
+
+GaussBounds gauss_bounds(const std::vector<double>& c, const std::vector<double>& P, double P0, double x0, double x1,
+                         double h, const std::array<LinearPart, kChannels>& rho,
+                         const std::array<LinearPart, kChannels>& kappa) {
+  GaussBounds out;
+  out.n7.fill(std::numeric_limits<double>::infinity());
+  out.n10.fill(std::numeric_limits<double>::infinity());
+  const double m = 0.5 * (x0 + x1), r = 0.5 * (x1 - x0);
+  for (const GaussEllipse& e : kGaussEllipses) {
+    const double A = std::abs(m) + r * 0.5 * (e.rho + 1.0 / e.rho);
+    const double R = A + std::sqrt(A * A + 1.0);
+    const double f_bound = ellipse_bound(c, R), P_bound = ellipse_bound(P, R) + std::abs(P0);
+    const double dx_bound = A + std::abs(x0);
+    // |exp(-tau)| <= exp(max over channels of the bound of |tau|): one exp per ellipse.
+    double tau_bound = 0.0;
+    Channels weight{};
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      const LinearPart &p = rho[ch], &k = kappa[ch];
+      weight[ch] = (std::abs(k.v0) + std::abs(k.beta) * (f_bound + std::abs(k.s0))) *
+                   (std::abs(p.v0) + std::abs(p.beta) * (f_bound + std::abs(p.s0)));
+      tau_bound = std::max(tau_bound, h * (std::abs(p.v0) * dx_bound + std::abs(p.beta) * (P_bound + std::abs(p.s0) * dx_bound)));
+    }
+    const double growth = r * std::exp(tau_bound);
+    for (std::size_t ch = 0; ch < kChannels; ++ch) {
+      const double M = growth * weight[ch];
+      if (!std::isfinite(M)) continue;
+      out.n7[ch] = std::min(out.n7[ch], e.scale7 * M);
+      out.n10[ch] = std::min(out.n10[ch], e.scale10 * M);
+    }
+  }
+  return out;
+}
+
 // One Chebyshev interpolant of f on [a, b] (t), with its tail.
 struct Interpolant {
   double a = 0.0, b = 0.0;
@@ -189,19 +312,26 @@ struct Sampler {
   const LinearCell* cell;
   const ViewRay* ray;
   bool use_newton;
-  ChordScalar scalar;  // the isoparametric samples (chord_scalar.hpp)
+  std::optional<ChordScalar> scalar;  // the isoparametric samples (chord_scalar.hpp), if use_newton
+  // An affine linear cell: p(t) is linear and every shape function multilinear, so f(t) is a
+  // polynomial of degree <= 3 (voxel, hexahedron; 2 for a wedge): interpolate() takes the
+  // coefficients above it as rounding (its tail), not as a truncation to test.
+  int exact_degree = -1;
   int samples = 0;
   bool ok = true;
   // Before the samples of one interpolant on [a, b]: the Taylor predictor about its centre.
   void begin(double a, double b) {
-    if (use_newton) scalar.expand(a, b);
+    if (use_newton) scalar->expand(a, b);
   }
+  // A bound of f's Chebyshev coefficients above degree n on the last begin()'s interval (the
+  // Taylor series' tail, chord_scalar.hpp); 0 on the polynomial path (exact_degree decides).
+  double tail_bound(int n) const { return use_newton ? scalar->taylor_tail(n) : 0.0; }
   double operator()(double t) {
     ++samples;
     const Vec3 x = ray->origin + t * ray->direction;
     if (!use_newton) return cell_scalar(*cell, cell->affine_inverse * (x - cell->affine_origin));
     double f = 0.0;
-    if (!scalar.sample(t, f)) {
+    if (!scalar->sample(t, f)) {
       ok = false;
       return 0.0;
     }
@@ -221,8 +351,21 @@ bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target
   Interpolant I{a, b, {}, 0.0};
   for (int n = n0;; n *= 2) {
     chebyshev_coefficients(v, n, I.c);
-    I.tail = std::abs(I.c[static_cast<std::size_t>(n) - 1]) + std::abs(I.c[static_cast<std::size_t>(n)]);
+    if (f.exact_degree >= 0 && f.exact_degree < n) {  // a polynomial of known degree: the rest is rounding
+      I.tail = 0.0;
+      for (int k = f.exact_degree + 1; k <= n; ++k) I.tail += std::abs(I.c[static_cast<std::size_t>(k)]);
+    } else {
+      I.tail = std::abs(I.c[static_cast<std::size_t>(n) - 1]) + std::abs(I.c[static_cast<std::size_t>(n)]);
+    }
+    // Below kTrustedDegree the two-coefficient tail test alone is not trusted: the rest must be
+    // bounded a priori too (Sampler::tail_bound), and twice that bound joins the tail.
+    double bound = 0.0;
+    if (I.tail <= tail_target && n < kTrustedDegree && f.exact_degree < 0) {
+      bound = f.tail_bound(n);
+      if (!(bound <= 0.5 * tail_target)) I.tail = std::numeric_limits<double>::infinity();  // not accepted at n
+    }
     if (I.tail <= tail_target) {
+      I.tail += 2 * bound;
       max_degree = std::max(max_degree, n);
       // Chop: trailing coefficients whose absolute sum is <= kChopFraction of the tail target
       // are dropped and their sum added to the tail (|T_k| <= 1, so the bound stays a bound);
@@ -230,6 +373,23 @@ bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target
       double dropped = 0.0;
       std::size_t keep = I.c.size();
       while (keep > 2 && dropped + std::abs(I.c[keep - 1]) <= kChopFraction * tail_target) dropped += std::abs(I.c[--keep]);
+      // With an a-priori bound of f's coefficients above degree m (the Taylor series) below the
+      // same kChopFraction of the target, the coefficients above m are the samples' rounding
+      // (the DCT spreads ~eps |f| into every one), not f: dropped too, and the bound (not their
+      // sum) joins the tail, since f_true - f_kept = (f's part above m) + (the interpolation
+      // error of the kept part, in the tail already).
+      for (std::size_t m = 1; m + 1 < keep; ++m) {
+        const double above = f.tail_bound(static_cast<int>(m));
+        if (f.exact_degree < 0 && above > 0.0 && above <= kChopFraction * tail_target) {
+          keep = m + 1;
+          dropped = above;
+          break;
+        }
+      }
+      if (f.exact_degree >= 0 && static_cast<std::size_t>(f.exact_degree) + 1 < keep) {
+        keep = static_cast<std::size_t>(f.exact_degree) + 1;  // the rest is rounding, in the tail already
+        dropped = 0.0;
+      }
       I.c.resize(keep);
       I.tail += dropped;
       out.push_back(std::move(I));
@@ -328,8 +488,8 @@ LinearCellIntegrator::LinearCellIntegrator(const TransferFunctions& tf)
     : tf_(&tf), breakpoints_(tf.breakpoints()), splitter_(tf) {}
 
 CellPieceIntegral LinearCellIntegrator::integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
-                                            double t_far) const {
-  if (cell.type != LinearCellType::tetra) return integrate_curved(cell, ray, t_near, t_far, !cell.affine);
+                                            double t_far, const Vec3* start) const {
+  if (cell.type != LinearCellType::tetra) return integrate_curved(cell, ray, t_near, t_far, !cell.affine, start);
   CellPieceIntegral out;
   out.path = CellPath::linear_exact;
   const Vec3 x_near = ray.origin + t_near * ray.direction, x_far = ray.origin + t_far * ray.direction;
@@ -364,12 +524,19 @@ CellPieceIntegral LinearCellIntegrator::integrate_isoparametric(const LinearCell
 }
 
 CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell, const ViewRay& ray,
-                                                   double t_near, double t_far, bool use_newton) const {
+                                                   double t_near, double t_far, bool use_newton,
+                                                   const Vec3* start) const {
   double value_scale = 0.0;
   for (int i = 0; i < linear_node_count(cell.type); ++i)
     value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
-  Sampler sampler{&cell, &ray, use_newton, ChordScalar(cell, ray)};
-  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton ? 16 : 8,
+  Sampler sampler{&cell, &ray, use_newton, std::nullopt};
+  if (use_newton)
+    sampler.scalar.emplace(cell, ray, start);
+  else
+    sampler.exact_degree = 3;
+  // Degree 8 first where taylor_tail can accept it (hexahedra, voxels; affine cells: exact_degree).
+  const bool hex = cell.type == LinearCellType::hexahedron || cell.type == LinearCellType::voxel;
+  return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton && !hex ? 16 : 8,
                            use_newton ? CellPath::isoparametric : CellPath::polynomial);
 }
 
@@ -443,7 +610,38 @@ CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double val
           floor[c] = 64 * std::numeric_limits<double>::epsilon() * (x1 - x0) *
                      (kappa[c].max_value * rho_noise + rho[c].max_value * kappa_noise);
         }
-        if (!adaptive_integral(integrand, x0, x1, kQuadratureTolerance, floor, piece_emission, quadrature_error)) {
+        // First a 7-, then a 10-point Gauss rule, each accepted when its a-priori bound is within
+        // the tolerance in every channel; otherwise the adaptive Gauss-Kronrod rule.
+        const GaussBounds bounds = gauss_bounds(I.c, P, P0, x0, x1, h, rho, kappa);
+        const double rel = std::max(kQuadratureTolerance, 8 * std::numeric_limits<double>::epsilon());
+        Channels l1{};
+        const auto within = [&](const Channels& bound) {
+          for (std::size_t c = 0; c < kChannels; ++c)
+            if (!std::isfinite(piece_emission[c]) || !(bound[c] <= std::max(rel * l1[c], floor[c]))) return false;
+          return true;
+        };
+        // No evaluation is wasted: the 10-point rule is used only where its bound is below the
+        // rounding floor (known before evaluating: it passes unless a value is not finite) and
+        // the 7-point one's is not; otherwise the 7-point rule's nodes are the Gauss-Kronrod
+        // rule's Gauss nodes, which the adaptive rule reuses when the bound misses.
+        bool done = false, floor7 = true, floor10 = true;
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          floor7 = floor7 && bounds.n7[c] <= floor[c];
+          floor10 = floor10 && bounds.n10[c] <= floor[c];
+        }
+        KronrodValues nodes;
+        bool have_nodes = false;
+        if (!floor7 && floor10) {
+          gauss_rule<10>(integrand, x0, x1, piece_emission, l1);
+          if (within(bounds.n10)) quadrature_error = bounds.n10, done = true;
+        } else {
+          gauss_7_nodes(integrand, x0, x1, nodes);
+          have_nodes = true;
+          gauss_7_sums(nodes, x0, x1, piece_emission, l1);
+          if (within(bounds.n7)) quadrature_error = bounds.n7, done = true;
+        }
+        if (!done && !adaptive_integral(integrand, x0, x1, kQuadratureTolerance, floor, piece_emission, quadrature_error,
+                                        have_nodes ? &nodes : nullptr)) {
           out.converged = false;
           out.failure = "emission quadrature missed its tolerance";
         }
@@ -482,10 +680,14 @@ struct QuadraticSampler {
   const QuadraticCell* cell;
   const ViewRay* ray;
   Vec3 start;
+  int exact_degree;  // -1: f's degree along the ray is not used
   int samples = 0;
   bool ok = true;
   // The Newton start carries over from the previous sample (no predictor for quadratic maps).
   void begin(double, double) {}
+  // No bound: a degree below kTrustedDegree is accepted on the tail test alone only when affine
+  // (n0 = 8: f is then a polynomial of degree <= 6 along the ray).
+  double tail_bound(int) const { return 0.0; }
   double operator()(double t) {
     ++samples;
     const Vec3 x = ray->origin + t * ray->direction;
@@ -508,7 +710,7 @@ CellPieceIntegral LinearCellIntegrator::integrate(const QuadraticCell& cell, con
   double value_scale = 0.0;
   for (int i = 0; i < quadratic_node_count(cell.type); ++i)
     value_scale = std::max(value_scale, std::abs(cell.value[static_cast<std::size_t>(i)]));
-  QuadraticSampler sampler{&cell, &ray, quadratic_reference_centre(cell.type)};
+  QuadraticSampler sampler{&cell, &ray, quadratic_reference_centre(cell.type), -1};
   return integrate_sampled(sampler, value_scale, ray, t_near, t_far, cell.affine ? 8 : 16,
                            cell.affine ? CellPath::polynomial : CellPath::isoparametric);
 }

@@ -11,8 +11,8 @@
 //                  exact_piece (integrators/exact.hpp; measured 8.05e-14 relative worst there).
 //   polynomial     an affine voxel, hexahedron or wedge (linear_cells.hpp, kAffineTolerance):
 //                  p(t) is the exact linear inverse, so f(t) is a polynomial of degree <= 3 in t;
-//                  it is sampled at 9 Chebyshev-Lobatto points (exact up to rounding for degree
-//                  <= 8) and integrated below. No Newton solves.
+//                  it is sampled at 9 Chebyshev-Lobatto points and its coefficients above degree
+//                  3 (rounding only) are dropped, their sum kept as the tail e_f. No Newton solves.
 //   isoparametric  any other cell: f(t) sampled at the Chebyshev-Lobatto points of [t_near,
 //                  t_far] through inverse maps (cells/chord_scalar.hpp: the cell's multilinear
 //                  form, Newton started from a Taylor expansion of p(t) about the interval's
@@ -24,13 +24,20 @@
 // 6.8e-15 over 18 chords of random curved cells (tests [cells][quadratic]), 1.1e-14 over 186
 // chords of gmsh's and VTK's files (tests [quadratic][mesh][reference]).
 // Both curved paths then do:
-//   1. Chebyshev interpolant of f on the chord, degree n = 16, 32, 64 (nested points, values
+//   1. Chebyshev interpolant of f on the chord, degree n = 8, 16, 32, 64 (nested points, values
 //      reused) until the last two coefficients are below kChebyshevTail = 64 eps * max|f_i|
 //      (rounding noise of f is ~eps max|f_i|); otherwise the interval is halved (depth
 //      budget kMaxBisections = 6) and each half interpolated alone. The tail (|c_{n-1}| + |c_n|)
-//      is kept as the interpolant's error estimate e_f. Trailing coefficients whose absolute sum
-//      is <= kChopFraction = 1/64 of the tail target (so <= eps max|f_i|) are then dropped and
-//      their sum added to e_f (|T_k| <= 1): a nearly cubic f costs a short Clenshaw sum.
+//      is kept as the interpolant's error estimate e_f. Below degree kTrustedDegree = 16 the
+//      two-coefficient test alone is not trusted: a hexahedron's or voxel's degree 8 is accepted
+//      only when the Taylor series of f about the chord's centre (chord_scalar.hpp taylor_tail)
+//      bounds the coefficients above 8 by half the target, and twice that bound joins e_f
+//      (wedges, pyramids and quadratic cells start at 16, affine quadratic ones at 8, as before). Trailing coefficients whose absolute
+//      sum is <= kChopFraction = 1/64 of the tail target (so <= eps max|f_i|) are then dropped
+//      and their sum added to e_f (|T_k| <= 1); where the Taylor bound of f's part above a
+//      degree m is below that same fraction, the coefficients above m are dropped too (they are
+//      the samples' rounding, ~eps |f| each, spread by the DCT) and the bound joins e_f. A nearly
+//      cubic f then costs a short Clenshaw sum.
 //   2. Critical points: none when |c_1| > sum_{k>=2} k^2 |c_k| (|T_k'| <= k^2 on [-1, 1]: f' keeps
 //      the sign of c_1, a proof, no search); otherwise sign changes of f' at M + 1 points (M the
 //      power of two >= max(8, 2n)), refined by TOMS 748 on the
@@ -41,8 +48,17 @@
 //      lies inside a piece and shows in the quadrature's error estimate.
 //   3. On each piece rho_c and kappa_c are linear in f, so rho_c(t) is a Chebyshev series;
 //      tau is its exact antiderivative (no quadrature error in the optical depth), and the
-//      emission int kappa rho exp(-tau) is 15-point Gauss-Kronrod (Boost.Math's nodes and
-//      weights), globally adaptive: the subinterval with the largest |K - G| is halved (at most
+//      emission int kappa rho exp(-tau) is first a 7- or 10-point Gauss-Legendre rule whose
+//      a-priori error bound (the integrand is entire: Trefethen's Bernstein-ellipse bound, the
+//      ellipse's maximum bounded through the series' coefficients, cell_integral.cpp
+//      gauss_bounds) is within the tolerance below in every channel; that bound is then the
+//      quadrature's error estimate. The 7 points are the Gauss-Kronrod rule's Gauss nodes, so
+//      a miss costs no extra evaluation; the 10-point rule is used only where its bound is below
+//      the rounding floor (it cannot miss). Measured: on the bench meshes (bench_cell_mesh.cpp)
+//      every piece passes (72 % with 7 points, 28 % with 10); on tools/cell_accuracy's strongly
+//      distorted cells with optical depths up to ~5 per cell 35 % pass, 65 % go on to
+//      Gauss-Kronrod. Otherwise 15-point Gauss-Kronrod (Boost.Math's nodes and weights),
+//      globally adaptive: the subinterval with the largest |K - G| is halved (at most
 //      256) until sum |K - G| <= kQuadratureTolerance = 1e-14 of the integral of |integrand|
 //      (or 8 ulps of it, the rounding floor of the sums), or below the integrand's own rounding
 //      noise: 64 eps (x1 - x0) (kappa_max (|v0| + |beta| (max|f_i| + |s0|)) + the same with rho
@@ -70,7 +86,8 @@
 // value is itself tiny (absolute 8e-17 there). Tests [cells][isoparametric] re-check 30 chords.
 // Cost (reports/cells/bench.md): on the bench's twisted 12^3 hexahedral mesh
 // (bench/bench_cell_mesh.cpp, BM_mesh) the own render was 18-20x the split one before the
-// Taylor-predicted samples, the chop and the monotonicity proof, 11.5-13x after (target 3x).
+// Taylor-predicted samples, the chop and the monotonicity proof, 11.5-13x after; the Gauss
+// rules with a-priori bounds, degree-8 starts and the face early-out: see bench.md (target 3x).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
@@ -109,8 +126,10 @@ class LinearCellIntegrator {
   explicit LinearCellIntegrator(const TransferFunctions& tf);
   // The chord [t_near, t_far] (t_near <= t_far, both inside the cell, e.g. from chord()) of
   // ray.origin + t ray.direction; lengths are world lengths (|direction| need not be 1).
+  // `start`, if given and finite: a parametric point near the chord's centre (ChordInterval::p_mid),
+  // the first Newton solve's start instead of the cell's centre (the result is the same root).
   CellPieceIntegral integrate(const LinearCell& cell, const ViewRay& ray, double t_near,
-                              double t_far) const;
+                              double t_far, const Vec3* start = nullptr) const;
   // Forces the isoparametric (Newton) path on an affine cell too (for tests and measurements).
   CellPieceIntegral integrate_isoparametric(const LinearCell& cell, const ViewRay& ray,
                                             double t_near, double t_far) const;
@@ -122,7 +141,7 @@ class LinearCellIntegrator {
 
  private:
   CellPieceIntegral integrate_curved(const LinearCell& cell, const ViewRay& ray, double t_near,
-                                     double t_far, bool use_newton) const;
+                                     double t_far, bool use_newton, const Vec3* start = nullptr) const;
   // Steps 1-3 above for any scalar along the chord (F: double operator()(double t), members
   // `samples` and `ok`), n0 the first Chebyshev degree.
   template <class F>

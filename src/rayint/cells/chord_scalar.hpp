@@ -51,12 +51,21 @@ MultilinearCell multilinear_form(const LinearCell& cell);
 
 class ChordScalar {
  public:
-  ChordScalar(const LinearCell& cell, const ViewRay& ray);
+  // `start`: Newton's first start (a point near the chord, e.g. ChordInterval::p_mid) when given,
+  // finite and within 0.25 of the domain; else the cell's centre.
+  ChordScalar(const LinearCell& cell, const ViewRay& ray, const Vec3* start = nullptr);
   // Sets the Taylor predictor about the centre of [a, b] (a Newton solve there). Returns false
   // when that solve did not converge (sampling still works, from warm starts only).
   bool expand(double a, double b);
   // f(t); false when the inverse map did not converge (from every start).
   bool sample(double t, double& f);
+  // A bound of sum_{k > n} |a_k|, a_k the Taylor coefficients of f about the centre of the last
+  // expand()'s [a, b] in x = (t - t_c) / h: f(t) = sum_k a_k x^k. It bounds the Chebyshev
+  // coefficients above degree n (x^k = sum_j b_kj T_j with sum_j |b_kj| = 1), so degree-n
+  // interpolation is off by at most twice it (plus the series' own truncation, whose terms were
+  // below kTaylorNegligible). Infinite when the series was not expanded to convergence, and
+  // for wedges and pyramids (see chord_scalar.cpp).
+  double taylor_tail(int n) const;
 
   int samples = 0;           // sample() calls
   int newton_steps = 0;      // Newton steps taken (0 when every prediction was accepted)
@@ -70,7 +79,10 @@ class ChordScalar {
   Vec3 start_;  // last converged point
   double t_c_ = 0.0;
   int order_ = -1;  // -1: no expansion
+  bool converged_ = false;  // the series' last two terms were negligible
   std::array<Vec3, kTaylorMaxOrder + 1> P_{};
+  std::array<double, kTaylorMaxOrder + 1> f_series_{};  // a_k = f_k h^k
+  std::array<double, 8> F_{};  // f's monomial coefficients (1, r, s, t, rs, rt, st, rst)
 };
 
 }  // namespace rayint

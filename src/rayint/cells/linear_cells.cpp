@@ -308,7 +308,16 @@ std::array<int, 4> canonical_face_order(const std::array<Vec3, 4>& coordinates, 
   });
 }
 
+RayFrame::RayFrame(const ViewRay& ray) : dn(ray.direction.norm()) {
+  dir = ray.direction / dn;
+  perpendicular_pair(dir, e0, e1);
+}
+
 FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewRay& ray) {
+  return intersect_face(nodes, count, ray, RayFrame(ray));
+}
+
+FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewRay& ray, const RayFrame& frame) {
   FaceHits out;
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
@@ -330,13 +339,17 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
   // Bilinear patch A B C D: P = A + u (B - A) + v (D - A) + u v (A - B + C - D).
   const Vec3 &A = nodes[0], &B = nodes[1], &C = nodes[2], &D = nodes[3];
   const Vec3 eu = B - A, ev = D - A, euv = (A - B) + (C - D);
-  const double dn = d.norm();
-  const Vec3 dir = d / dn;
-  Vec3 e[2];
-  perpendicular_pair(dir, e[0], e[1]);
+  const double dn = frame.dn;
+  const Vec3 e[2] = {frame.e0, frame.e1};
   double a[2], b[2], c[2], w[2];
   for (int k = 0; k < 2; ++k) {
     a[k] = e[k].dot(A - o), b[k] = e[k].dot(eu), c[k] = e[k].dot(ev), w[k] = e[k].dot(euv);
+    // The corners' signed distances from plane k: A, B, D, C.
+    const double pa = a[k], pb = a[k] + b[k], pd = a[k] + c[k], pc = pb + c[k] + w[k];
+    const double margin = 2 * kFaceSlack * (std::abs(b[k]) + std::abs(c[k]) + std::abs(w[k])) +
+                          16 * std::numeric_limits<double>::epsilon() *
+                              (std::abs(a[k]) + std::abs(b[k]) + std::abs(c[k]) + std::abs(w[k]));
+    if (std::min({pa, pb, pd, pc}) > margin || std::max({pa, pb, pd, pc}) < -margin) return out;
   }
   // (a0 + b0 u)(c1 + w1 u) - (a1 + b1 u)(c0 + w0 u) = 0
   const double qa = b[0] * w[1] - b[1] * w[0];
@@ -378,6 +391,7 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
 
 Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* global_ids) {
   Chord out;
+  const RayFrame frame(ray);
   std::vector<double> ts;
   for (int f = 0; f < linear_face_count(cell.type); ++f) {
     const FaceNodes face = linear_face(cell.type, f);
@@ -393,7 +407,7 @@ Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* glob
     std::array<Vec3, 4> canonical{};
     for (int k = 0; k < face.count; ++k)
       canonical[static_cast<std::size_t>(k)] = cyclic[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])];
-    const FaceHits hits = intersect_face(canonical, face.count, ray);
+    const FaceHits hits = intersect_face(canonical, face.count, ray, frame);
     for (int h = 0; h < hits.count; ++h) {
       ts.push_back(hits.hit[static_cast<std::size_t>(h)].t);
       out.hits.push_back({hits.hit[static_cast<std::size_t>(h)].t, f});
@@ -424,7 +438,7 @@ Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* glob
     if (!out.intervals.empty() && out.intervals.back().t_far == ts[k])
       out.intervals.back().t_far = ts[k + 1];
     else
-      out.intervals.push_back({ts[k], ts[k + 1]});
+      out.intervals.push_back({ts[k], ts[k + 1], start});
   }
   return out;
 }

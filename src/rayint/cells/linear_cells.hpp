@@ -198,6 +198,18 @@ struct FaceHits {
 // same slack.
 inline constexpr double kFaceSlack = 1e-12;
 FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewRay& ray);
+// The ray's unit direction and the two planes through it (perpendicular unit vectors), which
+// intersect_face would compute for every face: chord() makes them once for a cell's faces.
+struct RayFrame {
+  Vec3 dir, e0, e1;
+  double dn = 0.0;  // |direction|
+  explicit RayFrame(const ViewRay& ray);
+};
+// The same, bit for bit, with the ray's frame given. A bilinear patch lies in the convex hull of
+// its corners (slack included: moved by <= 2 kFaceSlack (|B - A| + |D - A| + |A - B + C - D|));
+// when all four corners lie beyond that, plus 16 ulps of the projections, on the same side of
+// one of the two planes, the face is missed without solving (the roots would fail the u, v test).
+FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewRay& ray, const RayFrame& frame);
 
 // The pieces of the line inside the cell: all face hits (every face, nodes put in canonical
 // order by coordinates unless `global_ids` are given), sorted; each interval between
@@ -206,6 +218,9 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
 // caller clips to t >= 0. `failed` is set when an inverse map of a midpoint did not converge.
 struct ChordInterval {
   double t_near = 0.0, t_far = 0.0;  // t_near < t_far
+  // The parametric point at the midpoint of the interval's first stretch (the classification's
+  // Newton solve): a warm start for the integral's inverse maps (cell_integral.hpp); NaN if none.
+  Vec3 p_mid = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 struct ChordFaceHit {
   double t = 0.0;

@@ -40,6 +40,7 @@ struct CellTraversal::Walk {
   // Best accepted boundary hit so far (first-hit query).
   double best_t = std::numeric_limits<double>::infinity();
   double best_far = 0.0;
+  Vec3 best_p = Vec3::Zero();  // the chord's p_hint
   std::int64_t best_face = -1;
   std::vector<int> best_exit;
   long failed = 0;
@@ -192,11 +193,13 @@ void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint
     double t_far = 0.0;
     std::vector<int> exit_faces;
     bool failed = false;
-    const bool holds = m.continue_in(static_cast<std::size_t>(f.cell), w, t_start, t_far, &exit_faces, &failed);
+    Vec3 p_hint;
+    const bool holds = m.continue_in(static_cast<std::size_t>(f.cell), w, t_start, t_far, &exit_faces, &failed, &p_hint);
     if (failed) ++w.failed;
     if (!holds) continue;
     w.best_t = t_hit;
     w.best_far = t_far;
+    w.best_p = p_hint;
     w.best_face = prim;
     w.best_exit = std::move(exit_faces);
     // Let Embree cull boxes beyond this hit (rounded up: a nearer hit is never culled).
@@ -363,13 +366,14 @@ Chord CellTraversal::cell_chord(std::size_t c, const ViewRay& ray) const {
 }
 
 bool CellTraversal::continue_in(std::size_t c, const Walk& w, double t, double& t_far,
-                                std::vector<int>* exit_faces, bool* failed) const {
+                                std::vector<int>* exit_faces, bool* failed, Vec3* p_hint) const {
   const Chord ch = cell_chord(c, w.ray());
   if (ch.failed && failed) *failed = true;
   const double slack = w.slack(t);
   for (const ChordInterval& iv : ch.intervals) {
     if (!(iv.t_near <= t + slack) || !(iv.t_far > t)) continue;
     t_far = iv.t_far;
+    if (p_hint) *p_hint = iv.p_mid;
     if (exit_faces) {
       exit_faces->clear();
       const double s = w.slack(t_far);
@@ -385,14 +389,16 @@ bool CellTraversal::continue_in(std::size_t c, const Walk& w, double t, double& 
 // Rule 2: the cell that continues the ray at t after `from` (left through `exit_faces`).
 bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector<int>& exit_faces, double t,
                               std::int32_t& cell, double& t_far, std::vector<int>& faces,
-                              CellTraversalStats& stats, bool& failed) const {
+                              CellTraversalStats& stats, bool& failed, Vec3& p_hint) const {
   double best = t;
   bool found = false;
   std::vector<int> cand_faces;
   const auto consider = [&](std::int32_t c) {
     double far = 0.0;
-    if (continue_in(static_cast<std::size_t>(c), w, t, far, &cand_faces, &failed) && far > best) {
+    Vec3 p;
+    if (continue_in(static_cast<std::size_t>(c), w, t, far, &cand_faces, &failed, &p) && far > best) {
       best = far;
+      p_hint = p;
       cell = c;
       faces = cand_faces;
       found = true;
@@ -467,9 +473,9 @@ void CellTraversal::trace(const ViewRay& ray, CellTrace& out, CellTraversalStats
   double t = 0.0;
   bool failed = false;
   std::vector<int> exit_faces, next_faces;
-  const auto emit = [&](std::int32_t c, double a, double b) {
+  const auto emit = [&](std::int32_t c, double a, double b, const Vec3& p) {
     ++local.chords;
-    out.chords.push_back({c, a, b});
+    out.chords.push_back({c, a, b, p});
   };
   while (steps < budget) {
     // Rule 3: outside the mesh, the next entry beyond t.
@@ -482,13 +488,14 @@ void CellTraversal::trace(const ViewRay& ray, CellTrace& out, CellTraversalStats
     std::int32_t cell = boundary_[static_cast<std::size_t>(w.best_face)].cell;
     double t_in = std::max(t, w.best_t);
     double t_out = w.best_far;
+    Vec3 p_hint = w.best_p;
     exit_faces = w.best_exit;
     while (++steps < budget) {
-      emit(cell, t_in, t_out);  // t_out > t_in (continue_in)
+      emit(cell, t_in, t_out, p_hint);  // t_out > t_in (continue_in)
       t = t_out;
       std::int32_t next = -1;
       double next_far = 0.0;
-      if (!next_cell(w, static_cast<std::size_t>(cell), exit_faces, t, next, next_far, next_faces, local, failed))
+      if (!next_cell(w, static_cast<std::size_t>(cell), exit_faces, t, next, next_far, next_faces, local, failed, p_hint))
         break;  // left the mesh at t
       cell = next;
       t_in = t;
@@ -522,7 +529,7 @@ CellRayResult CellTraversal::integrate(const CellTrace& trace, const LinearCellI
     if (!(c.t_out > a)) continue;
     const QuadraticCell* q = quadratic_cell(static_cast<std::size_t>(c.cell));
     const CellPieceIntegral p = q != nullptr ? integrator.integrate(*q, ray, a, c.t_out)
-                                             : integrator.integrate(cells_[static_cast<std::size_t>(c.cell)], ray, a, c.t_out);
+                                             : integrator.integrate(cells_[static_cast<std::size_t>(c.cell)], ray, a, c.t_out, &c.p_hint);
     ++r.chords;
     if (!p.converged) {
       ++r.failed_chords;

@@ -78,6 +78,9 @@ inline constexpr double kCellEntrySlack = 1e-10;
 struct CellChordOnRay {
   std::int32_t cell = -1;
   double t_in = 0.0, t_out = 0.0;
+  // The classification's parametric point in the chord (ChordInterval::p_mid): the integral's
+  // first Newton start. NaN when none.
+  Vec3 p_hint = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 struct CellTrace {
@@ -167,11 +170,12 @@ class CellTraversal {
  private:
   // The interval of cell c's chord that holds t (starts at or before t + slack, ends beyond t):
   // its end, and the faces hit there; false if none. Sets *failed when the chord failed.
+  // `p_hint` gets the interval's ChordInterval::p_mid.
   bool continue_in(std::size_t c, const Walk& w, double t, double& t_far, std::vector<int>* exit_faces,
-                   bool* failed) const;
+                   bool* failed, Vec3* p_hint = nullptr) const;
   bool next_cell(const Walk& w, std::size_t from, const std::vector<int>& exit_faces, double t,
                  std::int32_t& cell, double& t_far, std::vector<int>& faces, CellTraversalStats& stats,
-                 bool& failed) const;
+                 bool& failed, Vec3& p_hint) const;
   friend struct CellFirstHitAccess;
   // The chord of cell c (linear or quadratic), nodes by their global ids (canonical faces).
   Chord cell_chord(std::size_t c, const ViewRay& ray) const;
