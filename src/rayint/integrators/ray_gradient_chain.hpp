@@ -148,7 +148,10 @@ struct EndValue {
 // one of the searching chain it replaced, bit for bit (issue 28; reports/gradients/README.md).
 class FunctionWalk {
  public:
-  explicit FunctionWalk(const PiecewiseLinear& f) : f_(&f), n_(f.scalar.size()) {}
+  // weights false: end_in forms the values alone (the other node's weight is a division more),
+  // for GradientBlocks::segments, whose reverse pass uses the slopes only.
+  explicit FunctionWalk(const PiecewiseLinear& f, bool weights = true)
+      : f_(&f), n_(f.scalar.size()), weights_(weights) {}
 
   // upper_bound(f.scalar, x): scalar[k-1] <= x < scalar[k].
   std::size_t locate(double x) {
@@ -190,8 +193,12 @@ class FunctionWalk {
     // PiecewiseLinear::interpolate's arithmetic (from the nearer node, its distance computed
     // directly), its quotient being node_weights_in's weight of the other node.
     const double d0 = s - p0, d1 = p1 - s, span = p1 - p0;
-    const double w1 = d0 / span, w0 = d1 / span;
-    last_ = {d0 <= d1 ? v0 + w1 * (v1 - v0) : v1 + w0 * (v0 - v1), w0, w1};
+    if (weights_) {
+      const double w1 = d0 / span, w0 = d1 / span;
+      last_ = {d0 <= d1 ? v0 + w1 * (v1 - v0) : v1 + w0 * (v0 - v1), w0, w1};
+    } else {
+      last_ = {d0 <= d1 ? v0 + (d0 / span) * (v1 - v0) : v1 + (d1 / span) * (v0 - v1), 0.0, 0.0};
+    }
     last_k_ = k;
     last_s_ = s;
     return last_;
@@ -200,7 +207,7 @@ class FunctionWalk {
   // (the left value at a jump) and node_weights_in's weights.
   EndValue constant_at(std::size_t k, double s) const {
     EndValue e{(*f_)(s), 0.0, 0.0};
-    if (extension(k)) return e;
+    if (!weights_ || extension(k)) return e;
     const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
     const double span = p1 - p0;
     e.w0 = (p1 - s) / span;
@@ -211,6 +218,7 @@ class FunctionWalk {
  private:
   const PiecewiseLinear* f_;
   std::size_t n_;
+  bool weights_;
   std::size_t k_ = 0;
   std::size_t slope_k_ = static_cast<std::size_t>(-1);
   double slope_ = 0.0;
@@ -323,10 +331,12 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   std::vector<ChannelRecord>& records = scratch.records;
   if (records.size() < n * kChannels) records.resize(n * kChannels);
   // One walk per function along the ray (grey: density[0]'s serves every channel).
-  FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0]), FunctionWalk(tf.density[1]),
-                                      FunctionWalk(tf.density[2])};
-  FunctionWalk kappa_walk[kChannels] = {FunctionWalk(tf.color[0]), FunctionWalk(tf.color[1]),
-                                        FunctionWalk(tf.color[2])};
+  FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0], nodes_wanted),
+                                      FunctionWalk(tf.density[1], nodes_wanted),
+                                      FunctionWalk(tf.density[2], nodes_wanted)};
+  FunctionWalk kappa_walk[kChannels] = {FunctionWalk(tf.color[0], nodes_wanted),
+                                        FunctionWalk(tf.color[1], nodes_wanted),
+                                        FunctionWalk(tf.color[2], nodes_wanted)};
   // Each end takes the limit from inside the piece (append_pieces': at a jump the value on the
   // piece's side); a constant piece takes operator()'s, the left value at a jump. The far end
   // first: it is the previous piece's exit, which the walk keeps. Returns the two end values.
