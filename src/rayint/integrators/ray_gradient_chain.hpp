@@ -144,8 +144,9 @@ struct EndValue {
 //   - an end in the interior of an interval is interpolated once for the two pieces it joins
 //     (the last one is kept), and an end on one of the interval's nodes needs no division.
 // Every value is bit for bit what PiecewiseLinear::limit, interval_slope and node_weights_in
-// return for that interval (the same operations on the same operands): the ray gradient is the
-// one of the searching chain it replaced, bit for bit (issue 28; reports/gradients/README.md).
+// (the weights, when asked for) return for that interval (the same operations on the same
+// operands): the ray gradient is the one of the searching chain it replaced, bit for bit (issue
+// 28; reports/gradients/README.md, checked by reports/gradients/gradchain_bitwise.cpp).
 class FunctionWalk {
  public:
   // weights false: end_in forms the values alone (the other node's weight is a division more),
