@@ -8,10 +8,11 @@
 // the splitting and the compositing".
 #include <algorithm>
 #include <cmath>
-#include <iterator>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rayint/integrators/exact_grad.hpp"
@@ -128,20 +129,104 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
-// The values of f at a piece's two ends from k = upper_bound(f.scalar, lo), for a piece lo < hi
-// with no breakpoint strictly inside (append_pieces'): at lo the limit from above, at hi the
-// limit from below (the limits from inside the piece), bit for bit PiecewiseLinear::limit's --
-// its searches return this same k (scalar[k-1] <= lo < hi <= scalar[k]) -- without searching.
-inline double limit_above_in(const PiecewiseLinear& f, std::size_t k, double lo) {
-  if (k == 0) return f.value.front();
-  if (k == f.scalar.size()) return f.value.back();
-  return f.interpolate(lo, k);
-}
-inline double limit_below_in(const PiecewiseLinear& f, std::size_t k, double hi) {
-  if (k == 0) return f.value.front();
-  if (k == f.scalar.size()) return f.value.back();
-  return f.scalar[k] == hi ? f.value[k] : f.interpolate(hi, k);
-}
+// f at one end of a piece and the weights of the two nodes of the piece's interval:
+// f(s) = w0 value[k-1] + w1 value[k] (d f/d value), d f/d position[k-1] = -slope w0,
+// d f/d position[k] = -slope w1 (node_weights_in's, model/ray_gradient.hpp).
+struct EndValue {
+  double value = 0.0, w0 = 0.0, w1 = 0.0;
+};
+
+// One transfer function as the chain walks it along the ray. Pieces come in order along the ray
+// and consecutive pieces share an end, so
+//   - the interval of a lookup starts from the previous one (a few steps, else a binary search),
+//     the index std::upper_bound returns, exactly;
+//   - the slope of an interval is divided once when the walk enters it, not per piece and end;
+//   - an end in the interior of an interval is interpolated once for the two pieces it joins
+//     (the last one is kept), and an end on one of the interval's nodes needs no division.
+// Every value is bit for bit what PiecewiseLinear::limit, interval_slope and node_weights_in
+// (the weights, when asked for) return for that interval (the same operations on the same
+// operands): the ray gradient is the one of the searching chain it replaced, bit for bit (issue
+// 28; reports/gradients/README.md, checked by reports/gradients/gradchain_bitwise.cpp).
+class FunctionWalk {
+ public:
+  // weights false: end_in forms the values alone (the other node's weight is a division more),
+  // for GradientBlocks::segments, whose reverse pass uses the slopes only.
+  explicit FunctionWalk(const PiecewiseLinear& f, bool weights = true)
+      : f_(&f), n_(f.scalar.size()), weights_(weights) {}
+
+  // upper_bound(f.scalar, x): scalar[k-1] <= x < scalar[k].
+  std::size_t locate(double x) {
+    const double* p = f_->scalar.data();
+    std::size_t k = k_;
+    for (int step = 0; step < 4; ++step) {
+      if (k < n_ && p[k] <= x)
+        ++k;
+      else if (k > 0 && p[k - 1] > x)
+        --k;
+      else
+        return k_ = k;
+    }
+    return k_ = static_cast<std::size_t>(std::upper_bound(p, p + n_, x) - p);
+  }
+  // interval_slope(f, k), divided once per interval entered.
+  double slope(std::size_t k) {
+    if (k != slope_k_) {
+      slope_k_ = k;
+      slope_ = interval_slope(*f_, k);
+    }
+    return slope_;
+  }
+  bool extension(std::size_t k) const { return k == 0 || k == n_; }
+  std::size_t size() const { return n_; }
+  // f at an end s of a non-constant piece lying in interval k (upper_bound of the piece's smaller
+  // end), the limit from inside the piece: at the piece's smaller end the limit from above, at
+  // its larger end the one from below (append_pieces'; no breakpoint lies strictly inside).
+  // On the extensions the end value, weights unused.
+  EndValue end_in(std::size_t k, double s) {
+    if (k == 0) return {f_->value.front(), 0.0, 0.0};
+    if (k == n_) return {f_->value.back(), 0.0, 0.0};
+    const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
+    const double v0 = f_->value[k - 1], v1 = f_->value[k];
+    // On a node: its value, weights 1 and 0 (what the divisions below give there, exactly).
+    if (s == p0) return {v0, 1.0, 0.0};
+    if (s == p1) return {v1, 0.0, 1.0};
+    if (k == last_k_ && s == last_s_) return last_;
+    // PiecewiseLinear::interpolate's arithmetic (from the nearer node, its distance computed
+    // directly), its quotient being node_weights_in's weight of the other node.
+    const double d0 = s - p0, d1 = p1 - s, span = p1 - p0;
+    if (weights_) {
+      const double w1 = d0 / span, w0 = d1 / span;
+      last_ = {d0 <= d1 ? v0 + w1 * (v1 - v0) : v1 + w0 * (v0 - v1), w0, w1};
+    } else {
+      last_ = {d0 <= d1 ? v0 + (d0 / span) * (v1 - v0) : v1 + (d1 / span) * (v0 - v1), 0.0, 0.0};
+    }
+    last_k_ = k;
+    last_s_ = s;
+    return last_;
+  }
+  // A constant piece at s whose interval k was looked up with interval_lo: operator()'s value
+  // (the left value at a jump) and node_weights_in's weights.
+  EndValue constant_at(std::size_t k, double s) const {
+    EndValue e{(*f_)(s), 0.0, 0.0};
+    if (!weights_ || extension(k)) return e;
+    const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
+    const double span = p1 - p0;
+    e.w0 = (p1 - s) / span;
+    e.w1 = (s - p0) / span;
+    return e;
+  }
+
+ private:
+  const PiecewiseLinear* f_;
+  std::size_t n_;
+  bool weights_;
+  std::size_t k_ = 0;
+  std::size_t slope_k_ = static_cast<std::size_t>(-1);
+  double slope_ = 0.0;
+  std::size_t last_k_ = static_cast<std::size_t>(-1);
+  double last_s_ = 0.0;
+  EndValue last_{};
+};
 
 // piece_grad(const ChannelPiece&, double kappa_far_minus_exit, const PieceOpticsGrad* same_depth)
 // -> PieceOpticsGrad: the optics of one channel of one piece and their derivatives. same_depth is
@@ -157,17 +242,27 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("gradient: background must be finite");
-  // The interval of density[c] and color[c] (upper_bound of the scalar that chooses it, see
-  // interval_lo below) a piece-channel's values come from.
-  struct Intervals {
-    std::size_t rho = 0, kappa = 0;
+  // What the reverse pass needs of a piece-channel, in one record (the forward pass writes them
+  // in order, the reverse pass reads them back): the light entering it, its optics' derivatives
+  // (PieceOpticsGrad's, without the moments and introspection) and, per function (density[c],
+  // color[c]), the interval its values come from (upper_bound of the scalar that chooses it, see
+  // interval_lo below), that interval's slope and the node weights of the two ends.
+  struct FunctionEnds {
+    std::size_t k = 0;
+    double slope = 0.0;
+    double far_w0 = 0.0, far_w1 = 0.0, exit_w0 = 0.0, exit_w1 = 0.0;
+  };
+  struct ChannelRecord {
+    double incoming = 0.0, transmittance = 0.0;
+    double de_length = 0.0, dt_length = 0.0, de_rho_far = 0.0, dt_rho_far = 0.0, de_rho_exit = 0.0,
+           dt_rho_exit = 0.0, de_kappa_far = 0.0, de_kappa_exit = 0.0;
+    FunctionEnds rho, kappa;
   };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
-    std::vector<double> breakpoints, ends, incoming;
+    std::vector<double> breakpoints;
     std::vector<PieceRecord> pieces;
-    std::vector<PieceOpticsGrad> optics;
-    std::vector<Intervals> intervals;
+    std::vector<ChannelRecord> records;
   };
   thread_local Scratch scratch;
   std::vector<double>& breakpoints = scratch.breakpoints;
@@ -178,7 +273,6 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
   std::vector<PieceRecord>& pieces = scratch.pieces;
   pieces.clear();
-  std::vector<double>& ends = scratch.ends;
   for (std::size_t j = 0; j < ray.segments.size(); ++j) {
     const Segment& seg = ray.segments[j];
     if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
@@ -194,21 +288,25 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     const double lo = std::min(s0, s1), hi = std::max(s0, s1);
     auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), lo);
     auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), hi);
-    ends.assign(1, s0);
-    if (s0 < s1)
-      ends.insert(ends.end(), first, last);
-    else
-      ends.insert(ends.end(), std::make_reverse_iterator(last), std::make_reverse_iterator(first));
-    ends.push_back(s1);
+    // Piece q runs from end q to end q + 1 (ends 0 and n_ends - 1 are s0 and s1).
+    const std::size_t n_ends = static_cast<std::size_t>(last - first) + 2;
+    const auto end_at = [&, first = first, last = last](std::size_t q) {
+      if (q == 0) return s0;
+      if (q + 1 == n_ends) return s1;
+      return s0 < s1 ? first[static_cast<std::ptrdiff_t>(q) - 1] : last[-static_cast<std::ptrdiff_t>(q)];
+    };
     const double span = s1 - s0;
-    const std::size_t n_ends = ends.size();
+    double e_far = s0, phi_far = 0.0;  // a piece's far end is the previous one's exit
     for (std::size_t k = 0; k + 1 < n_ends; ++k) {
-      const double fraction = (ends[k + 1] - ends[k]) / span;
+      const double e_exit = end_at(k + 1);
+      const double fraction = (e_exit - e_far) / span;
       const double len = seg.length * fraction;
+      const double phi_exit = k + 2 == n_ends ? 1.0 : (e_exit - s0) / span;
       if (len > 0.0)
-        pieces.push_back({j, ends[k], ends[k + 1], len, n_ends == 2 ? 1.0 : fraction,
-                          k == 0 ? 0.0 : (ends[k] - s0) / span, k + 2 == n_ends ? 1.0 : (ends[k + 1] - s0) / span,
-                          k == 0, k + 2 == n_ends, span});
+        pieces.push_back({j, e_far, e_exit, len, n_ends == 2 ? 1.0 : fraction, phi_far, phi_exit, k == 0,
+                          k + 2 == n_ends, span});
+      e_far = e_exit;
+      phi_far = phi_exit;
     }
   }
 
@@ -222,9 +320,6 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   const bool jumps = tf.has_jump();
   // Every channel's density is the same function (bit for bit): one depth per piece.
   const bool grey = tf.grey();
-  const auto upper = [](const PiecewiseLinear& f, double x) {
-    return static_cast<std::size_t>(std::upper_bound(f.scalar.begin(), f.scalar.end(), x) - f.scalar.begin());
-  };
   // The scalar whose interval a piece's values come from, per function: lo, the smaller end,
   // except for a constant piece on a jump, which takes the left value (operator()): the interval
   // below.
@@ -234,60 +329,73 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
                : lo;
   };
   const std::size_t n = pieces.size();
+  std::vector<ChannelRecord>& records = scratch.records;
+  if (records.size() < n * kChannels) records.resize(n * kChannels);
+  // One walk per function along the ray (grey: density[0]'s serves every channel).
+  FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0], nodes_wanted),
+                                      FunctionWalk(tf.density[1], nodes_wanted),
+                                      FunctionWalk(tf.density[2], nodes_wanted)};
+  FunctionWalk kappa_walk[kChannels] = {FunctionWalk(tf.color[0], nodes_wanted),
+                                        FunctionWalk(tf.color[1], nodes_wanted),
+                                        FunctionWalk(tf.color[2], nodes_wanted)};
+  // Each end takes the limit from inside the piece (append_pieces': at a jump the value on the
+  // piece's side); a constant piece takes operator()'s, the left value at a jump. The far end
+  // first: it is the previous piece's exit, which the walk keeps. Returns the two end values.
+  const auto ends_of = [&](FunctionWalk& walk, const PiecewiseLinear& f, const PieceRecord& pr, double lo,
+                           FunctionEnds& fe) {
+    EndValue far, exit;
+    if (pr.s_far == pr.s_exit) {
+      fe.k = walk.locate(interval_lo(f, pr, lo));
+      far = exit = walk.constant_at(fe.k, lo);
+    } else {
+      fe.k = walk.locate(lo);
+      far = walk.end_in(fe.k, pr.s_far);
+      exit = walk.end_in(fe.k, pr.s_exit);
+    }
+    fe.slope = walk.slope(fe.k);
+    fe.far_w0 = far.w0;
+    fe.far_w1 = far.w1;
+    fe.exit_w0 = exit.w0;
+    fe.exit_w1 = exit.w1;
+    return std::pair<double, double>{far.value, exit.value};
+  };
   // Forward: the optics of every piece-channel and the light entering it.
-  std::vector<PieceOpticsGrad>& optics = scratch.optics;
-  std::vector<double>& incoming = scratch.incoming;
-  std::vector<Intervals>& intervals = scratch.intervals;
-  if (optics.size() < n * kChannels) {
-    optics.resize(n * kChannels);
-    incoming.resize(n * kChannels);
-    intervals.resize(n * kChannels);
-  }
   Rgb intensity = ray.background;
+  PieceOpticsGrad channel0;  // a piece's channel 0, for the other channels of a grey medium
   for (std::size_t k = 0; k < n; ++k) {
     const PieceRecord& pr = pieces[k];
-    const bool constant = pr.s_far == pr.s_exit;
-    const double lo = std::min(pr.s_far, pr.s_exit), hi = std::max(pr.s_far, pr.s_exit);
-    const bool far_is_lo = pr.s_far < pr.s_exit;
-    double rho_lo = 0.0, rho_hi = 0.0;
-    for (int c = 0; c < kChannels; ++c) {
-      const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
-      const PiecewiseLinear& rho = tf.density[c];
-      const PiecewiseLinear& kappa = tf.color[c];
-      Intervals& iv = intervals[i];
-      double kappa_lo, kappa_hi;
-      // Each end takes the limit from inside the piece (append_pieces': at a jump the value on
-      // the piece's side); a constant piece takes operator()'s, the left value at a jump.
+    const double lo = std::min(pr.s_far, pr.s_exit);
+    ChannelRecord* rec = &records[k * kChannels];
+    std::pair<double, double> rho_ends{0.0, 0.0};  // density at the far and exit ends
+    const auto channel = [&](int c, const PieceOpticsGrad* same_depth) {
+      ChannelRecord& r = rec[c];
+      if (same_depth)
+        r.rho = rec[0].rho;
+      else
+        rho_ends = ends_of(rho_walk[c], tf.density[c], pr, lo, r.rho);
+      const std::pair<double, double> kappa_ends = ends_of(kappa_walk[c], tf.color[c], pr, lo, r.kappa);
       // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
       // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
-      // multiplied by a density slope of 3e23 in dI/ds).
-      // (A constant piece has s_far == s_exit: no difference at all.)
-      double dkappa = 0.0;
-      if (constant) {
-        if (!(grey && c > 0)) {
-          iv.rho = upper(rho, interval_lo(rho, pr, lo));
-          rho_lo = rho_hi = rho(lo);
-        }
-        iv.kappa = upper(kappa, interval_lo(kappa, pr, lo));
-        kappa_lo = kappa_hi = kappa(lo);
-      } else {
-        if (!(grey && c > 0)) {
-          iv.rho = upper(rho, lo);
-          rho_lo = limit_above_in(rho, iv.rho, lo);
-          rho_hi = limit_below_in(rho, iv.rho, hi);
-        }
-        iv.kappa = upper(kappa, lo);
-        kappa_lo = limit_above_in(kappa, iv.kappa, lo);
-        kappa_hi = limit_below_in(kappa, iv.kappa, hi);
-        dkappa = interval_slope(kappa, iv.kappa) * (pr.s_far - pr.s_exit);  // 0 on the extensions
-      }
-      if (grey && c > 0) iv.rho = intervals[i - static_cast<std::size_t>(c)].rho;
-      const ChannelPiece cp{pr.length, far_is_lo ? rho_lo : rho_hi, far_is_lo ? rho_hi : rho_lo,
-                            far_is_lo ? kappa_lo : kappa_hi, far_is_lo ? kappa_hi : kappa_lo};
-      optics[i] = piece_grad(cp, dkappa, grey && c > 0 ? &optics[i - static_cast<std::size_t>(c)] : nullptr);
-      incoming[i] = intensity[c];
-      intensity[c] = intensity[c] * optics[i].optics.transmittance + optics[i].optics.emission;
-    }
+      // multiplied by a density slope of 3e23 in dI/ds). A constant piece has none; the
+      // extensions have slope 0.
+      const double dkappa = pr.s_far == pr.s_exit ? 0.0 : r.kappa.slope * (pr.s_far - pr.s_exit);
+      const ChannelPiece cp{pr.length, rho_ends.first, rho_ends.second, kappa_ends.first, kappa_ends.second};
+      const PieceOpticsGrad g = piece_grad(cp, dkappa, same_depth);
+      r.incoming = intensity[c];
+      r.transmittance = g.optics.transmittance;
+      r.de_length = g.de_length;
+      r.dt_length = g.dt_length;
+      r.de_rho_far = g.de_rho_far;
+      r.dt_rho_far = g.dt_rho_far;
+      r.de_rho_exit = g.de_rho_exit;
+      r.dt_rho_exit = g.dt_rho_exit;
+      r.de_kappa_far = g.de_kappa_far;
+      r.de_kappa_exit = g.de_kappa_exit;
+      intensity[c] = intensity[c] * g.optics.transmittance + g.optics.emission;
+      if (c == 0 && grey) channel0 = g;
+    };
+    channel(0, nullptr);
+    for (int c = 1; c < kChannels; ++c) channel(c, grey ? &channel0 : nullptr);
   }
   grad.intensity = intensity;
 
@@ -296,10 +404,9 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   for (std::size_t k = n; k-- > 0;) {
     const PieceRecord& pr = pieces[k];
     for (int c = 0; c < kChannels; ++c) {
-      const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
-      const PieceOpticsGrad& g = optics[i];
+      const ChannelRecord& g = records[k * kChannels + static_cast<std::size_t>(c)];
       const double e_bar = adjoint[c];
-      const double t_bar = adjoint[c] * incoming[i];
+      const double t_bar = adjoint[c] * g.incoming;
       const double len_bar = e_bar * g.de_length + t_bar * g.dt_length;
       const double rho_far_bar = e_bar * g.de_rho_far + t_bar * g.dt_rho_far;
       const double rho_exit_bar = e_bar * g.de_rho_exit + t_bar * g.dt_rho_exit;
@@ -348,38 +455,54 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       // delta inside a piece changes I by O(delta^2)), without the factor L/(s_exit - s_far)
       // and the cancellation between the two pieces at a breakpoint that the latter carries
       // (it cost 1e-6 of the channel's largest entry on a 7e-13-wide segment of narrow_pulse).
-      // k_f: the interval the piece's values come from (the forward's).
-      const auto through = [&](const PiecewiseLinear& f, std::vector<NodeDerivative>& nodes, std::size_t k_f,
-                               double s, double bar, double phi) {
-        if (bar == 0.0) return;
-        double slope;
+      // fe: the interval the piece's values come from and what the forward formed in it
+      // (node_weights_in's weights and slope; on the extensions weight 1 on the end node). Both
+      // ends of the piece in one pass; every accumulator receives the far end's term first.
+      Rgb& scalar_far = grad.scalar_far[pr.segment];
+      Rgb& scalar_exit = grad.scalar_exit[pr.segment];
+      const auto through = [&](std::vector<NodeDerivative>& nodes, const FunctionEnds& fe, double far_bar,
+                               double exit_bar) {
+        if (far_bar == 0.0 && exit_bar == 0.0) return;
+        const std::size_t size = nodes.size();
+        const bool extension = fe.k == 0 || fe.k == size;
+        // The nodes of the interval (on an extension both the end node, weight 1, position 0).
+        NodeDerivative* d0 = nullptr;
+        NodeDerivative* d1 = nullptr;
         if (nodes_wanted) {
-          const NodeWeights nw = node_weights_in(f, k_f, s);
-          for (int q = 0; q < nw.count; ++q) {
-            nodes[nw.node[q]].value += bar * nw.w[q];
-            nodes[nw.node[q]].position += bar * nw.dp[q];
+          d0 = &nodes[extension ? (fe.k == 0 ? 0 : size - 1) : fe.k - 1];
+          d1 = extension ? d0 : &nodes[fe.k];
+        }
+        for (int e = 0; e < 2; ++e) {
+          const double bar = e == 0 ? far_bar : exit_bar;
+          if (bar == 0.0) continue;
+          if (nodes_wanted) {
+            if (extension) {
+              d0->value += bar * 1.0;
+              d0->position += bar * 0.0;  // 0, or NaN for a non-finite bar: as node_weights_in's
+            } else {
+              const double w0 = e == 0 ? fe.far_w0 : fe.exit_w0, w1 = e == 0 ? fe.far_w1 : fe.exit_w1;
+              d0->value += bar * w0;
+              d0->position += bar * (-fe.slope * w0);  // d/dp0 of v0 + (s - p0) slope
+              d1->value += bar * w1;
+              d1->position += bar * (-fe.slope * w1);  // d/dp1 of v1 - (p1 - s) slope
+            }
           }
-          slope = nw.slope;
-        } else {
-          slope = interval_slope(f, k_f);
+          const double s_bar = bar * fe.slope;
+          if (s_bar == 0.0) continue;
+          const double s = e == 0 ? pr.s_far : pr.s_exit, phi = e == 0 ? pr.phi_far : pr.phi_exit;
+          if (ends_mode == PieceEnds::moving) {
+            route(s == pr.s_far && phi == pr.phi_far, s, s_bar);
+            continue;
+          }
+          scalar_far[c] += s_bar * (1.0 - phi);
+          scalar_exit[c] += s_bar * phi;
         }
-        const double s_bar = bar * slope;
-        if (s_bar == 0.0) return;
-        if (ends_mode == PieceEnds::moving) {
-          route(s == pr.s_far && phi == pr.phi_far, s, s_bar);
-          return;
-        }
-        grad.scalar_far[pr.segment][c] += s_bar * (1.0 - phi);
-        grad.scalar_exit[pr.segment][c] += s_bar * phi;
       };
-      const Intervals& iv = intervals[i];
-      through(tf.density[c], grad.density[c], iv.rho, pr.s_far, rho_far_bar, pr.phi_far);
-      through(tf.density[c], grad.density[c], iv.rho, pr.s_exit, rho_exit_bar, pr.phi_exit);
-      through(tf.color[c], grad.color[c], iv.kappa, pr.s_far, kappa_far_bar, pr.phi_far);
-      through(tf.color[c], grad.color[c], iv.kappa, pr.s_exit, kappa_exit_bar, pr.phi_exit);
-      adjoint[c] *= g.optics.transmittance;
+      through(grad.density[c], g.rho, rho_far_bar, rho_exit_bar);
+      through(grad.color[c], g.kappa, kappa_far_bar, kappa_exit_bar);
+      adjoint[c] *= g.transmittance;
       if (jumps && !pr.far_is_end && k > 0)
-        add_jump_crossing(tf, ray, pieces[k - 1], pr, c, incoming[i], adjoint[c], grad,
+        add_jump_crossing(tf, ray, pieces[k - 1], pr, c, g.incoming, adjoint[c], grad,
                           ends_mode == PieceEnds::fixed_along_segment, nodes_wanted);
     }
   }
