@@ -110,8 +110,7 @@ void set_check_command(CLI::App& app) {
     std::optional<MeshCase> own;
     const Case c = read_case_file(opt->case_file, opt->mesh, nullptr, &own);
     const Candidate candidate =
-        own ? read_candidate_file(opt->candidate_file, own->name, own->source, evaluation_rays(*own).size())
-            : read_candidate_file(opt->candidate_file, c);
+        read_case_candidate(opt->candidate_file, true, opt->candidate_file, c, own ? &*own : nullptr);
     CheckOptions co = opt->check;
     co.with_reference = !opt->no_reference;
     if (own && !opt->image.quiet)

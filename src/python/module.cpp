@@ -304,21 +304,8 @@ std::pair<std::string, bool> check(const Document& case_doc, const Document& can
   py::gil_scoped_release release;
   std::optional<rayint::MeshCase> own;  // cells other than tetrahedra: studies/check.hpp check_candidate_own
   const Case c = load_case(case_doc, split, nullptr, &own);
-  rayint::Candidate candidate;
-  if (own) {
-    const std::size_t rays = rayint::evaluation_rays(*own).size();
-    if (candidate_doc.is_path) {
-      candidate = rayint::read_candidate_file(candidate_doc.text, own->name, own->source, rays);
-    } else {
-      candidate = rayint::parse_candidate_text(candidate_doc.text, candidate_doc.source);
-      rayint::require_candidate_matches(candidate, own->name, own->source, rays);
-    }
-  } else if (candidate_doc.is_path) {
-    candidate = rayint::read_candidate_file(candidate_doc.text, c);
-  } else {
-    candidate = rayint::parse_candidate_text(candidate_doc.text, candidate_doc.source);
-    rayint::require_candidate_matches(candidate, c);
-  }
+  const rayint::Candidate candidate = rayint::read_case_candidate(
+      candidate_doc.text, candidate_doc.is_path, candidate_doc.source, c, own ? &*own : nullptr);
   for (const double tol : {rel_tol, abs_tol})
     if (!(std::isfinite(tol) && tol >= 0.0))
       throw std::invalid_argument("check: tolerances must be finite numbers >= 0, got " +

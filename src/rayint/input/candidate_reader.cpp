@@ -39,10 +39,14 @@ Candidate read_candidate_file(const std::string& path, const Case& c) {
                                      static_cast<void (*)(const Candidate&, const Case&)>(require_candidate_matches));
 }
 
-Candidate read_candidate_file(const std::string& path, const std::string& case_name, const std::string& case_source,
-                              std::size_t rays) {
-  Candidate candidate = parse_candidate_text(json_source::read_text_file(path), path);
-  require_candidate_matches(candidate, case_name, case_source, rays);
+Candidate read_case_candidate(const std::string& text, bool is_path, const std::string& source, const Case& c,
+                              const MeshCase* own) {
+  Candidate candidate = is_path ? parse_candidate_text(json_source::read_text_file(text), text)
+                                : parse_candidate_text(text, source);
+  if (own)
+    require_candidate_matches(candidate, own->name, own->source, evaluation_rays(*own).size());
+  else
+    require_candidate_matches(candidate, c);
   return candidate;
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "rayint/mesh/mesh_case.hpp"
 #include "rayint/studies/check.hpp"
 #include "rayint/studies/grad_study.hpp"
 #include "rayint/core/error.hpp"
@@ -33,9 +34,13 @@ void require_candidate_matches(const Candidate& candidate, const std::string& ca
 
 // Reads `path`, parses it and requires it to match `c`. Throws InputError.
 Candidate read_candidate_file(const std::string& path, const Case& c);
-// The same for a case given by its name, file and ray count (see above). Throws InputError.
-Candidate read_candidate_file(const std::string& path, const std::string& case_name, const std::string& case_source,
-                              std::size_t rays);
+
+// The candidate of `rayint check` and Python's check() for a case as the case reader returned
+// it: with `own` (a mesh of cells other than tetrahedra, in their own interpolation) one entry per
+// evaluation ray of `*own`, else one per ray of `c`. `text` is the candidate file's path when
+// `is_path`, else the document itself, named `source` in messages. Throws InputError.
+Candidate read_case_candidate(const std::string& text, bool is_path, const std::string& source, const Case& c,
+                              const MeshCase* own);
 
 // Gradients. Structure only: known fields, types, finite numbers or null, consistent block sizes
 // within a ray. Throws InputError.
