@@ -345,6 +345,7 @@ TEST_CASE("own mode: bench times the own interpolation against VTK's split and s
   const auto& o = b["own_vs_split"];
   CHECK(o["repetitions"] == 3);
   CHECK(o["threads"] == 1);
+  CHECK(o["clock"] == "thread CPU time");
   REQUIRE(o["cases"].size() == 2);
   for (const char* name : {"twisted", "mixed"}) {
     const std::size_t k = std::string(name) == "twisted" ? 0 : 1;

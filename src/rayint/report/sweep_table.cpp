@@ -118,7 +118,7 @@ std::string own_split_table(const OwnSplitRun& run) {
                   format_seconds(c.own_seconds).c_str(), split.c_str(), ratio, diff.c_str());
     out += line;
   }
-  out += "(" + std::to_string(run.repetitions) + " repetitions, median time of every ray once, single thread)\n";
+  out += "(" + std::to_string(run.repetitions) + " repetitions, median CPU time of every ray once, single thread)\n";
   for (const OwnSplitCase& c : run.cases) {
     if (!c.split_ran) out += "failed: " + c.name + ": no split: " + c.split_failure + "\n";
     if (c.own_failed_rays > 0)

@@ -11,8 +11,9 @@
 // Both single-threaded, the same rays and backgrounds, no reference in the loop. One repetition
 // integrates every ray once by each path (own, then split: interleaved, so drifting machine load
 // hits both alike); own_seconds / split_seconds are the MEDIANS over the repetitions of the whole
-// ray set's time. Setting up (building the traversal structures; the split itself) is timed once
-// and reported apart.
+// ray set's time, as the thread's CPU time (core/cpu_clock.hpp: other jobs on a shared machine
+// do not count). Setting up (building the traversal structures; the split itself) is timed
+// once, the same way, and reported apart.
 //
 // The difference between the two answers is the split's error against the own interpolation
 // (what tetrahedralisation costs; the own path's own accuracy against the 50-digit reference is
