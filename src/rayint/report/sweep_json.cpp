@@ -171,7 +171,8 @@ nlohmann::json own_split_json(const OwnSplitRun& run) {
       {"own", "CellTraversal trace + integrate: the cells in their own (isoparametric) interpolation"},
       {"split", "split_cells (VTK's vtkDataSetTriangleFilter rule) + TetTraversal + exact: --cells split"},
       {"own_seconds", "median over repetitions of the thread CPU time to integrate every ray of the case once, "
-                      "single thread, own and split passes interleaved; setting up not included (*_setup_seconds)"},
+                      "single thread, own and split passes interleaved, each timed pass after an untimed one of the same path "
+                      "(warm caches); setting up not included (*_setup_seconds)"},
       {"own_over_split", "own_seconds / split_seconds; null unless no ray failed on either path"},
       {"max_abs_difference", "max over rays integrated by both paths and channels of |I_split - I_own|"},
       {"max_rel_difference", "the same of |I_split - I_own| / |I_own| (absolute where I_own = 0)"},

@@ -9,8 +9,9 @@
 //   split  split_cells (VTK's vtkDataSetTriangleFilter rule, mesh/cell_split.hpp), then
 //          TetTraversal::trace + ray_from_trace + the `exact` method -- what `--cells split` pays.
 // Both single-threaded, the same rays and backgrounds, no reference in the loop. One repetition
-// integrates every ray once by each path (own, then split: interleaved, so drifting machine load
-// hits both alike); own_seconds / split_seconds are the MEDIANS over the repetitions of the whole
+// integrates every ray by each path (own, then split: interleaved, so drifting machine load hits
+// both alike), each path first once untimed (its data back in the caches, as in a render of one
+// mode) and then timed; own_seconds / split_seconds are the MEDIANS over the repetitions of the whole
 // ray set's time, as the thread's CPU time (core/cpu_clock.hpp: other jobs on a shared machine
 // do not count). Setting up (building the traversal structures; the split itself) is timed
 // once, the same way, and reported apart.
