@@ -79,13 +79,9 @@ OwnSplitCase bench_own_vs_split(const MeshCase& mc, const OwnSplitBenchOptions& 
   CellTrace cell_trace;
   RayTrace tet_trace;
   Ray ray;
-  // Each timed pass follows an untimed pass of the same path over the same rays, so both are
-  // timed with their own data in the caches, as in a render of one mode (timing a path right
-  // after the other one evicted it read the split 1.4-1.5x slower than BM_mesh/split).
-  for (int pass = 0; pass < 2 * options.repetitions; ++pass) {
-    const bool timed = pass % 2 == 1;
-    const bool record = pass == 0;  // the answers are the same every pass; keep the first
-    start = thread_cpu_seconds();
+  // One pass of each path over every ray; `record` keeps the answers (the same every pass).
+  const auto own_pass = [&](bool record) {
+    const double start_pass = thread_cpu_seconds();
     for (std::size_t i = 0; i < rays.size(); ++i) {
       own_mesh.trace(rays[i].ray, cell_trace);
       const CellRayResult r = own_mesh.integrate(cell_trace, own_integrator, rays[i].background);
@@ -95,9 +91,10 @@ OwnSplitCase bench_own_vs_split(const MeshCase& mc, const OwnSplitBenchOptions& 
       own[i].intensity = r.intensity;
       own[i].failure = r.converged ? (own[i].ok ? "" : "non-finite intensity") : r.failure;
     }
-    if (timed) own_times.push_back(seconds_since(start));
-    if (!split_mesh) continue;
-    start = thread_cpu_seconds();
+    return seconds_since(start_pass);
+  };
+  const auto split_pass = [&](bool record) {
+    const double start_pass = thread_cpu_seconds();
     for (std::size_t i = 0; i < rays.size(); ++i) {
       try {
         split_mesh->trace(rays[i].ray, tet_trace);
@@ -112,7 +109,17 @@ OwnSplitCase bench_own_vs_split(const MeshCase& mc, const OwnSplitBenchOptions& 
         if (record) split[i].failure = e.what();
       }
     }
-    if (timed) split_times.push_back(seconds_since(start));
+    return seconds_since(start_pass);
+  };
+  // Each repetition: own untimed, own timed, split untimed, split timed -- every timed pass right
+  // after an untimed one of the same path, its data in the caches as in a render of one mode
+  // (timing the split right after the own path read it ~1.4x slower than BM_mesh/split).
+  for (int rep = 0; rep < options.repetitions; ++rep) {
+    own_pass(rep == 0);
+    own_times.push_back(own_pass(false));
+    if (!split_mesh) continue;
+    split_pass(rep == 0);
+    split_times.push_back(split_pass(false));
   }
   out.own_seconds = median(own_times);
   out.split_seconds = median(split_times);
