@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "shard.hpp"
 #include "rayint/input/shard_reader.hpp"
 #include "rayint/report/shard_json.hpp"
+#include "rayint/studies/own_split_bench.hpp"
 #include "rayint/studies/sweep.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/report/sweep_json.hpp"
@@ -85,7 +87,9 @@ void set_bench_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   CLI::Option* output_option = cmd->add_option("-o,--output", opt->output, "JSON output file ('-' = stdout)")
       ->capture_default_str();
-  cmd->add_option("--batches", opt->sweep.timing.timing_batches, "Timing batches per ray (median taken)")
+  cmd->add_option("--batches", opt->sweep.timing.timing_batches,
+                  "Timing batches per ray (median taken); for a mesh of cells other than tetrahedra: "
+                  "repetitions of the whole ray set, own and split")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--batch-seconds", opt->sweep.timing.timing_batch_seconds, "Minimum length of one timing batch")
@@ -100,8 +104,22 @@ void set_bench_command(CLI::App& app) {
     const std::vector<SweepAxis> axes = select_sweep_axes(split_names(opt->methods));
     const std::vector<std::string> files = case_files(opt->files);
     std::vector<Case> cases;
+    // Mesh cases of cells other than tetrahedra (without --cells split): no segments to sweep;
+    // their own interpolation is timed against VTK's split instead (studies/own_split_bench.hpp).
+    std::vector<MeshCase> own_cases;
     const json_source::InputFileLog read;  // the case files and the meshes they name: shard inputs
-    for (const auto& f : files) cases.push_back(read_case_file(f, opt->mesh));  // validate all first
+    for (const auto& f : files) {  // validate all first
+      std::optional<MeshCase> own;
+      Case c = read_case_file(f, opt->mesh, nullptr, &own);
+      if (own) {
+        own_cases.push_back(std::move(*own));
+      } else {
+        cases.push_back(std::move(c));
+      }
+    }
+    if (!own_cases.empty() && (!opt->shard.empty() || merging()))
+      throw InputError(own_cases.front().source + ": mesh_file: cells other than tetrahedra (own interpolation vs "
+                       "split timing) cannot be sharded or merged; run bench on them without --shard");
     const std::vector<std::string> inputs = run_inputs(files, read);
     if (opt->output != "-") {
       const auto parent = std::filesystem::path(opt->output).parent_path();
@@ -118,6 +136,20 @@ void set_bench_command(CLI::App& app) {
       if (output_option->count() == 0)
         throw std::invalid_argument("--shard: needs -o FILE for the shard file");
       write_shard(opt->output, "bench", shard, inputs, to_json(run_sweep_part(cases, axes, so, shard)));
+      return;
+    }
+    OwnSplitRun own_run;
+    if (!own_cases.empty()) {
+      OwnSplitBenchOptions oo;
+      oo.repetitions = opt->sweep.timing.timing_batches;
+      own_run = bench_own_cases(own_cases, oo);
+    }
+    if (cases.empty()) {  // only own-interpolation cases: nothing to sweep
+      emit(own_split_report_json(own_run).dump(1), opt->output);
+      if (opt->output != "-") {
+        std::cout << own_split_table(own_run);
+        std::cout << "wrote " << opt->output << "\n";
+      }
       return;
     }
     SweepResult result;
@@ -141,9 +173,12 @@ void set_bench_command(CLI::App& app) {
     } else {
       result = run_sweep(cases, axes, so);
     }
-    emit(sweep_report_json(result).dump(1), opt->output);
+    nlohmann::json report = sweep_report_json(result);
+    if (!own_cases.empty()) report["own_vs_split"] = own_split_json(own_run);
+    emit(report.dump(1), opt->output);
     if (opt->output != "-") {
       std::cout << sweep_targets_table(result);
+      if (!own_cases.empty()) std::cout << own_split_table(own_run);
       std::cout << "wrote " << opt->output << "\n";
     }
   });

@@ -126,7 +126,9 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
   // A hexahedron is integrated in its own interpolation ("mode": "own"); the segment methods do
   // not apply there, and commands that need segments name --cells split.
   expect_bad(dir, "eval hex.json --methods exact -o out.json", "hex.json: --methods: the own interpolation of cells other than tetrahedra is one method");
-  expect_bad(dir, "bench hex.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give");
+  // bench times them in their own interpolation against VTK's split (tests/test_own_mode_cli.cpp),
+  // but not in shards.
+  expect_bad(dir, "bench hex.json --shard 0/2 -o part.json", "hex.json: mesh_file: cells other than tetrahedra (own interpolation vs split timing) cannot be sharded");
   // Surface shading is not simulated in the own mode: every command refuses it rather than
   // integrating the case without it (eval did, exit 0).
   dir.write("hexshade.json", R"({"name": "h", "transfer_function": {"density": [[0, 1]], "color": [[0, 1]]},
@@ -138,7 +140,7 @@ TEST_CASE("CLI: bad mesh input exits 2 with one line and no output", "[mesh]") {
   expect_bad(dir, "check hexshade.json --candidate-image nosuch.npy -o out.json", shade);
   expect_bad(dir, "check hexshade.json --candidate nosuch.json -o out.json", shade);
   // grad has no --cells option: the line must not tell its user to pass one to it.
-  expect_bad(dir, "grad hex.json -o out.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give (rayint eval, render and check integrate them in it; eval, render, check and bench take VTK's tetrahedralisation of them with --cells split)");
+  expect_bad(dir, "grad hex.json -o out.json", "hex.json: mesh_file: hex.vtk holds cells other than tetrahedra: this command needs linear segments, which their own interpolation does not give (rayint eval, render and check integrate them in it, bench times that against VTK's split; eval, render, check and bench take VTK's tetrahedralisation of them with --cells split)");
   dir.write("nocam.json", with(kMeshCase, R"("camera": {"position": [0.3, 0.3, 4], "look_at": [0.3, 0.3, 0], "fov_deg": 30, "width": 12, "height": 10})", R"("description": "")"));
   expect_bad(dir, "render nocam.json -o out.png", "nocam.json: camera: required to render a mesh case");
   dir.write("tiny.json", kMeshCase);

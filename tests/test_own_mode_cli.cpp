@@ -6,6 +6,7 @@
 // (tag [celltraversal][cli]; the check ones also [check]).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -298,4 +299,129 @@ TEST_CASE("own mode: check --candidate fails rays whose own integration did not 
   }
   CHECK(marked == failed);
   CHECK(bytes_of(dir.path / "j.xml").find("no expected value: ") != std::string::npos);
+}
+
+// ---- rayint bench on cells other than tetrahedra: own interpolation against VTK's split ----
+
+namespace {
+
+// The largest |I_split - I_own| and |I_split - I_own| / |I_own| (absolute where I_own = 0) over
+// the rays and channels of two eval runs of one case: the own mode (cases[0].rays[i].intensity)
+// and --cells split --methods exact.
+std::array<double, 2> max_eval_difference(const nlohmann::json& own, const nlohmann::json& split) {
+  const auto& a = own["cases"][0]["rays"];
+  const auto& b = split["cases"][0]["rays"];
+  REQUIRE(a.size() == b.size());
+  std::array<double, 2> worst{0.0, 0.0};
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double io = a[i]["intensity"][c].get<double>();
+      const double d = std::fabs(b[i]["methods"]["exact"]["intensity"][c].get<double>() - io);
+      worst[0] = std::max(worst[0], d);
+      worst[1] = std::max(worst[1], io != 0.0 ? d / std::fabs(io) : d);
+    }
+  return worst;
+}
+
+const std::string kMixedCase = R"({"name": "mixed", "transfer_function": {"density": [[0, 0.5], [0.5, 3.0], [1, 1.0]],
+    "color": [[0, 1.0], [0.5, 0.1], [1, 0.8]]},
+    "mesh_file": ")" + kReaders + R"(cells-mixed-41.msh",
+    "camera": {"position": [1.2, 0.4, 4.0], "look_at": [1, 0.5, 0.5], "fov_deg": 35, "width": 12, "height": 8}})";
+
+}  // namespace
+
+TEST_CASE("own mode: bench times the own interpolation against VTK's split and states the difference", "[celltraversal][cli][bench]") {
+  TempDir dir;
+  dir.write("twisted.json", twisted_case(kReaders + "cells-twisted.vts"));
+  dir.write("mixed.json", kMixedCase);
+  const auto r = test::run_cli(dir.path, "bench twisted.json mixed.json --batches 3 -o b.json");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("own/split") != std::string::npos);
+  CHECK(r.out.find("failed:") == std::string::npos);
+  const auto b = nlohmann::json::parse(bytes_of(dir.path / "b.json"));
+  CHECK(b["report"] == "bench");
+  CHECK(b["methods"].empty());  // nothing to sweep: no segment case
+  const auto& o = b["own_vs_split"];
+  CHECK(o["repetitions"] == 3);
+  CHECK(o["threads"] == 1);
+  CHECK(o["clock"] == "thread CPU time");
+  REQUIRE(o["cases"].size() == 2);
+  for (const char* name : {"twisted", "mixed"}) {
+    const std::size_t k = std::string(name) == "twisted" ? 0 : 1;
+    const auto& c = o["cases"][k];
+    INFO(name << ": " << c.dump());
+    CHECK(c["name"] == name);
+    // What eval says of the same case, in both modes: the ray count, the cells, the tetrahedra of
+    // the split, and the difference of the two answers ray by ray.
+    const auto own = test::run_cli(dir.path, std::string("eval ") + name + ".json -q --no-reference");
+    const auto split = test::run_cli(dir.path, std::string("eval ") + name + ".json --cells split --methods exact -q --no-reference");
+    REQUIRE(own.status == 0);
+    REQUIRE(split.status == 0);
+    const auto jo = nlohmann::json::parse(own.out), js = nlohmann::json::parse(split.out);
+    CHECK(c["rays"] == jo["cases"][0]["rays"].size());
+    CHECK(c["compared_rays"] == c["rays"]);
+    CHECK(c["cells"] == jo["cases"][0]["cells"]);
+    CHECK(c["tets"] == js["cases"][0]["mesh_repairs"]["tets_read"]);
+    CHECK(c["complete"] == true);
+    CHECK(c["own_failed_rays"] == 0);
+    CHECK(c["split_failed_rays"] == 0);
+    const double own_s = c["own_seconds"].get<double>(), split_s = c["split_seconds"].get<double>();
+    CHECK(own_s > 0);
+    CHECK(split_s > 0);
+    CHECK(c["own_over_split"].get<double>() == Approx(own_s / split_s).epsilon(1e-12));
+    CHECK(c["own_seconds_per_ray"].get<double>() == Approx(own_s / c["rays"].get<double>()).epsilon(1e-12));
+    // The same integrations as eval's (single-threaded, same code): the difference is eval's to rounding.
+    const std::array<double, 2> diff = max_eval_difference(jo, js);
+    CHECK(diff[0] > 1e-6);  // the split changes the field of these cells (reports/cells/own_vs_split.md)
+    CHECK(c["max_abs_difference"].get<double>() == Approx(diff[0]).epsilon(1e-9));
+    CHECK(c["max_rel_difference"].get<double>() == Approx(diff[1]).epsilon(1e-9));
+  }
+  CHECK(o["cases"][1]["cells"]["pyramid"] == 4);
+  CHECK(o["cases"][0]["structured_split"] == true);
+  CHECK(o["cases"][1]["structured_split"] == false);
+}
+
+TEST_CASE("own mode: bench counts rays whose own integration failed and gives no ratio", "[celltraversal][cli][bench]") {
+  TempDir dir;
+  const nlohmann::json ej = test::eval_bow_tie(dir, 12);
+  const long failed = ej["cases"][0]["failed"].get<long>();
+  const auto r = test::run_cli(dir.path, "bench bow.json --batches 1 -o b.json");
+  INFO(r.err);
+  REQUIRE(r.status == 0);  // bench's rule: the report was written, failures counted in it
+  CHECK(r.out.find("failed: bow: own on " + std::to_string(failed) + " of 144 rays") != std::string::npos);
+  const auto c = nlohmann::json::parse(bytes_of(dir.path / "b.json"))["own_vs_split"]["cases"][0];
+  INFO(c.dump());
+  CHECK(c["own_failed_rays"] == failed);
+  CHECK(c["complete"] == false);
+  CHECK(c["own_over_split"].is_null());
+  CHECK_FALSE(c["own_failure"].get<std::string>().empty());
+  // The bow tie's split overlaps itself: TetTraversal refuses it, so there is no split at all
+  // -- no split time, no difference, said why -- rather than numbers from half a comparison.
+  CHECK(c["split_ran"] == false);
+  CHECK(c["split_seconds"].is_null());
+  CHECK(c["tets"].is_null());
+  CHECK(c["compared_rays"] == 0);
+  CHECK(c["max_abs_difference"].is_null());
+  CHECK(c["max_rel_difference"].is_null());
+  CHECK(c["split_failure"].get<std::string>().find("overlaps") != std::string::npos);
+  CHECK(r.out.find("failed: bow: no split: ") != std::string::npos);
+}
+
+TEST_CASE("own mode: bench with segment cases keeps the sweep and adds own_vs_split, refuses --shard", "[celltraversal][cli][bench]") {
+  TempDir dir;
+  dir.write("twisted.json", twisted_case(kReaders + "cells-twisted.vts"));
+  const auto r = test::run_cli(dir.path, "bench twisted.json " + RAYINT_SOURCE_DIR +
+                                             "/cases/constant-scalar-segments.json --methods riemann --batches 1 --batch-seconds 1e-5 -q -o b.json");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto b = nlohmann::json::parse(bytes_of(dir.path / "b.json"));
+  REQUIRE(b["cases"].size() == 1);
+  CHECK(b["methods"].size() == 2);  // exact and riemann, as without the mesh case
+  REQUIRE(b["own_vs_split"]["cases"].size() == 1);
+  CHECK(b["own_vs_split"]["cases"][0]["complete"] == true);
+  CHECK(r.out.find("own vs split") != std::string::npos);
+  const auto s = test::run_cli(dir.path, "bench twisted.json --shard 0/2 -o part.json");
+  CHECK(s.status == 2);
+  CHECK(s.err.rfind("rayint: error: twisted.json: mesh_file: cells other than tetrahedra", 0) == 0);
 }

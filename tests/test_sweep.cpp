@@ -240,3 +240,51 @@ TEST_CASE("A bench progress line shows a setting that failed on every ray withou
   failed.max_error = 1.5e-3;
   CHECK(rayint::sweep_progress_line(p).find("max 1.50e-03") != std::string::npos);
 }
+
+TEST_CASE("bench own vs split: failed rays give no ratio, no compared ray no difference", "[sweep][bench][failure]") {
+  using namespace rayint;
+  OwnSplitRun run;
+  run.repetitions = 3;
+  run.load_start = run.load_end = {-1.0, -1.0, -1.0};
+  OwnSplitCase c;
+  c.name = "hexes";
+  c.cells = {{"hexahedron", 8}};
+  c.cell_total = 8;
+  c.split_ran = true;
+  c.tets = 40;
+  c.rays = 10;
+  c.own_seconds = 4e-3;
+  c.split_seconds = 1e-3;
+  c.compared_rays = 7;
+  c.max_abs_difference = 0.25;
+  c.max_rel_difference = 0.5;
+  c.own_failed_rays = 3;
+  c.own_failure = "a cell's chord could not be located";
+  run.cases.push_back(c);
+  c.name = "none";
+  c.own_failed_rays = 10;
+  c.compared_rays = 0;
+  run.cases.push_back(c);
+  c.name = "whole";
+  c.own_failed_rays = 0;
+  c.own_failure.clear();
+  c.compared_rays = 10;
+  run.cases.push_back(c);
+  const nlohmann::json j = own_split_report_json(run);
+  const auto& cases = j["own_vs_split"]["cases"];
+  REQUIRE(cases.size() == 3);
+  CHECK(cases[0]["complete"] == false);
+  CHECK(cases[0]["own_over_split"].is_null());  // the failed rays' time is not the mesh's
+  CHECK(cases[0]["own_failed_rays"] == 3);
+  CHECK(cases[0]["max_abs_difference"] == 0.25);  // over the 7 rays both paths integrated
+  CHECK(cases[1]["max_abs_difference"].is_null());
+  CHECK(cases[1]["max_rel_difference"].is_null());
+  CHECK(cases[1]["worst"].is_null());
+  CHECK(cases[2]["complete"] == true);
+  CHECK(cases[2]["own_over_split"] == 4.0);
+  CHECK(j["own_vs_split"]["load_average_start"].is_null());
+  const std::string table = own_split_table(run);
+  CHECK(table.find("failed: hexes: own on 3 of 10 rays (first: a cell's chord could not be located)") != std::string::npos);
+  CHECK(table.find("failed: none: own on 10 of 10 rays") != std::string::npos);
+  CHECK(table.find("failed: whole") == std::string::npos);
+}

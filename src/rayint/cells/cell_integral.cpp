@@ -253,7 +253,8 @@ LinearPart linear_part(const PiecewiseLinear& f, double f_mid) {
 // Approximation Practice, Thm 19.3). On E_rho, |x| <= A = |m| + r (rho + 1/rho) / 2, so x lies in
 // the ellipse E_R of [-1, 1] with R = A + sqrt(A^2 + 1) (semi-minor axis A): |f| <= ellipse_bound(c,
 // R), |P| likewise, |x - x0| <= A + |x0|, and |exp(-tau)| <= exp(|tau|). Per channel the smallest
-// bound over rho in kGaussEllipses; infinite when nothing is finite.
+// bound over rho in kGaussEllipses, tried in increasing order until one lowers no channel's bound;
+// infinite when nothing is finite.
 struct GaussBounds {
   Channels n7{}, n10{};
 };
@@ -291,12 +292,18 @@ GaussBounds gauss_bounds(const std::vector<double>& c, const std::vector<double>
       tau_bound = std::max(tau_bound, h * (std::abs(p.v0) * dx_bound + std::abs(p.beta) * (P_bound + std::abs(p.s0) * dx_bound)));
     }
     const double growth = r * std::exp(tau_bound);
+    bool smaller = false;  // this ellipse lowered some channel's bound
     for (std::size_t ch = 0; ch < kChannels; ++ch) {
       const double M = growth * weight[ch];
       if (!std::isfinite(M)) continue;
+      smaller = smaller || e.scale7 * M < out.n7[ch] || e.scale10 * M < out.n10[ch];
       out.n7[ch] = std::min(out.n7[ch], e.scale7 * M);
       out.n10[ch] = std::min(out.n10[ch], e.scale10 * M);
     }
+    // The bound falls with rho (rho^-2N) until the integrand's growth on the larger ellipse
+    // wins; once a larger ellipse lowered no channel's bound, the larger ones are not tried.
+    // (Every ellipse's bound is a bound: stopping early only forgoes a possibly smaller one.)
+    if (!smaller) break;
   }
   return out;
 }
@@ -650,12 +657,13 @@ CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double val
       for (std::size_t c = 0; c < kChannels; ++c) {
         const double E = h * piece_emission[c];
         const double depth_error = std::abs(rho[c].beta) * e_f * length;
-        error[c] += std::exp(-depth[c]) *
+        const double transmittance = std::exp(-depth[c]);  // once: libm's exp is not merged (errno)
+        error[c] += transmittance *
                         (h * quadrature_error[c] +
                          length * e_f * (std::abs(kappa[c].beta) * rho[c].max_value + kappa[c].max_value * std::abs(rho[c].beta)) +
                          E * depth_error) +
                     depth_error;
-        emission[c] += std::exp(-depth[c]) * E;
+        emission[c] += transmittance * E;
         depth[c] += tau(c, x1 - x0, dP1);
       }
     }

@@ -392,7 +392,8 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
 Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* global_ids) {
   Chord out;
   const RayFrame frame(ray);
-  std::vector<double> ts;
+  std::array<double, 2 * 6> ts{};  // at most 2 hits per face (a bilinear patch), 6 faces
+  std::size_t n_ts = 0;
   for (int f = 0; f < linear_face_count(cell.type); ++f) {
     const FaceNodes face = linear_face(cell.type, f);
     std::array<Vec3, 4> cyclic{};
@@ -409,17 +410,17 @@ Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* glob
       canonical[static_cast<std::size_t>(k)] = cyclic[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])];
     const FaceHits hits = intersect_face(canonical, face.count, ray, frame);
     for (int h = 0; h < hits.count; ++h) {
-      ts.push_back(hits.hit[static_cast<std::size_t>(h)].t);
+      ts[n_ts++] = hits.hit[static_cast<std::size_t>(h)].t;
       out.hits.push_back({hits.hit[static_cast<std::size_t>(h)].t, f});
     }
   }
   std::sort(out.hits.begin(), out.hits.end(), [](const ChordFaceHit& a, const ChordFaceHit& b) {
     return a.t < b.t || (a.t == b.t && a.face < b.face);
   });
-  std::sort(ts.begin(), ts.end());
-  ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
+  std::sort(ts.begin(), ts.begin() + static_cast<std::ptrdiff_t>(n_ts));
+  n_ts = static_cast<std::size_t>(std::unique(ts.begin(), ts.begin() + static_cast<std::ptrdiff_t>(n_ts)) - ts.begin());
   Vec3 start = linear_reference_centre(cell.type);
-  for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+  for (std::size_t k = 0; k + 1 < n_ts; ++k) {
     const double tm = 0.5 * (ts[k] + ts[k + 1]);
     const InverseMap m = inverse_map(cell, ray.origin + tm * ray.direction, start);
     if (!m.converged) {

@@ -121,8 +121,9 @@ Case parse_case_root(const json& root, const std::string& source, StreamedRays* 
       if (!own_cells)
         throw InputError(source + ": mesh_file: " + mc.mesh_source +
                          " holds cells other than tetrahedra: this command needs linear segments, which their own "
-                         "interpolation does not give (rayint eval, render and check integrate them in it; eval, render, "
-                         "check and bench take VTK's tetrahedralisation of them with --cells split)");
+                         "interpolation does not give (rayint eval, render and check integrate them in it, bench times that "
+                         "against VTK's split; eval, render, check and bench take VTK's tetrahedralisation of them "
+                         "with --cells split)");
       Case c;
       c.name = mc.name;
       c.description = mc.description;

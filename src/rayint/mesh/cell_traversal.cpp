@@ -44,6 +44,9 @@ struct CellTraversal::Walk {
   std::int64_t best_face = -1;
   std::vector<int> best_exit;
   long failed = 0;
+  // next_cell's scratch, reused from step to step of the ray (no allocation per step).
+  mutable std::vector<int> candidate_faces;
+  mutable std::vector<std::int32_t> tried, points;
   ViewRay ray() const { return ViewRay{o, d}; }
   double slack(double t) const { return kCellEntrySlack * (self->diagonal_ + std::fabs(t)); }
 };
@@ -392,7 +395,7 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
                               CellTraversalStats& stats, bool& failed, Vec3& p_hint) const {
   double best = t;
   bool found = false;
-  std::vector<int> cand_faces;
+  std::vector<int>& cand_faces = w.candidate_faces;
   const auto consider = [&](std::int32_t c) {
     double far = 0.0;
     Vec3 p;
@@ -404,7 +407,8 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
       found = true;
     }
   };
-  std::vector<std::int32_t> tried;  // each candidate cell is considered once
+  std::vector<std::int32_t>& tried = w.tried;  // each candidate cell is considered once
+  tried.clear();
   const auto consider_once = [&](std::int32_t c) {
     if (std::find(tried.begin(), tried.end(), c) != tried.end()) return;
     tried.push_back(c);
@@ -420,7 +424,8 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
     return true;
   }
   // An edge or vertex exit: every cell sharing a point with the exit faces (or with the cell).
-  std::vector<std::int32_t> points;
+  std::vector<std::int32_t>& points = w.points;
+  points.clear();
   const LinearCellType type = cells_[from].type;
   if (exit_faces.empty()) {
     for (std::size_t k = 0; k < mesh_.nodes_of(from); ++k) points.push_back(mesh_.cell(from)[k]);

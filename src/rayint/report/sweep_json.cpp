@@ -129,4 +129,71 @@ nlohmann::json sweep_report_json(const SweepResult& r) {
           {"targets", targets}};
 }
 
+nlohmann::json own_split_json(const OwnSplitRun& run) {
+  nlohmann::json cases = nlohmann::json::array();
+  for (const OwnSplitCase& c : run.cases) {
+    nlohmann::json cells = nlohmann::json::object();
+    for (const auto& [type, n] : c.cells) cells[type] = n;
+    const double rays = static_cast<double>(c.rays);
+    const bool compared = c.compared_rays > 0;
+    nlohmann::json j = {
+        {"name", c.name},
+        {"file", c.source},
+        {"mesh_file", c.mesh_source},
+        {"cells", cells},
+        {"cell_total", c.cell_total},
+        {"rays", c.rays},
+        {"tets", c.split_ran ? nlohmann::json(c.tets) : nlohmann::json(nullptr)},
+        {"structured_split", c.structured_split},
+        {"split_ran", c.split_ran},
+        {"own_failed_rays", c.own_failed_rays},
+        {"split_failed_rays", c.split_failed_rays},
+        {"complete", c.complete()},
+        {"own_seconds", number_or_null(c.own_seconds)},
+        {"split_seconds", c.split_ran ? number_or_null(c.split_seconds) : nlohmann::json(nullptr)},
+        {"own_seconds_per_ray", c.rays > 0 ? number_or_null(c.own_seconds / rays) : nlohmann::json(nullptr)},
+        {"split_seconds_per_ray",
+         c.split_ran && c.rays > 0 ? number_or_null(c.split_seconds / rays) : nlohmann::json(nullptr)},
+        {"own_over_split", c.complete() && c.split_seconds > 0 ? number_or_null(c.ratio()) : nlohmann::json(nullptr)},
+        {"own_setup_seconds", c.own_setup_seconds},
+        {"split_setup_seconds", c.split_ran ? nlohmann::json(c.split_setup_seconds) : nlohmann::json(nullptr)},
+        {"own_chords", c.own_chords},
+        {"split_segments", c.split_segments},
+        {"compared_rays", c.compared_rays},
+        {"max_abs_difference", compared ? number_or_null(c.max_abs_difference) : nlohmann::json(nullptr)},
+        {"max_rel_difference", compared ? number_or_null(c.max_rel_difference) : nlohmann::json(nullptr)},
+        {"worst", compared ? nlohmann::json{{"ray", c.worst_ray}, {"channel", c.worst_channel}} : nlohmann::json(nullptr)}};
+    if (!c.own_failure.empty()) j["own_failure"] = c.own_failure;
+    if (!c.split_failure.empty()) j["split_failure"] = c.split_failure;
+    cases.push_back(j);
+  }
+  const nlohmann::json definitions = {
+      {"own", "CellTraversal trace + integrate: the cells in their own (isoparametric) interpolation"},
+      {"split", "split_cells (VTK's vtkDataSetTriangleFilter rule) + TetTraversal + exact: --cells split"},
+      {"own_seconds", "median over repetitions of the thread CPU time to integrate every ray of the case once, "
+                      "single thread, own and split passes interleaved, each timed pass after an untimed one of the same path "
+                      "(warm caches); setting up not included (*_setup_seconds)"},
+      {"own_over_split", "own_seconds / split_seconds; null unless no ray failed on either path"},
+      {"max_abs_difference", "max over rays integrated by both paths and channels of |I_split - I_own|"},
+      {"max_rel_difference", "the same of |I_split - I_own| / |I_own| (absolute where I_own = 0)"},
+      {"failed_rays", "own: not converged or non-finite; split: threw or non-finite; such rays have no value"}};
+  return {{"definitions", definitions},
+          {"threads", 1},
+          {"clock", "thread CPU time"},
+          {"repetitions", run.repetitions},
+          {"started_at", run.started_at},
+          {"load_average_start", load_json(run.load_start)},
+          {"load_average_end", load_json(run.load_end)},
+          {"cases", cases}};
+}
+
+nlohmann::json own_split_report_json(const OwnSplitRun& run) {
+  return {{"tool", "rayint"},
+          {"report", "bench"},
+          {"format_version", 1},
+          {"cases", nlohmann::json::array()},
+          {"methods", nlohmann::json::array()},
+          {"own_vs_split", own_split_json(run)}};
+}
+
 }  // namespace rayint

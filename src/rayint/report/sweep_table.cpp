@@ -102,4 +102,33 @@ std::string sweep_targets_table(const SweepResult& r) {
   return out;
 }
 
+std::string own_split_table(const OwnSplitRun& run) {
+  std::string out;
+  char line[400];
+  std::snprintf(line, sizeof line, "%-24s %8s %8s %12s %12s %9s %11s\n", "own vs split", "cells", "tets",
+                "own", "split", "own/split", "max |diff|");
+  out += line;
+  for (const OwnSplitCase& c : run.cases) {
+    const std::string tets = c.split_ran ? std::to_string(c.tets) : "-";
+    const std::string split = c.split_ran ? format_seconds(c.split_seconds) : "-";
+    char ratio[32] = "-";
+    if (c.complete() && c.split_seconds > 0) std::snprintf(ratio, sizeof ratio, "%.2f", c.ratio());
+    const std::string diff = c.compared_rays > 0 ? format_error(c.max_abs_difference) : "-";
+    std::snprintf(line, sizeof line, "%-24s %8ld %8s %12s %12s %9s %11s\n", c.name.c_str(), c.cell_total, tets.c_str(),
+                  format_seconds(c.own_seconds).c_str(), split.c_str(), ratio, diff.c_str());
+    out += line;
+  }
+  out += "(" + std::to_string(run.repetitions) + " repetitions, median CPU time of every ray once, single thread)\n";
+  for (const OwnSplitCase& c : run.cases) {
+    if (!c.split_ran) out += "failed: " + c.name + ": no split: " + c.split_failure + "\n";
+    if (c.own_failed_rays > 0)
+      out += "failed: " + c.name + ": own on " + std::to_string(c.own_failed_rays) + " of " + std::to_string(c.rays) +
+             " rays (first: " + c.own_failure + ")\n";
+    if (c.split_ran && c.split_failed_rays > 0)
+      out += "failed: " + c.name + ": split on " + std::to_string(c.split_failed_rays) + " of " + std::to_string(c.rays) +
+             " rays (first: " + c.split_failure + ")\n";
+  }
+  return out;
+}
+
 }  // namespace rayint

@@ -50,22 +50,6 @@ double mean_of(const std::vector<double>& v) {
   return s / static_cast<double>(v.size());
 }
 
-std::array<double, 3> load_average() {
-  std::array<double, 3> out{-1.0, -1.0, -1.0};
-  double l[3];
-  if (getloadavg(l, 3) == 3) out = {l[0], l[1], l[2]};
-  return out;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 // Which budget, if any, has run out.
 struct Budget {
   Clock::time_point sweep_start, method_start;
@@ -317,6 +301,23 @@ std::vector<std::vector<ReferenceRay>> covered_references(const std::vector<Case
 }
 
 }  // namespace
+
+std::array<double, 3> load_average() {
+  std::array<double, 3> out{-1.0, -1.0, -1.0};
+  double l[3];
+  if (getloadavg(l, 3) == 3) out = {l[0], l[1], l[2]};
+  return out;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
 
 std::vector<MethodSpec> SweepAxis::settings() const {
   if (knob.empty()) return {parse_method_spec(method)};

@@ -168,6 +168,11 @@ struct SweepOptions {
   std::function<void(const SweepProgress&)> progress;
 };
 
+// The 1/5/15-minute load averages (-1 each when unknown) and the time now, UTC ISO 8601: what
+// every bench report records around its timing.
+std::array<double, 3> load_average();
+std::string utc_now();
+
 // Runs `axes` on every ray of `cases`. The reference of each ray is computed once, up front, in
 // parallel, and reused for every setting. When a budget runs out the setting being measured is
 // dropped (never reported half-measured), the remaining settings are listed as skipped and the
