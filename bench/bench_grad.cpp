@@ -1,7 +1,7 @@
 // The cost of the exact gradient of a ray against its forward exact integral (issue 28's
 // "full gradient at most ~3x the forward exact"), on the same rays:
 //   BM_exact_ray/SET          ExactIntegrator (the default batch path) on every ray of SET;
-//   BM_exact_ray_scalar/SET   exact:path=scalar on the same rays (what the gradient's forward is);
+//   BM_exact_ray_scalar/SET   exact:path=scalar on the same rays;
 //   BM_exact_grad/SET         exact_ray_gradient (forward + every derivative) on the same rays;
 //   BM_exact_grad_segments/SET  the same with GradientBlocks::segments (no node blocks: what the
 //                             mesh and grid image losses compute), storage reused.

@@ -22,14 +22,34 @@ using namespace rayint;
 using test::gradient_error;
 using Worst = test::WorstGradientError;
 
-TEST_CASE("exact gradient: forward intensity is exact:path=scalar's, bit for bit", "[grad]") {
-  const Case cs = read_case_file(RAYINT_SOURCE_DIR + "/cases/medical-ct.json");
-  ExactIntegrator scalar(cs.transfer, ExactIntegrator::Path::scalar);
-  for (const Ray& ray : cs.rays) {
-    const RayGradient g = exact_ray_gradient(cs.transfer, ray);
-    const RayResult r = scalar.integrate(ray, nullptr);
-    for (int c = 0; c < kChannels; ++c) CHECK(g.intensity[c] == r.intensity[c]);
+TEST_CASE("exact gradient: forward intensity is exact's, both paths, to rounding", "[grad]") {
+  // exact_ray_gradient's forward composites exact_piece's transmittance with exact_batch's
+  // emission (integrators/exact_grad.hpp): equal to neither path bit for bit, within
+  // GradTolerances::forward_rel of both, relative, over the case corpus.
+  double worst_scalar = 0.0, worst_batch = 0.0;
+  int rays = 0;
+  for (const std::string& file : list_case_files(RAYINT_SOURCE_DIR + "/cases")) {
+    if (file.find("/mesh-") != std::string::npos || file.find("gates.json") != std::string::npos) continue;
+    const Case cs = read_case_file(file);
+    ExactIntegrator scalar(cs.transfer, ExactIntegrator::Path::scalar), batch(cs.transfer);
+    for (std::size_t i = 0; i < cs.rays.size(); ++i) {
+      const RayGradient g = exact_ray_gradient(cs.transfer, cs.rays[i]);
+      const RayResult rs = scalar.integrate(cs.rays[i], nullptr), rb = batch.integrate(cs.rays[i], nullptr);
+      INFO(cs.name << " ray " << i);
+      for (int c = 0; c < kChannels; ++c) {
+        const double es = g.intensity[c] == rs.intensity[c] ? 0.0 : std::fabs(g.intensity[c] - rs.intensity[c]) / std::fabs(rs.intensity[c]);
+        const double eb = g.intensity[c] == rb.intensity[c] ? 0.0 : std::fabs(g.intensity[c] - rb.intensity[c]) / std::fabs(rb.intensity[c]);
+        CHECK(es <= test::GradTolerances::forward_rel);
+        CHECK(eb <= test::GradTolerances::forward_rel);
+        worst_scalar = std::max(worst_scalar, es);
+        worst_batch = std::max(worst_batch, eb);
+      }
+      ++rays;
+    }
   }
+  WARN("gradient's forward intensity over " << rays << " rays: worst relative difference " << worst_scalar
+                                            << " from exact:path=scalar, " << worst_batch << " from exact (batch)");
+  CHECK(rays > 50);
 }
 
 TEST_CASE("exact gradient against the 50-digit reference: piece regimes", "[grad]") {
@@ -232,7 +252,8 @@ TEST_CASE("exact gradient: the segment blocks alone (GradientBlocks::segments) a
           "[grad]") {
   // Over the case corpus (grey and coloured densities, breakpoints inside segments, constant
   // segments on nodes): intensity, background, length and end-scalar entries equal, the node
-  // blocks left empty; and the intensity is exact:path=scalar's (an independent forward).
+  // blocks left empty; and the intensity is exact:path=scalar's (an independent forward) to
+  // GradTolerances::forward_rel.
   int rays = 0;
   for (const std::string& file : list_case_files(RAYINT_SOURCE_DIR + "/cases")) {
     if (file.find("/mesh-") != std::string::npos || file.find("gates.json") != std::string::npos) continue;
@@ -245,7 +266,8 @@ TEST_CASE("exact gradient: the segment blocks alone (GradientBlocks::segments) a
       INFO(cs.name << " ray " << i);
       const RayResult fwd = scalar.integrate(cs.rays[i], nullptr);
       for (int c = 0; c < kChannels; ++c) {
-        CHECK(all.intensity[c] == fwd.intensity[c]);
+        CHECK(std::fabs(all.intensity[c] - fwd.intensity[c]) <=
+              test::GradTolerances::forward_rel * std::fabs(fwd.intensity[c]));
         CHECK(seg.intensity[c] == all.intensity[c]);
         CHECK(seg.background[c] == all.background[c]);
         CHECK(seg.density[c].empty());

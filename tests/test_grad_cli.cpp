@@ -123,8 +123,7 @@ TEST_CASE("render --loss-target --grad-out: the loss gradient as NPY, zero at it
   TempDir dir;
   const std::string mesh_case = "'" + RAYINT_SOURCE_DIR + "/cases/mesh-linear-field.json'";
   REQUIRE(run_cli(dir.path, "render " + mesh_case + " -o own.npy -q").status == 0);
-  // Against its own exact render (the batch path; the gradient's forward is exact:path=scalar, equal
-  // to rounding): residuals ~1e-16, so the loss ~1e-30 and the gradient ~1e-15 (against ~40 below).
+  // Against its own exact render (the batch path; the gradient's forward equals it to rounding): residuals ~1e-16, so the loss ~1e-30 and the gradient ~1e-15 (against ~40 below).
   auto r = run_cli(dir.path, "render " + mesh_case + " -o fit.npy --loss-target own.npy --grad-out g.npy "
                    "--grad-positions-out gp.npy -q");
   REQUIRE(r.status == 0);

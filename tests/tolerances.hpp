@@ -346,6 +346,17 @@ struct GradTolerances {
   // Cool to Warm's end jumps (test_grad_cli.cpp); 6e-15 leaves < 2x. Saturated crossings use
   // saturated_rel (measured 2.2e-14 at optical depth ~8 per stretch).
   static constexpr double jump_vs_reference_rel = 6e-15;
+  // exact_pieces_grad (the batched piece derivatives) against exact_piece_grad on the same piece,
+  // each entry relative to the largest of its kind (tests/test_grad_batch.cpp). Measured (Dec 2026,
+  // 3,802 pieces of every regime and moment-method threshold, every SIMD target): worst 9.3e-15
+  // (de_length, erfcx identity branch: its identities lose up to ~10x the rounding of the batch's
+  // e0, which differs from exact_piece's in the last bits); 2e-14 leaves ~2x.
+  static constexpr double batch_vs_scalar_rel = 2e-14;
+  // exact_ray_gradient's forward intensity against exact's (either path), relative: it takes
+  // exact_piece's transmittance and exact_batch's emission. Measured (Dec 2026, 93 rays of the
+  // case corpus, tests/test_grad.cpp): worst 1.13e-15 from exact:path=scalar, 2.9e-16 from the
+  // batch path; 2.5e-15 leaves ~2x.
+  static constexpr double forward_rel = 2.5e-15;
 };
 
 }  // namespace rayint::test

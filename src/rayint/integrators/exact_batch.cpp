@@ -25,6 +25,11 @@
 //      group's next transmittance and weights (an expanding load on AVX-512), and the emission
 //      kappa_exit w_exit + kappa_far w_far is formed there with the pieces' kappas read in order
 //      (compressing the kappas into the groups cost more); transparent lanes get 1 and 0.
+// For the gradient (OpticsColumns::m1 and the four columns beside it, exact_grad.hpp's
+// exact_pieces_grad), the thin kernel also accumulates exact_grad.cpp's midpoint sums S_P, S_Q
+// (the same recurrence, each lane stopping at the same term) and forms the moments e0, M1, M2;
+// step 3 then also puts the weights and those moments back in piece order (other branches: NaN).
+// Without those columns the forward kernels are unchanged (template flags).
 // A grey batch (GreyPieceView: one density per piece, TransferFunctions::grey) runs steps 0-2 once
 // per piece and forms the emission of each channel in step 3 from the same weights: a piece's
 // a and b are every channel's, so each lane's results are the channel batch's, bit for bit.
@@ -40,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #undef HWY_TARGET_INCLUDE
@@ -107,6 +113,11 @@ struct GroupResults {
   const double* w_exit[kGroups];
   const double* w_far[kGroups];
   const double* terms[kGroups];
+  // The moments of the thin lanes (M1, M2, e0: exact_grad.cpp's midpoint_moments), when asked
+  // for (OpticsColumns::m1); NaN in the other groups, whose moments exact_grad.cpp forms.
+  const double* m1[kGroups];
+  const double* m2[kGroups];
+  const double* e0[kGroups];
 };
 }  // namespace rayint::exact_batch_detail
 #endif
@@ -186,9 +197,13 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
 // product by 1, so the sum is the scalar loop's, bit for bit), and its term count is 1 + the
 // iterations it was active in. The loop runs until every lane of both vectors has stopped.
 // (Masks for the activity cost as much again: mask-register operations have one port.)
-template <class D, class V = hn::Vec<D>>
+// With kMoments it also accumulates the sums of the derivative in P and Q of exact_grad.cpp's
+// midpoint_sums (the same recurrence, the same stop): S_P = sum_{n odd} e_n/(n+2) and
+// S_Q = sum_{n even} e_n/(n+3), from S_P = P/3, S_Q = 1/3; each lane stops accumulating them at
+// the same term as its S - 1.
+template <bool kMoments, class D, class V = hn::Vec<D>>
 HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_minus_1, V& terms0,
-                               V& s1_minus_1, V& terms1) {
+                               V& s1_minus_1, V& terms1, V* sp = nullptr, V* sq = nullptr) {
   const V P0 = hn::Mul(hn::Set(d, -0.5), T0), P1 = hn::Mul(hn::Set(d, -0.5), T1);
   const V Q20 = hn::Mul(hn::Set(d, -0.25), hn::Sub(b0, a0));  // 2 Q, Q = -B/4 = -(b - a)/8
   const V Q21 = hn::Mul(hn::Set(d, -0.25), hn::Sub(b1, a1));
@@ -198,6 +213,8 @@ HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_mi
   V s0 = hn::Zero(d), s1 = hn::Zero(d);
   V active0 = one, active1 = one;  // 1.0 while the lane's series runs
   V iterations0 = hn::Zero(d), iterations1 = hn::Zero(d);
+  const V third = hn::Set(d, kRecip.r[2]);
+  V sp0 = hn::Mul(P0, third), sp1 = hn::Mul(P1, third), sq0 = third, sq1 = third;
   // One term; the odd ones (n + 1 even) are accumulated. The exit test runs once per two terms:
   // a lane that stopped adds nothing more, so a term past the last lane's stop is harmless.
   const auto term = [&](int nn, bool accumulate) {
@@ -208,6 +225,15 @@ HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_mi
       const V r2 = hn::Set(d, kRecip.r[nn + 1]);
       s0 = hn::MulAdd(hn::Mul(e0_next, r2), active0, s0);
       s1 = hn::MulAdd(hn::Mul(e1_next, r2), active1, s1);
+      if (kMoments) {
+        const V r4 = hn::Set(d, kRecip.r[nn + 3]);
+        sq0 = hn::MulAdd(hn::Mul(e0_next, r4), active0, sq0);
+        sq1 = hn::MulAdd(hn::Mul(e1_next, r4), active1, sq1);
+      }
+    } else if (kMoments) {
+      const V r3 = hn::Set(d, kRecip.r[nn + 2]);
+      sp0 = hn::MulAdd(hn::Mul(e0_next, r3), active0, sp0);
+      sp1 = hn::MulAdd(hn::Mul(e1_next, r3), active1, sp1);
     }
     iterations0 = hn::Add(iterations0, active0);
     iterations1 = hn::Add(iterations1, active1);
@@ -226,6 +252,12 @@ HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_mi
   }
   s0_minus_1 = s0;
   s1_minus_1 = s1;
+  if (kMoments) {
+    sp[0] = sp0;
+    sp[1] = sp1;
+    sq[0] = sq0;
+    sq[1] = sq1;
+  }
   // a lane still active used the whole budget: kSeriesBudget + 1 terms, as exact.cpp reports
   const V budget = hn::Set(d, kSeriesBudget + 1.0);
   terms0 = hn::IfThenElse(hn::Eq(active0, one), budget, hn::Add(iterations0, one));
@@ -234,13 +266,24 @@ HWY_INLINE void ThinSeriesPair(D d, V T0, V a0, V b0, V T1, V a1, V b1, V& s0_mi
 
 // The weights of the thin branch from S - 1 (exact.cpp, thin_weights).
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE void ThinWeights(D d, V a, V b, V s_minus_1, V& w_exit, V& w_far) {
+HWY_INLINE V ThinWeights(D d, V a, V b, V s_minus_1, V& w_exit, V& w_far) {
   const V eighth = hn::Set(d, 0.125), three = hn::Set(d, 3.0);
   const V em1_mid = hn::Expm1(d, hn::Neg(hn::Mul(eighth, hn::MulAdd(three, a, b))));
   const V em1_rest = hn::Expm1(d, hn::Neg(hn::Mul(eighth, hn::MulAdd(three, b, a))));
   const V decay_mid = hn::Add(hn::Set(d, 1.0), em1_mid);
   w_exit = hn::NegMulAdd(decay_mid, s_minus_1, hn::Neg(em1_mid));
   w_far = hn::Mul(decay_mid, hn::Sub(s_minus_1, em1_rest));
+  return decay_mid;  // e^{-tau_m}
+}
+
+// The thin lanes' moments from the sums (exact_grad.cpp, midpoint_moments): S = 1 + (S - 1),
+// e0 = e^{-tau_m} S, M1 = e^{-tau_m} (S + S_P)/2, M2 = e^{-tau_m} (S + 2 S_P + S_Q)/4.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void ThinMoments(D d, V decay_mid, V s_minus_1, V S_P, V S_Q, V& m1, V& m2, V& e0) {
+  const V S = hn::Add(hn::Set(d, 1.0), s_minus_1);
+  e0 = hn::Mul(decay_mid, S);
+  m1 = hn::Mul(hn::Mul(hn::Set(d, 0.5), decay_mid), hn::Add(S, S_P));
+  m2 = hn::Mul(hn::Mul(hn::Set(d, 0.25), decay_mid), hn::Add(hn::Add(S, hn::Add(S_P, S_P)), S_Q));
 }
 
 // e0 of the q2 branch (exact.cpp, q2_series_e0). m0 = -expm1(-A)/A is divided as in the scalar
@@ -269,11 +312,13 @@ HWY_INLINE V Q2SeriesE0(D d, V A, V B, V em1_A) {
   return hn::IfThenElse(hn::Eq(B, hn::Zero(d)), m0, general);  // B == 0: m0 alone, as exact.cpp
 }
 
-// 2. One group's columns: a, b in; transmittance, w_exit, w_far, terms out.
+// 2. One group's columns: a, b in; transmittance, w_exit, w_far, terms out; with m1_col non-null
+// also M1, M2, e0 (thin groups; NaN in the others, for exact_grad.cpp to form).
 // n is a multiple of twice the lane count.
 void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_RESTRICT b_col, std::size_t n,
                  double* HWY_RESTRICT tr_col, double* HWY_RESTRICT w_exit_col, double* HWY_RESTRICT w_far_col,
-                 double* HWY_RESTRICT terms_col) {
+                 double* HWY_RESTRICT terms_col, double* HWY_RESTRICT m1_col, double* HWY_RESTRICT m2_col,
+                 double* HWY_RESTRICT e0_col) {
   using D = hn::ScalableTag<double>;
   using V = hn::Vec<D>;
   const D d;
@@ -285,13 +330,41 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
     hn::StoreU(w_far, d, w_far_col + i);
     hn::StoreU(terms, d, terms_col + i);
   };
+  if ((group == kThin || group == kThinShort) && m1_col) {
+    for (std::size_t i = 0; i < n; i += 2 * L) {
+      const V a0 = hn::LoadU(d, a_col + i), b0 = hn::LoadU(d, b_col + i);
+      const V a1 = hn::LoadU(d, a_col + i + L), b1 = hn::LoadU(d, b_col + i + L);
+      const V T0 = hn::Mul(half, hn::Add(a0, b0)), T1 = hn::Mul(half, hn::Add(a1, b1));
+      V s0, terms0, s1, terms1, w_exit, w_far, sp[2], sq[2], m1, m2, e0;
+      ThinSeriesPair<true>(d, T0, a0, b0, T1, a1, b1, s0, terms0, s1, terms1, sp, sq);
+      ThinMoments(d, ThinWeights(d, a0, b0, s0, w_exit, w_far), s0, sp[0], sq[0], m1, m2, e0);
+      finish(i, hn::Exp(d, hn::Neg(T0)), w_exit, w_far, terms0);
+      hn::StoreU(m1, d, m1_col + i);
+      hn::StoreU(m2, d, m2_col + i);
+      hn::StoreU(e0, d, e0_col + i);
+      ThinMoments(d, ThinWeights(d, a1, b1, s1, w_exit, w_far), s1, sp[1], sq[1], m1, m2, e0);
+      finish(i + L, hn::Exp(d, hn::Neg(T1)), w_exit, w_far, terms1);
+      hn::StoreU(m1, d, m1_col + i + L);
+      hn::StoreU(m2, d, m2_col + i + L);
+      hn::StoreU(e0, d, e0_col + i + L);
+    }
+    return;
+  }
+  if (m1_col) {  // moments of the other groups: formed by exact_grad.cpp
+    const V nan = hn::Set(d, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < n; i += L) {
+      hn::StoreU(nan, d, m1_col + i);
+      hn::StoreU(nan, d, m2_col + i);
+      hn::StoreU(nan, d, e0_col + i);
+    }
+  }
   if (group == kThin || group == kThinShort) {
     for (std::size_t i = 0; i < n; i += 2 * L) {
       const V a0 = hn::LoadU(d, a_col + i), b0 = hn::LoadU(d, b_col + i);
       const V a1 = hn::LoadU(d, a_col + i + L), b1 = hn::LoadU(d, b_col + i + L);
       const V T0 = hn::Mul(half, hn::Add(a0, b0)), T1 = hn::Mul(half, hn::Add(a1, b1));
       V s0, terms0, s1, terms1, w_exit, w_far;
-      ThinSeriesPair(d, T0, a0, b0, T1, a1, b1, s0, terms0, s1, terms1);
+      ThinSeriesPair<false>(d, T0, a0, b0, T1, a1, b1, s0, terms0, s1, terms1);
       ThinWeights(d, a0, b0, s0, w_exit, w_far);
       finish(i, hn::Exp(d, hn::Neg(T0)), w_exit, w_far, terms0);
       ThinWeights(d, a1, b1, s1, w_exit, w_far);
@@ -338,12 +411,15 @@ void GroupKernel(int group, const double* HWY_RESTRICT a_col, const double* HWY_
 // to the last whole vector of n_valid, and from tail_kappa_exit/far (one padded vector per
 // channel) after it. The channel count is a template argument (ExpandBack picks it) and the
 // column pointers are copied into locals, so the per-vector loop reloads nothing.
-template <int kC>
+// kFull (the gradient's batch, one channel): also the weights and the thin lanes' moments, to
+// full_out = {w_exit, w_far, m1, m2, e0}; transparent lanes get 0, 0 and the moments of tau = 0
+// (1/2, 1/3, 1).
+template <int kC, bool kFull>
 HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
                                    const GroupResults* HWY_RESTRICT res, const double* const* kappa_exit_cols,
                                    const double* const* kappa_far_cols, const double* const* tail_kappa_exit_cols,
                                    const double* const* tail_kappa_far_cols, double* HWY_RESTRICT tr_out,
-                                   double* const* em_out_cols) {
+                                   double* const* em_out_cols, double* const* full_out) {
   const double *kappa_exit[kC], *kappa_far[kC], *tail_kappa_exit[kC], *tail_kappa_far[kC];
   double* em_out[kC];
   for (int c = 0; c < kC; ++c) {
@@ -359,13 +435,18 @@ HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::
   const std::size_t L = hn::Lanes(d);
   // each group's next results, in locals (the stores below could alias *res otherwise)
   const double *next_tr[kGroups], *next_w_exit[kGroups], *next_w_far[kGroups];
+  const double *next_m1[kGroups], *next_m2[kGroups], *next_e0[kGroups];
   for (int g = 0; g < kGroups; ++g) {
     next_tr[g] = res->tr[g];
     next_w_exit[g] = res->w_exit[g];
     next_w_far[g] = res->w_far[g];
+    next_m1[g] = res->m1[g];
+    next_m2[g] = res->m2[g];
+    next_e0[g] = res->e0[g];
   }
   for (std::size_t i = 0; i < n; i += L, bits += kMaskSlots * kMaskBytes) {
     V tr = hn::Set(d, 1.0), w_exit = hn::Zero(d), w_far = hn::Zero(d);
+    V m1 = hn::Set(d, 0.5), m2 = hn::Set(d, 1.0 / 3.0), e0 = hn::Set(d, 1.0);
     for (int g = 0; g < kGroups; ++g) {
       const unsigned char* group_bits = bits + static_cast<std::size_t>(g) * kMaskBytes;
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
@@ -378,6 +459,14 @@ HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::
       next_tr[g] += taken;
       next_w_exit[g] += taken;
       next_w_far[g] += taken;
+      if (kFull) {
+        m1 = V{_mm512_mask_expandloadu_pd(m1.raw, k, next_m1[g])};
+        m2 = V{_mm512_mask_expandloadu_pd(m2.raw, k, next_m2[g])};
+        e0 = V{_mm512_mask_expandloadu_pd(e0.raw, k, next_e0[g])};
+        next_m1[g] += taken;
+        next_m2[g] += taken;
+        next_e0[g] += taken;
+      }
 #else
       // the group's next L results (the columns have room past the count), each set lane taking
       // the one of its rank
@@ -393,6 +482,14 @@ HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::
       next_tr[g] += taken;
       next_w_exit[g] += taken;
       next_w_far[g] += taken;
+      if (kFull) {
+        m1 = hn::IfThenElse(in_group, hn::TableLookupLanes(hn::LoadU(d, next_m1[g]), rank), m1);
+        m2 = hn::IfThenElse(in_group, hn::TableLookupLanes(hn::LoadU(d, next_m2[g]), rank), m2);
+        e0 = hn::IfThenElse(in_group, hn::TableLookupLanes(hn::LoadU(d, next_e0[g]), rank), e0);
+        next_m1[g] += taken;
+        next_m2[g] += taken;
+        next_e0[g] += taken;
+      }
 #endif
     }
     const auto transparent = hn::LoadMaskBits(d, bits + kGroups * kMaskBytes);
@@ -407,6 +504,13 @@ HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::
       }
     };
     store(tr, tr_out + i);
+    if (kFull) {
+      store(w_exit, full_out[0] + i);
+      store(w_far, full_out[1] + i);
+      store(m1, full_out[2] + i);
+      store(m2, full_out[3] + i);
+      store(e0, full_out[4] + i);
+    }
     for (int c = 0; c < kC; ++c) {
       const V ke = hn::LoadU(d, whole ? kappa_exit[c] + i : tail_kappa_exit[c]);
       const V kf = hn::LoadU(d, whole ? kappa_far[c] + i : tail_kappa_far[c]);
@@ -415,17 +519,22 @@ HWY_INLINE void ExpandBackChannels(const unsigned char* HWY_RESTRICT bits, std::
   }
 }
 
-// channels: 1 (the channel batch) or kChannels (a grey batch).
+// channels: 1 (the channel batch) or kChannels (a grey batch); full_out non-null: the weights and
+// moments too (channel batch only).
 void ExpandBack(const unsigned char* HWY_RESTRICT bits, std::size_t n, std::size_t n_valid,
                 const GroupResults* HWY_RESTRICT res, int channels, const double* const* kappa_exit,
                 const double* const* kappa_far, const double* const* tail_kappa_exit,
-                const double* const* tail_kappa_far, double* HWY_RESTRICT tr_out, double* const* em_out) {
-  if (channels == 1) {
-    ExpandBackChannels<1>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit, tail_kappa_far, tr_out,
-                          em_out);
+                const double* const* tail_kappa_far, double* HWY_RESTRICT tr_out, double* const* em_out,
+                double* const* full_out) {
+  if (full_out) {
+    ExpandBackChannels<1, true>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit, tail_kappa_far,
+                                tr_out, em_out, full_out);
+  } else if (channels == 1) {
+    ExpandBackChannels<1, false>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit, tail_kappa_far,
+                                 tr_out, em_out, nullptr);
   } else {
-    ExpandBackChannels<kChannels>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit, tail_kappa_far,
-                                  tr_out, em_out);
+    ExpandBackChannels<kChannels, false>(bits, n, n_valid, res, kappa_exit, kappa_far, tail_kappa_exit,
+                                         tail_kappa_far, tr_out, em_out, nullptr);
   }
 }
 
@@ -462,6 +571,7 @@ struct Scratch {
   std::vector<double> len, rho_far, rho_exit;
   std::vector<double> kappa_far[kChannels], kappa_exit[kChannels];
   std::vector<double> a[kGroups], b[kGroups], tr[kGroups], w_exit[kGroups], w_far[kGroups], terms[kGroups];
+  std::vector<double> m1[kGroups], m2[kGroups], e0[kGroups];  // the gradient's batch only
   std::vector<unsigned char> bits;
   GroupSink sink{};
   GroupResults results{};
@@ -475,6 +585,7 @@ struct Scratch {
     }
     for (int g = 0; g < kGroups; ++g) {
       for (auto* col : {&a[g], &b[g], &tr[g], &w_exit[g], &w_far[g], &terms[g]}) col->resize(room);
+      for (auto* col : {&m1[g], &m2[g], &e0[g]}) col->resize(room);
       sink.a[g] = a[g].data();
       sink.b[g] = b[g].data();
     }
@@ -521,14 +632,19 @@ void write_introspection(const Scratch& s, std::size_t n_valid, std::size_t firs
 // pieces (n: whole vectors) go to tr_out and em_out[c], c < channels.
 // kappa_exit/far[c]: the chunk's kappas in piece order, readable up to the last whole vector;
 // s.kappa_exit/far[c]: the partial last vector's, padded to a whole vector.
+// full_out: null, or {w_exit, w_far, m1, m2, e0} columns of the chunk (OpticsColumns').
 void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, int channels, const double* const* kappa_exit,
-                     const double* const* kappa_far, double* tr_out, double* const* em_out) {
+                     const double* const* kappa_far, double* tr_out, double* const* em_out,
+                     double* const* full_out) {
   const std::size_t L = lanes();
   for (int g = 0; g < kGroups; ++g) {
     s.results.tr[g] = s.tr[g].data();
     s.results.w_exit[g] = s.w_exit[g].data();
     s.results.w_far[g] = s.w_far[g].data();
     s.results.terms[g] = s.terms[g].data();
+    s.results.m1[g] = s.m1[g].data();
+    s.results.m2[g] = s.m2[g].data();
+    s.results.e0[g] = s.e0[g].data();
   }
   // Short thin pieces too few (or too few long ones) to fill a pair of vectors: the split would
   // cost more padding than it saves, so they run with the long ones, after them in the columns.
@@ -541,6 +657,9 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, int channel
     s.results.w_exit[kThinShort] = s.w_exit[kThin].data() + m_thin;
     s.results.w_far[kThinShort] = s.w_far[kThin].data() + m_thin;
     s.results.terms[kThinShort] = s.terms[kThin].data() + m_thin;
+    s.results.m1[kThinShort] = s.m1[kThin].data() + m_thin;
+    s.results.m2[kThinShort] = s.m2[kThin].data() + m_thin;
+    s.results.e0[kThinShort] = s.e0[kThin].data() + m_thin;
     m_thin += m_short;
     m_short = 0;
   }
@@ -555,7 +674,8 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, int channel
       s.b[g][k] = s.b[g][0];
     }
     HWY_DYNAMIC_DISPATCH(GroupKernel)(g, s.a[g].data(), s.b[g].data(), padded, s.tr[g].data(), s.w_exit[g].data(),
-                                      s.w_far[g].data(), s.terms[g].data());
+                                      s.w_far[g].data(), s.terms[g].data(), full_out ? s.m1[g].data() : nullptr,
+                                      s.m2[g].data(), s.e0[g].data());
   }
   const double* tail_exit[kChannels];
   const double* tail_far[kChannels];
@@ -564,7 +684,7 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, int channel
     tail_far[c] = s.kappa_far[c].data();
   }
   HWY_DYNAMIC_DISPATCH(ExpandBack)(s.bits.data(), n, n_valid, &s.results, channels, kappa_exit, kappa_far, tail_exit,
-                                   tail_far, tr_out, em_out);
+                                   tail_far, tr_out, em_out, full_out);
 }
 
 // The chunk loop of both overloads: n pieces whose length and density columns are `len`,
@@ -573,7 +693,7 @@ void evaluate_groups(Scratch& s, std::size_t n, std::size_t n_valid, int channel
 template <class AfterChunk>
 void run_chunks(std::size_t total, const double* len, const double* rho_far, const double* rho_exit, int channels,
                 const double* const* kappa_far, const double* const* kappa_exit, double* tr_out,
-                double* const* em_out, AfterChunk&& after_chunk) {
+                double* const* em_out, double* const* full_out, AfterChunk&& after_chunk) {
   thread_local Scratch s;
   const std::size_t L = lanes();
   for (std::size_t begin = 0; begin < total; begin += kChunk) {
@@ -603,7 +723,10 @@ void run_chunks(std::size_t total, const double* len, const double* rho_far, con
       kf[c] = kappa_far[c] + begin;
       em[c] = em_out[c] + begin;
     }
-    evaluate_groups(s, n, size, channels, ke, kf, tr_out + begin, em);
+    double* full[5];
+    if (full_out)
+      for (int j = 0; j < 5; ++j) full[j] = full_out[j] + begin;
+    evaluate_groups(s, n, size, channels, ke, kf, tr_out + begin, em, full_out ? full : nullptr);
     after_chunk(s, begin, size);
   }
 }
@@ -616,7 +739,9 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
   const double* kappa_far[1] = {in.kappa_far};
   const double* kappa_exit[1] = {in.kappa_exit};
   double* emission[1] = {out.emission};
+  double* full[5] = {out.weight_exit, out.weight_far, out.m1, out.m2, out.e0};
   run_chunks(in.size, in.length, in.rho_far, in.rho_exit, 1, kappa_far, kappa_exit, out.transmittance, emission,
+             out.m1 ? full : nullptr,
              [&out](const Scratch& s, std::size_t first, std::size_t size) {
                if (out.branch || out.terms || out.converged) write_introspection(s, size, first, out);
              });
@@ -624,7 +749,7 @@ void exact_batch(const PieceColumns& in, const OpticsColumns& out) {
 
 void exact_batch(const GreyPieceView& in, const GreyOpticsColumns& out) {
   run_chunks(in.size, in.length, in.rho_far, in.rho_exit, kChannels, in.kappa_far.data(), in.kappa_exit.data(),
-             out.transmittance, out.emission.data(), [](const Scratch&, std::size_t, std::size_t) {});
+             out.transmittance, out.emission.data(), nullptr, [](const Scratch&, std::size_t, std::size_t) {});
 }
 
 }  // namespace rayint

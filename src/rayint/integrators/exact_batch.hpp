@@ -29,6 +29,15 @@ struct OpticsColumns {
   ExactBranch* branch = nullptr;        // branch taken
   std::int32_t* terms = nullptr;        // series terms (thin_series), else 0
   unsigned char* converged = nullptr;   // 0 if the thin series hit its term budget
+  // For the gradient (integrators/exact_grad.hpp, exact_pieces_grad): all five or none (m1 null).
+  // The emission weights of PieceOptics, and the moments M1, M2, e0 of PieceOpticsGrad where the
+  // batch forms them: thin_series lanes (exact_grad.cpp's midpoint_moments, the same series and
+  // stop) and transparent lanes (1/2, 1/3, 1); NaN for the other branches.
+  double* weight_exit = nullptr;
+  double* weight_far = nullptr;
+  double* m1 = nullptr;
+  double* m2 = nullptr;
+  double* e0 = nullptr;
 };
 
 // out[i] = exact_piece(in[i]) for i < in.size, to the accuracy stated in exact_batch.cpp.

@@ -43,6 +43,12 @@
 //     e^{-T} terms drop and M1 = d1(y0)/gamma^2, M2 = d2(y0)/gamma^3 with the Laplace series
 //     d_n(y) = int_0^y x^n e^{-2yx + x^2} dx ~ sum_k (n+2k)!/(k! (2y)^{n+2k+1}), whose
 //     smallest term (~e^{-y^2}) and neglected endpoint (~y^n e^{-y^2}) are below 1e-17.
+// Batched (exact_pieces_grad, what exact_ray_gradient uses): exact_batch forms the optics of all
+// pieces and, for thin_series lanes, the moments above with the same recurrence and stop in its
+// vector kernel (OpticsColumns::m1); the other branches' moments come from closed_form_moments
+// below, the same functions exact_piece_grad calls; exp(-T) is exact_piece's (std::exp: the
+// vector Exp's extra ulp doubled a saturated ray's worst length entry). Against exact_piece_grad:
+// GradTolerances::batch_vs_scalar_rel (tests/test_grad_batch.cpp, every regime and SIMD target).
 // Measured accuracy against the 50-digit reference gradient (reference/reference_grad.hpp):
 // see docs/gradients.md and tests/test_grad.cpp ([grad]).
 #include "rayint/integrators/exact_grad.hpp"
@@ -50,10 +56,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "rayint/integrators/exact_batch.hpp"
 #include "rayint/special/special_functions.hpp"
 
 namespace rayint {
@@ -306,15 +314,70 @@ Moments dawson_moments(double A, double B, double T) {
 
 // The entries that depend on kappa: d emission / d (length, rho_far, rho_exit), from the moments
 // and transmittance already in g.
-void set_kappa_terms(PieceOpticsGrad& g, const ChannelPiece& p, double dkappa) {
-  const double t = g.optics.transmittance;
-  const double de0_da = -g.m1 + 0.5 * g.m2;
-  const double de0_db = -0.5 * g.m2;
+struct KappaTerms {
+  double de_length, de_rho_far, de_rho_exit;
+};
+KappaTerms kappa_terms(double m1, double m2, double t, const ChannelPiece& p, double dkappa) {
+  const double de0_da = -m1 + 0.5 * m2;
+  const double de0_db = -0.5 * m2;
   const double de_da = dkappa * de0_da + 0.5 * p.kappa_far * t;
   const double de_db = dkappa * de0_db + 0.5 * p.kappa_far * t;
-  g.de_rho_exit = p.length * de_da;
-  g.de_rho_far = p.length * de_db;
-  g.de_length = p.rho_exit * de_da + p.rho_far * de_db;
+  return {p.rho_exit * de_da + p.rho_far * de_db, p.length * de_db, p.length * de_da};
+}
+void set_kappa_terms(PieceOpticsGrad& g, const ChannelPiece& p, double dkappa) {
+  const KappaTerms k = kappa_terms(g.m1, g.m2, g.optics.transmittance, p, dkappa);
+  g.de_rho_exit = k.de_rho_exit;
+  g.de_rho_far = k.de_rho_far;
+  g.de_length = k.de_length;
+}
+
+// exact_piece's branch from a = rho_exit L and b = rho_far L (its tests, in its arithmetic; the
+// batch's classification forms the same).
+ExactBranch branch_of(double a, double b) {
+  const double T = 0.5 * (a + b);
+  if (!(T > 0.0)) return ExactBranch::transparent;
+  if (T <= kThinDepth) return ExactBranch::thin_series;
+  const double B = 0.5 * (b - a);
+  if (std::fabs(B) <= kQ2Relative * a * a) return ExactBranch::q2_series;
+  return B > 0.0 ? ExactBranch::erfcx : ExactBranch::dawson;
+}
+
+// The moments of a piece on the q2_series, erfcx or dawson branch, from its optics (exact_piece's
+// or exact_batch's): the one place both the scalar and the batch gradient form them.
+Moments closed_form_moments(const PieceOptics& o, double A, double B, double T) {
+  const double t = o.transmittance;
+  switch (o.branch) {
+    case ExactBranch::q2_series:
+      return q2_moments(A, B);
+    case ExactBranch::erfcx:
+      return erfcx_moments(A, B, T, t, o.weight_far + t, o.weight_far);
+    case ExactBranch::dawson: {
+      Moments mo = dawson_moments(A, B, T);
+      mo.e0 = o.weight_far + t;
+      return mo;
+    }
+    case ExactBranch::transparent:
+    case ExactBranch::thin_series:
+      break;
+  }
+  return Moments{};
+}
+
+// Every entry of g from its optics and moments.
+void set_derivatives(PieceOpticsGrad& g, const Moments& mo, const ChannelPiece& p, double dkappa) {
+  const PieceOptics& o = g.optics;
+  const double t = o.transmittance;
+  g.e0 = mo.e0;
+  g.m1 = mo.m1;
+  g.m2 = mo.m2;
+  g.method = mo.method;
+  g.terms = mo.terms;
+  g.converged = mo.converged;
+  g.de_kappa_exit = o.weight_exit;
+  g.de_kappa_far = o.weight_far;
+  g.dt_rho_exit = g.dt_rho_far = -0.5 * t * p.length;
+  g.dt_length = -0.5 * t * (p.rho_exit + p.rho_far);
+  set_kappa_terms(g, p, dkappa);
 }
 
 }  // namespace
@@ -363,35 +426,86 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa) {
   } else {
     g.optics = exact_piece(p);
   }
-  const PieceOptics& o = g.optics;
-  const double t = o.transmittance;
-  switch (o.branch) {
-    case ExactBranch::transparent:
-    case ExactBranch::thin_series:
-      break;
-    case ExactBranch::q2_series:
-      mo = q2_moments(A, B);
-      break;
-    case ExactBranch::erfcx:
-      mo = erfcx_moments(A, B, T, t, o.weight_far + t, o.weight_far);
-      break;
-    case ExactBranch::dawson:
-      mo = dawson_moments(A, B, T);
-      mo.e0 = o.weight_far + t;
-      break;
-  }
-  g.e0 = mo.e0;
-  g.m1 = mo.m1;
-  g.m2 = mo.m2;
-  g.method = mo.method;
-  g.terms = mo.terms;
-  g.converged = mo.converged;
-  g.de_kappa_exit = o.weight_exit;
-  g.de_kappa_far = o.weight_far;
-  g.dt_rho_exit = g.dt_rho_far = -0.5 * t * p.length;
-  g.dt_length = -0.5 * t * (p.rho_exit + p.rho_far);
-  set_kappa_terms(g, p, dkappa);
+  if (g.optics.branch != ExactBranch::transparent && g.optics.branch != ExactBranch::thin_series)
+    mo = closed_form_moments(g.optics, A, B, T);
+  set_derivatives(g, mo, p, dkappa);
   return g;
+}
+
+void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus_exit, std::size_t n,
+                       PieceDerivatives* out, int same_depth_stride) {
+  struct Columns {
+    std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
+    std::vector<double> transmittance, emission, weight_exit, weight_far, m1, m2, e0;
+  };
+  thread_local Columns col;
+  // With a stride s > 1 only every s-th piece (the first channel of a grey medium's piece) goes
+  // through the batch; the others reuse its depth below.
+  const std::size_t stride = same_depth_stride > 1 ? static_cast<std::size_t>(same_depth_stride) : 1;
+  const std::size_t m = (n + stride - 1) / stride;
+  if (col.length.size() < m)
+    for (auto* v : {&col.length, &col.rho_far, &col.rho_exit, &col.kappa_far, &col.kappa_exit, &col.transmittance,
+                    &col.emission, &col.weight_exit, &col.weight_far, &col.m1, &col.m2, &col.e0})
+      v->resize(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const ChannelPiece& p = pieces[j * stride];
+    col.length[j] = p.length;
+    col.rho_far[j] = p.rho_far;
+    col.rho_exit[j] = p.rho_exit;
+    col.kappa_far[j] = p.kappa_far;
+    col.kappa_exit[j] = p.kappa_exit;
+  }
+  OpticsColumns oc{col.transmittance.data(), col.emission.data()};
+  oc.weight_exit = col.weight_exit.data();
+  oc.weight_far = col.weight_far.data();
+  oc.m1 = col.m1.data();
+  oc.m2 = col.m2.data();
+  oc.e0 = col.e0.data();
+  exact_batch(PieceColumns{col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
+                           col.kappa_exit.data(), m},
+              oc);
+  double t = 1.0, dt_length = 0.0, dt_rho = 0.0;  // of the piece's depth (lane 0's)
+  bool transparent = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ChannelPiece& p = pieces[i];
+    PieceDerivatives& g = out[i];
+    const std::size_t j = i / stride;
+    if (i % stride == 0) {
+      // exp(-T) as exact_piece forms it: exact_batch's vector Exp (1 ulp) doubled the worst error
+      // of a saturated ray's length entry (out_of_range: 1.1e-13 of the channel's largest entry
+      // against 5.7e-14, tests/test_grad.cpp), which amplifies the transmittance's rounding.
+      const double a = p.rho_exit * p.length, b = p.rho_far * p.length, T = 0.5 * (a + b);
+      transparent = !(T > 0.0);
+      t = transparent ? 1.0 : std::exp(-T);
+      // The batch formed the moments of thin_series and transparent lanes; the others are NaN.
+      if (std::isnan(col.m1[j])) {
+        PieceOptics o;
+        o.transmittance = t;
+        o.weight_exit = col.weight_exit[j];
+        o.weight_far = col.weight_far[j];
+        o.branch = branch_of(a, b);
+        const Moments mo = closed_form_moments(o, a, 0.5 * (b - a), T);
+        col.m1[j] = mo.m1;
+        col.m2[j] = mo.m2;
+      }
+      dt_rho = -0.5 * t * p.length;
+      dt_length = -0.5 * t * (p.rho_exit + p.rho_far);
+      g.emission = col.emission[j];
+    } else {
+      // the same depth as piece i - i % s: exact_piece_grad's same_depth overload (a transparent
+      // piece keeps its 0)
+      g.emission = transparent ? 0.0 : p.kappa_exit * col.weight_exit[j] + p.kappa_far * col.weight_far[j];
+    }
+    g.transmittance = t;
+    g.de_kappa_exit = col.weight_exit[j];
+    g.de_kappa_far = col.weight_far[j];
+    g.dt_rho = dt_rho;
+    g.dt_length = dt_length;
+    const KappaTerms k = kappa_terms(col.m1[j], col.m2[j], t, p, kappa_far_minus_exit[i]);
+    g.de_length = k.de_length;
+    g.de_rho_far = k.de_rho_far;
+    g.de_rho_exit = k.de_rho_exit;
+  }
 }
 
 PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa, const PieceOpticsGrad& same_depth) {
@@ -412,8 +526,8 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
 void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, GradientBlocks blocks) {
   detail::chain_ray_gradient(
       tf, ray, grad,
-      [](const ChannelPiece& cp, double dkappa, const PieceOpticsGrad* same_depth) {
-        return same_depth ? exact_piece_grad(cp, dkappa, *same_depth) : exact_piece_grad(cp, dkappa);
+      [](const ChannelPiece* cps, const double* dkappa, std::size_t n, bool grey, PieceDerivatives* out) {
+        exact_pieces_grad(cps, dkappa, n, out, grey ? kChannels : 1);
       },
       detail::PieceEnds::fixed_along_segment, blocks);
 }

@@ -228,41 +228,59 @@ class FunctionWalk {
   EndValue last_{};
 };
 
-// piece_grad(const ChannelPiece&, double kappa_far_minus_exit, const PieceOpticsGrad* same_depth)
-// -> PieceOpticsGrad: the optics of one channel of one piece and their derivatives. same_depth is
-// non-null when the piece's length, rho_far and rho_exit are those of an earlier channel's result
-// it points to (a grey medium, TransferFunctions::grey): a piece_grad may reuse what depends on
-// them alone, or ignore it. blocks = GradientBlocks::segments leaves the node blocks empty and
-// skips their accumulation. Throws std::invalid_argument for a non-finite length, scalar or
-// background.
+// chain_ray_gradient's piece_grads from piece_grad(const ChannelPiece&, double
+// kappa_far_minus_exit, const PieceOpticsGrad* same_depth) -> PieceOpticsGrad, one piece-channel
+// at a time; same_depth points to channel 0's result of a grey medium's piece, else null.
 template <class PieceGrad>
-void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grad,
+auto each_piece_channel(PieceGrad piece_grad) {
+  return [piece_grad](const ChannelPiece* cps, const double* dkappa, std::size_t n, bool grey,
+                      PieceDerivatives* out) {
+    PieceOpticsGrad channel0;  // a piece's channel 0, for the other channels of a grey medium
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t c = i % kChannels;
+      const PieceOpticsGrad g = piece_grad(cps[i], dkappa[i], grey && c > 0 ? &channel0 : nullptr);
+      out[i] = derivatives_of(g);
+      if (c == 0) channel0 = g;
+    }
+  };
+}
+
+// piece_grads(const ChannelPiece* cps, const double* kappa_far_minus_exit, std::size_t n, bool grey,
+// PieceDerivatives* out): the optics of n piece-channels and their derivatives, at once (index
+// kChannels k + c: channel c of the k-th piece of the call; exact_pieces_grad evaluates them
+// through the SIMD batch). With grey true the channels of a piece share its length, rho_far and
+// rho_exit (a grey medium, TransferFunctions::grey): a piece_grads may reuse channel 0's results
+// for them, or ignore it. each_piece_channel adapts a function of one piece-channel.
+// blocks = GradientBlocks::segments leaves the node blocks empty and skips their accumulation.
+// Throws std::invalid_argument for a non-finite length, scalar or background.
+template <class PieceGrad>
+void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
                         PieceEnds ends_mode = PieceEnds::fixed_along_segment,
                         GradientBlocks blocks = GradientBlocks::all) {
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("gradient: background must be finite");
-  // What the reverse pass needs of a piece-channel, in one record (the forward pass writes them
-  // in order, the reverse pass reads them back): the light entering it, its optics' derivatives
-  // (PieceOpticsGrad's, without the moments and introspection) and, per function (density[c],
-  // color[c]), the interval its values come from (upper_bound of the scalar that chooses it, see
-  // interval_lo below), that interval's slope and the node weights of the two ends.
+  // What the reverse pass needs of a piece-channel besides its optics' derivatives
+  // (PieceDerivatives): per function (density[c], color[c]), the interval its values come from
+  // (upper_bound of the scalar that chooses it, see interval_lo below), that interval's slope and
+  // the node weights of the two ends.
   struct FunctionEnds {
     std::size_t k = 0;
     double slope = 0.0;
     double far_w0 = 0.0, far_w1 = 0.0, exit_w0 = 0.0, exit_w1 = 0.0;
   };
-  struct ChannelRecord {
-    double incoming = 0.0, transmittance = 0.0;
-    double de_length = 0.0, dt_length = 0.0, de_rho_far = 0.0, dt_rho_far = 0.0, de_rho_exit = 0.0,
-           dt_rho_exit = 0.0, de_kappa_far = 0.0, de_kappa_exit = 0.0;
+  struct ChannelEnds {
     FunctionEnds rho, kappa;
   };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
     std::vector<double> breakpoints;
     std::vector<PieceRecord> pieces;
-    std::vector<ChannelRecord> records;
+    std::vector<double> incoming;
+    std::vector<ChannelEnds> ends;
+    std::vector<ChannelPiece> cps;
+    std::vector<double> dkappas;
+    std::vector<PieceDerivatives> derivs;
   };
   thread_local Scratch scratch;
   std::vector<double>& breakpoints = scratch.breakpoints;
@@ -329,8 +347,8 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
                : lo;
   };
   const std::size_t n = pieces.size();
-  std::vector<ChannelRecord>& records = scratch.records;
-  if (records.size() < n * kChannels) records.resize(n * kChannels);
+  std::vector<double>& incoming = scratch.incoming;
+  if (incoming.size() < n * kChannels) incoming.resize(n * kChannels);
   // One walk per function along the ray (grey: density[0]'s serves every channel).
   FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0], nodes_wanted),
                                       FunctionWalk(tf.density[1], nodes_wanted),
@@ -359,43 +377,60 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     fe.exit_w1 = exit.w1;
     return std::pair<double, double>{far.value, exit.value};
   };
+  // The pieces go to piece_grads in chunks of kChunkPieces (their inputs and the batch's columns
+  // stay in cache however long the ray), each composited as soon as it is evaluated. What the
+  // reverse pass needs of a piece-channel is kept for the whole ray: the light entering it, its
+  // ends (ChannelEnds) and its optics' derivatives (PieceDerivatives, written by piece_grads).
+  // (Keeping them for one chunk only and forming every other chunk again in the reverse pass, to
+  // spare the memory traffic of a long ray's ~5 MB, cost more than it saved: 8.8 -> 10.2 ms on
+  // bench_grad's set 1.)
+  constexpr std::size_t kChunkPieces = 512;
+  const std::size_t chunk_capacity = std::min(n, kChunkPieces) * kChannels;
+  std::vector<ChannelEnds>& ends = scratch.ends;
+  std::vector<ChannelPiece>& cps = scratch.cps;
+  std::vector<double>& dkappas = scratch.dkappas;
+  std::vector<PieceDerivatives>& derivs = scratch.derivs;
+  if (ends.size() < n * kChannels) {
+    ends.resize(n * kChannels);
+    derivs.resize(n * kChannels);
+  }
+  if (cps.size() < chunk_capacity) {
+    cps.resize(chunk_capacity);
+    dkappas.resize(chunk_capacity);
+  }
+  const std::size_t n_chunks = (n + kChunkPieces - 1) / kChunkPieces;
   // Forward: the optics of every piece-channel and the light entering it.
   Rgb intensity = ray.background;
-  PieceOpticsGrad channel0;  // a piece's channel 0, for the other channels of a grey medium
-  for (std::size_t k = 0; k < n; ++k) {
-    const PieceRecord& pr = pieces[k];
-    const double lo = std::min(pr.s_far, pr.s_exit);
-    ChannelRecord* rec = &records[k * kChannels];
-    std::pair<double, double> rho_ends{0.0, 0.0};  // density at the far and exit ends
-    const auto channel = [&](int c, const PieceOpticsGrad* same_depth) {
-      ChannelRecord& r = rec[c];
-      if (same_depth)
-        r.rho = rec[0].rho;
-      else
-        rho_ends = ends_of(rho_walk[c], tf.density[c], pr, lo, r.rho);
-      const std::pair<double, double> kappa_ends = ends_of(kappa_walk[c], tf.color[c], pr, lo, r.kappa);
-      // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
-      // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
-      // multiplied by a density slope of 3e23 in dI/ds). A constant piece has none; the
-      // extensions have slope 0.
-      const double dkappa = pr.s_far == pr.s_exit ? 0.0 : r.kappa.slope * (pr.s_far - pr.s_exit);
-      const ChannelPiece cp{pr.length, rho_ends.first, rho_ends.second, kappa_ends.first, kappa_ends.second};
-      const PieceOpticsGrad g = piece_grad(cp, dkappa, same_depth);
-      r.incoming = intensity[c];
-      r.transmittance = g.optics.transmittance;
-      r.de_length = g.de_length;
-      r.dt_length = g.dt_length;
-      r.de_rho_far = g.de_rho_far;
-      r.dt_rho_far = g.dt_rho_far;
-      r.de_rho_exit = g.de_rho_exit;
-      r.dt_rho_exit = g.dt_rho_exit;
-      r.de_kappa_far = g.de_kappa_far;
-      r.de_kappa_exit = g.de_kappa_exit;
-      intensity[c] = intensity[c] * g.optics.transmittance + g.optics.emission;
-      if (c == 0 && grey) channel0 = g;
-    };
-    channel(0, nullptr);
-    for (int c = 1; c < kChannels; ++c) channel(c, grey ? &channel0 : nullptr);
+  for (std::size_t q = 0; q < n_chunks; ++q) {
+    const std::size_t k0 = q * kChunkPieces, k1 = std::min(n, k0 + kChunkPieces);
+    for (std::size_t k = k0; k < k1; ++k) {
+      const PieceRecord& pr = pieces[k];
+      const double lo = std::min(pr.s_far, pr.s_exit);
+      ChannelEnds* rec = &ends[k * kChannels];
+      std::pair<double, double> rho_ends{0.0, 0.0};  // density at the far and exit ends
+      for (int c = 0; c < kChannels; ++c) {
+        ChannelEnds& r = rec[c];
+        if (grey && c > 0)
+          r.rho = rec[0].rho;
+        else
+          rho_ends = ends_of(rho_walk[c], tf.density[c], pr, lo, r.rho);
+        const std::pair<double, double> kappa_ends = ends_of(kappa_walk[c], tf.color[c], pr, lo, r.kappa);
+        // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
+        // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
+        // multiplied by a density slope of 3e23 in dI/ds). A constant piece has none; the
+        // extensions have slope 0.
+        const std::size_t i = (k - k0) * kChannels + static_cast<std::size_t>(c);
+        dkappas[i] = pr.s_far == pr.s_exit ? 0.0 : r.kappa.slope * (pr.s_far - pr.s_exit);
+        cps[i] = {pr.length, rho_ends.first, rho_ends.second, kappa_ends.first, kappa_ends.second};
+      }
+    }
+    piece_grads(cps.data(), dkappas.data(), (k1 - k0) * kChannels, grey, derivs.data() + k0 * kChannels);
+    for (std::size_t i = k0 * kChannels; i < k1 * kChannels; i += kChannels)
+      for (int c = 0; c < kChannels; ++c) {
+        const PieceDerivatives& g = derivs[i + static_cast<std::size_t>(c)];
+        incoming[i + static_cast<std::size_t>(c)] = intensity[c];
+        intensity[c] = intensity[c] * g.transmittance + g.emission;
+      }
   }
   grad.intensity = intensity;
 
@@ -404,12 +439,15 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   for (std::size_t k = n; k-- > 0;) {
     const PieceRecord& pr = pieces[k];
     for (int c = 0; c < kChannels; ++c) {
-      const ChannelRecord& g = records[k * kChannels + static_cast<std::size_t>(c)];
+      const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
+      const PieceDerivatives& g = derivs[i];
+      const ChannelEnds& ce = ends[i];
+      const double light = incoming[i];
       const double e_bar = adjoint[c];
-      const double t_bar = adjoint[c] * g.incoming;
+      const double t_bar = adjoint[c] * light;
       const double len_bar = e_bar * g.de_length + t_bar * g.dt_length;
-      const double rho_far_bar = e_bar * g.de_rho_far + t_bar * g.dt_rho_far;
-      const double rho_exit_bar = e_bar * g.de_rho_exit + t_bar * g.dt_rho_exit;
+      const double rho_far_bar = e_bar * g.de_rho_far + t_bar * g.dt_rho;
+      const double rho_exit_bar = e_bar * g.de_rho_exit + t_bar * g.dt_rho;
       const double kappa_far_bar = e_bar * g.de_kappa_far;
       const double kappa_exit_bar = e_bar * g.de_kappa_exit;
       // Length: len = L * (fraction of the segment); the fraction does not depend on L.
@@ -498,11 +536,11 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
           scalar_exit[c] += s_bar * phi;
         }
       };
-      through(grad.density[c], g.rho, rho_far_bar, rho_exit_bar);
-      through(grad.color[c], g.kappa, kappa_far_bar, kappa_exit_bar);
+      through(grad.density[c], ce.rho, rho_far_bar, rho_exit_bar);
+      through(grad.color[c], ce.kappa, kappa_far_bar, kappa_exit_bar);
       adjoint[c] *= g.transmittance;
       if (jumps && !pr.far_is_end && k > 0)
-        add_jump_crossing(tf, ray, pieces[k - 1], pr, c, g.incoming, adjoint[c], grad,
+        add_jump_crossing(tf, ray, pieces[k - 1], pr, c, light, adjoint[c], grad,
                           ends_mode == PieceEnds::fixed_along_segment, nodes_wanted);
     }
   }
