@@ -205,17 +205,20 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     const auto c = static_cast<std::size_t>(queue[q]);
     const CellRecord& r = cells_[c];
     bool holds = true;
-    double ta = -std::numeric_limits<double>::infinity(), tb = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 4; ++k) {
-      // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d.
+    // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d. A neighbour
+    // whose closure does not hold p is passed over at its first face that says so.
+    for (int k = 0; k < 4 && (holds || q == 0); ++k) {
       const Vec3 normal = r.normal(k);
       const double dist = normal.dot(p - face_point(r, k)) / normal.norm();
       if (dist > tol) holds = false;
-      const double dn = dot3(normal, w.d);
+    }
+    if (!holds && q > 0) continue;
+    double ta = -std::numeric_limits<double>::infinity(), tb = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) {
+      const double dn = dot3(r.normal(k), w.d);
       if (dn > 0.0) tb = std::min(tb, crossing(w, c, k));
       else if (dn < 0.0) ta = std::max(ta, crossing(w, c, k));
     }
-    if (!holds && q > 0) continue;
     if (ta <= t + tol_t && tb > best) {
       best = tb;
       cell = static_cast<std::int32_t>(c);
