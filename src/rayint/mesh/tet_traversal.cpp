@@ -339,8 +339,11 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
         const bool leaves = nd[k] > 0.0;
         // The ray leaves through one of these faces: start loading the cells behind them now
         // (for a face it enters through, the current cell's record again).
+        // Both cache lines of the record: the second holds nz, next and the points.
         const std::int32_t behind = r.next[static_cast<std::size_t>(k)];
-        __builtin_prefetch(&cells_[leaves && behind >= 0 ? static_cast<std::size_t>(behind) : c]);
+        const CellRecord* ahead = &cells_[leaves && behind >= 0 ? static_cast<std::size_t>(behind) : c];
+        __builtin_prefetch(ahead);
+        __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
         const bool take = leaves & (tf[k] < t_min);
         t_min = take ? tf[k] : t_min;
         k_min = take ? k : k_min;
