@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "rayint/generators/regimes.hpp"
 #include "rayint/integrators/exact.hpp"
@@ -278,4 +279,32 @@ TEST_CASE("ExactIntegrator: a grey medium's batch path gives the channel path's 
     }
   }
   CHECK(rays > 10);
+}
+
+TEST_CASE("ExactIntegrator: integrate_many gives each ray's integrate results bit for bit", "[exact_batch]") {
+  // The render integrates a tile's rays in one call (the grey path: one kernel batch over all
+  // their pieces). Rays of every regime, an empty ray among them, under one grey and one
+  // coloured transfer function.
+  std::mt19937_64 rng(29);
+  const auto spec = parse_method_spec("exact");
+  std::vector<Ray> rays;
+  for (const Regime regime : ray_regimes())
+    for (int i = 0; i < 3; ++i) rays.push_back(sample_ray(regime, rng).ray);
+  rays.insert(rays.begin() + 3, Ray{});
+  for (const bool grey : {true, false}) {
+    RaySample s = sample_ray(ray_regimes().front(), rng);
+    if (grey) s.transfer.density[1] = s.transfer.density[2] = s.transfer.density[0];
+    REQUIRE(s.transfer.grey() == grey);
+    const auto integrator = make_integrator(spec, s.transfer);
+    std::vector<RayResult> together(rays.size());
+    integrator->integrate_many(rays.data(), rays.size(), together.data());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const RayResult one = integrator->integrate(rays[i], nullptr);
+      for (int c = 0; c < kChannels; ++c) {
+        INFO("grey " << grey << " ray " << i << " channel " << c);
+        CHECK(std::memcmp(&together[i].intensity[c], &one.intensity[c], sizeof(double)) == 0);
+        CHECK(std::memcmp(&together[i].transmittance[c], &one.transmittance[c], sizeof(double)) == 0);
+      }
+    }
+  }
 }

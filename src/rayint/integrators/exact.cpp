@@ -168,7 +168,11 @@ PieceOptics exact_piece(const ChannelPiece& p) {
 
 RayResult ExactIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   if (path_ == Path::scalar) return integrate_scalar(ray, diag);
-  if (splitter_.grey() && !diag) return integrate_grey(ray);
+  if (splitter_.grey() && !diag) {
+    RayResult r;
+    integrate_grey(&ray, 1, &r);
+    return r;
+  }
   // Every piece of the ray (far -> near), then one batch over all its piece-channels, results
   // piece-major (index 3 k + c).
   struct Columns {
@@ -219,15 +223,28 @@ RayResult ExactIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag)
   return r;
 }
 
-RayResult ExactIntegrator::integrate_grey(const Ray& ray) const {
+void ExactIntegrator::integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out) const {
+  if (path_ == Path::batch && splitter_.grey()) {
+    integrate_grey(rays, n, out);
+    return;
+  }
+  for (std::size_t i = 0; i < n; ++i) out[i] = integrate_segments(rays[i], nullptr);
+}
+
+void ExactIntegrator::integrate_grey(const Ray* rays, std::size_t n_rays, RayResult* results) const {
   struct Columns {
     GreyPieceColumns pieces;
+    std::vector<std::size_t> ends;  // ray i's pieces end at ends[i]
     std::vector<double> transmittance;
     std::array<std::vector<double>, kChannels> emission;
   };
   thread_local Columns col;
   col.pieces.clear();
-  splitter_.append(ray.segments, col.pieces);
+  col.ends.resize(n_rays);
+  for (std::size_t i = 0; i < n_rays; ++i) {
+    splitter_.append(rays[i].segments, col.pieces);
+    col.ends[i] = col.pieces.size();
+  }
   const GreyPieceColumns& p = col.pieces;
   const std::size_t n = p.size();
   if (col.transmittance.size() < n) {
@@ -242,15 +259,18 @@ RayResult ExactIntegrator::integrate_grey(const Ray& ray) const {
     out.emission[c] = col.emission[c].data();
   }
   exact_batch(in, out);
-  RayResult r = RayResult::of_background(ray.background);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double t = col.transmittance[k];
-    for (std::size_t c = 0; c < kChannels; ++c) {
-      r.intensity[c] = r.intensity[c] * t + col.emission[c][k];
-      r.transmittance[c] *= t;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n_rays; ++i) {
+    RayResult r = RayResult::of_background(rays[i].background);
+    for (; k < col.ends[i]; ++k) {
+      const double t = col.transmittance[k];
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        r.intensity[c] = r.intensity[c] * t + col.emission[c][k];
+        r.transmittance[c] *= t;
+      }
     }
+    results[i] = r;
   }
-  return r;
 }
 
 RayResult ExactIntegrator::integrate_scalar(const Ray& ray, Diagnostics* diag) const {

@@ -42,11 +42,16 @@ class ExactIntegrator final : public PieceIntegrator {
       : PieceIntegrator(tf), path_(path) {}
   RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
 
+ protected:
+  // The batch path for a grey medium: the pieces of all n rays in one kernel batch (fewer, fuller
+  // vectors than a batch per ray; each piece's result is the same); otherwise ray by ray.
+  void integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out) const override;
+
  private:
   RayResult integrate_scalar(const Ray& ray, Diagnostics* diag) const;
   // The batch path for a grey medium without diagnostics: one kernel evaluation per piece for
-  // all channels (the channel path's results, bit for bit).
-  RayResult integrate_grey(const Ray& ray) const;
+  // all channels (the channel path's results, bit for bit), for n rays at once into out[0..n).
+  void integrate_grey(const Ray* rays, std::size_t n, RayResult* out) const;
   Path path_;
 };
 

@@ -2,6 +2,7 @@
 // The common interface of every way to evaluate the ray integral (Williams & Max Eq. 4).
 // A method is bound to one case's transfer functions (tables are built once there) and then
 // integrates rays. Library code computes; it never prints.
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -44,6 +45,14 @@ class RayIntegrator {
       throw std::invalid_argument(kLinearSegmentsOnly);
     return integrate_segments(ray, diag);
   }
+  // out[i] = integrate(rays[i], nullptr) for i < n, bit for bit; a method may compute the rays
+  // together (ExactIntegrator: one kernel batch over the pieces of all n rays, issue 33).
+  void integrate_many(const Ray* rays, std::size_t n, RayResult* out) const {
+    for (std::size_t i = 0; i < n; ++i)
+      if (!rays[i].quadratic.empty() && !takes_quadratic_segments() && has_quadratic_segments(rays[i]))
+        throw std::invalid_argument(kLinearSegmentsOnly);
+    integrate_many_segments(rays, n, out);
+  }
   // True for the methods that evaluate the scalar along a segment where they need it (sampling
   // methods: riemann, nerf, rk4) and so take quadratic segments as they are.
   virtual bool takes_quadratic_segments() const { return false; }
@@ -54,6 +63,10 @@ class RayIntegrator {
 
  protected:
   virtual RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const = 0;
+  // integrate_many's rays, checked; one at a time unless a method does better.
+  virtual void integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out) const {
+    for (std::size_t i = 0; i < n; ++i) out[i] = integrate_segments(rays[i], nullptr);
+  }
 };
 
 // A method that works on the pieces of a ray (its segments split at every transfer-function

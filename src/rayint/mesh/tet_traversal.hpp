@@ -149,22 +149,32 @@ class TetTraversal {
   // What one walk step needs about a cell, in one 128-byte record (2 cache lines) so that a step
   // does not gather from a face array, the signs and the fields (measured: the walk took ~30%
   // less time than with those separate arrays; README "Rendering throughput"). The values are
-  // those of the face planes of rule 1, unchanged: normal[k] is face k's normal times the cell's
-  // sign (+-1, an exact negation), so normal[k].d = sign * (n.d) and
-  // normal[k].(a - o) / normal[k].d = n.(a - o) / n.d bit for bit. A face's first point (its
+  // those of the face planes of rule 1, unchanged: normal k is face k's normal times the cell's
+  // sign (+-1, an exact negation), so normal k . d = sign * (n.d) and
+  // normal k . (a - o) / normal k . d = n.(a - o) / n.d bit for bit. A face's first point (its
   // lowest point index) is the cell's lowest-index point, except for the face opposite that point,
   // whose first point is the cell's second-lowest: both are kept as point indices (issue 33: the
   // record was 256 bytes with the two points and the Eq. 9 field in it; the field's gradient is
   // now in gradients_, its anchor and scalar in the mesh). Renders are cmp-identical to the
-  // 256-byte records (reports/scaling/README.md, "Memory").
+  // 256-byte records (reports/scaling/README.md, "Memory"). The normals are stored by component
+  // (nx[k], ny[k], nz[k]), so that a step computes two faces' crossing parameters per
+  // instruction (issue 33, round 6); the arithmetic is Eigen's dot, (x0 y0 + x1 y1) + x2 y2
+  // (dot3 below), lane by lane.
   struct alignas(64) CellRecord {
-    std::array<Vec3, 4> normal;            // face opposite point k, times the cell's sign (outward)
+    alignas(16) std::array<double, 4> nx, ny, nz;  // face opposite point k, times the cell's sign (outward)
     std::array<std::int32_t, 4> next{};    // the cell across face k, -1 on the boundary
     std::int32_t first_point = 0;          // point index: the first point of every face but k_second
     std::int32_t second_point = 0;         // point index: the first point of face k_second
     std::int32_t k_second = -1;
+    Vec3 normal(int k) const {
+      const auto i = static_cast<std::size_t>(k);
+      return Vec3(nx[i], ny[i], nz[i]);
+    }
   };
   static_assert(sizeof(CellRecord) == 128, "two cache lines per cell");
+  // a . b in the order of Eigen's Vector3d dot with SSE2, (a0 b0 + a1 b1) + a2 b2 (compared bit for bit
+  // on 2M random vectors when written; renders are cmp-identical to the Eigen-dot walk).
+  static double dot3(const Vec3& a, const Vec3& b) { return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]; }
   const Vec3& face_point(const CellRecord& r, int k) const {
     return mesh_.points[static_cast<std::size_t>(k == r.k_second ? r.second_point : r.first_point)];
   }

@@ -150,39 +150,52 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   const int band = static_cast<int>(rows.size());
   std::atomic<int> rows_done{0};
   std::vector<MeshRenderCost> per_thread(threads);
-  // A row is rendered in chunks of kChunk pixels: their rays are traced, then integrated, so
-  // that the clock is read twice per chunk instead of twice per ray (issue 33).
-  constexpr int kChunk = 32;
+  // The rows are rendered in strips of kStrip rows, each strip in tiles of kTileW x kStrip pixels:
+  // a tile's rays are traced, then integrated, so that the clock is read twice per tile instead of
+  // twice per ray (issue 33). Tiles instead of rows keep the cells that neighbouring rays cross in
+  // the cache: along a row, the rays between a pixel and the one below it walked ~4 MB of cell
+  // records at 105k tets (more than a core's L2), within a tile a few KB.
+  constexpr int kTileW = 4, kStrip = 8;
+  constexpr int kChunk = kTileW * kStrip;
+  const int strips = (band + kStrip - 1) / kStrip;
   struct Scratch {  // per worker, reused (no allocation per ray once warm)
     std::array<RayTrace, kChunk> traces;
     std::array<Ray, kChunk> rays;
+    std::array<RayResult, kChunk> results, compared;
   };
   std::vector<Scratch> scratch(threads);
-  auto render_row = [&](long long row, unsigned id) {
-    const int y = static_cast<int>(rows.begin) + static_cast<int>(row);
+  auto render_strip = [&](long long strip, unsigned id) {
+    const int y0 = static_cast<int>(rows.begin) + static_cast<int>(strip) * kStrip;
+    const int h = std::min(kStrip, static_cast<int>(rows.begin) + band - y0);
     MeshRenderCost& cost = per_thread[id];
     Scratch& sc = scratch[id];
-    for (int x0 = 0; x0 < width; x0 += kChunk) {
-      const int n = std::min(kChunk, width - x0);
+    for (int x0 = 0; x0 < width; x0 += kTileW) {
+      const int w = std::min(kTileW, width - x0);
+      const int n = w * h;  // ray k is pixel (x0 + k % w, y0 + k / w)
       const auto t0 = Clock::now();
       for (int k = 0; k < n; ++k) {
         RayTrace& trace = sc.traces[static_cast<std::size_t>(k)];
-        mesh.trace(cam.ray_for_pixel(x0 + k, y), trace, &cost.traversal);
+        mesh.trace(cam.ray_for_pixel(x0 + k % w, y0 + k / w), trace, &cost.traversal);
         if (!quadratic) ray_from_trace(trace, mc.background, sc.rays[static_cast<std::size_t>(k)]);
       }
       const auto t1 = Clock::now();
+      // Unshaded linear segments: the tile's rays in one call (the exact method integrates their
+      // pieces in one kernel batch).
+      const bool together = !quadratic && !mc.shading.enabled;
+      if (together) {
+        method.integrate_many(sc.rays.data(), static_cast<std::size_t>(n), sc.results.data());
+        if (compare) compare->integrate_many(sc.rays.data(), static_cast<std::size_t>(n), sc.compared.data());
+      }
       for (int k = 0; k < n; ++k) {
-        const int x = x0 + k;
+        const int x = x0 + k % w, y = y0 + k / w;
         const RayTrace& trace = sc.traces[static_cast<std::size_t>(k)];
-        const Ray& ray = sc.rays[static_cast<std::size_t>(k)];
-        const RayResult r = quadratic            ? quadratic->integrate(trace, mc.background, &cost.pieces)
-                            : mc.shading.enabled ? integrate_shaded(method, trace, mc.background, mc.shading, *gradients)
-                                                 : method.integrate(ray, nullptr);
+        const RayResult r = together  ? sc.results[static_cast<std::size_t>(k)]
+                            : quadratic ? quadratic->integrate(trace, mc.background, &cost.pieces)
+                                        : integrate_shaded(method, trace, mc.background, mc.shading, *gradients);
         out.image.at(x, y) = r.intensity;
         if (compare) {
-          const RayResult c = mc.shading.enabled
-                                  ? integrate_shaded(*compare, trace, mc.background, mc.shading, *gradients)
-                                  : compare->integrate(ray, nullptr);
+          const RayResult c = together ? sc.compared[static_cast<std::size_t>(k)]
+                                       : integrate_shaded(*compare, trace, mc.background, mc.shading, *gradients);
           out.compared.at(x, y) = c.intensity;
           const double e = relative_pixel_error(r.intensity, c.intensity);
           out.rel_error[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = e;
@@ -202,11 +215,11 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
         }
       }
     }
-    rows_done.fetch_add(1);
+    rows_done.fetch_add(h);
   };
   const auto start = Clock::now();
   // Progress every 0.2 s from this thread (the callback runs on this thread only).
-  parallel_for(band, settings.threads, render_row, 0.2, [&] {
+  parallel_for(strips, settings.threads, render_strip, 0.2, [&] {
     const int reported = rows_done.load();
     if (settings.progress && reported < band) settings.progress(reported, band);
   });

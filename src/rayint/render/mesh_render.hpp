@@ -1,7 +1,7 @@
 #pragma once
 // Rendering a mesh case's camera: one viewing ray per pixel traced through the mesh
-// (mesh/tet_traversal.hpp) and integrated by a method (normally `exact`), multithreaded over
-// image rows (core/parallel.hpp). Optionally a second method is run on the same segments and
+// (mesh/tet_traversal.hpp) and integrated by a method (normally `exact`), in tiles of 4 x 8
+// pixels, multithreaded over strips of 8 image rows (core/parallel.hpp). Optionally a second method is run on the same segments and
 // compared pixel by pixel with the first (relative error, the largest of the three channels;
 // max, median and p99 as core/statistics.hpp defines them).
 // Progress is reported through a callback from the calling thread only (it monitors the
