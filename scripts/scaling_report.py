@@ -82,11 +82,16 @@ def main():
                 " ".join("%.1f" % x for x in d["load_average_start"]),
                 " ".join("%.1f" % x for x in d["load_average_end"]) if "load_average_end" in d else "not recorded",
                 d["repeats"]))
-    for ap in d.get("appended", []):
+    runs = [(d["started"], d.get("finished") or "~")] + [(a["started"], a.get("finished") or "~")
+                                                         for a in d.get("appended", [])]
+    for i, ap in enumerate(d.get("appended", [])):
+        start, end = runs[i + 1]  # times "YYYY-MM-DD HH:MM:SS UTC" order as strings; "~": unfinished
+        overlap = any(j != i + 1 and start < e and s0 < end for j, (s0, e) in enumerate(runs))
         L.append("")
-        L.append("A separate run for %s tets (%s; %d run(s); runs overlapped in time): %s to %s, load average %s at the start, %s at the end."
+        L.append("A separate run for %s tets (%s; %d run(s)%s): %s to %s, load average %s at the start, %s at the end."
                  % (", ".join("{:,}".format(48 * n ** 3) for n in ap["sizes"]), ", ".join(ap["binaries"]),
-                    ap["repeats"], ap["started"], ap.get("finished", "(unfinished)"),
+                    ap["repeats"], "; it overlapped another run in time" if overlap else "",
+                    ap["started"], ap.get("finished", "(unfinished)"),
                     " ".join("%.1f" % x for x in ap["load_average_start"]),
                     " ".join("%.1f" % x for x in ap.get("load_average_end", [float("nan")] * 3))))
     L.append("")
@@ -121,8 +126,10 @@ def main():
     exps = {}
     for n in names:
         for fmt in sizes[0]["formats"]:
-            xs = [s["tets"] for s in sizes if s["formats"][fmt][n]["load"] and s["formats"][fmt][n]["load"] >= 0.1]
-            ys = [s["formats"][fmt][n]["load"] for s in sizes if s["formats"][fmt][n]["load"] and s["formats"][fmt][n]["load"] >= 0.1]
+            # a size measured in fewer formats (e.g. a 10M run of .vtk only) has no load here
+            loads = [(s["tets"], s["formats"].get(fmt, {}).get(n, {}).get("load")) for s in sizes]
+            xs = [t for t, load in loads if load and load >= 0.1]
+            ys = [load for _, load in loads if load and load >= 0.1]
             b, _ = fit(xs, ys)
             exps[(n, fmt)] = b
             L.append("- %s, .%s: b = %s (%d sizes)" % (n, fmt, f(b, 3), len(xs)))
