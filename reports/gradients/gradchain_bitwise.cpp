@@ -28,12 +28,7 @@ static void dump(const RayGradient& g) {
 int main() {
   int rays = 0;
   for_each_ray([&](int n, const RaySample& v) {
-    RayGradient g;
-    try { std::printf("G %d full\n", n); exact_ray_gradient(v.transfer, v.ray, g); dump(g); } catch (std::exception& e) { std::printf("E %s\n", e.what()); }
-    try { std::printf("G %d seg\n", n); exact_ray_gradient(v.transfer, v.ray, g, GradientBlocks::segments); dump(g); } catch (std::exception& e) { std::printf("E %s\n", e.what()); }
-    if (v.ray.segments.size() <= 60)
-      for (auto lk : {table::Lookup::nearest, table::Lookup::linear})
-        try { std::printf("G %d psi\n", n); dump(psi_table_ray_gradient(v.transfer, v.ray, 64, lk)); } catch (std::exception& e) { std::printf("E %s\n", e.what()); }
+    dump_ray_gradients(n, v, dump);
     rays = n + 1;
   });
   std::fprintf(stderr, "rays %d hash %016llx\n", rays, h);

@@ -3,12 +3,17 @@
 // (seed 2828, cut to 300 segments), each in 4 variants -- as sampled; with a jump inserted in 60%
 // of the functions; plus segment ends put on breakpoints, constant segments on breakpoints,
 // constant and reversed segments; plus a grey medium (three densities equal).
-// for_each_ray(visit) calls visit(n, ray_sample) for n = 0..1799, in order.
+// for_each_ray(visit) calls visit(n, ray_sample) for n = 0..1799, in order; dump_ray_gradients
+// prints the gradients both tools compare for one ray.
 #pragma once
 #include <algorithm>
+#include <cstdio>
+#include <exception>
 #include <random>
 #include <vector>
 #include "rayint/generators/regimes.hpp"
+#include "rayint/integrators/exact_grad.hpp"
+#include "rayint/integrators/psi_table_grad.hpp"
 
 template <class F>
 void for_each_ray(F&& visit) {
@@ -47,4 +52,18 @@ void for_each_ray(F&& visit) {
         ++n;
       }
     }
+}
+
+// Ray n's gradients, each after a line "G n KIND" and printed by dump(gradient): exact_ray_gradient
+// with every block (KIND full) and GradientBlocks::segments (seg), and on rays of at most 60
+// segments psi_table_ray_gradient of size 64, nearest then linear (psi). A throw prints "E what".
+template <class Dump>
+void dump_ray_gradients(int n, const rayint::RaySample& v, Dump&& dump) {
+  using namespace rayint;
+  RayGradient g;
+  try { std::printf("G %d full\n", n); exact_ray_gradient(v.transfer, v.ray, g); dump(g); } catch (std::exception& e) { std::printf("E %s\n", e.what()); }
+  try { std::printf("G %d seg\n", n); exact_ray_gradient(v.transfer, v.ray, g, GradientBlocks::segments); dump(g); } catch (std::exception& e) { std::printf("E %s\n", e.what()); }
+  if (v.ray.segments.size() <= 60)
+    for (auto lk : {table::Lookup::nearest, table::Lookup::linear})
+      try { std::printf("G %d psi\n", n); dump(psi_table_ray_gradient(v.transfer, v.ray, 64, lk)); } catch (std::exception& e) { std::printf("E %s\n", e.what()); }
 }

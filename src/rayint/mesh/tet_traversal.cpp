@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "rayint/core/error.hpp"
+#include "rayint/core/lanes.hpp"
 #include "rayint/geometry/bounds.hpp"
 #include "rayint/core/format.hpp"
 #include "rayint/mesh/first_hit.hpp"
@@ -30,15 +31,10 @@ namespace {
 // at 4e252: Embree's assertion aborted the process; tests/test_mesh_io.cpp).
 constexpr double kMaxCoordinate = 1e18;
 
-// Two lanes of doubles (SSE2, the x86-64 baseline), in GCC's vector extension: + - * / are the
-// IEEE operations of each lane, as in scalar code, and `mask ? a : b` selects bits.
-using V2 = double __attribute__((vector_size(16)));
-using M2 = std::int64_t __attribute__((vector_size(16)));
-inline V2 load2(const double* p) {
-  V2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+// Two faces at a time in the walk: core/lanes.hpp.
+using lanes::load2;
+using lanes::M2;
+using lanes::V2;
 }  // namespace
 
 TetTraversal::TetTraversal(TetMesh mesh, const std::string& source)

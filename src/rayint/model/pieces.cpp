@@ -5,6 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include "rayint/core/lanes.hpp"
+
 namespace rayint {
 namespace {
 
@@ -124,23 +126,13 @@ PieceSplitter::PieceSplitter(const TransferFunctions& tf)
   jumps_ = tf.has_jump();
 }
 
-// Two lanes of doubles (SSE2, the x86-64 baseline), in GCC's vector extension: + - * / are
-// the IEEE operations of each lane, as in the scalar code, and `mask ? a : b` selects bits.
+// Slots two or four at a time: core/lanes.hpp.
 namespace {
-using V2 = double __attribute__((vector_size(16)));
-using M2 = std::int64_t __attribute__((vector_size(16)));
-using V4 = double __attribute__((vector_size(32)));
-using M4 = std::int64_t __attribute__((vector_size(32)));
-inline V2 load(const double* p) {
-  V2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline M2 load(const std::int64_t* p) {
-  M2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+using lanes::load2;
+using lanes::M2;
+using lanes::M4;
+using lanes::V2;
+using lanes::V4;
 // PiecewiseLinear::interpolate's arithmetic at s for the slots f, f + 1, ... of a splitter row, as
 // many as V has lanes, into out[0..lanes); a kept constant is selected over the line. (The vectors
 // stay inside: a 32-byte vector passed or returned would change the calling convention.)
@@ -173,7 +165,7 @@ template <class V, class M, class Row>
     const V2 sv = {s, s};
     M2 a = {0, 0}, b = {0, 0};
     for (std::size_t i = 0; i < padded_.size(); i += 2) {
-      const V2 p = load(padded_.data() + i);
+      const V2 p = load2(padded_.data() + i);
       a += p < sv;  // -1 where true
       b += p <= sv;
     }

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rayint/core/lanes.hpp"
 #include "rayint/core/parallel.hpp"
 #include "rayint/core/statistics.hpp"
 #include "rayint/mesh/gradients.hpp"
@@ -43,8 +44,8 @@ class PieceCounter {
       for (const Segment& s : segments) n += count_searched(s);
       return n;
     }
-    using V2 = double __attribute__((vector_size(16)));
-    using M2 = std::int64_t __attribute__((vector_size(16)));
+    using lanes::M2;
+    using lanes::V2;
     V2 b[4];
     std::memcpy(b, padded_.data(), sizeof b);
     M2 inside = {0, 0};
