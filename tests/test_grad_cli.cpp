@@ -2,6 +2,7 @@
 // a wrong one fails naming its worst entry, bad input is one line and exit 2.
 #include <nlohmann/json.hpp>
 #include <cmath>
+#include <filesystem>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -81,6 +82,43 @@ TEST_CASE("gradcheck: the exact candidate passes, a perturbed entry and Riemann 
   CHECK(rie.status == 1);
   CHECK(rie.err.find("FAIL") != std::string::npos);
   CHECK(rie.err.find("worst: ray ") != std::string::npos);
+}
+
+// tests/fixtures/gradients/narrow-pulse-ray-1468.json: a narrow_pulse ray (reports/gradients,
+// gradchain_rays.hpp ray 1468) whose density-ramp nodes are 20 ulps apart. There the analytic
+// exact gradient is 6.1e-3 of channel r's largest entry from the 50-digit reference, and an
+// independent 90-digit mpmath computation (reports/gradients/narrow_pulse_conditioning.py) agrees
+// with the reference: dI_r/d(density node 3 position) = 0.0260569040563 (exact: 0.02147886).
+TEST_CASE("gradcheck --reference: the truth passes where the exact gradient is ill-conditioned", "[grad][grad_cli]") {
+  TempDir dir;
+  std::filesystem::copy_file(std::filesystem::path(RAYINT_SOURCE_DIR) / "tests/fixtures/gradients/narrow-pulse-ray-1468.json",
+                dir.path / "np.json");
+  REQUIRE(run_cli(dir.path, "grad np.json -o g.json").status == 0);
+  const json report = json::parse(slurp(dir.path / "g.json"));
+  json truth = {{"case", "np1468"}, {"renderer", "50-digit reference"}, {"rays", json::array()}};
+  truth["rays"].push_back({{"gradient", report["cases"][0]["rays"][0]["reference"]["gradient"]}});
+  const double ref_entry = truth["rays"][0]["gradient"]["density"]["r"][3][0].get<double>();
+  CHECK(std::fabs(ref_entry - 0.0260569040563) < 1e-12);  // the mpmath value, not rayint's
+  dir.write("truth.json", truth.dump());
+  dir.write("exact.json", candidate_from(report, "exact"));
+
+  // Against the analytic exact gradient a candidate holding the true values fails ...
+  const auto vs_exact = run_cli(dir.path, "gradcheck np.json --candidate truth.json --rel-tol 1e-4");
+  CHECK(vs_exact.status == 1);
+  CHECK(vs_exact.err.find("worst: ray 0 density node 3 position channel r") != std::string::npos);
+  // ... and passes against the reference, which names the exact gradient's own distance.
+  const auto vs_ref = run_cli(dir.path, "gradcheck np.json --candidate truth.json --rel-tol 1e-9 --reference");
+  CHECK(vs_ref.status == 0);
+  const json verdict = json::parse(vs_ref.out);
+  CHECK(verdict["against"] == "reference");
+  CHECK(verdict["exact_vs_reference"][0].get<double>() > 1e-3);
+  CHECK(vs_ref.err.find("exact vs reference (largest per channel): r ") != std::string::npos);
+  // The exact gradient as a candidate: passes against itself, fails against the reference.
+  CHECK(run_cli(dir.path, "gradcheck np.json --candidate exact.json --rel-tol 1e-12").status == 0);
+  const auto exact_vs_ref = run_cli(dir.path, "gradcheck np.json --candidate exact.json --rel-tol 1e-4 --reference");
+  CHECK(exact_vs_ref.status == 1);
+  CHECK(exact_vs_ref.err.find("reference 0.0260569040") != std::string::npos);
+  CHECK(json::parse(run_cli(dir.path, "gradcheck np.json --candidate exact.json").out)["exact_vs_reference"].is_null());
 }
 
 TEST_CASE("gradcheck: bad input is one line naming the file and field, exit 2", "[grad][grad_cli]") {

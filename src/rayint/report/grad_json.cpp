@@ -145,9 +145,14 @@ ojson gradcheck_report_json(const GradCheckResult& r) {
           {"pass", r.passed()},
           {"case", r.case_name},
           {"renderer", r.renderer},
-          {"rule",
-           "pass if |got - exact| <= max(abs_tol, rel_tol * largest |exact| entry of the ray's "
-           "channel) for every entry"},
+          {"against", r.against == GradCheckAgainst::reference ? "reference" : "exact"},
+          {"rule", r.against == GradCheckAgainst::reference
+                       ? "pass if |got - reference| <= max(abs_tol, rel_tol * largest |reference| entry of the "
+                         "ray's channel) for every entry; an entry's \"exact\" holds the reference's value"
+                       : "pass if |got - exact| <= max(abs_tol, rel_tol * largest |exact| entry of the ray's "
+                         "channel) for every entry"},
+          {"exact_vs_reference", r.against == GradCheckAgainst::reference ? rgb(r.exact_vs_reference)
+                                                                        : ojson(nullptr)},
           {"rel_tol", r.rel_tol},
           {"abs_tol", r.abs_tol},
           {"entries", r.entries},

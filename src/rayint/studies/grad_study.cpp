@@ -1,5 +1,6 @@
 #include "rayint/studies/grad_study.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -136,14 +137,29 @@ GradCaseResult grad_case(const Case& c, const GradStudyOptions& options) {
   return out;
 }
 
-GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, double rel_tol, double abs_tol) {
+GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, const GradCheckOptions& options) {
+  const double rel_tol = options.rel_tol, abs_tol = options.abs_tol;
+  const bool against_reference = options.against == GradCheckAgainst::reference;
   GradCheckResult res;
   res.case_name = c.name;
   res.renderer = candidate.renderer;
+  res.against = options.against;
   res.rel_tol = rel_tol;
   res.abs_tol = abs_tol;
+  if (against_reference) res.exact_vs_reference = Rgb{};
   for (std::size_t i = 0; i < c.rays.size(); ++i) {
-    const RayGradient exact = exact_ray_gradient(c.transfer, c.rays[i]);
+    RayGradient exact = exact_ray_gradient(c.transfer, c.rays[i]);
+    if (against_reference) {
+      ReferenceGradientOptions ro;
+      ro.threads = options.threads;
+      RayGradient reference = reference_gradient(c.transfer, c.rays[i], ro).gradient;
+      for (int ch = 0; ch < kChannels; ++ch)
+        res.exact_vs_reference[ch] =
+            std::max(res.exact_vs_reference[ch], gradient_relative_error(exact, reference, ch));
+      // Which entries do not exist is decided from the inputs alike by both (at a jump).
+      if (reference.undefined.empty()) reference.undefined = exact.undefined;
+      exact = std::move(reference);
+    }
     const RayGradient& got = candidate.rays.at(i);
     Rgb scale{};
     for (int ch = 0; ch < kChannels; ++ch) {

@@ -9,6 +9,7 @@
 // (integrators/psi_table_grad.hpp) and preintegrated (PreintegratedIntegrator::gradient,
 // integrators/preintegrated_grad.cpp; the table is built once per case). Any other method is
 // reported as failed ("no gradient"), never as a number.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,10 +87,26 @@ struct GradCheckEntry {
   double excess = 0.0;    // |got - exact| / allowed; > 1 fails (NaN: a non-finite value)
 };
 
+// What a candidate is checked against: the analytic exact gradient (exact_ray_gradient; fast), or
+// the 50-digit reference gradient (reference/reference_grad.hpp; slow on long rays, and the truth
+// where the analytic one loses digits: an ill-conditioned entry, docs/gradients.md "Accuracy").
+enum class GradCheckAgainst { exact, reference };
+
+struct GradCheckOptions {
+  double rel_tol = 1e-6, abs_tol = 0.0;
+  GradCheckAgainst against = GradCheckAgainst::exact;
+  unsigned threads = 1;  // the reference gradient's (0: all cores)
+};
+
 struct GradCheckResult {
   std::string case_name;
   std::string renderer;
+  GradCheckAgainst against = GradCheckAgainst::exact;
   double rel_tol = 0.0, abs_tol = 0.0;
+  // Against the reference: per channel, the largest over the rays of the analytic exact
+  // gradient's own distance from it (gradient_relative_error): how far `gradcheck` without
+  // --reference would have been from the truth on this case. NaN against exact.
+  Rgb exact_vs_reference{std::nan(""), std::nan(""), std::nan("")};
   std::size_t entries = 0, failed = 0;  // failed includes null_in_candidate
   // Entries the candidate gave as null (it cannot give them; NaN in GradCandidate) where the
   // exact derivative exists: not passed, counted in failed; the first is named.
@@ -102,10 +119,11 @@ struct GradCheckResult {
   bool passed() const { return failed == 0; }
 };
 
-// Pass rule per entry: |got - exact| <= max(abs_tol, rel_tol * channel_scale); a null (NaN) got
-// fails (null_in_candidate). Where the exact derivative does not exist (NaN with
+// Pass rule per entry: |got - want| <= max(abs_tol, rel_tol * channel_scale), want the exact or
+// the reference gradient's entry (options.against) and channel_scale its channel's largest |entry|;
+// a null (NaN) got fails (null_in_candidate). Where the derivative does not exist (NaN with
 // RayGradient::undefined) the entry is skipped whatever the candidate gives (undefined): neither
-// passed nor failed.
-GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, double rel_tol, double abs_tol);
+// passed nor failed. GradCheckEntry::exact holds `want`.
+GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, const GradCheckOptions& options);
 
 }  // namespace rayint
