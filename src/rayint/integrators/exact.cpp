@@ -228,7 +228,7 @@ void ExactIntegrator::integrate_many_segments(const Ray* rays, std::size_t n, Ra
     integrate_grey(rays, n, out);
     return;
   }
-  for (std::size_t i = 0; i < n; ++i) out[i] = integrate_segments(rays[i], nullptr);
+  RayIntegrator::integrate_many_segments(rays, n, out);  // one at a time
 }
 
 void ExactIntegrator::integrate_grey(const Ray* rays, std::size_t n_rays, RayResult* results) const {

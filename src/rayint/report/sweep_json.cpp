@@ -154,7 +154,7 @@ nlohmann::json own_split_json(const OwnSplitRun& run) {
         {"own_seconds_per_ray", c.rays > 0 ? number_or_null(c.own_seconds / rays) : nlohmann::json(nullptr)},
         {"split_seconds_per_ray",
          c.split_ran && c.rays > 0 ? number_or_null(c.split_seconds / rays) : nlohmann::json(nullptr)},
-        {"own_over_split", c.complete() && c.split_seconds > 0 ? number_or_null(c.ratio()) : nlohmann::json(nullptr)},
+        {"own_over_split", number_or_null(c.ratio())},
         {"own_setup_seconds", c.own_setup_seconds},
         {"split_setup_seconds", c.split_ran ? nlohmann::json(c.split_setup_seconds) : nlohmann::json(nullptr)},
         {"own_chords", c.own_chords},

@@ -112,7 +112,7 @@ std::string own_split_table(const OwnSplitRun& run) {
     const std::string tets = c.split_ran ? std::to_string(c.tets) : "-";
     const std::string split = c.split_ran ? format_seconds(c.split_seconds) : "-";
     char ratio[32] = "-";
-    if (c.complete() && c.split_seconds > 0) std::snprintf(ratio, sizeof ratio, "%.2f", c.ratio());
+    if (std::isfinite(c.ratio())) std::snprintf(ratio, sizeof ratio, "%.2f", c.ratio());
     const std::string diff = c.compared_rays > 0 ? format_error(c.max_abs_difference) : "-";
     std::snprintf(line, sizeof line, "%-24s %8ld %8s %12s %12s %9s %11s\n", c.name.c_str(), c.cell_total, tets.c_str(),
                   format_seconds(c.own_seconds).c_str(), split.c_str(), ratio, diff.c_str());

@@ -83,13 +83,17 @@ OwnSplitCase bench_own_vs_split(const MeshCase& mc, const OwnSplitBenchOptions& 
   const auto own_pass = [&](bool record) {
     const double start_pass = thread_cpu_seconds();
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      own_mesh.trace(rays[i].ray, cell_trace);
-      const CellRayResult r = own_mesh.integrate(cell_trace, own_integrator, rays[i].background);
-      if (!record) continue;
-      out.own_chords += r.chords;
-      own[i].ok = r.converged && finite(r.intensity);
-      own[i].intensity = r.intensity;
-      own[i].failure = r.converged ? (own[i].ok ? "" : "non-finite intensity") : r.failure;
+      try {  // a throw is that ray's failure, as in the split pass
+        own_mesh.trace(rays[i].ray, cell_trace);
+        const CellRayResult r = own_mesh.integrate(cell_trace, own_integrator, rays[i].background);
+        if (!record) continue;
+        out.own_chords += r.chords;
+        own[i].ok = r.converged && finite(r.intensity);
+        own[i].intensity = r.intensity;
+        own[i].failure = r.converged ? (own[i].ok ? "" : "non-finite intensity") : r.failure;
+      } catch (const std::exception& e) {
+        if (record) own[i].failure = e.what();
+      }
     }
     return seconds_since(start_pass);
   };

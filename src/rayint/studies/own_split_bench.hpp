@@ -29,6 +29,7 @@
 // split_cells refuses (quadratic cells) has no split: split_failure says why.
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,8 +66,10 @@ struct OwnSplitCase {
   bool complete() const {
     return split_ran && rays > 0 && own_failed_rays == 0 && split_failed_rays == 0;
   }
-  // own_seconds / split_seconds; meaningful only when complete().
-  double ratio() const { return split_seconds > 0 ? own_seconds / split_seconds : 0.0; }
+  // own_seconds / split_seconds; NaN (shown as null / "-") unless complete() and the split took time.
+  double ratio() const {
+    return complete() && split_seconds > 0 ? own_seconds / split_seconds : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 // `mesh_case.cells` must be set (std::invalid_argument otherwise).
