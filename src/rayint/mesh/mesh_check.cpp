@@ -58,19 +58,54 @@ OrientationCounts orientation_counts(const TetMesh& mesh) {
 
 namespace {
 
-// tets_overlap with the pair's size (the larger box diagonal) given.
-bool overlap_exact(const TetMesh& m, std::size_t ia, std::size_t ib, double size) {
-  std::array<Vec3, 4> a, b;
-  for (std::size_t k = 0; k < 4; ++k) {
-    a[k] = m.points[static_cast<std::size_t>(m.tets[ia][k])];
-    b[k] = m.points[static_cast<std::size_t>(m.tets[ib][k])];
+constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+Vec3 face_normal(const std::array<Vec3, 4>& q, const int (&f)[3]) {
+  const auto at = [&](int i) -> const Vec3& { return q[static_cast<std::size_t>(i)]; };
+  return (at(f[1]) - at(f[0])).cross(at(f[2]) - at(f[0]));
+}
+
+// One tet's side of the separating-axis test, formed once and used against many others (the
+// boundary check tests each tet against all the boundary tets near it): its points, the sum of
+// its points, and per face the normal's length, the unit normal and the tet's own projection
+// interval on it -- the same operations, in the same order, as forming them per pair.
+struct TetAxes {
+  std::array<Vec3, 4> p;
+  Vec3 sum;
+  std::array<double, 4> norm;
+  std::array<Vec3, 4> unit;
+  std::array<double, 4> lo, hi;
+};
+
+TetAxes tet_axes(const TetMesh& m, std::size_t t) {
+  TetAxes A;
+  for (std::size_t k = 0; k < 4; ++k) A.p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
+  A.sum = A.p[0] + A.p[1] + A.p[2] + A.p[3];
+  for (std::size_t f = 0; f < 4; ++f) {
+    const Vec3 axis = face_normal(A.p, kTetFaces[f]);
+    A.norm[f] = axis.norm();
+    A.unit[f] = A.norm[f] > 0 ? Vec3(axis / A.norm[f]) : Vec3::Zero();  // zero: never used (degenerate)
+    A.lo[f] = A.hi[f] = A.p[0].dot(A.unit[f]);
+    for (std::size_t k = 1; k < 4; ++k) {
+      const double x = A.p[k].dot(A.unit[f]);
+      A.lo[f] = std::min(A.lo[f], x);
+      A.hi[f] = std::max(A.hi[f], x);
+    }
   }
+  return A;
+}
+
+// tets_overlap with the pair's size (the larger box diagonal) given and tet a's axes formed.
+bool overlap_exact(const TetAxes& A, const TetMesh& m, std::size_t ib, double size) {
+  const std::array<Vec3, 4>& a = A.p;
+  std::array<Vec3, 4> b;
+  for (std::size_t k = 0; k < 4; ++k) b[k] = m.points[static_cast<std::size_t>(m.tets[ib][k])];
   const double tol = kOverlapTolerance * size;
-  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  const double degenerate = 1e-12 * size * size;  // below: parallel edges, no axis
   const auto separates = [&](const Vec3& axis) {
     const double n = axis.norm();
-    if (!(n > 1e-12 * size * size)) return false;  // parallel edges: no axis
+    if (!(n > degenerate)) return false;
     return overlap_on(a, b, axis / n) <= tol;
   };
   // A cheap axis first, the line through the two centroids: the projections being apart on any
@@ -79,19 +114,25 @@ bool overlap_exact(const TetMesh& m, std::size_t ia, std::size_t ib, double size
   // 44 axes below, so an overlap <= tol here means one <= tol there too. On the generated balls
   // it settles most of the pairs that share no point (issue 33).
   {
-    const Vec3 axis = (b[0] + b[1] + b[2] + b[3]) - (a[0] + a[1] + a[2] + a[3]);
+    const Vec3 axis = (b[0] + b[1] + b[2] + b[3]) - A.sum;
     const double len = axis.norm();
     if (len > 1e-12 * size && overlap_on(a, b, axis / len) <= tol) return false;
   }
-  for (const auto* p : {&a, &b})
-    for (const auto& f : kFaces) {
-      const auto& q = *p;
-      if (separates((q[static_cast<std::size_t>(f[1])] - q[static_cast<std::size_t>(f[0])])
-                        .cross(q[static_cast<std::size_t>(f[2])] - q[static_cast<std::size_t>(f[0])])))
-        return false;
+  // a's faces: its own interval on each is formed (most point-sharing pairs end here).
+  for (std::size_t f = 0; f < 4; ++f) {
+    if (!(A.norm[f] > degenerate)) continue;
+    double blo = b[0].dot(A.unit[f]), bhi = blo;
+    for (std::size_t k = 1; k < 4; ++k) {
+      const double x = b[k].dot(A.unit[f]);
+      blo = std::min(blo, x);
+      bhi = std::max(bhi, x);
     }
-  for (const auto& ea : kEdges)
-    for (const auto& eb : kEdges) {
+    if (std::min(A.hi[f], bhi) - std::max(A.lo[f], blo) <= tol) return false;
+  }
+  for (const auto& f : kTetFaces)
+    if (separates(face_normal(b, f))) return false;
+  for (const auto& ea : kTetEdges)
+    for (const auto& eb : kTetEdges) {
       const Vec3 da = a[static_cast<std::size_t>(ea[1])] - a[static_cast<std::size_t>(ea[0])];
       const Vec3 db = b[static_cast<std::size_t>(eb[1])] - b[static_cast<std::size_t>(eb[0])];
       if (separates(da.cross(db))) return false;
@@ -103,7 +144,7 @@ bool overlap_exact(const TetMesh& m, std::size_t ia, std::size_t ib, double size
 
 bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
   const Box ba = box_of(m, ia), bb = box_of(m, ib);
-  return overlap_exact(m, ia, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()));
+  return overlap_exact(tet_axes(m, ia), m, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()));
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& m, OverlapScope scope) {
@@ -181,7 +222,7 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
         for (const std::int32_t pb : m.tets[b])
           if (pa == pb) return;
     }
-    if (overlap_exact(m, a, b, std::max(spans[a].size, spans[b].size))) first = std::make_pair(a, b);
+    if (overlap_exact(tet_axes(m, a), m, b, std::max(spans[a].size, spans[b].size))) first = std::make_pair(a, b);
   };
   // A pair is tested once: in the grid cell of the lower corner of the boxes' intersection,
   // max(A.lo, B.lo), whose cell is the larger of the two lower cells on each axis (the cell index
@@ -243,13 +284,16 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
     dims[static_cast<std::size_t>(k)] = span > 0 && want > 0 ? std::max(1L, std::min(1L << 20, static_cast<long>(span / want))) : 1;
     cell[k] = span > 0 ? span / static_cast<double>(dims[static_cast<std::size_t>(k)]) : 1.0;
   }
+  // floor((x - lo) / cell) clamped to the grid; clamped first in double, where truncation is the
+  // floor (no std::floor call: it was ~2% of the load on the 105k ball) and the cast cannot overflow.
   const auto index = [&](double x, int k) {
-    const long i = static_cast<long>(std::floor((x - all.lo[k]) / cell[k]));
-    return std::clamp(i, 0L, dims[static_cast<std::size_t>(k)] - 1);
+    const double top = static_cast<double>(dims[static_cast<std::size_t>(k)] - 1);
+    return static_cast<long>(std::clamp((x - all.lo[k]) / cell[k], 0.0, top));
   };
   const auto key = [&](long i, long j, long k) { return static_cast<std::size_t>(i + dims[0] * (j + dims[1] * k)); };
   const auto n_cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
   std::vector<std::array<long, 6>> bspan(bt.size());  // lo i, j, k, hi i, j, k
+  std::vector<double> bsize(bt.size());               // box diagonals: the pair tolerance's scale
   std::vector<std::size_t> begin(n_cells + 1, 0);
   for (std::size_t x = 0; x < bt.size(); ++x) {
     auto& sp = bspan[x];
@@ -257,26 +301,33 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
       sp[static_cast<std::size_t>(k)] = index(bbox[x].lo[k], k);
       sp[static_cast<std::size_t>(k + 3)] = index(bbox[x].hi[k], k);
     }
+    bsize[x] = (bbox[x].hi - bbox[x].lo).norm();
     for (long k = sp[2]; k <= sp[5]; ++k)
       for (long j = sp[1]; j <= sp[4]; ++j)
         for (long i = sp[0]; i <= sp[3]; ++i) ++begin[key(i, j, k) + 1];
   }
   for (std::size_t c = 0; c < n_cells; ++c) begin[c + 1] += begin[c];
-  std::vector<std::uint32_t> members(begin[n_cells]);  // indices into bt
+  // members: indices into bt; starts: beside each, the axes on which that box starts in the grid
+  // cell (bit k: its lower cell index on axis k is the cell's), read before the box itself.
+  std::vector<std::uint32_t> members(begin[n_cells]);
+  std::vector<std::uint8_t> starts(begin[n_cells]);
   {
     std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
     for (std::size_t x = 0; x < bt.size(); ++x) {
       const auto& sp = bspan[x];
       for (long k = sp[2]; k <= sp[5]; ++k)
         for (long j = sp[1]; j <= sp[4]; ++j)
-          for (long i = sp[0]; i <= sp[3]; ++i) members[fill[key(i, j, k)]++] = static_cast<std::uint32_t>(x);
+          for (long i = sp[0]; i <= sp[3]; ++i) {
+            const std::size_t r = fill[key(i, j, k)]++;
+            members[r] = static_cast<std::uint32_t>(x);
+            starts[r] = static_cast<std::uint8_t>((i == sp[0] ? 1U : 0U) | (j == sp[1] ? 2U : 0U) | (k == sp[2] ? 4U : 0U));
+          }
     }
   }
   std::vector<char> is_boundary(n, 0);
   for (const std::uint32_t t : bt) is_boundary[t] = 1;
   for (std::size_t t = 0; t < n; ++t) {
     const Box b = box_of(m, t);
-    const double size_t_ = (b.hi - b.lo).norm();
     bool outside = false;
     for (int k = 0; k < 3; ++k)
       if (b.hi[k] < all.lo[k] || b.lo[k] > all.hi[k]) outside = true;
@@ -286,29 +337,35 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
       sp[static_cast<std::size_t>(k)] = index(b.lo[k], k);
       sp[static_cast<std::size_t>(k + 3)] = index(b.hi[k], k);
     }
+    const double size_t_ = (b.hi - b.lo).norm();
+    std::optional<TetAxes> axes;  // t's, formed at its first exact test
     for (long ck = sp[2]; ck <= sp[5]; ++ck)
       for (long cj = sp[1]; cj <= sp[4]; ++cj)
         for (long ci = sp[0]; ci <= sp[3]; ++ci) {
           const std::size_t c = key(ci, cj, ck);
+          // Each pair once: in the grid cell of the lower corner of the two boxes (the cell index
+          // is monotone in the coordinate), max(lo_t, lo_u) on each axis. Where t starts before
+          // this cell on an axis, u must start in it there: those axes are `need`.
+          const unsigned need = (ci > sp[0] ? 1U : 0U) | (cj > sp[1] ? 2U : 0U) | (ck > sp[2] ? 4U : 0U);
           for (std::size_t r = begin[c]; r < begin[c + 1]; ++r) {
+            if ((starts[r] & need) != need) continue;
             const std::uint32_t x = members[r];
             const std::size_t u = bt[x];
-            // Each pair once: a boundary pair from its lower tet, and in the grid cell of the lower
-            // corner of the two boxes (the cell index is monotone in the coordinate).
+            // ... and a boundary pair from its lower tet only.
             if (u == t || (is_boundary[t] && u < t)) continue;
-            const auto& us = bspan[x];
-            if (std::max(sp[0], us[0]) != ci || std::max(sp[1], us[1]) != cj || std::max(sp[2], us[2]) != ck) continue;
             // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
             if (next[t][0] == static_cast<std::int32_t>(u) || next[t][1] == static_cast<std::int32_t>(u) ||
                 next[t][2] == static_cast<std::int32_t>(u) || next[t][3] == static_cast<std::int32_t>(u))
               continue;
             const Box& B = bbox[x];
-            const double size = std::max(size_t_, (B.hi - B.lo).norm());
+            const double size = std::max(size_t_, bsize[x]);
             const double tol = kOverlapTolerance * size;
             bool apart = false;
             for (int k = 0; k < 3; ++k)
               if (std::min(b.hi[k], B.hi[k]) - std::max(b.lo[k], B.lo[k]) <= tol) apart = true;
-            if (!apart && overlap_exact(m, t, u, size)) return false;
+            if (apart) continue;
+            if (!axes) axes = tet_axes(m, t);
+            if (overlap_exact(*axes, m, u, size)) return false;
           }
         }
   }
