@@ -299,6 +299,25 @@ TEST_CASE("Isosurface shading of flagged intervals", "[mesh]") {
   }
 }
 
+TEST_CASE("Rendering a mesh case: the exact method's piece count is the render's own", "[mesh]") {
+  // The exact method's grey batch counts the pieces while splitting (integrate_many's `pieces`);
+  // riemann does not split, so the render counts them itself: the two statistics must agree.
+  MeshCase mc = rayint::test::ball_render_case(12);
+  mc.transfer.density[1] = mc.transfer.density[2] = mc.transfer.density[0];
+  REQUIRE(mc.transfer.grey());
+  const TetTraversal mesh(mc.mesh, "ball");
+  const auto exact = make_integrator(parse_method_spec("exact"), mc.transfer);
+  const auto riemann = make_integrator(parse_method_spec("riemann:n=4"), mc.transfer);
+  MeshRenderSettings one;
+  one.threads = 1;
+  const MeshRender a = render_mesh(mc, mesh, *exact, nullptr, one);
+  const MeshRender b = render_mesh(mc, mesh, *riemann, nullptr, one);
+  CHECK(a.cost.segments == b.cost.segments);
+  CHECK(a.cost.segments > 100);
+  CHECK(a.cost.pieces == b.cost.pieces);
+  CHECK(a.cost.pieces > a.cost.segments);  // this transfer function has breakpoints inside the ball's range
+}
+
 TEST_CASE("Rendering a mesh case: threads do not change the image, comparison and progress", "[mesh]") {
   const rayint::test::BallRender ball(16);
   MeshRenderSettings one;

@@ -191,8 +191,22 @@ TEST_CASE("PieceSplitter's channel and grey columns hold append_pieces' pieces b
       segments.push_back(seg);
     }
     // The whole sequence at once (the region hint along a ray) gives the same pieces.
-    splitter.append(segments, ray_channels);
-    splitter.append(segments, ray_grey);
+    const long channel_count = splitter.append(segments, ray_channels);
+    const long grey_count = splitter.append(segments, ray_grey);
+    // ... and counts them as a render states it: per segment of length > 0, one more than the
+    // breakpoints strictly inside its scalar range (one for a NaN end or a constant scalar),
+    // counted here one breakpoint at a time.
+    long stated = 0;
+    for (const Segment& seg : segments) {
+      if (!(seg.length > 0.0)) continue;
+      ++stated;
+      if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit)) continue;
+      const double lo = std::min(seg.scalar_far, seg.scalar_exit), hi = std::max(seg.scalar_far, seg.scalar_exit);
+      for (const double b : bps) stated += lo < b && b < hi ? 1 : 0;
+    }
+    CHECK(channel_count == stated);
+    CHECK(grey_count == stated);
+    CHECK(stated >= static_cast<long>(expected.size()));
     REQUIRE(grey.size() == expected.size());
     REQUIRE(ray_grey.size() == expected.size());
     REQUIRE(channels.size() == kChannels * expected.size());

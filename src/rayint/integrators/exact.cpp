@@ -223,15 +223,16 @@ RayResult ExactIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag)
   return r;
 }
 
-void ExactIntegrator::integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out) const {
+bool ExactIntegrator::integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out, long* pieces) const {
   if (path_ == Path::batch && splitter_.grey()) {
-    integrate_grey(rays, n, out);
-    return;
+    const long count = integrate_grey(rays, n, out);
+    if (pieces) *pieces += count;
+    return true;
   }
-  RayIntegrator::integrate_many_segments(rays, n, out);  // one at a time
+  return RayIntegrator::integrate_many_segments(rays, n, out, pieces);  // one at a time
 }
 
-void ExactIntegrator::integrate_grey(const Ray* rays, std::size_t n_rays, RayResult* results) const {
+long ExactIntegrator::integrate_grey(const Ray* rays, std::size_t n_rays, RayResult* results) const {
   struct Columns {
     GreyPieceColumns pieces;
     std::vector<std::size_t> ends;  // ray i's pieces end at ends[i]
@@ -241,8 +242,9 @@ void ExactIntegrator::integrate_grey(const Ray* rays, std::size_t n_rays, RayRes
   thread_local Columns col;
   col.pieces.clear();
   col.ends.resize(n_rays);
+  long count = 0;
   for (std::size_t i = 0; i < n_rays; ++i) {
-    splitter_.append(rays[i].segments, col.pieces);
+    count += splitter_.append(rays[i].segments, col.pieces);
     col.ends[i] = col.pieces.size();
   }
   const GreyPieceColumns& p = col.pieces;
@@ -271,6 +273,7 @@ void ExactIntegrator::integrate_grey(const Ray* rays, std::size_t n_rays, RayRes
     }
     results[i] = r;
   }
+  return count;
 }
 
 RayResult ExactIntegrator::integrate_scalar(const Ray& ray, Diagnostics* diag) const {

@@ -44,14 +44,16 @@ class ExactIntegrator final : public PieceIntegrator {
 
  protected:
   // The batch path for a grey medium: the pieces of all n rays in one kernel batch (fewer, fuller
-  // vectors than a batch per ray; each piece's result is the same); otherwise ray by ray.
-  void integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out) const override;
+  // vectors than a batch per ray; each piece's result is the same), counting the pieces;
+  // otherwise ray by ray, not counting them.
+  bool integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out, long* pieces) const override;
 
  private:
   RayResult integrate_scalar(const Ray& ray, Diagnostics* diag) const;
   // The batch path for a grey medium without diagnostics: one kernel evaluation per piece for
   // all channels (the channel path's results, bit for bit), for n rays at once into out[0..n).
-  void integrate_grey(const Ray* rays, std::size_t n, RayResult* out) const;
+  // Returns the piece count of PieceSplitter::append.
+  long integrate_grey(const Ray* rays, std::size_t n, RayResult* out) const;
   Path path_;
 };
 

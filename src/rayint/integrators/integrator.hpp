@@ -47,11 +47,15 @@ class RayIntegrator {
   }
   // out[i] = integrate(rays[i], nullptr) for i < n, bit for bit; a method may compute the rays
   // together (ExactIntegrator: one kernel batch over the pieces of all n rays, issue 33).
-  void integrate_many(const Ray* rays, std::size_t n, RayResult* out) const {
+  // `pieces`, when not null: a method that splits the rays at the transfer functions'
+  // breakpoints on the way adds their piece count (PieceSplitter::append's, the render's
+  // statistic) to *pieces and returns true; any other leaves it and returns false (the caller
+  // counts them itself).
+  bool integrate_many(const Ray* rays, std::size_t n, RayResult* out, long* pieces = nullptr) const {
     for (std::size_t i = 0; i < n; ++i)
       if (!rays[i].quadratic.empty() && !takes_quadratic_segments() && has_quadratic_segments(rays[i]))
         throw std::invalid_argument(kLinearSegmentsOnly);
-    integrate_many_segments(rays, n, out);
+    return integrate_many_segments(rays, n, out, pieces);
   }
   // True for the methods that evaluate the scalar along a segment where they need it (sampling
   // methods: riemann, nerf, rk4) and so take quadratic segments as they are.
@@ -63,9 +67,11 @@ class RayIntegrator {
 
  protected:
   virtual RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const = 0;
-  // integrate_many's rays, checked; one at a time unless a method does better.
-  virtual void integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out) const {
+  // integrate_many's rays, checked; one at a time unless a method does better. Returns whether
+  // it counted the pieces (see integrate_many; `pieces` may be null).
+  virtual bool integrate_many_segments(const Ray* rays, std::size_t n, RayResult* out, long* /*pieces*/) const {
     for (std::size_t i = 0; i < n; ++i) out[i] = integrate_segments(rays[i], nullptr);
+    return false;
   }
 };
 

@@ -309,11 +309,22 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
       const auto c = static_cast<std::size_t>(cell);
       const CellRecord& r = cells_[c];
       // Every face's t_f is computed, two faces per instruction (lanes 0, 1 and 2, 3 of the
-      // record's components), and only those with n.d > 0 are taken, without a branch per face
-      // (whether the ray leaves through a face is a coin toss, and its mispredictions cost more
-      // than the crossing parameters of the faces it enters through). The values, and so the
+      // record's components), and only those with n.d > 0 are taken. The values, and so the
       // face chosen (the first of the smallest), are those of crossing() in a loop that skips the
-      // others: the same IEEE operations in each lane.
+      // others: the same IEEE operations in each lane. GCC compiles the scan below into branches;
+      // the CPU then predicts the exit face and starts on the next cell before the division is
+      // done, which measured faster than a branch-free choice (reports/scaling/NOTES.md, round 8:
+      // 0.85 -> 1.07 s at 105k tets).
+      // The cells behind every face are loaded first, before it is known which faces the ray
+      // leaves through (the one it entered through is the cell just left, in the cache; round 8:
+      // 1.06x at 1.05M tets against prefetching behind the leaving faces after the division).
+      // Both cache lines of a record: the second holds nz, next and the points.
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::int32_t behind = r.next[k];
+        const CellRecord* ahead = &cells_[behind >= 0 ? static_cast<std::size_t>(behind) : c];
+        __builtin_prefetch(ahead);
+        __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
+      }
       const Vec3& p_first = mesh_.points[static_cast<std::size_t>(r.first_point)];
       const Vec3& p_second = mesh_.points[static_cast<std::size_t>(r.second_point)];
       alignas(16) double nd[4], tf[4];
@@ -333,13 +344,6 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
       int k_min = -1;
       for (int k = 0; k < 4; ++k) {
         const bool leaves = nd[k] > 0.0;
-        // The ray leaves through one of these faces: start loading the cells behind them now
-        // (for a face it enters through, the current cell's record again).
-        // Both cache lines of the record: the second holds nz, next and the points.
-        const std::int32_t behind = r.next[static_cast<std::size_t>(k)];
-        const CellRecord* ahead = &cells_[leaves && behind >= 0 ? static_cast<std::size_t>(behind) : c];
-        __builtin_prefetch(ahead);
-        __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
         const bool take = leaves & (tf[k] < t_min);
         t_min = take ? tf[k] : t_min;
         k_min = take ? k : k_min;

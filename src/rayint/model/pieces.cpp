@@ -214,7 +214,7 @@ template <class V, class M, class Row>
 }
 
 template <class Put>
-[[gnu::always_inline]] inline void PieceSplitter::split(const Segment& seg, Put&& put, RegionHint& hint) const {
+[[gnu::always_inline]] inline long PieceSplitter::split(const Segment& seg, Put&& put, RegionHint& hint) const {
   // The steps of append_pieces (above), with the ends evaluated through the rows.
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
   std::size_t lt0 = 0, le0 = 0, lt1 = 0, le1 = 0;
@@ -223,7 +223,7 @@ template <class Put>
   eval(row0, s0, v_far);
   if (s0 == s1) {
     put(seg.length, s0, s1, v_far, v_far);
-    return;
+    return 1;
   }
   const Row& row1 = rows_[region(s1, lt1, le1, hint)];
   alignas(16) double v_exit[kFunctions];
@@ -256,6 +256,7 @@ template <class Put>
   // 0, s0 != s1), so that division is skipped; an overflowed span keeps inf / inf = NaN.
   const double len = inner == 0 && std::isfinite(span) ? seg.length : seg.length * ((s1 - s_prev) / span);
   if (len > 0.0) put(len, s_prev, s1, v_prev, v_exit);
+  return 1 + static_cast<long>(inner);
 }
 
 void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
@@ -275,8 +276,8 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
 }
 
 template <class Columns>
-[[gnu::always_inline]] inline void PieceSplitter::append_columns(const Segment& seg, Columns& out, RegionHint& hint) const {
-  if (!(seg.length > 0.0)) return;
+[[gnu::always_inline]] inline long PieceSplitter::append_columns(const Segment& seg, Columns& out, RegionHint& hint) const {
+  if (!(seg.length > 0.0)) return 0;
   if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit)) {
     std::vector<Piece> pieces;
     append_pieces(*tf_, seg, breakpoints_, pieces);
@@ -287,9 +288,9 @@ template <class Columns>
                                        p.kappa_exit[0], p.kappa_exit[1], p.kappa_exit[2]};
       out.push(p.length, far, exit);
     }
-    return;
+    return 1;
   }
-  split(
+  return split(
       seg, [&out](double length, double, double, const double* far, const double* exit) { out.push(length, far, exit); },
       hint);
 }
@@ -308,16 +309,20 @@ void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const {
 // and the baseline one. AVX2 only, not FMA: no multiply-add can be contracted (and -std=c++17
 // keeps -ffp-contract=off), so both copies compute the same IEEE operations in the same order
 // (issue 33, round 6: the splitting took ~19% of a mesh render).
-__attribute__((target_clones("avx2", "default"))) void PieceSplitter::append(const std::vector<Segment>& segments,
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
                                                                              PieceChannelColumns& out) const {
   RegionHint hint;
-  for (const Segment& seg : segments) append_columns(seg, out, hint);
+  long count = 0;
+  for (const Segment& seg : segments) count += append_columns(seg, out, hint);
+  return count;
 }
 
-__attribute__((target_clones("avx2", "default"))) void PieceSplitter::append(const std::vector<Segment>& segments,
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
                                                                              GreyPieceColumns& out) const {
   RegionHint hint;
-  for (const Segment& seg : segments) append_columns(seg, out, hint);
+  long count = 0;
+  for (const Segment& seg : segments) count += append_columns(seg, out, hint);
+  return count;
 }
 
 void PieceChannelColumns::grow() {

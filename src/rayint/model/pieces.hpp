@@ -130,8 +130,13 @@ class PieceSplitter {
   void append(const Segment& segment, GreyPieceColumns& out) const;
   // The pieces of every segment in order, as the per-segment append()s give them; faster along a
   // ray, whose consecutive segment ends mostly lie between the same two breakpoints (RegionHint).
-  void append(const std::vector<Segment>& segments, PieceChannelColumns& out) const;
-  void append(const std::vector<Segment>& segments, GreyPieceColumns& out) const;
+  // Returns the segments' piece count as a render states it (render/mesh_render.cpp, its
+  // `pieces` statistic): per segment with length > 0, one more than the breakpoints strictly
+  // inside its scalar range (one for a constant scalar or a NaN end). The split finds those
+  // breakpoints anyway; the count can exceed the pieces appended by the zero-length pieces
+  // dropped (issue 33, round 8: the render counted them in a second pass, ~4% of its CPU).
+  long append(const std::vector<Segment>& segments, PieceChannelColumns& out) const;
+  long append(const std::vector<Segment>& segments, GreyPieceColumns& out) const;
   const TransferFunctions& transfer() const { return *tf_; }
   // transfer().grey(), computed once: the grey columns may be asked for.
   bool grey() const { return grey_; }
@@ -170,12 +175,14 @@ class PieceSplitter {
   // (rho r, g, b, kappa r, g, b).
   void eval(const Row& row, double s, double* v) const;
   // The pieces of a segment with finite scalar ends, each handed to
-  // put(length, s_far, s_exit, far values, exit values); both append()s are this.
+  // put(length, s_far, s_exit, far values, exit values); both append()s are this. Returns one
+  // more than the breakpoints strictly inside the scalar range (the count of append() above).
   template <class Put>
-  void split(const Segment& segment, Put&& put, RegionHint& hint) const;
-  // The column append()s: split(), or append_pieces for a NaN scalar end.
+  long split(const Segment& segment, Put&& put, RegionHint& hint) const;
+  // The column append()s: split(), or append_pieces for a NaN scalar end; returns the count
+  // of append() above for this segment.
   template <class Columns>
-  void append_columns(const Segment& segment, Columns& out, RegionHint& hint) const;
+  long append_columns(const Segment& segment, Columns& out, RegionHint& hint) const;
 
   const TransferFunctions* tf_;
   std::vector<double> breakpoints_;

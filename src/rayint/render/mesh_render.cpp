@@ -31,7 +31,8 @@ double seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 // inside its scalar range. With at most 8 breakpoints they are counted two lanes at a time without
 // a jump (the NaN padding never counts; a NaN end counts one piece), else by two binary searches;
 // the same count either way. (Issue 33: counted one segment at a time in scalar code, this
-// statistic took ~7% of a mesh render.)
+// statistic took ~7% of a mesh render.) The exact method's batch path gives the same count from
+// its splitting (RayIntegrator::integrate_many's `pieces`, round 8); this counts for the others.
 class PieceCounter {
  public:
   explicit PieceCounter(std::vector<double> bps) : bps_(std::move(bps)) {
@@ -181,10 +182,12 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       }
       const auto t1 = Clock::now();
       // Unshaded linear segments: the tile's rays in one call (the exact method integrates their
-      // pieces in one kernel batch).
+      // pieces in one kernel batch, and counts them on the way: tile_pieces).
       const bool together = !quadratic && !mc.shading.enabled;
+      long tile_pieces = 0;
+      bool pieces_counted = false;
       if (together) {
-        method.integrate_many(sc.rays.data(), static_cast<std::size_t>(n), sc.results.data());
+        pieces_counted = method.integrate_many(sc.rays.data(), static_cast<std::size_t>(n), sc.results.data(), &tile_pieces);
         if (compare) compare->integrate_many(sc.rays.data(), static_cast<std::size_t>(n), sc.compared.data());
       }
       for (int k = 0; k < n; ++k) {
@@ -206,13 +209,14 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       cost.traversal_seconds += seconds(t1 - t0);
       cost.integration_seconds += seconds(t2 - t1);
       cost.rays += n;
+      cost.pieces += tile_pieces;
       for (int k = 0; k < n; ++k) {
         if (quadratic) {  // pieces counted by the integrator (split at extrema and crossings)
           cost.segments += static_cast<long>(sc.traces[static_cast<std::size_t>(k)].crossings.size());
         } else {
           const Ray& ray = sc.rays[static_cast<std::size_t>(k)];
           cost.segments += static_cast<long>(ray.segments.size());
-          cost.pieces += count_pieces(ray.segments);
+          if (!pieces_counted) cost.pieces += count_pieces(ray.segments);
         }
       }
     }
