@@ -130,6 +130,45 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
+// std::upper_bound or std::lower_bound of x in a sorted array, for lookups that come in order
+// along a ray: started from the previous answer, a few steps, else a binary search. The same
+// index as the std:: call, exactly.
+class BoundWalk {
+ public:
+  BoundWalk(const double* p, std::size_t n) : p_(p), n_(n) {}
+  // upper_bound: p[k-1] <= x < p[k].
+  std::size_t upper(double x) {
+    std::size_t k = k_;
+    for (int step = 0; step < 4; ++step) {
+      if (k < n_ && p_[k] <= x)
+        ++k;
+      else if (k > 0 && p_[k - 1] > x)
+        --k;
+      else
+        return k_ = k;
+    }
+    return k_ = static_cast<std::size_t>(std::upper_bound(p_, p_ + n_, x) - p_);
+  }
+  // lower_bound: p[k-1] < x <= p[k].
+  std::size_t lower(double x) {
+    std::size_t k = k_;
+    for (int step = 0; step < 4; ++step) {
+      if (k < n_ && p_[k] < x)
+        ++k;
+      else if (k > 0 && p_[k - 1] >= x)
+        --k;
+      else
+        return k_ = k;
+    }
+    return k_ = static_cast<std::size_t>(std::lower_bound(p_, p_ + n_, x) - p_);
+  }
+
+ private:
+  const double* p_;
+  std::size_t n_;
+  std::size_t k_ = 0;
+};
+
 // One transfer function as the chain walks it along the ray. Pieces come in order along the ray
 // and consecutive pieces share an end, so
 //   - the interval of a lookup starts from the previous one (a few steps, else a binary search),
@@ -142,22 +181,10 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
 // the reverse pass sums per interval (IntervalSums).
 class FunctionWalk {
  public:
-  explicit FunctionWalk(const PiecewiseLinear& f) : f_(&f), n_(f.scalar.size()) {}
+  explicit FunctionWalk(const PiecewiseLinear& f) : f_(&f), n_(f.scalar.size()), bounds_(f.scalar.data(), n_) {}
 
   // upper_bound(f.scalar, x): scalar[k-1] <= x < scalar[k].
-  std::size_t locate(double x) {
-    const double* p = f_->scalar.data();
-    std::size_t k = k_;
-    for (int step = 0; step < 4; ++step) {
-      if (k < n_ && p[k] <= x)
-        ++k;
-      else if (k > 0 && p[k - 1] > x)
-        --k;
-      else
-        return k_ = k;
-    }
-    return k_ = static_cast<std::size_t>(std::upper_bound(p, p + n_, x) - p);
-  }
+  std::size_t locate(double x) { return bounds_.upper(x); }
   // interval_slope(f, k), divided once per interval entered.
   double slope(std::size_t k) {
     if (k != slope_k_) {
@@ -192,7 +219,7 @@ class FunctionWalk {
  private:
   const PiecewiseLinear* f_;
   std::size_t n_;
-  std::size_t k_ = 0;
+  BoundWalk bounds_;
   std::size_t slope_k_ = static_cast<std::size_t>(-1);
   double slope_ = 0.0;
   std::size_t last_k_ = static_cast<std::size_t>(-1);
@@ -357,6 +384,7 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   std::vector<PieceRecord>& pieces = scratch.pieces;
   // Grown ahead and written in place (a PieceRecord built and pushed back stalled on its copy).
   std::size_t n = 0;
+  BoundWalk lo_walk(breakpoints.data(), breakpoints.size()), hi_walk(breakpoints.data(), breakpoints.size());
   for (std::size_t j = 0; j < ray.segments.size(); ++j) {
     const Segment& seg = ray.segments[j];
     if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
@@ -385,8 +413,8 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     }
     // append_pieces' ends: s0, the breakpoints strictly inside, s1, in the direction of travel.
     const double lo = std::min(s0, s1), hi = std::max(s0, s1);
-    auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), lo);
-    auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), hi);
+    const auto first = breakpoints.begin() + static_cast<std::ptrdiff_t>(lo_walk.upper(lo));
+    const auto last = breakpoints.begin() + static_cast<std::ptrdiff_t>(hi_walk.lower(hi));
     // Piece q runs from end q to end q + 1 (ends 0 and n_ends - 1 are s0 and s1).
     const std::size_t n_ends = static_cast<std::size_t>(last - first) + 2;
     const double span = s1 - s0;
