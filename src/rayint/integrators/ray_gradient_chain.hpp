@@ -236,7 +236,9 @@ class FunctionWalk {
 // divide by span and multiply by -slope once at the end (flush). On an extension (k = 0 or
 // k = n) the end node takes bar with weight 1 and its position bar * 0 (0, or NaN for a
 // non-finite bar, as node_weights_in's). The differences p1 - s, s - p0 are node_weights_in's
-// operands; the sums are rounded differently from a per-end sum (a few ulps of each entry).
+// operands; the sums are rounded differently from a per-end sum of weighted terms (against the
+// 50-digit reference, `[grad]`: steep_up's worst 2.11e-15 -> 1.24e-15 of the channel's largest
+// entry, the case corpus 1.92e-15 -> 1.98e-15, every other regime unchanged; docs/gradients.md).
 class IntervalSums {
  public:
   void reset(const PiecewiseLinear& f) {
