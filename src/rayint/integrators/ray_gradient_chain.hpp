@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -129,11 +130,43 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
-// f at one end of a piece and the weights of the two nodes of the piece's interval:
-// f(s) = w0 value[k-1] + w1 value[k] (d f/d value), d f/d position[k-1] = -slope w0,
-// d f/d position[k] = -slope w1 (node_weights_in's, model/ray_gradient.hpp).
-struct EndValue {
-  double value = 0.0, w0 = 0.0, w1 = 0.0;
+// std::upper_bound or std::lower_bound of x in a sorted array, for lookups that come in order
+// along a ray: started from the previous answer, a few steps, else a binary search. The same
+// index as the std:: call, exactly.
+class BoundWalk {
+ public:
+  BoundWalk(const double* p, std::size_t n) : p_(p), n_(n) {}
+  // upper_bound: p[k-1] <= x < p[k].
+  std::size_t upper(double x) {
+    std::size_t k = k_;
+    for (int step = 0; step < 4; ++step) {
+      if (k < n_ && p_[k] <= x)
+        ++k;
+      else if (k > 0 && p_[k - 1] > x)
+        --k;
+      else
+        return k_ = k;
+    }
+    return k_ = static_cast<std::size_t>(std::upper_bound(p_, p_ + n_, x) - p_);
+  }
+  // lower_bound: p[k-1] < x <= p[k].
+  std::size_t lower(double x) {
+    std::size_t k = k_;
+    for (int step = 0; step < 4; ++step) {
+      if (k < n_ && p_[k] < x)
+        ++k;
+      else if (k > 0 && p_[k - 1] >= x)
+        --k;
+      else
+        return k_ = k;
+    }
+    return k_ = static_cast<std::size_t>(std::lower_bound(p_, p_ + n_, x) - p_);
+  }
+
+ private:
+  const double* p_;
+  std::size_t n_;
+  std::size_t k_ = 0;
 };
 
 // One transfer function as the chain walks it along the ray. Pieces come in order along the ray
@@ -143,31 +176,15 @@ struct EndValue {
 //   - the slope of an interval is divided once when the walk enters it, not per piece and end;
 //   - an end in the interior of an interval is interpolated once for the two pieces it joins
 //     (the last one is kept), and an end on one of the interval's nodes needs no division.
-// Every value is bit for bit what PiecewiseLinear::limit, interval_slope and node_weights_in
-// (the weights, when asked for) return for that interval (the same operations on the same
-// operands): the ray gradient is the one of the searching chain it replaced, bit for bit (issue
-// 28; reports/gradients/README.md, checked by reports/gradients/gradchain_bitwise.cpp).
+// Every value is bit for bit what PiecewiseLinear::limit and interval_slope return for that
+// interval (the same operations on the same operands). The node weights are not formed here:
+// the reverse pass sums per interval (IntervalSums).
 class FunctionWalk {
  public:
-  // weights false: end_in forms the values alone (the other node's weight is a division more),
-  // for GradientBlocks::segments, whose reverse pass uses the slopes only.
-  explicit FunctionWalk(const PiecewiseLinear& f, bool weights = true)
-      : f_(&f), n_(f.scalar.size()), weights_(weights) {}
+  explicit FunctionWalk(const PiecewiseLinear& f) : f_(&f), n_(f.scalar.size()), bounds_(f.scalar.data(), n_) {}
 
   // upper_bound(f.scalar, x): scalar[k-1] <= x < scalar[k].
-  std::size_t locate(double x) {
-    const double* p = f_->scalar.data();
-    std::size_t k = k_;
-    for (int step = 0; step < 4; ++step) {
-      if (k < n_ && p[k] <= x)
-        ++k;
-      else if (k > 0 && p[k - 1] > x)
-        --k;
-      else
-        return k_ = k;
-    }
-    return k_ = static_cast<std::size_t>(std::upper_bound(p, p + n_, x) - p);
-  }
+  std::size_t locate(double x) { return bounds_.upper(x); }
   // interval_slope(f, k), divided once per interval entered.
   double slope(std::size_t k) {
     if (k != slope_k_) {
@@ -176,56 +193,93 @@ class FunctionWalk {
     }
     return slope_;
   }
-  bool extension(std::size_t k) const { return k == 0 || k == n_; }
-  std::size_t size() const { return n_; }
   // f at an end s of a non-constant piece lying in interval k (upper_bound of the piece's smaller
   // end), the limit from inside the piece: at the piece's smaller end the limit from above, at
   // its larger end the one from below (append_pieces'; no breakpoint lies strictly inside).
-  // On the extensions the end value, weights unused.
-  EndValue end_in(std::size_t k, double s) {
-    if (k == 0) return {f_->value.front(), 0.0, 0.0};
-    if (k == n_) return {f_->value.back(), 0.0, 0.0};
+  // On the extensions the end value.
+  double end_in(std::size_t k, double s) {
+    if (k == 0) return f_->value.front();
+    if (k == n_) return f_->value.back();
     const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
     const double v0 = f_->value[k - 1], v1 = f_->value[k];
-    // On a node: its value, weights 1 and 0 (what the divisions below give there, exactly).
-    if (s == p0) return {v0, 1.0, 0.0};
-    if (s == p1) return {v1, 0.0, 1.0};
+    if (s == p0) return v0;  // on a node: its value
+    if (s == p1) return v1;
     if (k == last_k_ && s == last_s_) return last_;
     // PiecewiseLinear::interpolate's arithmetic (from the nearer node, its distance computed
-    // directly), its quotient being node_weights_in's weight of the other node.
+    // directly).
     const double d0 = s - p0, d1 = p1 - s, span = p1 - p0;
-    if (weights_) {
-      const double w1 = d0 / span, w0 = d1 / span;
-      last_ = {d0 <= d1 ? v0 + w1 * (v1 - v0) : v1 + w0 * (v0 - v1), w0, w1};
-    } else {
-      last_ = {d0 <= d1 ? v0 + (d0 / span) * (v1 - v0) : v1 + (d1 / span) * (v0 - v1), 0.0, 0.0};
-    }
+    last_ = d0 <= d1 ? v0 + (d0 / span) * (v1 - v0) : v1 + (d1 / span) * (v0 - v1);
     last_k_ = k;
     last_s_ = s;
     return last_;
   }
-  // A constant piece at s whose interval k was looked up with interval_lo: operator()'s value
-  // (the left value at a jump) and node_weights_in's weights.
-  EndValue constant_at(std::size_t k, double s) const {
-    EndValue e{(*f_)(s), 0.0, 0.0};
-    if (!weights_ || extension(k)) return e;
-    const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
-    const double span = p1 - p0;
-    e.w0 = (p1 - s) / span;
-    e.w1 = (s - p0) / span;
-    return e;
-  }
+  // A constant piece at s: operator()'s value (the left value at a jump).
+  double constant_at(double s) const { return (*f_)(s); }
 
  private:
   const PiecewiseLinear* f_;
   std::size_t n_;
-  bool weights_;
-  std::size_t k_ = 0;
+  BoundWalk bounds_;
   std::size_t slope_k_ = static_cast<std::size_t>(-1);
   double slope_ = 0.0;
   std::size_t last_k_ = static_cast<std::size_t>(-1);
   double last_s_ = 0.0;
-  EndValue last_{};
+  double last_ = 0.0;
+};
+
+// The reverse pass's node entries of one transfer function, summed per interval and formed once
+// per ray. A piece whose values come from interval k (nodes p0 = scalar[k-1], p1 = scalar[k])
+// gives an end at s with adjoint bar the node terms
+//   value[k-1] += bar w0, value[k] += bar w1, position[k-1] -= slope bar w0, position[k] -= slope bar w1,
+// w0 = (p1 - s)/span, w1 = (s - p0)/span, span = p1 - p0 (node_weights_in's weights): so per
+// interval it is enough to sum bar (p1 - s) and bar (s - p0) over the ends that fall in it, and
+// divide by span and multiply by -slope once at the end (flush). On an extension (k = 0 or
+// k = n) the end node takes bar with weight 1 and its position bar * 0 (0, or NaN for a
+// non-finite bar, as node_weights_in's). The differences p1 - s, s - p0 are node_weights_in's
+// operands; the sums are rounded differently from a per-end sum of weighted terms (against the
+// 50-digit reference, `[grad]`: steep_up's worst 2.11e-15 -> 1.24e-15 of the channel's largest
+// entry, the case corpus 1.92e-15 -> 1.98e-15, every other regime unchanged; docs/gradients.md).
+class IntervalSums {
+ public:
+  void reset(const PiecewiseLinear& f) {
+    f_ = &f;
+    n_ = f.scalar.size();
+    lo_.assign(n_ + 1, 0.0);
+    hi_.assign(n_ + 1, 0.0);
+  }
+  // The two ends of a piece lying in interval k, far end first.
+  void add(std::size_t k, double s_far, double far_bar, double s_exit, double exit_bar) {
+    if (k == 0 || k == n_) {
+      lo_[k] += far_bar + exit_bar;
+      return;
+    }
+    const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
+    lo_[k] += far_bar * (p1 - s_far) + exit_bar * (p1 - s_exit);
+    hi_[k] += far_bar * (s_far - p0) + exit_bar * (s_exit - p0);
+  }
+  // Adds the sums to the function's node entries.
+  void flush(std::vector<NodeDerivative>& nodes) const {
+    if (n_ == 0) return;
+    nodes.front().value += lo_[0];
+    nodes.front().position += lo_[0] * 0.0;
+    nodes.back().value += lo_[n_];
+    nodes.back().position += lo_[n_] * 0.0;
+    for (std::size_t k = 1; k < n_; ++k) {
+      if (lo_[k] == 0.0 && hi_[k] == 0.0) continue;  // no end here (a jump's zero-width interval)
+      const double span = f_->scalar[k] - f_->scalar[k - 1];
+      const double slope = interval_slope(*f_, k);
+      const double u0 = lo_[k] / span, u1 = hi_[k] / span;
+      nodes[k - 1].value += u0;
+      nodes[k - 1].position += -slope * u0;
+      nodes[k].value += u1;
+      nodes[k].position += -slope * u1;
+    }
+  }
+
+ private:
+  const PiecewiseLinear* f_ = nullptr;
+  std::size_t n_ = 0;
+  std::vector<double> lo_, hi_;  // per interval 0..n: sums of bar (p1 - s), of bar (s - p0)
 };
 
 // chain_ray_gradient's piece_grads from piece_grad(const ChannelPiece&, double
@@ -245,6 +299,49 @@ auto each_piece_channel(PieceGrad piece_grad) {
   };
 }
 
+// PieceEnds::moving's end scalars for channel c of piece pr: its length's adjoint len_bar (len =
+// L (e_exit - e_far) / (s_exit - s_far), through both ends and the span) and the end values'
+// adjoints through s (far_s_bar, exit_s_bar). An end's s_bar goes to the segment's end scalar, or
+// at a breakpoint to the node that put it there: a jump owns its breakpoint (moving it moves the
+// crossing, the split); else the first node at that scalar among density[c] then color[c].
+inline void moving_ends(const TransferFunctions& tf, const Ray& ray, const PieceRecord& pr, int c, double len_bar,
+                        double far_s_bar, double exit_s_bar, bool nodes_wanted, bool jumps, RayGradient& grad) {
+  const auto route = [&](bool far_side, double e, double s_bar) {
+    if (s_bar == 0.0) return;
+    if (far_side ? pr.far_is_end : pr.exit_is_end) {
+      (far_side ? grad.scalar_far : grad.scalar_exit)[pr.segment][c] += s_bar;
+      return;
+    }
+    if (!nodes_wanted) return;
+    if (jumps)
+      for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
+        const std::size_t first = jump_node(nodes == &grad.density[c] ? tf.density[c] : tf.color[c], e);
+        if (first != kNoJump) {
+          (*nodes)[first].position += s_bar;
+          return;
+        }
+      }
+    for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
+      const PiecewiseLinear& f = nodes == &grad.density[c] ? tf.density[c] : tf.color[c];
+      const auto it = std::lower_bound(f.scalar.begin(), f.scalar.end(), e);
+      if (it != f.scalar.end() && *it == e) {
+        (*nodes)[static_cast<std::size_t>(it - f.scalar.begin())].position += s_bar;
+        return;
+      }
+    }
+  };
+  if (pr.span != 0.0 && pr.fraction != 1.0) {
+    const double per_end = len_bar * ray.segments[pr.segment].length / pr.span;
+    route(false, pr.s_exit, per_end);
+    route(true, pr.s_far, -per_end);
+    const double per_span = len_bar * pr.length / pr.span;
+    grad.scalar_far[pr.segment][c] += per_span;
+    grad.scalar_exit[pr.segment][c] -= per_span;
+  }
+  route(true, pr.s_far, far_s_bar);
+  route(false, pr.s_exit, exit_s_bar);
+}
+
 // piece_grads(const ChannelPiece* cps, const double* kappa_far_minus_exit, std::size_t n, bool grey,
 // PieceDerivatives* out): the optics of n piece-channels and their derivatives, at once (index
 // kChannels k + c: channel c of the k-th piece of the call; exact_pieces_grad evaluates them
@@ -262,15 +359,10 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       throw std::invalid_argument("gradient: background must be finite");
   // What the reverse pass needs of a piece-channel besides its optics' derivatives
   // (PieceDerivatives): per function (density[c], color[c]), the interval its values come from
-  // (upper_bound of the scalar that chooses it, see interval_lo below), that interval's slope and
-  // the node weights of the two ends.
-  struct FunctionEnds {
-    std::size_t k = 0;
-    double slope = 0.0;
-    double far_w0 = 0.0, far_w1 = 0.0, exit_w0 = 0.0, exit_w1 = 0.0;
-  };
+  // (upper_bound of the scalar that chooses it, see interval_lo below). The slopes and node
+  // weights follow from the interval and the piece's end scalars.
   struct ChannelEnds {
-    FunctionEnds rho, kappa;
+    std::uint32_t rho_k = 0, kappa_k = 0;
   };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
@@ -281,6 +373,8 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     std::vector<ChannelPiece> cps;
     std::vector<double> dkappas;
     std::vector<PieceDerivatives> derivs;
+    IntervalSums rho_sums[kChannels], kappa_sums[kChannels];
+    std::vector<double> slopes[2 * kChannels];  // interval_slope per interval: density[c], color[c]
   };
   thread_local Scratch scratch;
   std::vector<double>& breakpoints = scratch.breakpoints;
@@ -290,7 +384,9 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   std::sort(breakpoints.begin(), breakpoints.end());
   breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
   std::vector<PieceRecord>& pieces = scratch.pieces;
-  pieces.clear();
+  // Grown ahead and written in place (a PieceRecord built and pushed back stalled on its copy).
+  std::size_t n = 0;
+  BoundWalk lo_walk(breakpoints.data(), breakpoints.size()), hi_walk(breakpoints.data(), breakpoints.size());
   for (std::size_t j = 0; j < ray.segments.size(); ++j) {
     const Segment& seg = ray.segments[j];
     if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
@@ -298,31 +394,48 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
                                   ": length and scalars must be finite");
     if (!(seg.length > 0.0)) continue;
     const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
+    const auto put = [&](double e_far, double e_exit, double len, double fraction, double phi_far, double phi_exit,
+                         bool far_is_end, bool exit_is_end, double span) {
+      if (n == pieces.size()) pieces.resize(std::max<std::size_t>(64, 2 * n));
+      PieceRecord& pr = pieces[n++];
+      pr.segment = j;
+      pr.s_far = e_far;
+      pr.s_exit = e_exit;
+      pr.length = len;
+      pr.fraction = fraction;
+      pr.phi_far = phi_far;
+      pr.phi_exit = phi_exit;
+      pr.far_is_end = far_is_end;
+      pr.exit_is_end = exit_is_end;
+      pr.span = span;
+    };
     if (s0 == s1) {
-      pieces.push_back({j, s0, s1, seg.length, 1.0, 0.0, 1.0, true, true, 0.0});
+      put(s0, s1, seg.length, 1.0, 0.0, 1.0, true, true, 0.0);
       continue;
     }
     // append_pieces' ends: s0, the breakpoints strictly inside, s1, in the direction of travel.
     const double lo = std::min(s0, s1), hi = std::max(s0, s1);
-    auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), lo);
-    auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), hi);
+    const auto first = breakpoints.begin() + static_cast<std::ptrdiff_t>(lo_walk.upper(lo));
+    const auto last = breakpoints.begin() + static_cast<std::ptrdiff_t>(hi_walk.lower(hi));
     // Piece q runs from end q to end q + 1 (ends 0 and n_ends - 1 are s0 and s1).
     const std::size_t n_ends = static_cast<std::size_t>(last - first) + 2;
+    const double span = s1 - s0;
+    if (n_ends == 2) {
+      put(s0, s1, seg.length, 1.0, 0.0, 1.0, true, true, span);
+      continue;
+    }
     const auto end_at = [&, first = first, last = last](std::size_t q) {
       if (q == 0) return s0;
       if (q + 1 == n_ends) return s1;
       return s0 < s1 ? first[static_cast<std::ptrdiff_t>(q) - 1] : last[-static_cast<std::ptrdiff_t>(q)];
     };
-    const double span = s1 - s0;
     double e_far = s0, phi_far = 0.0;  // a piece's far end is the previous one's exit
     for (std::size_t k = 0; k + 1 < n_ends; ++k) {
       const double e_exit = end_at(k + 1);
       const double fraction = (e_exit - e_far) / span;
       const double len = seg.length * fraction;
       const double phi_exit = k + 2 == n_ends ? 1.0 : (e_exit - s0) / span;
-      if (len > 0.0)
-        pieces.push_back({j, e_far, e_exit, len, n_ends == 2 ? 1.0 : fraction, phi_far, phi_exit, k == 0,
-                          k + 2 == n_ends, span});
+      if (len > 0.0) put(e_far, e_exit, len, fraction, phi_far, phi_exit, k == 0, k + 2 == n_ends, span);
       e_far = e_exit;
       phi_far = phi_exit;
     }
@@ -346,41 +459,31 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
                ? std::nextafter(lo, -std::numeric_limits<double>::infinity())
                : lo;
   };
-  const std::size_t n = pieces.size();
   std::vector<double>& incoming = scratch.incoming;
   if (incoming.size() < n * kChannels) incoming.resize(n * kChannels);
   // One walk per function along the ray (grey: density[0]'s serves every channel).
-  FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0], nodes_wanted),
-                                      FunctionWalk(tf.density[1], nodes_wanted),
-                                      FunctionWalk(tf.density[2], nodes_wanted)};
-  FunctionWalk kappa_walk[kChannels] = {FunctionWalk(tf.color[0], nodes_wanted),
-                                        FunctionWalk(tf.color[1], nodes_wanted),
-                                        FunctionWalk(tf.color[2], nodes_wanted)};
+  FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0]), FunctionWalk(tf.density[1]),
+                                      FunctionWalk(tf.density[2])};
+  FunctionWalk kappa_walk[kChannels] = {FunctionWalk(tf.color[0]), FunctionWalk(tf.color[1]),
+                                        FunctionWalk(tf.color[2])};
   // Each end takes the limit from inside the piece (append_pieces': at a jump the value on the
   // piece's side); a constant piece takes operator()'s, the left value at a jump. The far end
-  // first: it is the previous piece's exit, which the walk keeps. Returns the two end values.
+  // first: it is the previous piece's exit, which the walk keeps. Sets k, returns the two values.
   const auto ends_of = [&](FunctionWalk& walk, const PiecewiseLinear& f, const PieceRecord& pr, double lo,
-                           FunctionEnds& fe) {
-    EndValue far, exit;
+                           std::uint32_t& k) {
     if (pr.s_far == pr.s_exit) {
-      fe.k = walk.locate(interval_lo(f, pr, lo));
-      far = exit = walk.constant_at(fe.k, lo);
-    } else {
-      fe.k = walk.locate(lo);
-      far = walk.end_in(fe.k, pr.s_far);
-      exit = walk.end_in(fe.k, pr.s_exit);
+      k = static_cast<std::uint32_t>(walk.locate(interval_lo(f, pr, lo)));
+      const double v = walk.constant_at(lo);
+      return std::pair<double, double>{v, v};
     }
-    fe.slope = walk.slope(fe.k);
-    fe.far_w0 = far.w0;
-    fe.far_w1 = far.w1;
-    fe.exit_w0 = exit.w0;
-    fe.exit_w1 = exit.w1;
-    return std::pair<double, double>{far.value, exit.value};
+    k = static_cast<std::uint32_t>(walk.locate(lo));
+    const double far = walk.end_in(k, pr.s_far);
+    return std::pair<double, double>{far, walk.end_in(k, pr.s_exit)};
   };
   // The pieces go to piece_grads in chunks of kChunkPieces (their inputs and the batch's columns
   // stay in cache however long the ray), each composited as soon as it is evaluated. What the
   // reverse pass needs of a piece-channel is kept for the whole ray: the light entering it, its
-  // ends (ChannelEnds) and its optics' derivatives (PieceDerivatives, written by piece_grads).
+  // intervals (ChannelEnds) and its optics' derivatives (PieceDerivatives, written by piece_grads).
   // (Keeping them for one chunk only and forming every other chunk again in the reverse pass, to
   // spare the memory traffic of a long ray's ~5 MB, cost more than it saved: 8.8 -> 10.2 ms on
   // bench_grad's set 1.)
@@ -411,16 +514,16 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       for (int c = 0; c < kChannels; ++c) {
         ChannelEnds& r = rec[c];
         if (grey && c > 0)
-          r.rho = rec[0].rho;
+          r.rho_k = rec[0].rho_k;
         else
-          rho_ends = ends_of(rho_walk[c], tf.density[c], pr, lo, r.rho);
-        const std::pair<double, double> kappa_ends = ends_of(kappa_walk[c], tf.color[c], pr, lo, r.kappa);
+          rho_ends = ends_of(rho_walk[c], tf.density[c], pr, lo, r.rho_k);
+        const std::pair<double, double> kappa_ends = ends_of(kappa_walk[c], tf.color[c], pr, lo, r.kappa_k);
         // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
         // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
         // multiplied by a density slope of 3e23 in dI/ds). A constant piece has none; the
         // extensions have slope 0.
         const std::size_t i = (k - k0) * kChannels + static_cast<std::size_t>(c);
-        dkappas[i] = pr.s_far == pr.s_exit ? 0.0 : r.kappa.slope * (pr.s_far - pr.s_exit);
+        dkappas[i] = pr.s_far == pr.s_exit ? 0.0 : kappa_walk[c].slope(r.kappa_k) * (pr.s_far - pr.s_exit);
         cps[i] = {pr.length, rho_ends.first, rho_ends.second, kappa_ends.first, kappa_ends.second};
       }
     }
@@ -434,10 +537,27 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   }
   grad.intensity = intensity;
 
-  // Reverse: adjoint = transmittance of everything nearer than the piece.
+  // Reverse: adjoint = transmittance of everything nearer than the piece. The node entries are
+  // summed per interval (IntervalSums) and formed after the pass; the slopes come from a table.
+  IntervalSums* rho_sums = scratch.rho_sums;
+  IntervalSums* kappa_sums = scratch.kappa_sums;
+  const double* rho_slope[kChannels];
+  const double* kappa_slope[kChannels];
+  for (int c = 0; c < kChannels; ++c)
+    for (const bool density : {true, false}) {
+      const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
+      std::vector<double>& slopes = scratch.slopes[density ? c : kChannels + c];
+      slopes.resize(f.scalar.size() + 1);
+      for (std::size_t k = 0; k < slopes.size(); ++k) slopes[k] = interval_slope(f, k);
+      (density ? rho_slope : kappa_slope)[c] = slopes.data();
+      if (nodes_wanted) (density ? rho_sums : kappa_sums)[c].reset(f);
+    }
   Rgb adjoint{1.0, 1.0, 1.0};
   for (std::size_t k = n; k-- > 0;) {
     const PieceRecord& pr = pieces[k];
+    Rgb& seg_length = grad.length[pr.segment];
+    Rgb& scalar_far = grad.scalar_far[pr.segment];
+    Rgb& scalar_exit = grad.scalar_exit[pr.segment];
     for (int c = 0; c < kChannels; ++c) {
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
       const PieceDerivatives& g = derivs[i];
@@ -451,93 +571,27 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       const double kappa_far_bar = e_bar * g.de_kappa_far;
       const double kappa_exit_bar = e_bar * g.de_kappa_exit;
       // Length: len = L * (fraction of the segment); the fraction does not depend on L.
-      grad.length[pr.segment][c] += len_bar * pr.fraction;
-      // Moving ends: s_bar at an end goes to the segment's end scalar or the breakpoint's node.
-      const auto route = [&](bool far_side, double e, double s_bar) {
-        if (far_side ? pr.far_is_end : pr.exit_is_end) {
-          (far_side ? grad.scalar_far : grad.scalar_exit)[pr.segment][c] += s_bar;
-          return;
-        }
-        if (!nodes_wanted) return;
-        // A jump owns its breakpoint: moving it moves the crossing (the split); another
-        // function's node at the same scalar moved alone leaves the split there.
-        if (jumps)
-          for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
-            const std::size_t first = jump_node(nodes == &grad.density[c] ? tf.density[c] : tf.color[c], e);
-            if (first != kNoJump) {
-              (*nodes)[first].position += s_bar;
-              return;
-            }
-          }
-        for (auto* nodes : {&grad.density[c], &grad.color[c]}) {
-          const PiecewiseLinear& f = nodes == &grad.density[c] ? tf.density[c] : tf.color[c];
-          const auto it = std::lower_bound(f.scalar.begin(), f.scalar.end(), e);
-          if (it != f.scalar.end() && *it == e) {
-            (*nodes)[static_cast<std::size_t>(it - f.scalar.begin())].position += s_bar;
-            return;
-          }
-        }
-      };
-      if (ends_mode == PieceEnds::moving && pr.span != 0.0 && pr.fraction != 1.0) {
-        // len = L (e_exit - e_far) / (s_exit - s_far): through both ends and through the span.
-        const double per_end = len_bar * ray.segments[pr.segment].length / pr.span;
-        route(false, pr.s_exit, per_end);
-        route(true, pr.s_far, -per_end);
-        const double per_span = len_bar * pr.length / pr.span;
-        grad.scalar_far[pr.segment][c] += per_span;
-        grad.scalar_exit[pr.segment][c] -= per_span;
+      seg_length[c] += len_bar * pr.fraction;
+      // End values through the transfer functions: the node entries (IntervalSums) and the end
+      // scalars, differentiated as points fixed along the segment (s = s_far + phi (s_exit -
+      // s_far)) with fixed piece lengths: the same first derivative as moving the piece ends
+      // with the breakpoints (a kink moved by delta inside a piece changes I by O(delta^2)),
+      // without the factor L/(s_exit - s_far) and the cancellation between the two pieces at a
+      // breakpoint that the latter carries (it cost 1e-6 of the channel's largest entry on a
+      // 7e-13-wide segment of narrow_pulse). d f/d s at both ends is the interval's slope.
+      const double rho_slope_k = rho_slope[c][ce.rho_k], kappa_slope_k = kappa_slope[c][ce.kappa_k];
+      const double far_s_bar = rho_far_bar * rho_slope_k + kappa_far_bar * kappa_slope_k;
+      const double exit_s_bar = rho_exit_bar * rho_slope_k + kappa_exit_bar * kappa_slope_k;
+      if (nodes_wanted) {
+        rho_sums[c].add(ce.rho_k, pr.s_far, rho_far_bar, pr.s_exit, rho_exit_bar);
+        kappa_sums[c].add(ce.kappa_k, pr.s_far, kappa_far_bar, pr.s_exit, kappa_exit_bar);
       }
-      // End values through the transfer functions. The end scalars are differentiated as points
-      // fixed along the segment (s = s_far + phi (s_exit - s_far)) with fixed piece lengths: the
-      // same first derivative as moving the piece ends with the breakpoints (a kink moved by
-      // delta inside a piece changes I by O(delta^2)), without the factor L/(s_exit - s_far)
-      // and the cancellation between the two pieces at a breakpoint that the latter carries
-      // (it cost 1e-6 of the channel's largest entry on a 7e-13-wide segment of narrow_pulse).
-      // fe: the interval the piece's values come from and what the forward formed in it
-      // (node_weights_in's weights and slope; on the extensions weight 1 on the end node). Both
-      // ends of the piece in one pass; every accumulator receives the far end's term first.
-      Rgb& scalar_far = grad.scalar_far[pr.segment];
-      Rgb& scalar_exit = grad.scalar_exit[pr.segment];
-      const auto through = [&](std::vector<NodeDerivative>& nodes, const FunctionEnds& fe, double far_bar,
-                               double exit_bar) {
-        if (far_bar == 0.0 && exit_bar == 0.0) return;
-        const std::size_t size = nodes.size();
-        const bool extension = fe.k == 0 || fe.k == size;
-        // The nodes of the interval (on an extension both the end node, weight 1, position 0).
-        NodeDerivative* d0 = nullptr;
-        NodeDerivative* d1 = nullptr;
-        if (nodes_wanted) {
-          d0 = &nodes[extension ? (fe.k == 0 ? 0 : size - 1) : fe.k - 1];
-          d1 = extension ? d0 : &nodes[fe.k];
-        }
-        for (int e = 0; e < 2; ++e) {
-          const double bar = e == 0 ? far_bar : exit_bar;
-          if (bar == 0.0) continue;
-          if (nodes_wanted) {
-            if (extension) {
-              d0->value += bar * 1.0;
-              d0->position += bar * 0.0;  // 0, or NaN for a non-finite bar: as node_weights_in's
-            } else {
-              const double w0 = e == 0 ? fe.far_w0 : fe.exit_w0, w1 = e == 0 ? fe.far_w1 : fe.exit_w1;
-              d0->value += bar * w0;
-              d0->position += bar * (-fe.slope * w0);  // d/dp0 of v0 + (s - p0) slope
-              d1->value += bar * w1;
-              d1->position += bar * (-fe.slope * w1);  // d/dp1 of v1 - (p1 - s) slope
-            }
-          }
-          const double s_bar = bar * fe.slope;
-          if (s_bar == 0.0) continue;
-          const double s = e == 0 ? pr.s_far : pr.s_exit, phi = e == 0 ? pr.phi_far : pr.phi_exit;
-          if (ends_mode == PieceEnds::moving) {
-            route(s == pr.s_far && phi == pr.phi_far, s, s_bar);
-            continue;
-          }
-          scalar_far[c] += s_bar * (1.0 - phi);
-          scalar_exit[c] += s_bar * phi;
-        }
-      };
-      through(grad.density[c], ce.rho, rho_far_bar, rho_exit_bar);
-      through(grad.color[c], ce.kappa, kappa_far_bar, kappa_exit_bar);
+      if (ends_mode == PieceEnds::fixed_along_segment) {
+        scalar_far[c] += far_s_bar * (1.0 - pr.phi_far) + exit_s_bar * (1.0 - pr.phi_exit);
+        scalar_exit[c] += far_s_bar * pr.phi_far + exit_s_bar * pr.phi_exit;
+      } else {
+        moving_ends(tf, ray, pr, c, len_bar, far_s_bar, exit_s_bar, nodes_wanted, jumps, grad);
+      }
       adjoint[c] *= g.transmittance;
       if (jumps && !pr.far_is_end && k > 0)
         add_jump_crossing(tf, ray, pieces[k - 1], pr, c, light, adjoint[c], grad,
@@ -545,6 +599,11 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     }
   }
   grad.background = adjoint;
+  if (nodes_wanted)
+    for (int c = 0; c < kChannels; ++c) {
+      rho_sums[c].flush(grad.density[c]);
+      kappa_sums[c].flush(grad.color[c]);
+    }
   if (jumps) {
     if (nodes_wanted) tie_jump_positions(tf, grad.density, grad.color);
     mark_jump_tangencies(tf, ray, grad, nodes_wanted);
