@@ -360,19 +360,24 @@ bool CellTraversal::continue_in_linear(std::size_t c, const Walk& w, double t, d
   bool chord_failed = false;
   const int n_iv = classify_chord_intervals(cells_[c], w.ray(), ts.data(), n_ts, intervals.data(), chord_failed);
   if (chord_failed && failed) *failed = true;
-  for (int i = 0; i < n_iv; ++i) {
-    const ChordInterval& iv = intervals[static_cast<std::size_t>(i)];
+  return hold_interval(intervals.data(), n_iv, hits.data(), n_hits, w, t, t_far, exit_faces, p_hint);
+}
+
+bool CellTraversal::hold_interval(const ChordInterval* intervals, std::size_t n_intervals, const ChordFaceHit* hits,
+                                  std::size_t n_hits, const Walk& w, double t, double& t_far,
+                                  std::vector<int>* exit_faces, Vec3* p_hint) {
+  const double slack = w.slack(t);
+  for (std::size_t i = 0; i < n_intervals; ++i) {
+    const ChordInterval& iv = intervals[i];
     if (!(iv.t_near <= t + slack) || !(iv.t_far > t)) continue;
     t_far = iv.t_far;
     if (p_hint) *p_hint = iv.p_mid;
     if (exit_faces) {
       exit_faces->clear();
       const double s = w.slack(t_far);
-      for (int h = 0; h < n_hits; ++h) {
-        const ChordFaceHit& hit = hits[static_cast<std::size_t>(h)];
-        if (std::fabs(hit.t - t_far) <= s && std::find(exit_faces->begin(), exit_faces->end(), hit.face) == exit_faces->end())
-          exit_faces->push_back(hit.face);
-      }
+      for (std::size_t h = 0; h < n_hits; ++h)
+        if (std::fabs(hits[h].t - t_far) <= s && std::find(exit_faces->begin(), exit_faces->end(), hits[h].face) == exit_faces->end())
+          exit_faces->push_back(hits[h].face);
     }
     return true;
   }
@@ -574,21 +579,8 @@ bool CellTraversal::continue_in(std::size_t c, const Walk& w, double t, double& 
   if (quadratic_cell(c) == nullptr) return continue_in_linear(c, w, t, t_far, exit_faces, failed, p_hint);
   const Chord ch = cell_chord(c, w.ray());
   if (ch.failed && failed) *failed = true;
-  const double slack = w.slack(t);
-  for (const ChordInterval& iv : ch.intervals) {
-    if (!(iv.t_near <= t + slack) || !(iv.t_far > t)) continue;
-    t_far = iv.t_far;
-    if (p_hint) *p_hint = iv.p_mid;
-    if (exit_faces) {
-      exit_faces->clear();
-      const double s = w.slack(t_far);
-      for (const ChordFaceHit& h : ch.hits)
-        if (std::fabs(h.t - t_far) <= s && std::find(exit_faces->begin(), exit_faces->end(), h.face) == exit_faces->end())
-          exit_faces->push_back(h.face);
-    }
-    return true;
-  }
-  return false;
+  return hold_interval(ch.intervals.data(), ch.intervals.size(), ch.hits.data(), ch.hits.size(), w, t, t_far, exit_faces,
+                       p_hint);
 }
 
 // Rule 2: the cell that continues the ray at t after `from` (left through `exit_faces`).

@@ -16,6 +16,13 @@
 // cells gives both the same hit parameters, bit for bit, and the exit of one cell is the entry
 // of the next (watertight). The pieces of the ray inside a cell are the intervals between face
 // hits whose midpoint maps (Newton) into the cell.
+// Planar faces (cell_traversal.cpp, "Planar faces"): each distinct face is stored once; one
+// planar to the rounding of its coordinates (twist term's normal part <= kAffineTolerance x its
+// largest coordinate, strictly convex), and every triangle, is intersected as its plane by one
+// routine for both cells (still bit for bit the same hit in both). An affine cell whose faces are
+// all planar is the convex polyhedron of its face planes: its chord is [last entry, first exit]
+// over them, without the hits' classification (no Newton). Other linear cells classify their
+// hits as chord() does (classify_chord_intervals).
 //
 // Walk. Rules, as for tetrahedra (tet_traversal.hpp):
 //  1. t never decreases. In a cell entered at t the ray is integrated over [t, t_far] with t_far
@@ -31,7 +38,7 @@
 //  3. No cell continues the ray: it has left the mesh. The next entry is the nearest boundary
 //     face hit beyond t whose cell holds that hit (first hit: Embree 3 user geometry over the
 //     boundary faces, bounds = the face's node box (a bilinear patch lies in the convex hull of its
-//     corners) padded by 1e-7 of the diagonal; every hit is computed in double by intersect_face,
+//     corners) padded by 1e-7 of the diagonal; every hit is computed in double by face_hits (the plane or intersect_face),
 //     nodes in canonical order). So rays that leave and re-enter a non-convex mesh, and meshes of
 //     several components, are followed to the end. Every re-entry is strictly beyond t.
 //  4. A hard budget of 8 x cells + 1000 steps per ray; hitting it is counted.
@@ -187,6 +194,10 @@ class CellTraversal {
   // (clip_), or the face hits classified as chord() does. Same contract as continue_in.
   bool continue_in_linear(std::size_t c, const Walk& w, double t, double& t_far, std::vector<int>* exit_faces,
                           bool* failed, Vec3* p_hint) const;
+  // The interval among `intervals` that holds t (rule 1), its end, p_mid and the faces hit there.
+  static bool hold_interval(const ChordInterval* intervals, std::size_t n_intervals, const ChordFaceHit* hits,
+                            std::size_t n_hits, const Walk& w, double t, double& t_far, std::vector<int>* exit_faces,
+                            Vec3* p_hint);
   // The hits (ray parameters, sorted, at most 2) of the walk's line with face i of faces_.
   int face_hits(std::size_t i, const Walk& w, double* t) const;
   // The chord of cell c (linear or quadratic), nodes by their global ids (canonical faces).
