@@ -213,6 +213,72 @@ TEST_CASE("own traversal: rays through shared vertices and along shared edges lo
   }
 }
 
+namespace {
+// An n^3 block of hexahedra (VTK order) over [0, 1]^3 with its points moved by `map`; the scalar
+// a smooth function of the unmoved point.
+template <class Map>
+CellMesh hex_block(int n, Map map) {
+  CellMesh m;
+  const auto id = [n](int i, int j, int k) { return static_cast<std::int32_t>(i + (n + 1) * (j + (n + 1) * k)); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const Vec3 x(static_cast<double>(i) / n, static_cast<double>(j) / n, static_cast<double>(k) / n);
+        m.points.push_back(map(x));
+        m.scalars.push_back(0.3 + 0.4 * x.x() * x.y() + 0.3 * x.z() * x.z());
+      }
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        for (const std::int32_t p : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                                     id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)})
+          m.connectivity.push_back(p);
+        m.types.push_back(MeshCellType::hexahedron);
+        m.offsets.push_back(static_cast<std::uint32_t>(m.connectivity.size()));
+      }
+  return m;
+}
+}  // namespace
+
+TEST_CASE("own traversal: planar faces by their planes, affine cells by clipping, against every cell's own chord", "[celltraversal]") {
+  // Sheared block: every cell a parallelepiped (affine, all faces planar: clipped). Tapered block
+  // x -> x (1 + z / 2): all faces planar, no cell affine (planes + Newton classification).
+  // Perturbed block: the sheared one with one interior point moved, so the 8 cells around it
+  // are curved and their 12 faces through it bilinear, next to clipped cells. Rays through the
+  // interior vertices (shared by 8 cells) and random rays: the walk's chords equal the brute force
+  // (each cell's chord() on its own, bilinear patches throughout), and the chords join exactly.
+  const int n = 3;
+  const auto shear = [](const Vec3& x) { return Vec3(x.x() + 0.3 * x.y() + 0.2 * x.z(), x.y() + 0.1 * x.z(), 0.9 * x.z()); };
+  CellMesh perturbed = hex_block(n, shear);
+  const std::size_t moved = 1 + (n + 1) * (1 + (n + 1) * 1);  // point (1, 1, 1)
+  perturbed.points[moved] += Vec3(0.03, -0.02, 0.025);
+  struct Case {
+    const char* name;
+    CellMesh mesh;
+    std::size_t clipped, planar;
+  };
+  const std::size_t faces = 3 * n * n * (n + 1);
+  std::vector<Case> cases;
+  cases.push_back({"sheared", hex_block(n, shear), 27, faces});
+  cases.push_back({"tapered", hex_block(n, [](const Vec3& x) { return Vec3(x.x() * (1.0 + 0.5 * x.z()), x.y(), x.z()); }), 0, faces});
+  cases.push_back({"perturbed", perturbed, 27 - 8, faces - 12});
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const CellTraversal m(c.mesh, c.name);
+    CHECK(m.clipped_cell_count() == c.clipped);
+    CHECK(m.planar_face_count() == c.planar);
+    std::mt19937_64 rng(5);
+    std::vector<Vec3> targets = shared_points(c.mesh, 8);
+    for (int i = 0; i < 30; ++i) targets.push_back(random_inside_box(m, rng));
+    for (const Vec3& v : targets) {
+      CellTrace trace;
+      m.trace(ray_through(m, v, rng), trace);
+      CHECK(trace.failed_chords == 0);
+      check_chords_match(trace, brute_force(m, trace));
+    }
+  }
+}
+
 TEST_CASE("own traversal: a field linear in space gives the split path's answer on meshes with planar boundaries", "[celltraversal]") {
   // f = 0.2 + 0.3 x - 0.2 y + 0.25 z at every point: each cell's isoparametric interpolant is
   // this same linear function (sum N_i = 1, sum N_i x_i = x), and so is each split tetrahedron's;

@@ -14,6 +14,7 @@
 
 #include "test_paths.hpp"
 #include "rayint/cells/cell_integral.hpp"
+#include "rayint/cells/chord_scalar.hpp"
 #include "rayint/cells/linear_cells.hpp"
 #include "rayint/cells/vtk_split.hpp"
 #include "rayint/reference/cell_reference.hpp"
@@ -136,6 +137,54 @@ TEST_CASE("linear cells: inverse map round trip on distorted cells in both orien
           CHECK((m.p - p).cwiseAbs().maxCoeff() <= LinearCellTolerances::round_trip_abs);
         }
       }
+}
+
+TEST_CASE("linear cells: an affine cell's scalar along a chord multiplied out equals the nodal form", "[cells][isoparametric]") {
+  // affine_chord_chebyshev's cubic (chord_scalar.hpp) against cell_scalar at the inverse-mapped
+  // ray points, for voxels, sheared parallelepiped hexahedra and wedges: within its own rounding
+  // scale plus 8 ulps of max |f_i| (cell_scalar's rounding); and the scale is that small (<= 64
+  // ulps of max |f_i|, the tail target of cell_integral.hpp).
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int points = 0;
+  for (LinearCellType type : {LinearCellType::voxel, LinearCellType::hexahedron, LinearCellType::wedge}) {
+    for (int k = 0; k < 20; ++k) {
+      LinearCell cell = random_cell(type, rng, 0.0);
+      if (type == LinearCellType::hexahedron) {
+        std::vector<Vec3> nodes;
+        std::vector<double> values;
+        for (int i = 0; i < 8; ++i) {
+          const auto ii = static_cast<std::size_t>(i);
+          nodes.push_back(cell.x[ii] + cell.x[ii][2] * Vec3(0.3, -0.2, 0.1));
+          values.push_back(cell.value[ii]);
+        }
+        cell = make_linear_cell(type, nodes, values);
+      }
+      REQUIRE(cell.affine);
+      const Vec3 target = cell_position(cell, linear_reference_centre(type));
+      const Vec3 eye = target + 6.0 * Vec3(u(rng), u(rng), u(rng)).normalized();
+      const ViewRay ray{eye, (target - eye).normalized()};
+      const Chord ch = chord(cell, ray);
+      REQUIRE(ch.intervals.size() == 1);
+      const double a = ch.intervals[0].t_near, b = ch.intervals[0].t_far;
+      std::array<double, 4> c{};
+      const double rounding = affine_chord_chebyshev(cell, ray, a, b, c);
+      double f_max = 0.0;
+      for (int i = 0; i < linear_node_count(type); ++i) f_max = std::max(f_max, std::abs(cell.value[static_cast<std::size_t>(i)]));
+      CHECK(rounding <= 64 * 2.220446049250313e-16 * f_max);
+      for (int j = 0; j <= 16; ++j) {
+        const double x = -1.0 + j / 8.0;
+        const double T[4] = {1.0, x, 2 * x * x - 1, 4 * x * x * x - 3 * x};
+        const double series = c[0] * T[0] + c[1] * T[1] + c[2] * T[2] + c[3] * T[3];
+        const Vec3 world = ray.origin + (0.5 * (a + b) + 0.5 * (b - a) * x) * ray.direction;
+        const double nodal = cell_scalar(cell, cell.affine_inverse * (world - cell.affine_origin));
+        INFO(linear_cell_name(type) << " x " << x);
+        CHECK(std::abs(series - nodal) <= rounding + 8 * 2.220446049250313e-16 * f_max);
+        ++points;
+      }
+    }
+  }
+  CHECK(points == 3 * 20 * 17);
 }
 
 TEST_CASE("linear cells: affine detection", "[cells][isoparametric]") {

@@ -333,6 +333,15 @@ struct Sampler {
   // A bound of f's Chebyshev coefficients above degree n on the last begin()'s interval (the
   // Taylor series' tail, chord_scalar.hpp); 0 on the polynomial path (exact_degree decides).
   double tail_bound(int n) const { return use_newton ? scalar->taylor_tail(n) : 0.0; }
+  // An affine cell: f's coefficients on [a, b] multiplied out (affine_chord_chebyshev), with
+  // their rounding as the tail; false on the Newton path.
+  bool exact(double a, double b, std::vector<double>& c, double& rounding) const {
+    if (use_newton) return false;
+    std::array<double, 4> c4{};
+    rounding = affine_chord_chebyshev(*cell, *ray, a, b, c4);
+    c.assign(c4.begin(), c4.end());
+    return true;
+  }
   double operator()(double t) {
     ++samples;
     const Vec3 x = ray->origin + t * ray->direction;
@@ -350,6 +359,14 @@ struct Sampler {
 template <class F>
 bool interpolate(F& f, double a, double b, int depth, int n0, double tail_target,
                  std::vector<Interpolant>& out, int& max_degree) {
+  {
+    Interpolant I{a, b, {}, 0.0};
+    if (f.exact(a, b, I.c, I.tail) && I.tail <= tail_target) {
+      max_degree = std::max(max_degree, static_cast<int>(I.c.size()) - 1);
+      out.push_back(std::move(I));
+      return true;
+    }
+  }
   std::vector<double> v(static_cast<std::size_t>(n0) + 1);
   auto node = [&](int j, int n) { return 0.5 * (a + b) + 0.5 * (b - a) * cosine_table(n)[j]; };
   f.begin(a, b);
@@ -693,6 +710,7 @@ struct QuadraticSampler {
   bool ok = true;
   // The Newton start carries over from the previous sample (no predictor for quadratic maps).
   void begin(double, double) {}
+  bool exact(double, double, std::vector<double>&, double&) const { return false; }
   // No bound: a degree below kTrustedDegree is accepted on the tail test alone only when affine
   // (n0 = 8: f is then a polynomial of degree <= 6 along the ray).
   double tail_bound(int) const { return 0.0; }

@@ -11,8 +11,15 @@
 //                  exact_piece (integrators/exact.hpp; measured 8.05e-14 relative worst there).
 //   polynomial     an affine voxel, hexahedron or wedge (linear_cells.hpp, kAffineTolerance):
 //                  p(t) is the exact linear inverse, so f(t) is a polynomial of degree <= 3 in t;
-//                  it is sampled at 9 Chebyshev-Lobatto points and its coefficients above degree
-//                  3 (rounding only) are dropped, their sum kept as the tail e_f. No Newton solves.
+//                  its 4 Chebyshev coefficients on the chord are multiplied out in the nodal
+//                  form (chord_scalar.hpp affine_chord_chebyshev: each N_i(p(t)) a product of
+//                  linear factors, f_i taken relative to their midrange), no samples, no Newton
+//                  solves; e_f is their rounding scale (8 eps x the same sums over absolute
+//                  values). Until 2026-12-05 f was sampled at 9 Chebyshev-Lobatto points and the
+//                  coefficients above 3 dropped (their sum the tail): the expansion is ~15 %
+//                  faster on `rayint bench` box12, ~4x per chord in tools/cell_accuracy, with
+//                  voxel_box's errors moved at the rounding level, both ways (reports/cells/bench.md,
+//                  "Planar faces, clipped affine cells").
 //                  (5 samples, degree 4, measured 2026-12-05: 7 % faster on BM_mesh/own_box, but
 //                  the accuracy tool's voxel_box worst absolute error 5.11e-15 -> 5.63e-15 and
 //                  median relative 7.77e-16 -> 8.13e-16: the 9-point projection averages the

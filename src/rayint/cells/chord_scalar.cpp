@@ -78,6 +78,54 @@ std::array<V, 8> monomial_coefficients(LinearCellType type, const V* node, const
 
 }  // namespace
 
+double affine_chord_chebyshev(const LinearCell& cell, const ViewRay& ray, double a, double b, std::array<double, 4>& c) {
+  const double m = 0.5 * (a + b), h = 0.5 * (b - a);
+  const Vec3 pc = cell.affine_inverse * (ray.origin + m * ray.direction - cell.affine_origin);
+  const Vec3 ph = cell.affine_inverse * (h * ray.direction);
+  // Polynomials in x as coefficient arrays; a linear factor (u0 + u1 x).
+  using Poly = std::array<double, 4>;
+  const auto times = [](const Poly& p, const Poly& u) {
+    return Poly{p[0] * u[0], p[0] * u[1] + p[1] * u[0], p[1] * u[1] + p[2] * u[0], p[2] * u[1] + p[3] * u[0]};
+  };
+  const auto abs_poly = [](const Poly& p) { return Poly{std::abs(p[0]), std::abs(p[1]), std::abs(p[2]), std::abs(p[3])}; };
+  // The nodal form, as cell_scalar evaluates it: each N_i a product of linear factors in x,
+  // nonnegative on the chord (a partition of unity), so the sum is as well conditioned as one
+  // nodal evaluation.
+  Poly lo[3], hi[3];  // 1 - p_k and p_k
+  for (int k = 0; k < 3; ++k) hi[k] = {pc[k], ph[k], 0.0, 0.0}, lo[k] = {1.0 - pc[k], -ph[k], 0.0, 0.0};
+  std::array<Poly, kMaxLinearNodes> N{};
+  int n = 0;
+  if (cell.type == LinearCellType::wedge) {
+    const Poly w{1.0 - pc[0] - pc[1], -ph[0] - ph[1], 0.0, 0.0};
+    const Poly tri[3] = {w, hi[0], hi[1]};
+    for (int layer = 0; layer < 2; ++layer)
+      for (int i = 0; i < 3; ++i) N[static_cast<std::size_t>(n++)] = times(tri[i], layer == 0 ? lo[2] : hi[2]);
+  } else {  // voxel (node bits: r, s, t) or hexahedron (VTK's order around each layer)
+    constexpr int kHexBits[8] = {0, 1, 3, 2, 4, 5, 7, 6};  // hexahedron node -> corner bits
+    for (int i = 0; i < 8; ++i) {
+      const int q = cell.type == LinearCellType::voxel ? i : kHexBits[i];
+      const Poly rs = times((q & 1) ? hi[0] : lo[0], (q & 2) ? hi[1] : lo[1]);
+      N[static_cast<std::size_t>(n++)] = times(rs, (q & 4) ? hi[2] : lo[2]);
+    }
+  }
+  // f = f_ref + sum_i N_i (f_i - f_ref) (sum_i N_i = 1): the products' rounding then scales
+  // with the node values' spread, not their size (f_ref the midrange, added to c_0 last).
+  double f_lo = cell.value[0], f_hi = cell.value[0];
+  for (int i = 1; i < n; ++i)
+    f_lo = std::min(f_lo, cell.value[static_cast<std::size_t>(i)]), f_hi = std::max(f_hi, cell.value[static_cast<std::size_t>(i)]);
+  const double f_ref = 0.5 * (f_lo + f_hi);
+  Poly g{}, g_abs{};
+  for (int i = 0; i < n; ++i) {
+    const double f = cell.value[static_cast<std::size_t>(i)] - f_ref;
+    const Poly& p = N[static_cast<std::size_t>(i)];
+    const Poly pa = abs_poly(p);
+    for (std::size_t j = 0; j < 4; ++j) g[j] += f * p[j], g_abs[j] += std::abs(f) * pa[j];
+  }
+  // x^2 = (T0 + T2) / 2, x^3 = (3 T1 + T3) / 4.
+  c = {f_ref + (g[0] + 0.5 * g[2]), g[1] + 0.75 * g[3], 0.5 * g[2], 0.25 * g[3]};
+  return 8 * kEps * (g_abs[0] + g_abs[1] + g_abs[2] + g_abs[3]) + kEps * std::abs(f_ref);
+}
+
 MultilinearCell multilinear_form(const LinearCell& cell) {
   MultilinearCell m;
   m.type = cell.type;

@@ -49,6 +49,14 @@ struct MultilinearCell {
 };
 MultilinearCell multilinear_form(const LinearCell& cell);
 
+// An affine cell's scalar along the ray on [a, b] (cell.affine: voxel, hexahedron or wedge):
+// p(t) = A^-1 (o + t d - x0) is linear, so with t = (a + b) / 2 + x (b - a) / 2 every shape
+// function N_i(p(x)) is a product of at most three linear factors in x and f = sum_i N_i f_i a
+// polynomial of degree <= 3: c[0..3] its Chebyshev coefficients on x in [-1, 1], multiplied out
+// in the nodal form (no samples). Returns the coefficients' rounding scale: 8 eps x the same
+// sums over the terms' absolute values (products of <= 3 factors, sums of <= 8 terms).
+double affine_chord_chebyshev(const LinearCell& cell, const ViewRay& ray, double a, double b, std::array<double, 4>& c);
+
 class ChordScalar {
  public:
   // `start`: Newton's first start (a point near the chord, e.g. ChordInterval::p_mid) when given,

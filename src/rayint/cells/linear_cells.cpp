@@ -389,6 +389,34 @@ FaceHits intersect_face(const std::array<Vec3, 4>& nodes, int count, const ViewR
   return out;
 }
 
+int classify_chord_intervals(const LinearCell& cell, const ViewRay& ray, const double* ts, int n_ts, ChordInterval* out,
+                             bool& failed) {
+  int n_out = 0;
+  Vec3 start = linear_reference_centre(cell.type);
+  for (int k = 0; k + 1 < n_ts; ++k) {
+    const double tm = 0.5 * (ts[k] + ts[k + 1]);
+    const InverseMap m = inverse_map(cell, ray.origin + tm * ray.direction, start);
+    if (!m.converged) {
+      // Re-try from the centre before deciding: a warm start may sit in another cell's basin.
+      const InverseMap m2 = inverse_map(cell, ray.origin + tm * ray.direction);
+      if (!m2.converged) {
+        failed = true;
+        continue;
+      }
+      if (!inside_reference(cell.type, m2.p, 1e-9)) continue;
+      start = m2.p;
+    } else {
+      if (!inside_reference(cell.type, m.p, 1e-9)) continue;
+      start = m.p;
+    }
+    if (n_out > 0 && out[n_out - 1].t_far == ts[k])
+      out[n_out - 1].t_far = ts[k + 1];
+    else
+      out[n_out++] = {ts[k], ts[k + 1], start};
+  }
+  return n_out;
+}
+
 Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* global_ids) {
   Chord out;
   const RayFrame frame(ray);
@@ -419,28 +447,9 @@ Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* glob
   });
   std::sort(ts.begin(), ts.begin() + static_cast<std::ptrdiff_t>(n_ts));
   n_ts = static_cast<std::size_t>(std::unique(ts.begin(), ts.begin() + static_cast<std::ptrdiff_t>(n_ts)) - ts.begin());
-  Vec3 start = linear_reference_centre(cell.type);
-  for (std::size_t k = 0; k + 1 < n_ts; ++k) {
-    const double tm = 0.5 * (ts[k] + ts[k + 1]);
-    const InverseMap m = inverse_map(cell, ray.origin + tm * ray.direction, start);
-    if (!m.converged) {
-      // Re-try from the centre before deciding: a warm start may sit in another cell's basin.
-      const InverseMap m2 = inverse_map(cell, ray.origin + tm * ray.direction);
-      if (!m2.converged) {
-        out.failed = true;
-        continue;
-      }
-      if (!inside_reference(cell.type, m2.p, 1e-9)) continue;
-      start = m2.p;
-    } else {
-      if (!inside_reference(cell.type, m.p, 1e-9)) continue;
-      start = m.p;
-    }
-    if (!out.intervals.empty() && out.intervals.back().t_far == ts[k])
-      out.intervals.back().t_far = ts[k + 1];
-    else
-      out.intervals.push_back({ts[k], ts[k + 1], start});
-  }
+  std::array<ChordInterval, 2 * 6> intervals{};
+  const int n_iv = classify_chord_intervals(cell, ray, ts.data(), static_cast<int>(n_ts), intervals.data(), out.failed);
+  out.intervals.assign(intervals.begin(), intervals.begin() + n_iv);
   return out;
 }
 

@@ -233,5 +233,10 @@ struct Chord {
   bool failed = false;
 };
 Chord chord(const LinearCell& cell, const ViewRay& ray, const std::int64_t* global_ids = nullptr);
+// chord()'s classification, for callers that find the face hits themselves (mesh/cell_traversal):
+// ts[0..n_ts) the sorted distinct hit parameters; writes the inside intervals (merged, at most
+// n_ts - 1) to out and returns how many; sets `failed` when a midpoint's inverse map did not converge.
+int classify_chord_intervals(const LinearCell& cell, const ViewRay& ray, const double* ts, int n_ts, ChordInterval* out,
+                             bool& failed);
 
 }  // namespace rayint

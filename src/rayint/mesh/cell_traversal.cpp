@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "rayint/core/error.hpp"
@@ -47,6 +48,7 @@ struct CellTraversal::Walk {
   // next_cell's scratch, reused from step to step of the ray (no allocation per step).
   mutable std::vector<int> candidate_faces;
   mutable std::vector<std::int32_t> tried, points;
+  std::optional<RayFrame> frame;  // the ray's frame for the bilinear faces (set with o, d)
   ViewRay ray() const { return ViewRay{o, d}; }
   double slack(double t) const { return kCellEntrySlack * (self->diagonal_ + std::fabs(t)); }
 };
@@ -184,11 +186,9 @@ void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint
     for (const PatchHit& h : intersect_quadratic_face(patch_nodes(m.mesh_, f), f.count, f.centre >= 0, w.ray()))
       hit_t.push_back(h.t);
   } else {
-    std::array<Vec3, 4> nodes{};
-    for (int k = 0; k < f.count; ++k)
-      nodes[static_cast<std::size_t>(k)] = m.mesh_.points[static_cast<std::size_t>(f.points[static_cast<std::size_t>(k)])];
-    const FaceHits hits = rayint::intersect_face(nodes, f.count, w.ray());
-    for (int h = 0; h < hits.count; ++h) hit_t.push_back(hits.hit[static_cast<std::size_t>(h)].t);
+    double ts[2];
+    const int n = m.face_hits(static_cast<std::size_t>(f.face), w, ts);
+    hit_t.assign(ts, ts + n);
   }
   for (const double t_hit : hit_t) {
     if (!(t_hit >= w.t_lo - w.tol) || !(t_hit < w.best_t)) continue;
@@ -215,6 +215,173 @@ void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     break;  // hits are sorted by t: the first accepted is this face's nearest
   }
+}
+
+// ---- Planar faces ----------------------------------------------------------------------------
+//
+// A quadrilateral A B C D (canonical order) is planar when its bilinear patch's twist term
+// A - B + C - D has no component along the normal n = (C - A) x (D - B) beyond rounding:
+// |n^ . (A - B + C - D)| <= kAffineTolerance x (largest |coordinate| of its nodes). The corners
+// then lie within 1/4 of that (16 eps x magnitude) of the plane through their mean, and the patch
+// within 3/4 of it: the plane is the patch to the rounding of the node coordinates themselves
+// (the same threshold, and origin, as make_linear_cell's affine test). It must also be strictly
+// convex (every corner turns the same way about n), so that its inside is the four edge tests
+// below. A triangle is always planar (n = (B - A) x (C - A)). Every other face stays a bilinear
+// patch (intersect_face).
+//
+// A planar face's hit: t = (offset - n . o) / (n . d), inside when the hit point is on the inner
+// side of every edge k, (e_k x (P - V_k)) . n >= -edge_slack_k with edge_slack_k = kFaceSlack x
+// L x |n| x |e_k| (L the face's longest diagonal or edge): a distance of kFaceSlack x L beyond
+// the edge, what intersect_face's parametric slack kFaceSlack allows. One routine (plane_hit) for
+// both paths below, so a face's t has the same bits in both of its cells.
+
+CellTraversal::FaceGeometry CellTraversal::planar_face_geometry(const std::array<Vec3, 4>& nodes, int count) {
+  FaceGeometry g;
+  g.nodes = nodes;
+  g.count = count;
+  const Vec3 &A = nodes[0], &B = nodes[1], &C = nodes[2], &D = nodes[3];
+  double magnitude = 0.0, diameter = 0.0;
+  for (int k = 0; k < count; ++k) {
+    magnitude = std::max(magnitude, nodes[static_cast<std::size_t>(k)].cwiseAbs().maxCoeff());
+    diameter = std::max(diameter, (nodes[static_cast<std::size_t>((k + 1) % count)] - nodes[static_cast<std::size_t>(k)]).norm());
+  }
+  if (count == 3) {
+    g.normal = (B - A).cross(C - A);
+    g.offset = g.normal.dot(A + B + C) / 3.0;
+  } else {
+    g.normal = (C - A).cross(D - B);
+    const double nn = g.normal.norm();
+    if (!(nn > 0.0) || !(std::abs(g.normal.dot((A - B) + (C - D))) <= kAffineTolerance * magnitude * nn)) return g;
+    for (int k = 0; k < 4; ++k) {  // strictly convex
+      const Vec3& p = nodes[static_cast<std::size_t>((k + 3) % 4)];
+      const Vec3& v = nodes[static_cast<std::size_t>(k)];
+      const Vec3& q = nodes[static_cast<std::size_t>((k + 1) % 4)];
+      if (!((v - p).cross(q - v).dot(g.normal) > 0.0)) return g;
+    }
+    diameter = std::max((C - A).norm(), (D - B).norm());
+    g.offset = g.normal.dot((A + B) + (C + D)) / 4.0;
+  }
+  const double nn = g.normal.norm();
+  if (!(nn > 0.0)) return g;
+  for (int k = 0; k < count; ++k)
+    g.edge_slack[static_cast<std::size_t>(k)] =
+        kFaceSlack * diameter * nn * (nodes[static_cast<std::size_t>((k + 1) % count)] - nodes[static_cast<std::size_t>(k)]).norm();
+  g.planar = true;
+  return g;
+}
+
+std::size_t CellTraversal::planar_face_count() const {
+  return static_cast<std::size_t>(std::count_if(faces_.begin(), faces_.end(), [](const FaceGeometry& g) { return g.planar; }));
+}
+
+namespace {
+// The parameter where the line o + t d meets the plane n . x = offset (inf or NaN when parallel).
+double plane_hit(const Vec3& normal, double offset, const Vec3& o, const Vec3& d, double& den) {
+  den = normal.dot(d);
+  return (offset - normal.dot(o)) / den;
+}
+}  // namespace
+
+int CellTraversal::face_hits(std::size_t i, const Walk& w, double* t) const {
+  const FaceGeometry& g = faces_[i];
+  if (!g.planar) {
+    const FaceHits h = intersect_face(g.nodes, g.count, w.ray(), *w.frame);
+    for (int k = 0; k < h.count; ++k) t[k] = h.hit[static_cast<std::size_t>(k)].t;
+    return h.count;
+  }
+  double den;
+  const double th = plane_hit(g.normal, g.offset, w.o, w.d, den);
+  if (!std::isfinite(th)) return 0;
+  const Vec3 P = w.o + th * w.d;
+  for (int k = 0; k < g.count; ++k) {
+    const Vec3& a = g.nodes[static_cast<std::size_t>(k)];
+    const Vec3& b = g.nodes[static_cast<std::size_t>((k + 1) % g.count)];
+    if (!((b - a).cross(P - a).dot(g.normal) >= -g.edge_slack[static_cast<std::size_t>(k)])) return 0;
+  }
+  t[0] = th;
+  return 1;
+}
+
+bool CellTraversal::continue_in_linear(std::size_t c, const Walk& w, double t, double& t_far,
+                                       std::vector<int>* exit_faces, bool* failed, Vec3* p_hint) const {
+  const auto base = static_cast<std::size_t>(neighbor_offsets_[c]);
+  const int n_faces = linear_face_count(cells_[c].type);
+  const double slack = w.slack(t);
+  if (clip_[c]) {
+    // An affine cell is the convex polyhedron of its face planes: the chord is [last entry, first
+    // exit] over the planes (no inverse map; the integral needs no Newton start).
+    double t_near = -std::numeric_limits<double>::infinity(), t_exit = std::numeric_limits<double>::infinity();
+    std::array<double, 6> exit_t{};
+    exit_t.fill(std::numeric_limits<double>::quiet_NaN());
+    for (int f = 0; f < n_faces; ++f) {
+      const FaceGeometry& g = faces_[static_cast<std::size_t>(cell_faces_[base + static_cast<std::size_t>(f)])];
+      const double out = face_out_[base + static_cast<std::size_t>(f)];
+      double den;
+      const double th = plane_hit(g.normal, g.offset, w.o, w.d, den);
+      if (den == 0.0) {  // parallel: the whole line is outside this plane, or inside
+        if (out * (g.offset - g.normal.dot(w.o)) < 0.0) return false;
+        continue;
+      }
+      if (out * den > 0.0) {
+        exit_t[static_cast<std::size_t>(f)] = th;
+        t_exit = std::min(t_exit, th);
+      } else {
+        t_near = std::max(t_near, th);
+      }
+    }
+    if (!(t_near < t_exit) || !(t_near <= t + slack) || !(t_exit > t)) return false;
+    t_far = t_exit;
+    if (p_hint) *p_hint = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    if (exit_faces) {
+      exit_faces->clear();
+      const double s = w.slack(t_far);
+      for (int f = 0; f < n_faces; ++f)
+        if (std::fabs(exit_t[static_cast<std::size_t>(f)] - t_far) <= s) exit_faces->push_back(f);
+    }
+    return true;
+  }
+  // Every face's hits, then chord()'s classification of the intervals between them.
+  std::array<ChordFaceHit, 2 * 6> hits{};
+  int n_hits = 0;
+  for (int f = 0; f < n_faces; ++f) {
+    double th[2];
+    const int k = face_hits(static_cast<std::size_t>(cell_faces_[base + static_cast<std::size_t>(f)]), w, th);
+    for (int h = 0; h < k; ++h) hits[static_cast<std::size_t>(n_hits++)] = {th[h], f};
+  }
+  std::sort(hits.begin(), hits.begin() + n_hits, [](const ChordFaceHit& a, const ChordFaceHit& b) {
+    return a.t < b.t || (a.t == b.t && a.face < b.face);
+  });
+  std::array<double, 2 * 6> ts{};
+  int n_ts = 0;
+  for (int h = 0; h < n_hits; ++h)
+    if (n_ts == 0 || ts[static_cast<std::size_t>(n_ts - 1)] != hits[static_cast<std::size_t>(h)].t)
+      ts[static_cast<std::size_t>(n_ts++)] = hits[static_cast<std::size_t>(h)].t;
+  std::array<ChordInterval, 2 * 6> intervals{};
+  bool chord_failed = false;
+  const int n_iv = classify_chord_intervals(cells_[c], w.ray(), ts.data(), n_ts, intervals.data(), chord_failed);
+  if (chord_failed && failed) *failed = true;
+  return hold_interval(intervals.data(), n_iv, hits.data(), n_hits, w, t, t_far, exit_faces, p_hint);
+}
+
+bool CellTraversal::hold_interval(const ChordInterval* intervals, std::size_t n_intervals, const ChordFaceHit* hits,
+                                  std::size_t n_hits, const Walk& w, double t, double& t_far,
+                                  std::vector<int>* exit_faces, Vec3* p_hint) {
+  const double slack = w.slack(t);
+  for (std::size_t i = 0; i < n_intervals; ++i) {
+    const ChordInterval& iv = intervals[i];
+    if (!(iv.t_near <= t + slack) || !(iv.t_far > t)) continue;
+    t_far = iv.t_far;
+    if (p_hint) *p_hint = iv.p_mid;
+    if (exit_faces) {
+      exit_faces->clear();
+      const double s = w.slack(t_far);
+      for (std::size_t h = 0; h < n_hits; ++h)
+        if (std::fabs(hits[h].t - t_far) <= s && std::find(exit_faces->begin(), exit_faces->end(), hits[h].face) == exit_faces->end())
+          exit_faces->push_back(hits[h].face);
+    }
+    return true;
+  }
+  return false;
 }
 
 // ---- Building ----------------------------------------------------------------------------------
@@ -286,6 +453,20 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
     return a.key != b.key ? a.key < b.key : (a.cell != b.cell ? a.cell < b.cell : a.local < b.local);
   });
   neighbors_.assign(static_cast<std::size_t>(neighbor_offsets_[n]), -1);
+  cell_faces_.assign(static_cast<std::size_t>(neighbor_offsets_[n]), -1);
+  faces_.reserve(recs.size() / 2 + 1);
+  // A face's nodes in canonical order (of their global ids, as chord() puts them) and its plane.
+  const auto face_geometry = [&](std::int32_t cell, std::int32_t local) {
+    const auto c = static_cast<std::size_t>(cell);
+    const FaceNodes fn = linear_face(cells_[c].type, local);
+    std::array<std::int64_t, 4> ids{};
+    for (int k = 0; k < fn.count; ++k) ids[static_cast<std::size_t>(k)] = mesh_.cell(c)[fn.node[static_cast<std::size_t>(k)]];
+    const std::array<int, 4> perm = canonical_face_order(ids, fn.count);
+    std::array<Vec3, 4> nodes{};
+    for (int k = 0; k < fn.count; ++k)
+      nodes[static_cast<std::size_t>(k)] = mesh_.points[static_cast<std::size_t>(ids[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])])];
+    return planar_face_geometry(nodes, fn.count);
+  };
   const auto slot = [&](const Rec& r) {
     return static_cast<std::size_t>(neighbor_offsets_[static_cast<std::size_t>(r.cell)] + r.local);
   };
@@ -295,6 +476,9 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
     if (j - i > 2)
       throw InputError(source + ": cells[" + std::to_string(recs[i + 2].cell) + "]: a face is shared by more than two cells (also cells[" +
                        std::to_string(recs[i].cell) + "] and cells[" + std::to_string(recs[i + 1].cell) + "])");
+    const auto face_index = static_cast<std::int32_t>(face_count_);
+    for (std::size_t k = i; k < j; ++k) cell_faces_[slot(recs[k])] = face_index;
+    faces_.push_back(face_geometry(recs[i].cell, recs[i].local));
     if (j - i == 2) {
       neighbors_[slot(recs[i])] = recs[i + 1].cell;
       neighbors_[slot(recs[i + 1])] = recs[i].cell;
@@ -309,6 +493,7 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
       b.count = fn.count;
       b.cell = r.cell;
       b.local = r.local;
+      b.face = face_index;
       for (int k = 0; k < fn.count; ++k)
         b.points[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(ids[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])]);
       if (const QuadraticCell* q = quadratic_cell(c)) {  // the patch's nodes in the same canonical order
@@ -327,6 +512,27 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
     i = j;
   }
   std::vector<Rec>().swap(recs);
+  // Which way each planar face's normal points from each of its cells, and the cells whose chord
+  // is the clip of their face planes: affine (the map is linear: the cell is exactly the convex
+  // polyhedron its planar faces bound) and every face planar by the test above.
+  face_out_.assign(cell_faces_.size(), 1);
+  clip_.assign(n, 0);
+  for (std::size_t c = 0; c < n; ++c) {
+    if (quadratic_cell(c) != nullptr) continue;
+    const LinearCell& cell = cells_[c];
+    const int nodes = linear_node_count(cell.type);
+    Vec3 centre = Vec3::Zero();
+    for (int k = 0; k < nodes; ++k) centre += cell.x[static_cast<std::size_t>(k)];
+    centre /= nodes;
+    bool all_planar = true;
+    for (int f = 0; f < linear_face_count(cell.type); ++f) {
+      const auto slot_cf = static_cast<std::size_t>(neighbor_offsets_[c] + f);
+      const FaceGeometry& g = faces_[static_cast<std::size_t>(cell_faces_[slot_cf])];
+      all_planar = all_planar && g.planar;
+      face_out_[slot_cf] = g.normal.dot(centre) < g.offset ? 1 : -1;
+    }
+    clip_[c] = cell.affine && all_planar;
+  }
   // Cells around each point (for exits through edges and vertices).
   point_cells_offsets_.assign(mesh_.points.size() + 1, 0);
   for (std::int32_t p : mesh_.connectivity) ++point_cells_offsets_[static_cast<std::size_t>(p) + 1];
@@ -370,23 +576,11 @@ Chord CellTraversal::cell_chord(std::size_t c, const ViewRay& ray) const {
 
 bool CellTraversal::continue_in(std::size_t c, const Walk& w, double t, double& t_far,
                                 std::vector<int>* exit_faces, bool* failed, Vec3* p_hint) const {
+  if (quadratic_cell(c) == nullptr) return continue_in_linear(c, w, t, t_far, exit_faces, failed, p_hint);
   const Chord ch = cell_chord(c, w.ray());
   if (ch.failed && failed) *failed = true;
-  const double slack = w.slack(t);
-  for (const ChordInterval& iv : ch.intervals) {
-    if (!(iv.t_near <= t + slack) || !(iv.t_far > t)) continue;
-    t_far = iv.t_far;
-    if (p_hint) *p_hint = iv.p_mid;
-    if (exit_faces) {
-      exit_faces->clear();
-      const double s = w.slack(t_far);
-      for (const ChordFaceHit& h : ch.hits)
-        if (std::fabs(h.t - t_far) <= s && std::find(exit_faces->begin(), exit_faces->end(), h.face) == exit_faces->end())
-          exit_faces->push_back(h.face);
-    }
-    return true;
-  }
-  return false;
+  return hold_interval(ch.intervals.data(), ch.intervals.size(), ch.hits.data(), ch.hits.size(), w, t, t_far, exit_faces,
+                       p_hint);
 }
 
 // Rule 2: the cell that continues the ray at t after `from` (left through `exit_faces`).
@@ -471,6 +665,7 @@ void CellTraversal::trace(const ViewRay& ray, CellTrace& out, CellTraversalStats
   Walk w;
   w.o = out.origin;
   w.d = d;
+  w.frame.emplace(w.ray());
   w.self = this;
   const double t_end = tb1 - t_base + 0.01 * diagonal_;
   const long budget = 8 * static_cast<long>(cells_.size()) + 1000;

@@ -16,6 +16,13 @@
 // cells gives both the same hit parameters, bit for bit, and the exit of one cell is the entry
 // of the next (watertight). The pieces of the ray inside a cell are the intervals between face
 // hits whose midpoint maps (Newton) into the cell.
+// Planar faces (cell_traversal.cpp, "Planar faces"): each distinct face is stored once; one
+// planar to the rounding of its coordinates (twist term's normal part <= kAffineTolerance x its
+// largest coordinate, strictly convex), and every triangle, is intersected as its plane by one
+// routine for both cells (still bit for bit the same hit in both). An affine cell whose faces are
+// all planar is the convex polyhedron of its face planes: its chord is [last entry, first exit]
+// over them, without the hits' classification (no Newton). Other linear cells classify their
+// hits as chord() does (classify_chord_intervals).
 //
 // Walk. Rules, as for tetrahedra (tet_traversal.hpp):
 //  1. t never decreases. In a cell entered at t the ray is integrated over [t, t_far] with t_far
@@ -31,7 +38,7 @@
 //  3. No cell continues the ray: it has left the mesh. The next entry is the nearest boundary
 //     face hit beyond t whose cell holds that hit (first hit: Embree 3 user geometry over the
 //     boundary faces, bounds = the face's node box (a bilinear patch lies in the convex hull of its
-//     corners) padded by 1e-7 of the diagonal; every hit is computed in double by intersect_face,
+//     corners) padded by 1e-7 of the diagonal; every hit is computed in double by face_hits (the plane or intersect_face),
 //     nodes in canonical order). So rays that leave and re-enter a non-convex mesh, and meshes of
 //     several components, are followed to the end. Every re-entry is strictly beyond t.
 //  4. A hard budget of 8 x cells + 1000 steps per ray; hitting it is counted.
@@ -50,6 +57,7 @@
 //
 // The eye may be inside the mesh: the walk starts outside the bounding box (origin moved back
 // along the ray) and the chords are clipped at the true origin, as tet_traversal does.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -143,6 +151,10 @@ class CellTraversal {
   }
   std::size_t face_count() const { return face_count_; }
   std::size_t boundary_face_count() const { return boundary_.size(); }
+  // How many faces are planar (hit by their plane) and how many cells are chords by clipping
+  // (affine, every face planar): "Planar faces" in cell_traversal.cpp.
+  std::size_t planar_face_count() const;
+  std::size_t clipped_cell_count() const { return static_cast<std::size_t>(std::count(clip_.begin(), clip_.end(), 1)); }
   const Vec3& box_min() const { return box_min_; }
   const Vec3& box_max() const { return box_max_; }
   // The global point ids of cell c, VTK order, as chord() takes them.
@@ -162,6 +174,7 @@ class CellTraversal {
     std::array<std::int32_t, 4> mids{-1, -1, -1, -1};  // a quadratic face: mid-edge node of canonical
                                                        // corner edge (k, k + 1); -1 for a linear face
     std::int32_t centre = -1;  // a 9-node quadrilateral's face-centre node, else -1
+    std::int32_t face = -1;    // its index among all faces (the linear faces' hits, face_hits)
   };
   const BoundaryFace& boundary_face(std::size_t i) const { return boundary_[i]; }
 
@@ -177,6 +190,16 @@ class CellTraversal {
                  std::int32_t& cell, double& t_far, std::vector<int>& faces, CellTraversalStats& stats,
                  bool& failed, Vec3& p_hint) const;
   friend struct CellFirstHitAccess;
+  // The chord of linear cell c from its faces' shared geometry (faces_): clipped by the face planes
+  // (clip_), or the face hits classified as chord() does. Same contract as continue_in.
+  bool continue_in_linear(std::size_t c, const Walk& w, double t, double& t_far, std::vector<int>* exit_faces,
+                          bool* failed, Vec3* p_hint) const;
+  // The interval among `intervals` that holds t (rule 1), its end, p_mid and the faces hit there.
+  static bool hold_interval(const ChordInterval* intervals, std::size_t n_intervals, const ChordFaceHit* hits,
+                            std::size_t n_hits, const Walk& w, double t, double& t_far, std::vector<int>* exit_faces,
+                            Vec3* p_hint);
+  // The hits (ray parameters, sorted, at most 2) of the walk's line with face i of faces_.
+  int face_hits(std::size_t i, const Walk& w, double* t) const;
   // The chord of cell c (linear or quadratic), nodes by their global ids (canonical faces).
   Chord cell_chord(std::size_t c, const ViewRay& ray) const;
 
@@ -189,6 +212,22 @@ class CellTraversal {
   std::vector<std::int32_t> neighbors_;         // the cell across each face, -1 on the boundary
   std::vector<std::int32_t> point_cells_offsets_, point_cells_;  // cells around each point
   std::vector<BoundaryFace> boundary_;
+  // Every distinct face of the linear cells, once (cell_traversal.cpp, "Planar faces"): its nodes
+  // in canonical order and, when it is planar, its plane. Both cells of a shared face intersect
+  // this one record, so they get the same hit parameters bit for bit (watertight).
+  struct FaceGeometry {
+    std::array<Vec3, 4> nodes{};
+    Vec3 normal = Vec3::Zero();  // planar: normal . x = offset on the face
+    double offset = 0.0;
+    std::array<double, 4> edge_slack{};  // planar: the inside test's slack per edge
+    int count = 0;
+    bool planar = false;
+  };
+  static FaceGeometry planar_face_geometry(const std::array<Vec3, 4>& nodes, int count);
+  std::vector<FaceGeometry> faces_;
+  std::vector<std::int32_t> cell_faces_;  // neighbor_offsets_[c] + f: face f of cell c in faces_ (-1: quadratic cell)
+  std::vector<std::int8_t> face_out_;     // neighbor_offsets_[c] + f: +1 when the face's normal points out of c, else -1
+  std::vector<char> clip_;                // per cell: affine with every face planar: its chord is the planes' clip
   std::size_t face_count_ = 0;
   Vec3 box_min_, box_max_;
   double diagonal_ = 0.0;
