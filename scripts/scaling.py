@@ -9,7 +9,7 @@ give 10k, 105k, 1.05M, 10.4M), written as binary .vtk and, by scripts/big_meshes
 
 Every figure is a median over --repeats runs; runs of the binaries compared (--before, the
 current build) are interleaved, so a change of the machine's load hits both alike. Times:
-  cpu_s   user + system CPU seconds of the whole process (/usr/bin/time), the load measures;
+  cpu_s   user + system CPU seconds of the whole process (its rusage), the load measures;
   wall_s  elapsed seconds of a render phase (rayint's own summary; VTK: around Render());
   render CPU: rayint, CPU of the 512 x 512 run minus the 16 x 16 one; VTK, process_time() around
           Render() (every thread: llvmpipe's rasteriser threads too), the fairer measure when
@@ -24,7 +24,7 @@ Phases of rayint's load, per file (one process each):
   load    `rayint render` of the case at 16 x 16, minus nothing: read + repair + check + the
           traversal build + 256 rays (negligible): the end-to-end load, per tet;
   build   load minus read and check (repair, the traversal's faces, cell records, Embree BVH).
-Peak memory: peak RSS (/usr/bin/time %M) of `rayint render` at 512 x 512, per tet, and the
+Peak memory: peak RSS (the process's rusage) of `rayint render` at 512 x 512, per tet, and the
 fixed part (the 16 x 16 render of the 10k mesh) subtracted for the per-tet slope.
 
 usage: scaling.py --rayint build/rayint [--before OLD_RAYINT] --work /tmp/rayint-scaling
@@ -38,6 +38,7 @@ import re
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -64,14 +65,20 @@ class RunFailed(Exception):
 
 
 def timed(cmd, env=None):
-    """(cpu_s, peak_rss_kb, stdout, stderr) of one process run under /usr/bin/time."""
-    fmt = "@@TIME %U %S %M %e"
-    p = subprocess.run(["/usr/bin/time", "-f", fmt] + cmd, capture_output=True, text=True, env=env)
-    m = re.search(r"@@TIME ([\d.]+) ([\d.]+) (\d+) ([\d.]+)", p.stderr)
-    if p.returncode != 0 or not m:
-        raise RunFailed("failed (exit %d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr[-600:]))
-    err = p.stderr[: m.start()]
-    return float(m.group(1)) + float(m.group(2)), int(m.group(3)), p.stdout, err
+    """(cpu_s, peak_rss_kb, stdout, stderr) of one process, from its own rusage (os.wait4): user +
+    system to the microsecond (Linux accounts run time in nanoseconds; /usr/bin/time, used until
+    round 9, printed it in steps of 10 ms, 0.1 us per tet on the 105k mesh) and its peak RSS."""
+    with tempfile.TemporaryFile("w+") as fo, tempfile.TemporaryFile("w+") as fe:
+        p = subprocess.Popen(cmd, stdout=fo, stderr=fe, text=True, env=env)
+        _, status, ru = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        fo.seek(0)
+        fe.seek(0)
+        out, err = fo.read(), fe.read()
+    if p.returncode != 0:
+        how = "killed by signal %d" % -p.returncode if p.returncode < 0 else "exit %d" % p.returncode
+        raise RunFailed("failed (%s): %s\n%s" % (how, " ".join(cmd), err[-600:]))
+    return ru.ru_utime + ru.ru_stime, ru.ru_maxrss, out, err
 
 
 def case(path, mesh_file, size):
