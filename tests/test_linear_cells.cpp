@@ -49,6 +49,40 @@ LinearCell random_cell(LinearCellType type, std::mt19937& rng, double noise, boo
   return make_linear_cell(type, nodes, values);
 }
 
+// An undistorted random cell; a hexahedron sheared into a parallelepiped (still affine, but no
+// longer a box).
+LinearCell affine_cell(LinearCellType type, std::mt19937& rng) {
+  LinearCell cell = random_cell(type, rng, 0.0);
+  if (type != LinearCellType::hexahedron) return cell;
+  const Vec3 shear(0.3, -0.2, 0.1);
+  std::vector<Vec3> nodes;
+  std::vector<double> values;
+  for (std::size_t i = 0; i < 8; ++i) {
+    nodes.push_back(cell.x[i] + cell.x[i][2] * shear);
+    values.push_back(cell.value[i]);
+  }
+  return make_linear_cell(type, nodes, values);
+}
+
+// affine_cell with a ray from a random direction through its centre and the chord's one interval.
+struct AffineSample {
+  LinearCell cell;
+  ViewRay ray;
+  double t_near, t_far;
+};
+
+AffineSample affine_sample(LinearCellType type, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  LinearCell cell = affine_cell(type, rng);
+  REQUIRE(cell.affine);
+  const Vec3 target = cell_position(cell, linear_reference_centre(type));
+  const Vec3 eye = target + 6.0 * Vec3(u(rng), u(rng), u(rng)).normalized();
+  const ViewRay ray{eye, (target - eye).normalized()};
+  const Chord ch = chord(cell, ray);
+  REQUIRE(ch.intervals.size() == 1);
+  return {std::move(cell), ray, ch.intervals[0].t_near, ch.intervals[0].t_far};
+}
+
 }  // namespace
 
 TEST_CASE("linear cells: shape functions, derivatives and positions match VTK's own", "[cells][isoparametric]") {
@@ -145,28 +179,11 @@ TEST_CASE("linear cells: an affine cell's scalar along a chord multiplied out eq
   // scale plus 8 ulps of max |f_i| (cell_scalar's rounding); and the scale is that small (<= 64
   // ulps of max |f_i|, the tail target of cell_integral.hpp).
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   int points = 0;
   for (LinearCellType type : {LinearCellType::voxel, LinearCellType::hexahedron, LinearCellType::wedge}) {
     for (int k = 0; k < 20; ++k) {
-      LinearCell cell = random_cell(type, rng, 0.0);
-      if (type == LinearCellType::hexahedron) {
-        std::vector<Vec3> nodes;
-        std::vector<double> values;
-        for (int i = 0; i < 8; ++i) {
-          const auto ii = static_cast<std::size_t>(i);
-          nodes.push_back(cell.x[ii] + cell.x[ii][2] * Vec3(0.3, -0.2, 0.1));
-          values.push_back(cell.value[ii]);
-        }
-        cell = make_linear_cell(type, nodes, values);
-      }
-      REQUIRE(cell.affine);
-      const Vec3 target = cell_position(cell, linear_reference_centre(type));
-      const Vec3 eye = target + 6.0 * Vec3(u(rng), u(rng), u(rng)).normalized();
-      const ViewRay ray{eye, (target - eye).normalized()};
-      const Chord ch = chord(cell, ray);
-      REQUIRE(ch.intervals.size() == 1);
-      const double a = ch.intervals[0].t_near, b = ch.intervals[0].t_far;
+      const auto [cell, ray, t_near, t_far] = affine_sample(type, rng);
+      const double a = t_near, b = t_far;
       std::array<double, 4> c{};
       const double rounding = affine_chord_chebyshev(cell, ray, a, b, c);
       double f_max = 0.0;
@@ -311,7 +328,6 @@ TEST_CASE("linear cells: rays through shared edges and vertices neither drop nor
 
 TEST_CASE("linear cells: the curved paths agree with the exact ones where both apply", "[cells][isoparametric]") {
   std::mt19937 rng(13);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   TransferFunctions tf;
   for (int c = 0; c < kChannels; ++c) {
     tf.density[static_cast<std::size_t>(c)] = {{0.0, 0.3, 0.55, 1.0}, {0.2, 1.5 + c, 0.4, 2.0}};
@@ -321,27 +337,10 @@ TEST_CASE("linear cells: the curved paths agree with the exact ones where both a
   int compared = 0;
   for (LinearCellType type : {LinearCellType::tetra, LinearCellType::hexahedron, LinearCellType::wedge}) {
     for (int k = 0; k < 30; ++k) {
-      LinearCell cell = random_cell(type, rng, 0.0);  // undistorted: affine
-      if (type == LinearCellType::hexahedron) {       // a sheared parallelepiped
-        const Vec3 shear(0.3, -0.2, 0.1);
-        std::vector<Vec3> nodes;
-        std::vector<double> values;
-        for (int i = 0; i < 8; ++i) {
-          const auto ii = static_cast<std::size_t>(i);
-          nodes.push_back(cell.x[ii] + cell.x[ii][2] * shear);
-          values.push_back(cell.value[ii]);
-        }
-        cell = make_linear_cell(type, nodes, values);
-      }
-      REQUIRE(cell.affine);
-      const Vec3 target = cell_position(cell, linear_reference_centre(type));
-      const Vec3 eye = target + 6.0 * Vec3(u(rng), u(rng), u(rng)).normalized();
-      const ViewRay ray{eye, (target - eye).normalized()};
-      const Chord ch = chord(cell, ray);
-      REQUIRE(ch.intervals.size() == 1);
-      const CellPieceIntegral exact = integrator.integrate(cell, ray, ch.intervals[0].t_near, ch.intervals[0].t_far);
+      const auto [cell, ray, t_near, t_far] = affine_sample(type, rng);
+      const CellPieceIntegral exact = integrator.integrate(cell, ray, t_near, t_far);
       const CellPieceIntegral curved =
-          integrator.integrate_isoparametric(cell, ray, ch.intervals[0].t_near, ch.intervals[0].t_far);
+          integrator.integrate_isoparametric(cell, ray, t_near, t_far);
       INFO(linear_cell_name(type) << ": " << exact.failure << " / " << curved.failure);
       REQUIRE(exact.converged);
       REQUIRE(curved.converged);
