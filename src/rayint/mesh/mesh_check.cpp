@@ -69,10 +69,13 @@ Vec3 face_normal(const std::array<Vec3, 4>& q, const int (&f)[3]) {
 // One tet's side of the separating-axis test, formed once and used against many others (the
 // boundary check tests each tet against all the boundary tets near it): its points, the sum of
 // its points, and per face the normal's length, the unit normal and the tet's own projection
-// interval on it -- the same operations, in the same order, as forming them per pair.
+// interval on it -- the same operations, in the same order, as forming them per pair. The face
+// part is formed at the first pair the centroid axis does not settle (form_faces), so a tet
+// tested once (the full check) costs what it did before.
 struct TetAxes {
   std::array<Vec3, 4> p;
   Vec3 sum;
+  bool faces = false;  // norm, unit, lo, hi formed
   std::array<double, 4> norm;
   std::array<Vec3, 4> unit;
   std::array<double, 4> lo, hi;
@@ -82,6 +85,12 @@ TetAxes tet_axes(const TetMesh& m, std::size_t t) {
   TetAxes A;
   for (std::size_t k = 0; k < 4; ++k) A.p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
   A.sum = A.p[0] + A.p[1] + A.p[2] + A.p[3];
+  return A;
+}
+
+void form_faces(TetAxes& A) {
+  if (A.faces) return;
+  A.faces = true;
   for (std::size_t f = 0; f < 4; ++f) {
     const Vec3 axis = face_normal(A.p, kTetFaces[f]);
     A.norm[f] = axis.norm();
@@ -93,11 +102,10 @@ TetAxes tet_axes(const TetMesh& m, std::size_t t) {
       A.hi[f] = std::max(A.hi[f], x);
     }
   }
-  return A;
 }
 
-// tets_overlap with the pair's size (the larger box diagonal) given and tet a's axes formed.
-bool overlap_exact(const TetAxes& A, const TetMesh& m, std::size_t ib, double size) {
+// tets_overlap with the pair's size (the larger box diagonal) given and tet a's points.
+bool overlap_exact(TetAxes& A, const TetMesh& m, std::size_t ib, double size) {
   const std::array<Vec3, 4>& a = A.p;
   std::array<Vec3, 4> b;
   for (std::size_t k = 0; k < 4; ++k) b[k] = m.points[static_cast<std::size_t>(m.tets[ib][k])];
@@ -119,6 +127,7 @@ bool overlap_exact(const TetAxes& A, const TetMesh& m, std::size_t ib, double si
     if (len > 1e-12 * size && overlap_on(a, b, axis / len) <= tol) return false;
   }
   // a's faces: its own interval on each is formed (most point-sharing pairs end here).
+  form_faces(A);
   for (std::size_t f = 0; f < 4; ++f) {
     if (!(A.norm[f] > degenerate)) continue;
     double blo = b[0].dot(A.unit[f]), bhi = blo;
@@ -144,7 +153,8 @@ bool overlap_exact(const TetAxes& A, const TetMesh& m, std::size_t ib, double si
 
 bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
   const Box ba = box_of(m, ia), bb = box_of(m, ib);
-  return overlap_exact(tet_axes(m, ia), m, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()));
+  TetAxes A = tet_axes(m, ia);
+  return overlap_exact(A, m, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()));
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& m, OverlapScope scope) {
@@ -222,7 +232,8 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
         for (const std::int32_t pb : m.tets[b])
           if (pa == pb) return;
     }
-    if (overlap_exact(tet_axes(m, a), m, b, std::max(spans[a].size, spans[b].size))) first = std::make_pair(a, b);
+    TetAxes axes_a = tet_axes(m, a);
+    if (overlap_exact(axes_a, m, b, std::max(spans[a].size, spans[b].size))) first = std::make_pair(a, b);
   };
   // A pair is tested once: in the grid cell of the lower corner of the boxes' intersection,
   // max(A.lo, B.lo), whose cell is the larger of the two lower cells on each axis (the cell index
