@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "subcommand.hpp"
 #include "options.hpp"
 #include "rayint/studies/evaluate.hpp"
@@ -75,6 +76,11 @@ void set_eval_command(CLI::App& app) {
     std::vector<Case> cases;
     std::vector<std::optional<TetRepairs>> repairs;  // mesh cases: reoriented / dropped tets
     std::vector<MeshCase> own;  // mesh cases of cells other than tetrahedra ("mode": "own")
+    // Every file is read (and so validated) before any is evaluated: a bad one must give one line
+    // and nothing before it (issue 30). While reading, progress is a terminal line rewritten in
+    // place (main ends it before an error); in a log, one line once all files are read.
+    ProgressLine read_progress;
+    bool read_was_slow = false;
     const auto read = [&](const std::string& file) {
       repairs.emplace_back();
       std::optional<MeshCase> own_case;
@@ -85,8 +91,9 @@ void set_eval_command(CLI::App& app) {
       } else {
         cases.push_back(std::move(c));
       }
-      if (line_due())
-        std::fprintf(stderr, "eval: read %s, %.0f s\n", file.c_str(), seconds());
+      if (!line_due()) return;
+      read_was_slow = true;
+      if (stderr_is_terminal()) read_progress.update("eval: read " + file, 0.0);
     };
     for (const auto& f : opt->files) {  // a folder means every case file in it
       if (std::filesystem::is_directory(f)) {
@@ -96,6 +103,11 @@ void set_eval_command(CLI::App& app) {
       } else {
         read(f);  // validate all before evaluating any
       }
+    }
+    read_progress.finish();
+    if (read_was_slow) {
+      const std::size_t n = cases.size() + own.size();
+      std::fprintf(stderr, "eval: read %zu case file%s, %.0f s\n", n, n == 1 ? "" : "s", seconds());
     }
     if (!own.empty()) {
       // Cells other than tetrahedra in their own interpolation (mesh/cell_traversal.hpp): the

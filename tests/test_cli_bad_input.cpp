@@ -132,6 +132,9 @@ TEST_CASE("bad input: invalid JSON", "[cli][bad_input]") {
   std::ofstream(dir.path / "folder" / "a-good.json") << kCase;
   std::ofstream(dir.path / "folder" / "b-bad.json") << kCase.substr(0, 20);
   expect_bad_input(dir, "eval folder", "folder/b-bad.json: (root): ", "invalid JSON");
+  // Progress due after every file (as when reading is slow): still the error line alone, since
+  // every file is read before anything else is printed.
+  expect_bad_input(dir, "eval folder --progress-every 0", "folder/b-bad.json: (root): ", "invalid JSON");
 }
 
 TEST_CASE("bad input: wrong types", "[cli][bad_input]") {

@@ -68,7 +68,7 @@ TEST_CASE("CLI: eval progress goes to stderr, never stdout, and --quiet silences
   const CliRun r = run_cli(dir.path, "eval fig2.json --methods exact --no-timing --progress-every 0");
   REQUIRE(r.status == 0);
   INFO("stderr: " << r.err);
-  CHECK(r.err.find("eval: read fig2.json") != std::string::npos);
+  CHECK(r.err.find("eval: read 1 case file, 0 s\n") != std::string::npos);  // after reading, not per file
   CHECK(r.err.find("eval fig2: reference 3/3 segments (100%)") != std::string::npos);
   CHECK(r.err.find("eval fig2: method exact, ray 1/2") != std::string::npos);
   CHECK(r.err.find("eval fig2: method exact, ray 2/2") != std::string::npos);
