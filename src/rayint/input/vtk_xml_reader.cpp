@@ -136,6 +136,10 @@ void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string
     d.fail(offsets_field, "the last offset (" + std::to_string(n_conn) + ") is more than the file could hold");
   const std::vector<double> conn = d.values(conn_array, conn_field, n_conn);
   std::size_t start = raw.connectivity.size();
+  // Reserved: growing by push_back touched about twice the final pages and copied them (issue 33).
+  raw.connectivity.reserve(start + n_conn);
+  raw.types.reserve(raw.types.size() + n_cells);
+  raw.offsets.reserve(raw.offsets.size() + n_cells);
   for (std::size_t i = 0; i < n_conn; ++i) {
     if (!(conn[i] >= 0 && conn[i] < static_cast<double>(n_points)) || conn[i] != std::floor(conn[i]))
       d.fail(conn_field, "value " + std::to_string(i) + " (" + std::to_string(conn[i]) + ") is not a point index in [0, " +

@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/huge_pages.hpp"
 #include "rayint/core/counters.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
@@ -184,7 +185,7 @@ class TetTraversal {
   friend struct FirstHitFilterAccess;
 
   TetMesh mesh_;
-  std::vector<CellRecord> cells_;
+  std::vector<CellRecord, HugePageAllocator<CellRecord>> cells_;
   std::vector<Vec3> gradients_;           // Eq. 9 gradient per cell (24 B; used once per crossing)
   std::vector<Face> boundary_;            // boundary faces, in Embree's primitive order
   std::vector<std::int8_t> boundary_k_;   // local index of boundary_[i] in boundary_[i].cells[0]
