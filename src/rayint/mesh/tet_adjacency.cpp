@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "rayint/core/error.hpp"
-#include "rayint/core/huge_pages.hpp"
+#include "rayint/core/prefaulted.hpp"
 
 namespace rayint {
 
@@ -56,7 +56,7 @@ TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
   for (std::size_t t = 0; t < n; ++t)
     for (const std::array<std::int32_t, 3>& key : face_keys(mesh, t)) ++start[static_cast<std::size_t>(key[0]) + 1];
   for (std::size_t p = 0; p < mesh.points.size(); ++p) start[p + 1] += start[p];
-  std::vector<Rec, HugePageAllocator<Rec>> recs(4 * n);
+  std::vector<Rec, PrefaultedAllocator<Rec>> recs(4 * n);
   {
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (std::size_t t = 0; t < n; ++t) {
