@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "rayint/core/prefaulted.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
@@ -40,11 +41,15 @@ struct RawArray {
   std::vector<double> values;  // tuples x components (may be left empty for arrays never usable)
 };
 
+// The cell arrays are reserved to (about: the legacy cell list's size counts the per-cell counts
+// too) their size and then written: prefaulted (core/prefaulted.hpp).
 struct RawMesh {
+  template <class T>
+  using Array = std::vector<T, PrefaultedAllocator<T>>;
   std::vector<Vec3> points;
-  std::vector<long long> types;                 // VTK cell type id per cell
-  std::vector<std::size_t> offsets{0};          // cell i: connectivity[offsets[i], offsets[i+1])
-  std::vector<long long> connectivity;          // point indices
+  Array<long long> types;                 // VTK cell type id per cell
+  Array<std::size_t> offsets{0};          // cell i: connectivity[offsets[i], offsets[i+1])
+  Array<long long> connectivity;          // point indices
   std::vector<RawArray> arrays;
 };
 

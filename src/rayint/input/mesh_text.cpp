@@ -60,7 +60,10 @@ std::vector<std::string_view> LineCursor::need_words(const std::string& field, s
 void LineCursor::skip_bytes(std::size_t n) {
   if (n > remaining_bytes()) fail("binary data", "truncated: need " + std::to_string(n) + " bytes, " +
                                                      std::to_string(remaining_bytes()) + " left");
-  for (std::size_t i = pos_; i < pos_ + n; ++i) line_no_ += bytes_[i] == '\n' ? 1 : 0;
+  // Counted into a local (std::count): adding to the member line_no_ byte by byte kept the loop
+  // from vectorising (a char store may alias it); ~3% of a binary .msh load (issue 33).
+  const char* p = bytes_.data() + pos_;
+  line_no_ += static_cast<std::size_t>(std::count(p, p + n, '\n'));
   pos_ += n;
 }
 

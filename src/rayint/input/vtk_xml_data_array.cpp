@@ -93,6 +93,46 @@ double to_double(std::uint64_t bits, const TypeInfo& t) {
   return static_cast<double>(static_cast<std::int64_t>(bits << shift) >> shift);
 }
 
+// Little-endian data on a little-endian host: each value read as its own type and converted, the
+// values to_double(word(...)) gives (a float or an integer to double: exact or the same rounding),
+// in a loop per type instead of per-byte assembly and a type switch per value (~2.5% of the 105k
+// .vtu load; issue 33). False: a type not listed (none today), decoded by the general loop.
+constexpr bool little_endian_host() { return __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__; }
+
+template <class T>
+void convert_values(const unsigned char* p, double* into, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    T v;
+    std::memcpy(&v, p + i * sizeof(T), sizeof(T));
+    into[i] = static_cast<double>(v);
+  }
+}
+
+bool convert_native(const unsigned char* p, const TypeInfo& t, double* into, std::size_t n) {
+  switch (t.kind) {
+    case TypeInfo::kFloat:
+      if (t.width == 8) convert_values<double>(p, into, n);
+      else if (t.width == 4) convert_values<float>(p, into, n);
+      else return false;
+      return true;
+    case TypeInfo::kSigned:
+      if (t.width == 8) convert_values<std::int64_t>(p, into, n);
+      else if (t.width == 4) convert_values<std::int32_t>(p, into, n);
+      else if (t.width == 2) convert_values<std::int16_t>(p, into, n);
+      else if (t.width == 1) convert_values<std::int8_t>(p, into, n);
+      else return false;
+      return true;
+    case TypeInfo::kUnsigned:
+      if (t.width == 8) convert_values<std::uint64_t>(p, into, n);
+      else if (t.width == 4) convert_values<std::uint32_t>(p, into, n);
+      else if (t.width == 2) convert_values<std::uint16_t>(p, into, n);
+      else if (t.width == 1) convert_values<std::uint8_t>(p, into, n);
+      else return false;
+      return true;
+  }
+  return false;
+}
+
 int base64_value(char c) {
   if (c >= 'A' && c <= 'Z') return c - 'A';
   if (c >= 'a' && c <= 'z') return c - 'a' + 26;
@@ -509,6 +549,7 @@ void Document::values_into(pugi::xml_node array, const std::string& field, std::
   if (bytes.data() == nullptr) bytes = data;
   double* into = buffer();
   const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+  if (!big_endian_ && little_endian_host() && convert_native(p, t, into, expected)) return;
   for (std::size_t i = 0; i < expected; ++i, p += t.width) into[i] = to_double(word(p, t.width, big_endian_), t);
 }
 

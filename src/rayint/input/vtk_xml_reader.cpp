@@ -70,6 +70,16 @@ std::vector<double> finite_values(const Document& d, pugi::xml_node array, const
   return v;
 }
 
+// An array's values in a prefaulted buffer (core/prefaulted.hpp): the cell arrays, written in full.
+RawMesh::Array<double> cell_values(const Document& d, pugi::xml_node array, const std::string& field, std::size_t n) {
+  RawMesh::Array<double> v;
+  d.values_into(array, field, n, [&] {
+    v.resize(n);
+    return v.data();
+  });
+  return v;
+}
+
 }  // namespace
 
 namespace {
@@ -118,9 +128,9 @@ void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string
   const std::string cells_field = piece_field + "/Cells";
   const pugi::xml_node cells = d.only_child(piece, "Cells", piece_field);
   const std::string types_field = cells_field + "/DataArray[types]";
-  const std::vector<double> types = d.values(named_array(d, cells, "types", cells_field), types_field, n_cells);
+  const auto types = cell_values(d, named_array(d, cells, "types", cells_field), types_field, n_cells);
   const std::string offsets_field = cells_field + "/DataArray[offsets]";
-  const std::vector<double> offsets = d.values(named_array(d, cells, "offsets", cells_field), offsets_field, n_cells);
+  const auto offsets = cell_values(d, named_array(d, cells, "offsets", cells_field), offsets_field, n_cells);
   // The connectivity's length is the last offset (VTK XML stores each cell's end offset).
   double prev = 0.0;
   for (std::size_t i = 0; i < n_cells; ++i) {
@@ -134,8 +144,12 @@ void append_vtu_piece(const Document& d, pugi::xml_node piece, const std::string
   const pugi::xml_node conn_array = named_array(d, cells, "connectivity", cells_field);
   if (n_conn > 8 * d.source_size() + 64)
     d.fail(offsets_field, "the last offset (" + std::to_string(n_conn) + ") is more than the file could hold");
-  const std::vector<double> conn = d.values(conn_array, conn_field, n_conn);
+  const auto conn = cell_values(d, conn_array, conn_field, n_conn);
   std::size_t start = raw.connectivity.size();
+  // Reserved: growing by push_back touched about twice the final pages and copied them (issue 33).
+  raw.connectivity.reserve(start + n_conn);
+  raw.types.reserve(raw.types.size() + n_cells);
+  raw.offsets.reserve(raw.offsets.size() + n_cells);
   for (std::size_t i = 0; i < n_conn; ++i) {
     if (!(conn[i] >= 0 && conn[i] < static_cast<double>(n_points)) || conn[i] != std::floor(conn[i]))
       d.fail(conn_field, "value " + std::to_string(i) + " (" + std::to_string(conn[i]) + ") is not a point index in [0, " +

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "rayint/core/error.hpp"
+#include "rayint/core/prefaulted.hpp"
 
 namespace rayint {
 
@@ -55,7 +56,7 @@ TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
   for (std::size_t t = 0; t < n; ++t)
     for (const std::array<std::int32_t, 3>& key : face_keys(mesh, t)) ++start[static_cast<std::size_t>(key[0]) + 1];
   for (std::size_t p = 0; p < mesh.points.size(); ++p) start[p + 1] += start[p];
-  std::vector<Rec> recs(4 * n);
+  std::vector<Rec, PrefaultedAllocator<Rec>> recs(4 * n);
   {
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (std::size_t t = 0; t < n; ++t) {
@@ -87,9 +88,13 @@ TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
     return normal.dot(opposite - mesh.points[static_cast<std::size_t>(key[0])]) < 0.0 ? 1 : -1;
   };
   TetNeighbors next(n);
+  // Compared by element: std::array's == called memcmp (~2% of the 105k load; issue 33).
+  const auto same_face = [](const Rec& x, const Rec& y) {
+    return x.key[0] == y.key[0] && x.key[1] == y.key[1] && x.key[2] == y.key[2];
+  };
   for (std::size_t i = 0; i < recs.size();) {
     std::size_t j = i + 1;
-    while (j < recs.size() && recs[j].key == recs[i].key) ++j;
+    while (j < recs.size() && same_face(recs[j], recs[i])) ++j;
     if (j - i > 2)
       throw InputError(source + ": tets[" + std::to_string(recs[i + 2].tet_k / 4) + "]: face (" +
                        std::to_string(recs[i].key[0]) + ", " + std::to_string(recs[i].key[1]) + ", " +

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "rayint/core/counters.hpp"
+#include "rayint/core/prefaulted.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/quadratic_tets.hpp"
@@ -184,8 +185,9 @@ class TetTraversal {
   friend struct FirstHitFilterAccess;
 
   TetMesh mesh_;
-  std::vector<CellRecord> cells_;
-  std::vector<Vec3> gradients_;           // Eq. 9 gradient per cell (24 B; used once per crossing)
+  // cells_ and gradients_ are written in full by the constructor: prefaulted (core/prefaulted.hpp).
+  std::vector<CellRecord, PrefaultedAllocator<CellRecord>> cells_;
+  std::vector<Vec3, PrefaultedAllocator<Vec3>> gradients_;  // Eq. 9 gradient per cell (24 B; used once per crossing)
   std::vector<Face> boundary_;            // boundary faces, in Embree's primitive order
   std::vector<std::int8_t> boundary_k_;   // local index of boundary_[i] in boundary_[i].cells[0]
   std::size_t face_count_ = 0;
