@@ -718,8 +718,9 @@ CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double val
       Channels piece_emission{}, quadrature_error{};
       if (emits) {
         // At n nodes at once, vectorised over the nodes (emission_nodes.hpp: the same operations
-        // as the scalar form, exp Highway's, documented 1 ulp; libm's, used before 2026-12-05,
-        // ~0.5 ulp; an exponent outside [-700, 700] or NaN goes to std::exp).
+        // as the scalar form, fused multiply-adds on FMA targets, exp Highway's, documented 1 ulp;
+        // libm's, used before 2026-12-05, ~0.5 ulp; an exponent outside [-700, 700] or NaN goes
+        // to std::exp).
         EmissionPiece emission_piece;
         emission_piece.c = I.c.data(), emission_piece.nc = I.c.size();
         emission_piece.P = P.data(), emission_piece.nP = P.size();

@@ -73,7 +73,8 @@
 //      (gauss_bounds, exp_upper; before 2026-12-05 rho = 4 .. 32, all four, libm's exp: a tenth
 //      of `rayint bench` box12's own time). The integrand at a rule's nodes is evaluated
 //      vectorised over the nodes (cells/emission_nodes.hpp: Highway, the scalar operations in the
-//      same order, exp Highway's Exp, documented 1 ulp, instead of libm's). Otherwise 15-point Gauss-Kronrod (Boost.Math's nodes and weights),
+//      same order, fused multiply-adds where the target has them, exp Highway's Exp, documented
+//      1 ulp, instead of libm's: results move at the rounding level and between SIMD targets). Otherwise 15-point Gauss-Kronrod (Boost.Math's nodes and weights),
 //      globally adaptive: the subinterval with the largest |K - G| is halved (at most
 //      256) until sum |K - G| <= kQuadratureTolerance = 1e-14 of the integral of |integrand|
 //      (or 8 ulps of it, the rounding floor of the sums), or below the integrand's own rounding

@@ -15,7 +15,8 @@ namespace rayint {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// sum_k a[k] T_k(x), as the scalar clenshaw of cell_integral.cpp (same operations, same order).
+// sum_k a[k] T_k(x), as the scalar clenshaw of cell_integral.cpp (same operations, same order;
+// the compiler may fuse multiply-adds on FMA targets).
 template <class D, class V>
 HWY_INLINE V Clenshaw(D d, const double* a, std::size_t n, V x) {
   V b1 = hn::Zero(d), b2 = hn::Zero(d);

@@ -5,8 +5,10 @@
 // AVX-512): f(x) = sum_k c_k T_k(x) and its antiderivative P by Clenshaw's recurrence, rho_c and
 // kappa_c the transfer functions' linear parts on the piece, tau_c(x) = h (v0 (x - x0) + beta
 // ((P(x) - P0) - s0 (x - x0))) the exact optical depth from x0. The operations are those of the
-// scalar form in the same order (no fused multiply-adds), so f, P, rho, kappa and tau are the
-// scalar ones bit for bit; exp is Highway's Exp (documented 1 ulp), an exponent outside [-700,
+// scalar form in the same order, but on targets with FMA (AVX2, AVX-512) the compiler fuses
+// multiply-adds (GCC's default -ffp-contract=fast; the baseline scalar build has no FMA), so f,
+// P, rho, kappa and tau agree with the scalar form to rounding, not bit for bit, and differ
+// between targets at that level; exp is Highway's Exp (documented 1 ulp), an exponent outside [-700,
 // 700] (or NaN) goes to std::exp (Highway's Exp is valid up to +706 and maps NaN to 0, so a
 // failure stays inf or NaN, never a number). g_c = 0 where kappa_c rho_c = 0.
 #include <array>
