@@ -50,8 +50,8 @@ using G7 = boost::math::quadrature::gauss<double, 7>;
 // the embedded 7-point Gauss rule's nodes at even indices), filled Gauss nodes first.
 // Integrands are evaluated in batches, f(c, h, u, n, values) at the n <= kMaxBatch nodes
 // c + h u[j] (u: signed unit nodes, read up to kMaxEmissionNodes), so that the emission is
-// evaluated vectorised over a rule's nodes (emission_nodes.hpp); c + h (-x) is c - h x exactly,
-// the nodes of the scalar rules before.
+// evaluated vectorised over a rule's nodes (emission_nodes.hpp); c + h (-x) is the scalar rules'
+// c - h x (to its rounding where the target fuses the multiply-add).
 constexpr std::size_t kMaxBatch = 15;
 static_assert(kMaxBatch <= kMaxEmissionNodes, "emission_at_nodes takes the largest batch");
 using UnitNodes = std::array<double, kMaxEmissionNodes>;  // padded with zeros
