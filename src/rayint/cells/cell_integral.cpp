@@ -317,8 +317,8 @@ LinearPart linear_part(const PiecewiseLinear& f, double f_mid) {
 // up while a larger ellipse lowers some channel's bound, else down likewise, stopping as soon as
 // the 7- or the 10-point bound is within `enough` in every channel (the caller's rounding floor:
 // a smaller bound would change nothing; measured on the bench's box12: 94 % of the pieces stop
-// at the first ellipse, 6 % after three; 1.1 visits per piece, 4 before); infinite when nothing is finite. (Every ellipse's bound is a
-// bound: the walk only decides how small it gets.
+// at the first ellipse, 6 % after three; 1.1 visits per piece, 4 before); infinite when nothing
+// is finite. (Every ellipse's bound is a bound: the walk only decides how small it gets.
 // On the bench meshes the best rho of this family was 16 for 28 % of the pieces, 32 for 29 %, and
 // above 32 for 44 % (up to 2048); until 2026-12-05 only 4 .. 32 were tried, each with libm's exp.)
 struct GaussBounds {
