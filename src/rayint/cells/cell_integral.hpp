@@ -68,7 +68,13 @@
 //      the rounding floor (it cannot miss). Measured: on the bench meshes (bench_cell_mesh.cpp)
 //      every piece passes (72 % with 7 points, 28 % with 10); on tools/cell_accuracy's strongly
 //      distorted cells with optical depths up to ~5 per cell 35 % pass, 65 % go on to
-//      Gauss-Kronrod. Otherwise 15-point Gauss-Kronrod (Boost.Math's nodes and weights),
+//      Gauss-Kronrod. The ellipses tried are rho = 4 .. 2048 (powers of 2), walked from 32 and
+//      stopped once a bound is within the rounding floor, with a rigorous upper bound of exp
+//      (gauss_bounds, exp_upper; before 2026-12-05 rho = 4 .. 32, all four, libm's exp: a tenth
+//      of `rayint bench` box12's own time). The integrand at a rule's nodes is evaluated
+//      vectorised over the nodes (cells/emission_nodes.hpp: Highway, the scalar operations in the
+//      same order, fused multiply-adds where the target has them, exp Highway's Exp, documented
+//      1 ulp, instead of libm's: results move at the rounding level and between SIMD targets). Otherwise 15-point Gauss-Kronrod (Boost.Math's nodes and weights),
 //      globally adaptive: the subinterval with the largest |K - G| is halved (at most
 //      256) until sum |K - G| <= kQuadratureTolerance = 1e-14 of the integral of |integrand|
 //      (or 8 ulps of it, the rounding floor of the sums), or below the integrand's own rounding
@@ -99,6 +105,9 @@
 // (bench/bench_cell_mesh.cpp, BM_mesh) the own render was 18-20x the split one before the
 // Taylor-predicted samples, the chop and the monotonicity proof, 11.5-13x after; the Gauss
 // rules with a-priori bounds, degree-8 starts and the face early-out: see bench.md (target 3x).
+// On the affine box12 mesh (`rayint bench`, scripts/cells/bench_hex_meshes.py) own/split was
+// 4.7-4.9x before the 2026-12-05 changes (vectorised integrand, the ellipse walk, no heap
+// allocation per chord, the factorised cubic), ~3.0x after (reports/cells/bench_own29box_measurements.txt).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"

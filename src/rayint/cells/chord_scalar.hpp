@@ -53,8 +53,10 @@ MultilinearCell multilinear_form(const LinearCell& cell);
 // p(t) = A^-1 (o + t d - x0) is linear, so with t = (a + b) / 2 + x (b - a) / 2 every shape
 // function N_i(p(x)) is a product of at most three linear factors in x and f = sum_i N_i f_i a
 // polynomial of degree <= 3: c[0..3] its Chebyshev coefficients on x in [-1, 1], multiplied out
-// in the nodal form (no samples). Returns the coefficients' rounding scale: 8 eps x the same
-// sums over the terms' absolute values (products of <= 3 factors, sums of <= 8 terms).
+// (no samples): a wedge in the nodal form, a hexahedron or voxel factorised along r, s, t (the
+// same trilinear form, 7 products instead of 16). Returns the coefficients' rounding scale: 8
+// eps x the same expression over the terms' absolute values (products of <= 3 factors, sums of
+// <= 8 terms; for the factorised form the absolute values go through every stage).
 double affine_chord_chebyshev(const LinearCell& cell, const ViewRay& ray, double a, double b, std::array<double, 4>& c);
 
 class ChordScalar {
