@@ -82,7 +82,8 @@ void exact_pieces_grad(const PieceColumns& pieces, const double* kappa_far_minus
 // through exact_pieces_grad; the forward intensity composites exact_piece's transmittance with
 // exact_batch's emission: within GradTolerances::forward_rel (2.5e-15 relative; 1.1e-15 measured)
 // of both exact paths, bit for bit neither (tests/test_grad.cpp). Pieces are those of append_pieces
-// (model/pieces.hpp); compositing far -> near is differentiated in reverse. Throws
+// (model/pieces.hpp), from a PieceSplitter kept per thread for the last transfer functions seen;
+// compositing far -> near is differentiated in reverse. Throws
 // std::invalid_argument for a non-finite segment length or scalar or background.
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray);
 // The same into `out`, reusing its storage (no allocation per ray once warm). With

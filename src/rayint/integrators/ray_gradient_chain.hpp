@@ -1,8 +1,9 @@
 #pragma once
 // ray_gradient_chain.hpp -- private helper of the ray gradients whose per-piece optics have the
 // form of exact.cpp's (emission and transmittance of a piece on which rho and kappa are linear):
-// exact_grad.cpp (the exact piece) and psi_table_grad.cpp (Psi read from a table). It splits the
-// segments into append_pieces' pieces, composites far -> near and differentiates in reverse,
+// exact_grad.cpp (the exact piece) and psi_table_grad.cpp (Psi read from a table). It takes the
+// segments' pieces and end values from PieceSplitter (model/pieces.hpp: append_pieces' pieces, bit
+// for bit, as the forward's batch path splits), composites far -> near and differentiates in reverse,
 // carrying each piece's derivatives (PieceOpticsGrad) to the lengths, end scalars, background and
 // transfer-function nodes. The mathematics and the kink convention: docs/gradients.md, "Through
 // the splitting and the compositing".

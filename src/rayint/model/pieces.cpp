@@ -86,13 +86,37 @@ void PieceSplitter::reset(const TransferFunctions& tf) {
   const std::size_t m = breakpoints_.size();
   padded_.fill(std::numeric_limits<double>::quiet_NaN());
   if (m <= padded_.size()) std::copy(breakpoints_.begin(), breakpoints_.end(), padded_.begin());
+  // PiecewiseLinear::limit at every breakpoint, from below and from above: its tests and its
+  // interpolate call, with lower_bound and upper_bound walked along the sorted breakpoints
+  // instead of searched for each.
   at_breakpoint_.resize(m);
   above_breakpoint_.resize(m);
-  for (std::size_t j = 0; j < m; ++j)
-    for (int f = 0; f < kFunctions; ++f) {
-      at_breakpoint_[j][static_cast<std::size_t>(f)] = function(f).limit(breakpoints_[j], false);
-      above_breakpoint_[j][static_cast<std::size_t>(f)] = function(f).limit(breakpoints_[j], true);
+  for (int f = 0; f < kFunctions; ++f) {
+    const PiecewiseLinear& fn = function(f);
+    const std::vector<double>& x = fn.scalar;
+    const std::size_t nx = x.size();
+    std::size_t lower = 0, upper = 0;  // lower_bound and upper_bound of s in x
+    for (std::size_t j = 0; j < m; ++j) {
+      const double s = breakpoints_[j];
+      while (lower < nx && x[lower] < s) ++lower;
+      while (upper < nx && x[upper] <= s) ++upper;
+      double below, above;
+      if (s <= x.front())
+        below = fn.value.front();
+      else if (s > x.back())
+        below = fn.value.back();
+      else
+        below = x[lower] == s ? fn.value[lower] : fn.interpolate(s, lower);
+      if (s < x.front())
+        above = fn.value.front();
+      else if (s >= x.back())
+        above = fn.value.back();
+      else
+        above = fn.interpolate(s, upper);
+      at_breakpoint_[j][static_cast<std::size_t>(f)] = below;
+      above_breakpoint_[j][static_cast<std::size_t>(f)] = above;
     }
+  }
   rows_.resize(2 * m + 1);
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     Row& row = rows_[r];
