@@ -332,43 +332,6 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   splitter.append(ray.segments, columns, scratch.places);
   const std::vector<PiecePlace>& places = scratch.places;
   const std::size_t n = places.size();
-  std::vector<PieceRecord>& pieces = scratch.pieces;
-  if (pieces.size() < n) pieces.resize(std::max<std::size_t>(64, n));
-  // What the reverse pass needs of each piece: where its ends lie along its segment (the
-  // divisions of append_pieces'; a piece's far end is the previous one's exit).
-  for (std::size_t k = 0; k < n; ++k) {
-    const PiecePlace& pl = places[k];
-    const Segment& seg = ray.segments[pl.segment];
-    const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
-    PieceRecord& pr = pieces[k];
-    pr.segment = pl.segment;
-    pr.s_far = pl.s_far;
-    pr.s_exit = pl.s_exit;
-    pr.length = columns.length[k * kChannels];
-    pr.region = pl.region;
-    if (s0 == s1) {
-      pr.fraction = 1.0;
-      pr.phi_far = 0.0;
-      pr.phi_exit = 1.0;
-      pr.far_is_end = pr.exit_is_end = true;
-      pr.span = 0.0;
-      pr.region = kConstantPiece;
-      continue;
-    }
-    const double span = s1 - s0;
-    pr.span = span;
-    pr.far_is_end = pl.s_far == s0;
-    pr.exit_is_end = pl.s_exit == s1;
-    // one piece: the fraction is exactly 1 (append_pieces' span / span)
-    pr.fraction = pr.far_is_end && pr.exit_is_end ? 1.0 : (pl.s_exit - pl.s_far) / span;
-    pr.phi_exit = pr.exit_is_end ? 1.0 : (pl.s_exit - s0) / span;
-    if (pr.far_is_end)
-      pr.phi_far = 0.0;
-    else if (k > 0 && places[k - 1].segment == pl.segment && places[k - 1].s_exit == pl.s_far)
-      pr.phi_far = pieces[k - 1].phi_exit;
-    else  // the piece before was dropped (zero length)
-      pr.phi_far = (pl.s_far - s0) / span;
-  }
 
   const bool nodes_wanted = blocks == GradientBlocks::all;
   grad.reset(tf, ray);
@@ -438,34 +401,66 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     derivs.resize(n * kChannels);
     dkappas.resize(n * kChannels);
   }
+  std::vector<PieceRecord>& pieces = scratch.pieces;
+  if (pieces.size() < n) pieces.resize(std::max<std::size_t>(64, n));
+  // What the reverse pass needs of each piece: where its ends lie along its segment (the
+  // divisions of append_pieces'; a piece's far end is the previous one's exit), and per channel
+  // its intervals and kappa_far - kappa_exit (one pass over the pieces).
+  for (std::size_t k = 0; k < n; ++k) {
+    const PiecePlace& pl = places[k];
+    const Segment& seg = ray.segments[pl.segment];
+    const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
+    PieceRecord& pr = pieces[k];
+    ChannelEnds* rec = &ends[k * kChannels];
+    double* dkappa = &dkappas[k * kChannels];
+    pr.segment = pl.segment;
+    pr.s_far = pl.s_far;
+    pr.s_exit = pl.s_exit;
+    pr.length = columns.length[k * kChannels];
+    pr.region = pl.region;
+    if (s0 == s1) {
+      pr.fraction = 1.0;
+      pr.phi_far = 0.0;
+      pr.phi_exit = 1.0;
+      pr.far_is_end = pr.exit_is_end = true;
+      pr.span = 0.0;
+      pr.region = kConstantPiece;
+      // a constant piece: no slope, its intervals by search
+      for (int c = 0; c < kChannels; ++c) {
+        rec[c].rho_k = constant_interval(tf.density[c], pr);
+        rec[c].kappa_k = constant_interval(tf.color[c], pr);
+        dkappa[c] = 0.0;
+      }
+      continue;
+    }
+    const double span = s1 - s0;
+    pr.span = span;
+    pr.far_is_end = pl.s_far == s0;
+    pr.exit_is_end = pl.s_exit == s1;
+    // one piece: the fraction is exactly 1 (append_pieces' span / span)
+    pr.fraction = pr.far_is_end && pr.exit_is_end ? 1.0 : (pl.s_exit - pl.s_far) / span;
+    pr.phi_exit = pr.exit_is_end ? 1.0 : (pl.s_exit - s0) / span;
+    if (pr.far_is_end)
+      pr.phi_far = 0.0;
+    else if (k > 0 && places[k - 1].segment == pl.segment && places[k - 1].s_exit == pl.s_far)
+      pr.phi_far = pieces[k - 1].phi_exit;
+    else  // the piece before was dropped (zero length)
+      pr.phi_far = (pl.s_far - s0) / span;
+    // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
+    // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
+    // multiplied by a density slope of 3e23 in dI/ds). The extensions have slope 0.
+    const double ds = pr.s_far - pr.s_exit;
+    for (int c = 0; c < kChannels; ++c) {
+      rec[c].rho_k = rho_interval[c][pr.region];
+      rec[c].kappa_k = kappa_interval[c][pr.region];
+      dkappa[c] = kappa_slope[c][rec[c].kappa_k] * ds;
+    }
+  }
   const std::size_t n_chunks = (n + kChunkPieces - 1) / kChunkPieces;
   // Forward: the optics of every piece-channel and the light entering it.
   Rgb intensity = ray.background;
   for (std::size_t q = 0; q < n_chunks; ++q) {
     const std::size_t k0 = q * kChunkPieces, k1 = std::min(n, k0 + kChunkPieces);
-    for (std::size_t k = k0; k < k1; ++k) {
-      const PieceRecord& pr = pieces[k];
-      ChannelEnds* rec = &ends[k * kChannels];
-      double* dkappa = &dkappas[k * kChannels];
-      if (pr.region == kConstantPiece) {
-        // a constant piece: no slope, its intervals by search
-        for (int c = 0; c < kChannels; ++c) {
-          rec[c].rho_k = constant_interval(tf.density[c], pr);
-          rec[c].kappa_k = constant_interval(tf.color[c], pr);
-          dkappa[c] = 0.0;
-        }
-        continue;
-      }
-      // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
-      // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
-      // multiplied by a density slope of 3e23 in dI/ds). The extensions have slope 0.
-      const double ds = pr.s_far - pr.s_exit;
-      for (int c = 0; c < kChannels; ++c) {
-        rec[c].rho_k = rho_interval[c][pr.region];
-        rec[c].kappa_k = kappa_interval[c][pr.region];
-        dkappa[c] = kappa_slope[c][rec[c].kappa_k] * ds;
-      }
-    }
     const std::size_t i0 = k0 * kChannels, m = (k1 - k0) * kChannels;
     piece_grads(PieceColumns{columns.length.data() + i0, columns.rho_far.data() + i0, columns.rho_exit.data() + i0,
                              columns.kappa_far.data() + i0, columns.kappa_exit.data() + i0, m},
