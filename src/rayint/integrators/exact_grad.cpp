@@ -437,28 +437,34 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa) {
   return g;
 }
 
-void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus_exit, std::size_t n,
-                       PieceDerivatives* out, int same_depth_stride) {
+void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exit, PieceDerivatives* out,
+                       int same_depth_stride) {
   struct Columns {
     std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
     std::vector<double> transmittance, emission, weight_exit, weight_far, m1, m2, e0;
   };
   thread_local Columns col;
+  const std::size_t n = in.size;
   // With a stride s > 1 only every s-th piece (the first channel of a grey medium's piece) goes
   // through the batch; the others reuse its depth below.
   const std::size_t stride = same_depth_stride > 1 ? static_cast<std::size_t>(same_depth_stride) : 1;
   const std::size_t m = (n + stride - 1) / stride;
-  if (col.length.size() < m)
-    for (auto* v : {&col.length, &col.rho_far, &col.rho_exit, &col.kappa_far, &col.kappa_exit, &col.transmittance,
-                    &col.emission, &col.weight_exit, &col.weight_far, &col.m1, &col.m2, &col.e0})
+  if (col.transmittance.size() < m)
+    for (auto* v : {&col.transmittance, &col.emission, &col.weight_exit, &col.weight_far, &col.m1, &col.m2, &col.e0})
       v->resize(m);
-  for (std::size_t j = 0; j < m; ++j) {
-    const ChannelPiece& p = pieces[j * stride];
-    col.length[j] = p.length;
-    col.rho_far[j] = p.rho_far;
-    col.rho_exit[j] = p.rho_exit;
-    col.kappa_far[j] = p.kappa_far;
-    col.kappa_exit[j] = p.kappa_exit;
+  PieceColumns batch_in = in;
+  if (stride > 1) {  // every s-th piece, gathered
+    if (col.length.size() < m)
+      for (auto* v : {&col.length, &col.rho_far, &col.rho_exit, &col.kappa_far, &col.kappa_exit}) v->resize(m);
+    for (std::size_t j = 0; j < m; ++j) {
+      col.length[j] = in.length[j * stride];
+      col.rho_far[j] = in.rho_far[j * stride];
+      col.rho_exit[j] = in.rho_exit[j * stride];
+      col.kappa_far[j] = in.kappa_far[j * stride];
+      col.kappa_exit[j] = in.kappa_exit[j * stride];
+    }
+    batch_in = PieceColumns{col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
+                            col.kappa_exit.data(), m};
   }
   OpticsColumns oc{col.transmittance.data(), col.emission.data()};
   oc.weight_exit = col.weight_exit.data();
@@ -466,13 +472,11 @@ void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus
   oc.m1 = col.m1.data();
   oc.m2 = col.m2.data();
   oc.e0 = col.e0.data();
-  exact_batch(PieceColumns{col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
-                           col.kappa_exit.data(), m},
-              oc);
+  exact_batch(batch_in, oc);
   double t = 1.0, dt_length = 0.0, dt_rho = 0.0;  // of the piece's depth (lane 0's)
   bool transparent = true;
   for (std::size_t i = 0; i < n; ++i) {
-    const ChannelPiece& p = pieces[i];
+    const ChannelPiece p{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
     PieceDerivatives& g = out[i];
     const std::size_t j = i / stride;
     if (i % stride == 0) {
@@ -513,6 +517,21 @@ void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus
   }
 }
 
+void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus_exit, std::size_t n,
+                       PieceDerivatives* out, int same_depth_stride) {
+  thread_local std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
+  for (auto* v : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) v->resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    length[i] = pieces[i].length;
+    rho_far[i] = pieces[i].rho_far;
+    rho_exit[i] = pieces[i].rho_exit;
+    kappa_far[i] = pieces[i].kappa_far;
+    kappa_exit[i] = pieces[i].kappa_exit;
+  }
+  exact_pieces_grad(PieceColumns{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(), kappa_exit.data(), n},
+                    kappa_far_minus_exit, out, same_depth_stride);
+}
+
 PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa, const PieceOpticsGrad& same_depth) {
   PieceOpticsGrad g = same_depth;
   // exact_piece's emission, in its arithmetic (a transparent piece keeps its 0).
@@ -531,8 +550,8 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
 void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, GradientBlocks blocks) {
   detail::chain_ray_gradient(
       tf, ray, grad,
-      [](const ChannelPiece* cps, const double* dkappa, std::size_t n, bool grey, PieceDerivatives* out) {
-        exact_pieces_grad(cps, dkappa, n, out, grey ? kChannels : 1);
+      [](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
+        exact_pieces_grad(in, dkappa, out, grey ? kChannels : 1);
       },
       detail::PieceEnds::fixed_along_segment, blocks);
 }

@@ -3,6 +3,7 @@
 // with respect to every input of the ray (issue 28). See exact_grad.cpp for the forms by region
 // and docs/gradients.md for the mathematics, the conventions at kinks and the measured accuracy.
 #include "rayint/integrators/exact.hpp"
+#include "rayint/integrators/exact_batch.hpp"
 #include "rayint/model/ray_gradient.hpp"
 
 namespace rayint {
@@ -73,12 +74,16 @@ inline PieceDerivatives derivatives_of(const PieceOpticsGrad& g) {
 // overload above.
 void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus_exit, std::size_t n,
                        PieceDerivatives* out, int same_depth_stride = 1);
+// The same on pieces given as columns (entry i of each column: piece i), read in place.
+void exact_pieces_grad(const PieceColumns& pieces, const double* kappa_far_minus_exit, PieceDerivatives* out,
+                       int same_depth_stride = 1);
 
 // The gradient of every channel's intensity with respect to every input of the ray. Its pieces go
 // through exact_pieces_grad; the forward intensity composites exact_piece's transmittance with
 // exact_batch's emission: within GradTolerances::forward_rel (2.5e-15 relative; 1.1e-15 measured)
 // of both exact paths, bit for bit neither (tests/test_grad.cpp). Pieces are those of append_pieces
-// (model/pieces.hpp); compositing far -> near is differentiated in reverse. Throws
+// (model/pieces.hpp), from a PieceSplitter kept per thread for the last transfer functions seen;
+// compositing far -> near is differentiated in reverse. Throws
 // std::invalid_argument for a non-finite segment length or scalar or background.
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray);
 // The same into `out`, reusing its storage (no allocation per ray once warm). With

@@ -1,8 +1,9 @@
 #pragma once
 // ray_gradient_chain.hpp -- private helper of the ray gradients whose per-piece optics have the
 // form of exact.cpp's (emission and transmittance of a piece on which rho and kappa are linear):
-// exact_grad.cpp (the exact piece) and psi_table_grad.cpp (Psi read from a table). It splits the
-// segments into append_pieces' pieces, composites far -> near and differentiates in reverse,
+// exact_grad.cpp (the exact piece) and psi_table_grad.cpp (Psi read from a table). It takes the
+// segments' pieces and end values from PieceSplitter (model/pieces.hpp: append_pieces' pieces, bit
+// for bit, as the forward's batch path splits), composites far -> near and differentiates in reverse,
 // carrying each piece's derivatives (PieceOpticsGrad) to the lengths, end scalars, background and
 // transfer-function nodes. The mathematics and the kink convention: docs/gradients.md, "Through
 // the splitting and the compositing".
@@ -10,13 +11,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "rayint/integrators/exact_batch.hpp"
 #include "rayint/integrators/exact_grad.hpp"
+#include "rayint/model/pieces.hpp"
 #include "rayint/model/ray_gradient.hpp"
 
 namespace rayint::detail {
@@ -34,7 +38,13 @@ struct PieceRecord {
   // and the segment's scalar span s_exit - s_far (0 for a constant segment).
   bool far_is_end = true, exit_is_end = true;
   double span = 0.0;
+  // For a piece of a non-constant segment, the interval of the sorted union of the transfer
+  // functions' breakpoints that holds its interior: upper_bound(breakpoints, smaller end). No
+  // breakpoint lies strictly inside a piece, so each function's interval follows from it
+  // (chain_ray_gradient's region tables). kConstantPiece for a piece of a constant segment.
+  std::uint32_t region = 0;
 };
+inline constexpr std::uint32_t kConstantPiece = static_cast<std::uint32_t>(-1);
 
 // How the end scalars of the pieces are differentiated.
 enum class PieceEnds {
@@ -130,102 +140,20 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
-// std::upper_bound or std::lower_bound of x in a sorted array, for lookups that come in order
-// along a ray: started from the previous answer, a few steps, else a binary search. The same
-// index as the std:: call, exactly.
-class BoundWalk {
- public:
-  BoundWalk(const double* p, std::size_t n) : p_(p), n_(n) {}
-  // upper_bound: p[k-1] <= x < p[k].
-  std::size_t upper(double x) {
-    std::size_t k = k_;
-    for (int step = 0; step < 4; ++step) {
-      if (k < n_ && p_[k] <= x)
-        ++k;
-      else if (k > 0 && p_[k - 1] > x)
-        --k;
-      else
-        return k_ = k;
+// The same transfer functions, point for point and bit for bit (the gradient keeps its splitter
+// for the last functions seen).
+inline bool same_points(const TransferFunctions& a, const TransferFunctions& b) {
+  const auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
+  };
+  for (int c = 0; c < kChannels; ++c)
+    for (const bool density : {true, false}) {
+      const PiecewiseLinear& f = density ? a.density[c] : a.color[c];
+      const PiecewiseLinear& g = density ? b.density[c] : b.color[c];
+      if (!same(f.scalar, g.scalar) || !same(f.value, g.value)) return false;
     }
-    return k_ = static_cast<std::size_t>(std::upper_bound(p_, p_ + n_, x) - p_);
-  }
-  // lower_bound: p[k-1] < x <= p[k].
-  std::size_t lower(double x) {
-    std::size_t k = k_;
-    for (int step = 0; step < 4; ++step) {
-      if (k < n_ && p_[k] < x)
-        ++k;
-      else if (k > 0 && p_[k - 1] >= x)
-        --k;
-      else
-        return k_ = k;
-    }
-    return k_ = static_cast<std::size_t>(std::lower_bound(p_, p_ + n_, x) - p_);
-  }
-
- private:
-  const double* p_;
-  std::size_t n_;
-  std::size_t k_ = 0;
-};
-
-// One transfer function as the chain walks it along the ray. Pieces come in order along the ray
-// and consecutive pieces share an end, so
-//   - the interval of a lookup starts from the previous one (a few steps, else a binary search),
-//     the index std::upper_bound returns, exactly;
-//   - the slope of an interval is divided once when the walk enters it, not per piece and end;
-//   - an end in the interior of an interval is interpolated once for the two pieces it joins
-//     (the last one is kept), and an end on one of the interval's nodes needs no division.
-// Every value is bit for bit what PiecewiseLinear::limit and interval_slope return for that
-// interval (the same operations on the same operands). The node weights are not formed here:
-// the reverse pass sums per interval (IntervalSums).
-class FunctionWalk {
- public:
-  explicit FunctionWalk(const PiecewiseLinear& f) : f_(&f), n_(f.scalar.size()), bounds_(f.scalar.data(), n_) {}
-
-  // upper_bound(f.scalar, x): scalar[k-1] <= x < scalar[k].
-  std::size_t locate(double x) { return bounds_.upper(x); }
-  // interval_slope(f, k), divided once per interval entered.
-  double slope(std::size_t k) {
-    if (k != slope_k_) {
-      slope_k_ = k;
-      slope_ = interval_slope(*f_, k);
-    }
-    return slope_;
-  }
-  // f at an end s of a non-constant piece lying in interval k (upper_bound of the piece's smaller
-  // end), the limit from inside the piece: at the piece's smaller end the limit from above, at
-  // its larger end the one from below (append_pieces'; no breakpoint lies strictly inside).
-  // On the extensions the end value.
-  double end_in(std::size_t k, double s) {
-    if (k == 0) return f_->value.front();
-    if (k == n_) return f_->value.back();
-    const double p0 = f_->scalar[k - 1], p1 = f_->scalar[k];
-    const double v0 = f_->value[k - 1], v1 = f_->value[k];
-    if (s == p0) return v0;  // on a node: its value
-    if (s == p1) return v1;
-    if (k == last_k_ && s == last_s_) return last_;
-    // PiecewiseLinear::interpolate's arithmetic (from the nearer node, its distance computed
-    // directly).
-    const double d0 = s - p0, d1 = p1 - s, span = p1 - p0;
-    last_ = d0 <= d1 ? v0 + (d0 / span) * (v1 - v0) : v1 + (d1 / span) * (v0 - v1);
-    last_k_ = k;
-    last_s_ = s;
-    return last_;
-  }
-  // A constant piece at s: operator()'s value (the left value at a jump).
-  double constant_at(double s) const { return (*f_)(s); }
-
- private:
-  const PiecewiseLinear* f_;
-  std::size_t n_;
-  BoundWalk bounds_;
-  std::size_t slope_k_ = static_cast<std::size_t>(-1);
-  double slope_ = 0.0;
-  std::size_t last_k_ = static_cast<std::size_t>(-1);
-  double last_s_ = 0.0;
-  double last_ = 0.0;
-};
+  return true;
+}
 
 // The reverse pass's node entries of one transfer function, summed per interval and formed once
 // per ray. A piece whose values come from interval k (nodes p0 = scalar[k-1], p1 = scalar[k])
@@ -287,12 +215,12 @@ class IntervalSums {
 // at a time; same_depth points to channel 0's result of a grey medium's piece, else null.
 template <class PieceGrad>
 auto each_piece_channel(PieceGrad piece_grad) {
-  return [piece_grad](const ChannelPiece* cps, const double* dkappa, std::size_t n, bool grey,
-                      PieceDerivatives* out) {
+  return [piece_grad](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
     PieceOpticsGrad channel0;  // a piece's channel 0, for the other channels of a grey medium
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < in.size; ++i) {
       const std::size_t c = i % kChannels;
-      const PieceOpticsGrad g = piece_grad(cps[i], dkappa[i], grey && c > 0 ? &channel0 : nullptr);
+      const ChannelPiece cp{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
+      const PieceOpticsGrad g = piece_grad(cp, dkappa[i], grey && c > 0 ? &channel0 : nullptr);
       out[i] = derivatives_of(g);
       if (c == 0) channel0 = g;
     }
@@ -342,14 +270,19 @@ inline void moving_ends(const TransferFunctions& tf, const Ray& ray, const Piece
   route(false, pr.s_exit, exit_s_bar);
 }
 
-// piece_grads(const ChannelPiece* cps, const double* kappa_far_minus_exit, std::size_t n, bool grey,
-// PieceDerivatives* out): the optics of n piece-channels and their derivatives, at once (index
-// kChannels k + c: channel c of the k-th piece of the call; exact_pieces_grad evaluates them
-// through the SIMD batch). With grey true the channels of a piece share its length, rho_far and
-// rho_exit (a grey medium, TransferFunctions::grey): a piece_grads may reuse channel 0's results
-// for them, or ignore it. each_piece_channel adapts a function of one piece-channel.
+// piece_grads(const PieceColumns& in, const double* kappa_far_minus_exit, bool grey,
+// PieceDerivatives* out): the optics of in.size piece-channels and their derivatives, at once
+// (index kChannels k + c: channel c of the k-th piece of the call; exact_pieces_grad evaluates
+// them through the SIMD batch). With grey true the channels of a piece share its length, rho_far
+// and rho_exit (a grey medium, TransferFunctions::grey): a piece_grads may reuse channel 0's
+// results for them, or ignore it. each_piece_channel adapts a function of one piece-channel.
 // blocks = GradientBlocks::segments leaves the node blocks empty and skips their accumulation.
 // Throws std::invalid_argument for a non-finite length, scalar or background.
+//
+// The pieces and their end values are the forward's: PieceSplitter (model/pieces.hpp), the
+// splitter ExactIntegrator's batch path uses, with each piece's place (PiecePlace), so the
+// gradient differentiates the very pieces the forward integrates. One splitter per thread is
+// kept for the last transfer functions seen (compared point for point, bit for bit).
 template <class PieceGrad>
 void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
                         PieceEnds ends_mode = PieceEnds::fixed_along_segment,
@@ -357,6 +290,12 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("gradient: background must be finite");
+  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
+    const Segment& seg = ray.segments[j];
+    if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
+      throw std::invalid_argument("gradient: segment " + std::to_string(j) +
+                                  ": length and scalars must be finite");
+  }
   // What the reverse pass needs of a piece-channel besides its optics' derivatives
   // (PieceDerivatives): per function (density[c], color[c]), the interval its values come from
   // (upper_bound of the scalar that chooses it, see interval_lo below). The slopes and node
@@ -366,80 +305,33 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
-    std::vector<double> breakpoints;
+    TransferFunctions split_tf;                // the functions `splitter` was built for
+    bool split_ready = false;
+    PieceSplitter splitter;
+    PieceChannelColumns columns;               // the pieces' inputs, written by the splitter
+    std::vector<PiecePlace> places;
     std::vector<PieceRecord> pieces;
     std::vector<double> incoming;
     std::vector<ChannelEnds> ends;
-    std::vector<ChannelPiece> cps;
     std::vector<double> dkappas;
     std::vector<PieceDerivatives> derivs;
     IntervalSums rho_sums[kChannels], kappa_sums[kChannels];
     std::vector<double> slopes[2 * kChannels];  // interval_slope per interval: density[c], color[c]
+    std::vector<std::uint32_t> region_interval[2 * kChannels];  // density[c], color[c]
   };
   thread_local Scratch scratch;
-  std::vector<double>& breakpoints = scratch.breakpoints;
-  breakpoints.clear();
-  for (const auto* group : {&tf.density, &tf.color})
-    for (const PiecewiseLinear& f : *group) breakpoints.insert(breakpoints.end(), f.scalar.begin(), f.scalar.end());
-  std::sort(breakpoints.begin(), breakpoints.end());
-  breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
-  std::vector<PieceRecord>& pieces = scratch.pieces;
-  // Grown ahead and written in place (a PieceRecord built and pushed back stalled on its copy).
-  std::size_t n = 0;
-  BoundWalk lo_walk(breakpoints.data(), breakpoints.size()), hi_walk(breakpoints.data(), breakpoints.size());
-  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
-    const Segment& seg = ray.segments[j];
-    if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
-      throw std::invalid_argument("gradient: segment " + std::to_string(j) +
-                                  ": length and scalars must be finite");
-    if (!(seg.length > 0.0)) continue;
-    const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
-    const auto put = [&](double e_far, double e_exit, double len, double fraction, double phi_far, double phi_exit,
-                         bool far_is_end, bool exit_is_end, double span) {
-      if (n == pieces.size()) pieces.resize(std::max<std::size_t>(64, 2 * n));
-      PieceRecord& pr = pieces[n++];
-      pr.segment = j;
-      pr.s_far = e_far;
-      pr.s_exit = e_exit;
-      pr.length = len;
-      pr.fraction = fraction;
-      pr.phi_far = phi_far;
-      pr.phi_exit = phi_exit;
-      pr.far_is_end = far_is_end;
-      pr.exit_is_end = exit_is_end;
-      pr.span = span;
-    };
-    if (s0 == s1) {
-      put(s0, s1, seg.length, 1.0, 0.0, 1.0, true, true, 0.0);
-      continue;
-    }
-    // append_pieces' ends: s0, the breakpoints strictly inside, s1, in the direction of travel.
-    const double lo = std::min(s0, s1), hi = std::max(s0, s1);
-    const auto first = breakpoints.begin() + static_cast<std::ptrdiff_t>(lo_walk.upper(lo));
-    const auto last = breakpoints.begin() + static_cast<std::ptrdiff_t>(hi_walk.lower(hi));
-    // Piece q runs from end q to end q + 1 (ends 0 and n_ends - 1 are s0 and s1).
-    const std::size_t n_ends = static_cast<std::size_t>(last - first) + 2;
-    const double span = s1 - s0;
-    if (n_ends == 2) {
-      put(s0, s1, seg.length, 1.0, 0.0, 1.0, true, true, span);
-      continue;
-    }
-    const auto end_at = [&, first = first, last = last](std::size_t q) {
-      if (q == 0) return s0;
-      if (q + 1 == n_ends) return s1;
-      return s0 < s1 ? first[static_cast<std::ptrdiff_t>(q) - 1] : last[-static_cast<std::ptrdiff_t>(q)];
-    };
-    double e_far = s0, phi_far = 0.0;  // a piece's far end is the previous one's exit
-    for (std::size_t k = 0; k + 1 < n_ends; ++k) {
-      const double e_exit = end_at(k + 1);
-      const double fraction = (e_exit - e_far) / span;
-      const double len = seg.length * fraction;
-      const double phi_exit = k + 2 == n_ends ? 1.0 : (e_exit - s0) / span;
-      if (len > 0.0) put(e_far, e_exit, len, fraction, phi_far, phi_exit, k == 0, k + 2 == n_ends, span);
-      e_far = e_exit;
-      phi_far = phi_exit;
-    }
+  if (!scratch.split_ready || !same_points(scratch.split_tf, tf)) {
+    scratch.split_tf = tf;  // vector assignments: the storage held is reused
+    scratch.splitter.reset(scratch.split_tf);
+    scratch.split_ready = true;
   }
+  const PieceSplitter& splitter = scratch.splitter;
+  const std::vector<double>& breakpoints = splitter.breakpoints();
+  PieceChannelColumns& columns = scratch.columns;
+  columns.clear();
+  splitter.append(ray.segments, columns, scratch.places);
+  const std::vector<PiecePlace>& places = scratch.places;
+  const std::size_t n = places.size();
 
   const bool nodes_wanted = blocks == GradientBlocks::all;
   grad.reset(tf, ray);
@@ -459,26 +351,39 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
                ? std::nextafter(lo, -std::numeric_limits<double>::infinity())
                : lo;
   };
+  // Per function, its interval (upper_bound of its nodes) for each interval u = 0..m of the
+  // union of breakpoints: upper_bound(f.scalar, breakpoints[u - 1]), 0 below the first. For any x
+  // in [breakpoints[u - 1], breakpoints[u]) it is upper_bound(f.scalar, x): no node of f lies in
+  // between. A non-constant piece's intervals are read from its region, no search per piece.
+  // And interval_slope per interval, for dkappa here and for the reverse pass.
+  const double* rho_slope[kChannels];
+  const double* kappa_slope[kChannels];
+  const std::uint32_t* rho_interval[kChannels];
+  const std::uint32_t* kappa_interval[kChannels];
+  for (int c = 0; c < kChannels; ++c)
+    for (const bool density : {true, false}) {
+      const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
+      const std::size_t slot = density ? static_cast<std::size_t>(c) : static_cast<std::size_t>(kChannels + c);
+      std::vector<std::uint32_t>& table = scratch.region_interval[slot];
+      table.resize(breakpoints.size() + 1);
+      table[0] = 0;
+      std::size_t k = 0;
+      for (std::size_t u = 1; u <= breakpoints.size(); ++u) {
+        while (k < f.scalar.size() && f.scalar[k] <= breakpoints[u - 1]) ++k;
+        table[u] = static_cast<std::uint32_t>(k);
+      }
+      std::vector<double>& slopes = scratch.slopes[slot];
+      slopes.resize(f.scalar.size() + 1);
+      for (std::size_t i = 0; i < slopes.size(); ++i) slopes[i] = interval_slope(f, i);
+      (density ? rho_slope : kappa_slope)[c] = slopes.data();
+      (density ? rho_interval : kappa_interval)[c] = table.data();
+    }
   std::vector<double>& incoming = scratch.incoming;
   if (incoming.size() < n * kChannels) incoming.resize(n * kChannels);
-  // One walk per function along the ray (grey: density[0]'s serves every channel).
-  FunctionWalk rho_walk[kChannels] = {FunctionWalk(tf.density[0]), FunctionWalk(tf.density[1]),
-                                      FunctionWalk(tf.density[2])};
-  FunctionWalk kappa_walk[kChannels] = {FunctionWalk(tf.color[0]), FunctionWalk(tf.color[1]),
-                                        FunctionWalk(tf.color[2])};
-  // Each end takes the limit from inside the piece (append_pieces': at a jump the value on the
-  // piece's side); a constant piece takes operator()'s, the left value at a jump. The far end
-  // first: it is the previous piece's exit, which the walk keeps. Sets k, returns the two values.
-  const auto ends_of = [&](FunctionWalk& walk, const PiecewiseLinear& f, const PieceRecord& pr, double lo,
-                           std::uint32_t& k) {
-    if (pr.s_far == pr.s_exit) {
-      k = static_cast<std::uint32_t>(walk.locate(interval_lo(f, pr, lo)));
-      const double v = walk.constant_at(lo);
-      return std::pair<double, double>{v, v};
-    }
-    k = static_cast<std::uint32_t>(walk.locate(lo));
-    const double far = walk.end_in(k, pr.s_far);
-    return std::pair<double, double>{far, walk.end_in(k, pr.s_exit)};
+  // The interval of a constant piece (a search; the value itself is the splitter's).
+  const auto constant_interval = [&](const PiecewiseLinear& f, const PieceRecord& pr) {
+    return static_cast<std::uint32_t>(
+        std::upper_bound(f.scalar.begin(), f.scalar.end(), interval_lo(f, pr, pr.s_far)) - f.scalar.begin());
   };
   // The pieces go to piece_grads in chunks of kChunkPieces (their inputs and the batch's columns
   // stay in cache however long the ray), each composited as soon as it is evaluated. What the
@@ -488,47 +393,79 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   // spare the memory traffic of a long ray's ~5 MB, cost more than it saved: 8.8 -> 10.2 ms on
   // bench_grad's set 1.)
   constexpr std::size_t kChunkPieces = 512;
-  const std::size_t chunk_capacity = std::min(n, kChunkPieces) * kChannels;
   std::vector<ChannelEnds>& ends = scratch.ends;
-  std::vector<ChannelPiece>& cps = scratch.cps;
   std::vector<double>& dkappas = scratch.dkappas;
   std::vector<PieceDerivatives>& derivs = scratch.derivs;
   if (ends.size() < n * kChannels) {
     ends.resize(n * kChannels);
     derivs.resize(n * kChannels);
+    dkappas.resize(n * kChannels);
   }
-  if (cps.size() < chunk_capacity) {
-    cps.resize(chunk_capacity);
-    dkappas.resize(chunk_capacity);
+  std::vector<PieceRecord>& pieces = scratch.pieces;
+  if (pieces.size() < n) pieces.resize(std::max<std::size_t>(64, n));
+  // What the reverse pass needs of each piece: where its ends lie along its segment (the
+  // divisions of append_pieces'; a piece's far end is the previous one's exit), and per channel
+  // its intervals and kappa_far - kappa_exit (one pass over the pieces).
+  for (std::size_t k = 0; k < n; ++k) {
+    const PiecePlace& pl = places[k];
+    const Segment& seg = ray.segments[pl.segment];
+    const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
+    PieceRecord& pr = pieces[k];
+    ChannelEnds* rec = &ends[k * kChannels];
+    double* dkappa = &dkappas[k * kChannels];
+    pr.segment = pl.segment;
+    pr.s_far = pl.s_far;
+    pr.s_exit = pl.s_exit;
+    pr.length = columns.length[k * kChannels];
+    pr.region = pl.region;
+    if (s0 == s1) {
+      pr.fraction = 1.0;
+      pr.phi_far = 0.0;
+      pr.phi_exit = 1.0;
+      pr.far_is_end = pr.exit_is_end = true;
+      pr.span = 0.0;
+      pr.region = kConstantPiece;
+      // a constant piece: no slope, its intervals by search
+      for (int c = 0; c < kChannels; ++c) {
+        rec[c].rho_k = constant_interval(tf.density[c], pr);
+        rec[c].kappa_k = constant_interval(tf.color[c], pr);
+        dkappa[c] = 0.0;
+      }
+      continue;
+    }
+    const double span = s1 - s0;
+    pr.span = span;
+    pr.far_is_end = pl.s_far == s0;
+    pr.exit_is_end = pl.s_exit == s1;
+    // one piece: the fraction is exactly 1 (append_pieces' span / span)
+    pr.fraction = pr.far_is_end && pr.exit_is_end ? 1.0 : (pl.s_exit - pl.s_far) / span;
+    pr.phi_exit = pr.exit_is_end ? 1.0 : (pl.s_exit - s0) / span;
+    if (pr.far_is_end)
+      pr.phi_far = 0.0;
+    else if (k > 0 && places[k - 1].segment == pl.segment && places[k - 1].s_exit == pl.s_far)
+      pr.phi_far = pieces[k - 1].phi_exit;
+    else  // the piece before was dropped (zero length)
+      pr.phi_far = (pl.s_far - s0) / span;
+    // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
+    // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
+    // multiplied by a density slope of 3e23 in dI/ds). The extensions have slope 0.
+    const double ds = pr.s_far - pr.s_exit;
+    for (int c = 0; c < kChannels; ++c) {
+      rec[c].rho_k = rho_interval[c][pr.region];
+      rec[c].kappa_k = kappa_interval[c][pr.region];
+      dkappa[c] = kappa_slope[c][rec[c].kappa_k] * ds;
+    }
   }
   const std::size_t n_chunks = (n + kChunkPieces - 1) / kChunkPieces;
   // Forward: the optics of every piece-channel and the light entering it.
   Rgb intensity = ray.background;
   for (std::size_t q = 0; q < n_chunks; ++q) {
     const std::size_t k0 = q * kChunkPieces, k1 = std::min(n, k0 + kChunkPieces);
-    for (std::size_t k = k0; k < k1; ++k) {
-      const PieceRecord& pr = pieces[k];
-      const double lo = std::min(pr.s_far, pr.s_exit);
-      ChannelEnds* rec = &ends[k * kChannels];
-      std::pair<double, double> rho_ends{0.0, 0.0};  // density at the far and exit ends
-      for (int c = 0; c < kChannels; ++c) {
-        ChannelEnds& r = rec[c];
-        if (grey && c > 0)
-          r.rho_k = rec[0].rho_k;
-        else
-          rho_ends = ends_of(rho_walk[c], tf.density[c], pr, lo, r.rho_k);
-        const std::pair<double, double> kappa_ends = ends_of(kappa_walk[c], tf.color[c], pr, lo, r.kappa_k);
-        // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
-        // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
-        // multiplied by a density slope of 3e23 in dI/ds). A constant piece has none; the
-        // extensions have slope 0.
-        const std::size_t i = (k - k0) * kChannels + static_cast<std::size_t>(c);
-        dkappas[i] = pr.s_far == pr.s_exit ? 0.0 : kappa_walk[c].slope(r.kappa_k) * (pr.s_far - pr.s_exit);
-        cps[i] = {pr.length, rho_ends.first, rho_ends.second, kappa_ends.first, kappa_ends.second};
-      }
-    }
-    piece_grads(cps.data(), dkappas.data(), (k1 - k0) * kChannels, grey, derivs.data() + k0 * kChannels);
-    for (std::size_t i = k0 * kChannels; i < k1 * kChannels; i += kChannels)
+    const std::size_t i0 = k0 * kChannels, m = (k1 - k0) * kChannels;
+    piece_grads(PieceColumns{columns.length.data() + i0, columns.rho_far.data() + i0, columns.rho_exit.data() + i0,
+                             columns.kappa_far.data() + i0, columns.kappa_exit.data() + i0, m},
+                dkappas.data() + i0, grey, derivs.data() + i0);
+    for (std::size_t i = i0; i < i0 + m; i += kChannels)
       for (int c = 0; c < kChannels; ++c) {
         const PieceDerivatives& g = derivs[i + static_cast<std::size_t>(c)];
         incoming[i + static_cast<std::size_t>(c)] = intensity[c];
@@ -541,16 +478,10 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   // summed per interval (IntervalSums) and formed after the pass; the slopes come from a table.
   IntervalSums* rho_sums = scratch.rho_sums;
   IntervalSums* kappa_sums = scratch.kappa_sums;
-  const double* rho_slope[kChannels];
-  const double* kappa_slope[kChannels];
-  for (int c = 0; c < kChannels; ++c)
-    for (const bool density : {true, false}) {
-      const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
-      std::vector<double>& slopes = scratch.slopes[density ? c : kChannels + c];
-      slopes.resize(f.scalar.size() + 1);
-      for (std::size_t k = 0; k < slopes.size(); ++k) slopes[k] = interval_slope(f, k);
-      (density ? rho_slope : kappa_slope)[c] = slopes.data();
-      if (nodes_wanted) (density ? rho_sums : kappa_sums)[c].reset(f);
+  if (nodes_wanted)
+    for (int c = 0; c < kChannels; ++c) {
+      rho_sums[c].reset(tf.density[c]);
+      kappa_sums[c].reset(tf.color[c]);
     }
   Rgb adjoint{1.0, 1.0, 1.0};
   for (std::size_t k = n; k-- > 0;) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "rayint/core/lanes.hpp"
 
@@ -70,11 +72,51 @@ std::vector<Piece> split_ray(const TransferFunctions& tf, const Ray& ray) {
 }
 
 
-PieceSplitter::PieceSplitter(const TransferFunctions& tf)
-    : tf_(&tf), breakpoints_(tf.breakpoints()), grey_(tf.grey()) {
+PieceSplitter::PieceSplitter(const TransferFunctions& tf) { reset(tf); }
+
+void PieceSplitter::reset(const TransferFunctions& tf) {
+  tf_ = &tf;
+  grey_ = tf.grey();
+  // TransferFunctions::breakpoints(), into the storage already held
+  breakpoints_.clear();
+  for (const auto* group : {&tf.density, &tf.color})
+    for (const auto& f : *group) breakpoints_.insert(breakpoints_.end(), f.scalar.begin(), f.scalar.end());
+  std::sort(breakpoints_.begin(), breakpoints_.end());
+  breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
   const std::size_t m = breakpoints_.size();
   padded_.fill(std::numeric_limits<double>::quiet_NaN());
   if (m <= padded_.size()) std::copy(breakpoints_.begin(), breakpoints_.end(), padded_.begin());
+  // PiecewiseLinear::limit at every breakpoint, from below and from above: its tests and its
+  // interpolate call, with lower_bound and upper_bound walked along the sorted breakpoints
+  // instead of searched for each.
+  at_breakpoint_.resize(m);
+  above_breakpoint_.resize(m);
+  for (int f = 0; f < kFunctions; ++f) {
+    const PiecewiseLinear& fn = function(f);
+    const std::vector<double>& x = fn.scalar;
+    const std::size_t nx = x.size();
+    std::size_t lower = 0, upper = 0;  // lower_bound and upper_bound of s in x
+    for (std::size_t j = 0; j < m; ++j) {
+      const double s = breakpoints_[j];
+      while (lower < nx && x[lower] < s) ++lower;
+      while (upper < nx && x[upper] <= s) ++upper;
+      double below, above;
+      if (s <= x.front())
+        below = fn.value.front();
+      else if (s > x.back())
+        below = fn.value.back();
+      else
+        below = x[lower] == s ? fn.value[lower] : fn.interpolate(s, lower);
+      if (s < x.front())
+        above = fn.value.front();
+      else if (s >= x.back())
+        above = fn.value.back();
+      else
+        above = fn.interpolate(s, upper);
+      at_breakpoint_[j][static_cast<std::size_t>(f)] = below;
+      above_breakpoint_[j][static_cast<std::size_t>(f)] = above;
+    }
+  }
   rows_.resize(2 * m + 1);
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     Row& row = rows_[r];
@@ -86,7 +128,8 @@ PieceSplitter::PieceSplitter(const TransferFunctions& tf)
       row.v0[f] = row.v1[f] = row.dv01[f] = row.dv10[f] = 0.0;
       row.keep[f] = -1;
       if (r % 2 == 1) {  // at breakpoint (r - 1) / 2: the stored value, as operator() returns it
-        row.constant[f] = fn(breakpoints_[(r - 1) / 2]);
+        // (operator() is limit(s, false): at_breakpoint_'s entry, formed above)
+        row.constant[f] = at_breakpoint_[(r - 1) / 2][static_cast<std::size_t>(kSlotFunction[f])];
       } else if (r == 0) {  // below every function's first point
         row.constant[f] = fn.value.front();
       } else if (r == 2 * m) {  // above every function's last point
@@ -116,13 +159,6 @@ PieceSplitter::PieceSplitter(const TransferFunctions& tf)
       }
     }
   }
-  at_breakpoint_.resize(m);
-  above_breakpoint_.resize(m);
-  for (std::size_t j = 0; j < m; ++j)
-    for (int f = 0; f < kFunctions; ++f) {
-      at_breakpoint_[j][static_cast<std::size_t>(f)] = function(f).limit(breakpoints_[j], false);
-      above_breakpoint_[j][static_cast<std::size_t>(f)] = function(f).limit(breakpoints_[j], true);
-    }
   jumps_ = tf.has_jump();
 }
 
@@ -222,7 +258,7 @@ template <class Put>
   alignas(16) double v_far[kFunctions];
   eval(row0, s0, v_far);
   if (s0 == s1) {
-    put(seg.length, s0, s1, v_far, v_far);
+    put(seg.length, s0, s1, v_far, v_far, PiecePlace::kNoRegion);
     return 1;
   }
   const Row& row1 = rows_[region(s1, lt1, le1, hint)];
@@ -248,14 +284,16 @@ template <class Put>
     const double* below = at_breakpoint_[j].data();
     const double* above = above_breakpoint_[j].data();
     const double len = seg.length * ((s - s_prev) / span);
-    if (len > 0.0) put(len, s_prev, s, v_prev, s0 < s1 ? below : above);
+    // the piece's interior lies between breakpoints j - 1 and j (increasing) or j and j + 1
+    if (len > 0.0) put(len, s_prev, s, v_prev, s0 < s1 ? below : above, s0 < s1 ? j : j + 1);
     s_prev = s;
     v_prev = s0 < s1 ? above : below;
   }
   // Without interior ends the fraction is span / span: exactly 1 when span is finite (it is not
   // 0, s0 != s1), so that division is skipped; an overflowed span keeps inf / inf = NaN.
   const double len = inner == 0 && std::isfinite(span) ? seg.length : seg.length * ((s1 - s_prev) / span);
-  if (len > 0.0) put(len, s_prev, s1, v_prev, v_exit);
+  // the last piece's interior: above breakpoint last - 1 (increasing), above first - 1 (decreasing)
+  if (len > 0.0) put(len, s_prev, s1, v_prev, v_exit, s0 < s1 ? last : first);
   return 1 + static_cast<long>(inner);
 }
 
@@ -269,7 +307,7 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
   RegionHint hint;
   split(
       seg,
-      [&out](double length, double s_far, double s_exit, const double* far, const double* exit) {
+      [&out](double length, double s_far, double s_exit, const double* far, const double* exit, std::size_t) {
         out.emplace_back(length, s_far, s_exit, far, exit);
       },
       hint);
@@ -291,7 +329,10 @@ template <class Columns>
     return 1;
   }
   return split(
-      seg, [&out](double length, double, double, const double* far, const double* exit) { out.push(length, far, exit); },
+      seg,
+      [&out](double length, double, double, const double* far, const double* exit, std::size_t) {
+        out.push(length, far, exit);
+      },
       hint);
 }
 
@@ -322,6 +363,28 @@ __attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(con
   RegionHint hint;
   long count = 0;
   for (const Segment& seg : segments) count += append_columns(seg, out, hint);
+  return count;
+}
+
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
+                                                                             PieceChannelColumns& out,
+                                                                             std::vector<PiecePlace>& places) const {
+  RegionHint hint;
+  long count = 0;
+  places.clear();
+  for (std::size_t j = 0; j < segments.size(); ++j) {
+    const Segment& seg = segments[j];
+    if (!(seg.length > 0.0)) continue;
+    if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit))
+      throw std::invalid_argument("PieceSplitter: segment " + std::to_string(j) + ": scalars must be finite");
+    count += split(
+        seg,
+        [&](double length, double s_far, double s_exit, const double* far, const double* exit, std::size_t region) {
+          out.push(length, far, exit);
+          places.push_back({static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(region), s_far, s_exit});
+        },
+        hint);
+  }
   return count;
 }
 

@@ -104,6 +104,19 @@ struct GreyPieceColumns {
   std::size_t n_ = 0;
 };
 
+// Where a piece of a ray lies, for a gradient through the splitting
+// (integrators/ray_gradient_chain.hpp): its segment, its end scalars, and the interval of the
+// sorted breakpoints (PieceSplitter::breakpoints()) that holds its interior, as the count
+// upper_bound(breakpoints, smaller end) -- no breakpoint lies strictly inside a piece, so each
+// transfer function's interval there follows from it. kNoRegion for the piece of a constant
+// segment (s_far == s_exit), whose interval at a jump depends on the function.
+struct PiecePlace {
+  static constexpr std::uint32_t kNoRegion = static_cast<std::uint32_t>(-1);
+  std::uint32_t segment = 0;
+  std::uint32_t region = 0;
+  double s_far = 0.0, s_exit = 0.0;
+};
+
 // What every piece-wise integrator needs: the transfer functions' breakpoints, collected once,
 // and the pieces of one segment at a time. pieces() returns a per-thread buffer that stays valid
 // until the next pieces() call on the same thread (no allocation per segment in timing loops).
@@ -120,6 +133,11 @@ struct GreyPieceColumns {
 class PieceSplitter {
  public:
   explicit PieceSplitter(const TransferFunctions& tf);
+  PieceSplitter() = default;  // no functions until reset()
+  // Rebuilt for `tf` (kept by reference, as by the constructor), reusing the storage held: no
+  // allocation once it has grown (the gradient's per-thread splitter, for rays with their own
+  // transfer functions).
+  void reset(const TransferFunctions& tf);
   const std::vector<Piece>& pieces(const Segment& segment) const;
   // Appends the pieces of `segment` to `out` (the same pieces as pieces()).
   void append(const Segment& segment, std::vector<Piece>& out) const;
@@ -137,6 +155,12 @@ class PieceSplitter {
   // dropped (issue 33, round 8: the render counted them in a second pass, ~4% of its CPU).
   long append(const std::vector<Segment>& segments, PieceChannelColumns& out) const;
   long append(const std::vector<Segment>& segments, GreyPieceColumns& out) const;
+  // The per-ray append() with each piece's place: places[k] is piece k's (entries kChannels k ..
+  // of `out`). Every scalar must be finite (the gradient's check; throws std::invalid_argument
+  // otherwise). `places` is cleared first.
+  long append(const std::vector<Segment>& segments, PieceChannelColumns& out, std::vector<PiecePlace>& places) const;
+  // The sorted, de-duplicated breakpoints of the six functions (TransferFunctions::breakpoints).
+  const std::vector<double>& breakpoints() const { return breakpoints_; }
   const TransferFunctions& transfer() const { return *tf_; }
   // transfer().grey(), computed once: the grey columns may be asked for.
   bool grey() const { return grey_; }
@@ -184,7 +208,7 @@ class PieceSplitter {
   template <class Columns>
   long append_columns(const Segment& segment, Columns& out, RegionHint& hint) const;
 
-  const TransferFunctions* tf_;
+  const TransferFunctions* tf_ = nullptr;
   std::vector<double> breakpoints_;
   std::array<double, 8> padded_{};  // breakpoints_ then NaN (never counted), when m <= 8
   std::vector<Row> rows_;           // 2m + 1
