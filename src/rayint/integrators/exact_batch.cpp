@@ -54,6 +54,7 @@
 #include <hwy/highway.h>
 #include <hwy/contrib/math/math-inl.h>
 
+#include "rayint/core/default_init.hpp"
 #include "rayint/special/erfcx_simd-inl.hpp"
 
 #ifndef RAYINT_EXACT_BATCH_SHARED
@@ -568,11 +569,16 @@ constexpr std::size_t kMaxLanes = 32;
 // One thread's scratch: the padded copy of a chunk's last partial vector of inputs, each
 // group's columns and results, and the mask bits of every vector of the chunk.
 struct Scratch {
-  std::vector<double> len, rho_far, rho_exit;
-  std::vector<double> kappa_far[kChannels], kappa_exit[kChannels];
-  std::vector<double> a[kGroups], b[kGroups], tr[kGroups], w_exit[kGroups], w_far[kGroups], terms[kGroups];
-  std::vector<double> m1[kGroups], m2[kGroups], e0[kGroups];  // the gradient's batch only
-  std::vector<unsigned char> bits;
+  // Columns always written before they are read (the tail columns below are zero-padded where
+  // they are filled): not zero-filled here, so a thread's pages are touched only as far as its
+  // chunks reach (core/default_init.hpp).
+  template <class T>
+  using Column = std::vector<T, DefaultInitAllocator<T>>;
+  Column<double> len, rho_far, rho_exit;
+  Column<double> kappa_far[kChannels], kappa_exit[kChannels];
+  Column<double> a[kGroups], b[kGroups], tr[kGroups], w_exit[kGroups], w_far[kGroups], terms[kGroups];
+  Column<double> m1[kGroups], m2[kGroups], e0[kGroups];  // the gradient's batch only
+  Column<unsigned char> bits;
   GroupSink sink{};
   GroupResults results{};
   Scratch() {
