@@ -58,17 +58,9 @@ void BM_exact_piece_mixed(benchmark::State& state) {
 void BM_exact_pieces_batch(benchmark::State& state) {
   const std::vector<rayint::ChannelPiece> pieces = rayint::mixed_regime_pieces(1000000, 2026);
   const std::size_t n = pieces.size();
-  std::vector<double> rho_exit(n), rho_far(n), kappa_exit(n), kappa_far(n), length(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    rho_exit[i] = pieces[i].rho_exit;
-    rho_far[i] = pieces[i].rho_far;
-    kappa_exit[i] = pieces[i].kappa_exit;
-    kappa_far[i] = pieces[i].kappa_far;
-    length[i] = pieces[i].length;
-  }
+  rayint::PieceColumnStore columns;
+  const rayint::PieceColumns in = columns.assign(pieces.data(), n);
   std::vector<double> emission(n), transmittance(n);
-  const rayint::PieceColumns in{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(),
-                                kappa_exit.data(), n};
   rayint::OpticsColumns out;
   out.emission = emission.data();
   out.transmittance = transmittance.data();

@@ -62,22 +62,20 @@ struct KronrodValues {
 
 // The batches' unit nodes: the 7-point Gauss rule's (0, -+ x[2], -+ x[4], -+ x[6] of GK15),
 // the Kronrod ones (-+ x[1], -+ x[3], ...), and the even N-point Gauss rule's (-+ x[0], ...).
+// GK15's abscissae x[first], x[first + 2], ... as -+ pairs at v[j - 1], v[j] (v[0] stays the
+// centre, 0, for first = 2).
+UnitNodes gk15_units(std::size_t first) {
+  const auto& x = GK15::abscissa();
+  UnitNodes v{};
+  for (std::size_t j = first; j < x.size(); j += 2) v[j - 1] = -x[j], v[j] = x[j];
+  return v;
+}
 const UnitNodes& gauss_7_units() {
-  static const UnitNodes u = [] {
-    const auto& x = GK15::abscissa();
-    UnitNodes v{};
-    for (std::size_t j = 2; j < x.size(); j += 2) v[j - 1] = -x[j], v[j] = x[j];
-    return v;
-  }();
+  static const UnitNodes u = gk15_units(2);
   return u;
 }
 const UnitNodes& kronrod_8_units() {
-  static const UnitNodes u = [] {
-    const auto& x = GK15::abscissa();
-    UnitNodes v{};
-    for (std::size_t j = 1; j < x.size(); j += 2) v[j - 1] = -x[j], v[j] = x[j];
-    return v;
-  }();
+  static const UnitNodes u = gk15_units(1);
   return u;
 }
 template <int N>

@@ -758,5 +758,17 @@ void exact_batch(const GreyPieceView& in, const GreyOpticsColumns& out) {
              out.transmittance, out.emission.data(), nullptr, [](const Scratch&, std::size_t, std::size_t) {});
 }
 
+PieceColumns PieceColumnStore::assign(const ChannelPiece* pieces, std::size_t n) {
+  for (auto* v : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) v->resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    length[i] = pieces[i].length;
+    rho_far[i] = pieces[i].rho_far;
+    rho_exit[i] = pieces[i].rho_exit;
+    kappa_far[i] = pieces[i].kappa_far;
+    kappa_exit[i] = pieces[i].kappa_exit;
+  }
+  return PieceColumns{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(), kappa_exit.data(), n};
+}
+
 }  // namespace rayint
 #endif  // HWY_ONCE

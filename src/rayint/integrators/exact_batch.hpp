@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "rayint/integrators/exact.hpp"
 
@@ -19,6 +20,13 @@ struct PieceColumns {
   const double* kappa_far = nullptr;
   const double* kappa_exit = nullptr;
   std::size_t size = 0;
+};
+
+// The columns of an array of ChannelPiece, owned: how a caller with pieces as structs reaches the
+// column functions (exact_batch, exact_pieces_grad). assign() returns the view of n pieces.
+struct PieceColumnStore {
+  std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
+  PieceColumns assign(const ChannelPiece* pieces, std::size_t n);
 };
 
 // Results per piece: the transmittance and emission of PieceOptics; the introspection columns

@@ -519,17 +519,8 @@ void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exi
 
 void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus_exit, std::size_t n,
                        PieceDerivatives* out, int same_depth_stride) {
-  thread_local std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
-  for (auto* v : {&length, &rho_far, &rho_exit, &kappa_far, &kappa_exit}) v->resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    length[i] = pieces[i].length;
-    rho_far[i] = pieces[i].rho_far;
-    rho_exit[i] = pieces[i].rho_exit;
-    kappa_far[i] = pieces[i].kappa_far;
-    kappa_exit[i] = pieces[i].kappa_exit;
-  }
-  exact_pieces_grad(PieceColumns{length.data(), rho_far.data(), rho_exit.data(), kappa_far.data(), kappa_exit.data(), n},
-                    kappa_far_minus_exit, out, same_depth_stride);
+  thread_local PieceColumnStore columns;
+  exact_pieces_grad(columns.assign(pieces, n), kappa_far_minus_exit, out, same_depth_stride);
 }
 
 PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa, const PieceOpticsGrad& same_depth) {
