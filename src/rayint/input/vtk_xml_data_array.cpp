@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <type_traits>
 #include <limits>
 
 #include "rayint/core/error.hpp"
@@ -108,6 +109,18 @@ void convert_values(const unsigned char* p, double* into, std::size_t n) {
   }
 }
 
+// Integers of `width` bytes, signed or not.
+template <bool Signed>
+bool convert_integers(const unsigned char* p, std::size_t width, double* into, std::size_t n) {
+  switch (width) {
+    case 8: convert_values<std::conditional_t<Signed, std::int64_t, std::uint64_t>>(p, into, n); return true;
+    case 4: convert_values<std::conditional_t<Signed, std::int32_t, std::uint32_t>>(p, into, n); return true;
+    case 2: convert_values<std::conditional_t<Signed, std::int16_t, std::uint16_t>>(p, into, n); return true;
+    case 1: convert_values<std::conditional_t<Signed, std::int8_t, std::uint8_t>>(p, into, n); return true;
+    default: return false;
+  }
+}
+
 bool convert_native(const unsigned char* p, const TypeInfo& t, double* into, std::size_t n) {
   switch (t.kind) {
     case TypeInfo::kFloat:
@@ -115,20 +128,8 @@ bool convert_native(const unsigned char* p, const TypeInfo& t, double* into, std
       else if (t.width == 4) convert_values<float>(p, into, n);
       else return false;
       return true;
-    case TypeInfo::kSigned:
-      if (t.width == 8) convert_values<std::int64_t>(p, into, n);
-      else if (t.width == 4) convert_values<std::int32_t>(p, into, n);
-      else if (t.width == 2) convert_values<std::int16_t>(p, into, n);
-      else if (t.width == 1) convert_values<std::int8_t>(p, into, n);
-      else return false;
-      return true;
-    case TypeInfo::kUnsigned:
-      if (t.width == 8) convert_values<std::uint64_t>(p, into, n);
-      else if (t.width == 4) convert_values<std::uint32_t>(p, into, n);
-      else if (t.width == 2) convert_values<std::uint16_t>(p, into, n);
-      else if (t.width == 1) convert_values<std::uint8_t>(p, into, n);
-      else return false;
-      return true;
+    case TypeInfo::kSigned: return convert_integers<true>(p, t.width, into, n);
+    case TypeInfo::kUnsigned: return convert_integers<false>(p, t.width, into, n);
   }
   return false;
 }

@@ -77,18 +77,12 @@ PieceSplitter::PieceSplitter(const TransferFunctions& tf) { reset(tf); }
 void PieceSplitter::reset(const TransferFunctions& tf) {
   tf_ = &tf;
   grey_ = tf.grey();
-  // TransferFunctions::breakpoints(), into the storage already held
-  breakpoints_.clear();
-  for (const auto* group : {&tf.density, &tf.color})
-    for (const auto& f : *group) breakpoints_.insert(breakpoints_.end(), f.scalar.begin(), f.scalar.end());
-  std::sort(breakpoints_.begin(), breakpoints_.end());
-  breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
+  tf.breakpoints_into(breakpoints_);  // into the storage already held
   const std::size_t m = breakpoints_.size();
   padded_.fill(std::numeric_limits<double>::quiet_NaN());
   if (m <= padded_.size()) std::copy(breakpoints_.begin(), breakpoints_.end(), padded_.begin());
-  // PiecewiseLinear::limit at every breakpoint, from below and from above: its tests and its
-  // interpolate call, with lower_bound and upper_bound walked along the sorted breakpoints
-  // instead of searched for each.
+  // PiecewiseLinear::limit at every breakpoint, from below and from above, with lower_bound and
+  // upper_bound walked along the sorted breakpoints instead of searched for each.
   at_breakpoint_.resize(m);
   above_breakpoint_.resize(m);
   for (int f = 0; f < kFunctions; ++f) {
@@ -100,21 +94,8 @@ void PieceSplitter::reset(const TransferFunctions& tf) {
       const double s = breakpoints_[j];
       while (lower < nx && x[lower] < s) ++lower;
       while (upper < nx && x[upper] <= s) ++upper;
-      double below, above;
-      if (s <= x.front())
-        below = fn.value.front();
-      else if (s > x.back())
-        below = fn.value.back();
-      else
-        below = x[lower] == s ? fn.value[lower] : fn.interpolate(s, lower);
-      if (s < x.front())
-        above = fn.value.front();
-      else if (s >= x.back())
-        above = fn.value.back();
-      else
-        above = fn.interpolate(s, upper);
-      at_breakpoint_[j][static_cast<std::size_t>(f)] = below;
-      above_breakpoint_[j][static_cast<std::size_t>(f)] = above;
+      at_breakpoint_[j][static_cast<std::size_t>(f)] = fn.limit(s, false, lower);
+      above_breakpoint_[j][static_cast<std::size_t>(f)] = fn.limit(s, true, upper);
     }
   }
   rows_.resize(2 * m + 1);
@@ -375,7 +356,7 @@ __attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(con
   for (std::size_t j = 0; j < segments.size(); ++j) {
     const Segment& seg = segments[j];
     if (!(seg.length > 0.0)) continue;
-    if (std::isnan(seg.scalar_far) || std::isnan(seg.scalar_exit))
+    if (!(std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
       throw std::invalid_argument("PieceSplitter: segment " + std::to_string(j) + ": scalars must be finite");
     count += split(
         seg,

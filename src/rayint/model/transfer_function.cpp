@@ -16,13 +16,19 @@ double PiecewiseLinear::limit(double s, bool from_above) const {
   // jump at an end point counts too (below the first point the function is the first value).
   if (s < scalar.front() || (s == scalar.front() && !from_above)) return value.front();
   if (s > scalar.back() || (s == scalar.back() && from_above)) return value.back();
-  if (from_above) {  // scalar[k-1] <= s < scalar[k]: k-1 is the last point at s, if any
-    const auto it = std::upper_bound(scalar.begin(), scalar.end(), s);
-    return interpolate(s, static_cast<std::size_t>(it - scalar.begin()));
-  }
+  const auto k = from_above ? std::upper_bound(scalar.begin(), scalar.end(), s)
+                            : std::lower_bound(scalar.begin(), scalar.end(), s);
+  return limit(s, from_above, static_cast<std::size_t>(k - scalar.begin()));
+}
+
+double PiecewiseLinear::limit(double s, bool from_above, std::size_t k) const {
+  if (std::isnan(s)) return s;
+  if (s < scalar.front() || (s == scalar.front() && !from_above)) return value.front();
+  if (s > scalar.back() || (s == scalar.back() && from_above)) return value.back();
+  // From above: scalar[k-1] <= s < scalar[k], k-1 the last point at s, if any.
+  if (from_above) return interpolate(s, k);
   // From below: k is the first point >= s; at s itself that point's (left) value, else the line
   // of scalar[k-1] < s < scalar[k] (the same k as upper_bound's: bit for bit as without jumps).
-  const auto k = static_cast<std::size_t>(std::lower_bound(scalar.begin(), scalar.end(), s) - scalar.begin());
   if (scalar[k] == s) return value[k];
   return interpolate(s, k);
 }
@@ -59,11 +65,16 @@ double PiecewiseLinear::interpolate(double s, std::size_t k) const {
 
 std::vector<double> TransferFunctions::breakpoints() const {
   std::vector<double> all;
+  breakpoints_into(all);
+  return all;
+}
+
+void TransferFunctions::breakpoints_into(std::vector<double>& all) const {
+  all.clear();
   for (const auto* group : {&density, &color})
     for (const auto& f : *group) all.insert(all.end(), f.scalar.begin(), f.scalar.end());
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
-  return all;
 }
 
 bool TransferFunctions::has_jump() const {

@@ -31,6 +31,9 @@ struct PiecewiseLinear {
   // The one-sided limit at s: from below (from_above false) or from above. Equal to operator()
   // except at a jump, where it is the left or the right value.
   double limit(double s, bool from_above) const;
+  // The same with its search done by the caller: k = upper_bound(scalar, s) from above,
+  // lower_bound from below (PieceSplitter::reset walks them along its sorted breakpoints).
+  double limit(double s, bool from_above, std::size_t k) const;
   // operator() for scalar.front() < s < scalar.back() with k such that scalar[k-1] <= s <
   // scalar[k] (the index upper_bound(scalar, s) returns), known to the caller: the same
   // arithmetic, bit for bit.
@@ -49,6 +52,8 @@ struct TransferFunctions {
 
   // Sorted, de-duplicated union of the breakpoints of all six functions.
   std::vector<double> breakpoints() const;
+  // The same into `out` (its storage reused).
+  void breakpoints_into(std::vector<double>& out) const;
   // True when the three densities are the same function, point for point and bit for bit (a grey
   // medium, as from one opacity transfer function): every channel of a piece then has the same
   // optical depth, so its transmittance and emission weights need computing only once.
