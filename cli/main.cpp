@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
       status = rayint::cli::kExitFailed;  // the report of the failure is still written
     }
     outputs.commit();
+    rayint::cli::HeldLines::instance().release();  // input lines no progress update printed
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

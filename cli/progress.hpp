@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 namespace rayint::cli {
 
@@ -26,10 +27,37 @@ inline bool stderr_is_terminal() {
   return tty;
 }
 
+// Lines about reading the input (a slow stage's time, what a mode will do) are held until the
+// input has passed its checks: the computation's first progress update prints them, or the end of
+// a command that succeeded (main). A bad input's error is then the only line on stderr, however
+// long the reading took ("one line, once", issue 30).
+class HeldLines {
+ public:
+  static HeldLines& instance() {
+    static HeldLines held;
+    return held;
+  }
+  void hold(std::string line) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    lines_.push_back(std::move(line));
+  }
+  void release() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const std::string& line : lines_) std::fprintf(stderr, "%s\n", line.c_str());
+    if (!lines_.empty()) std::fflush(stderr);
+    lines_.clear();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> lines_;
+};
+
 class ProgressLine {
  public:
   // `fraction` in [0, 1]; safe to call from several threads.
   void update(const std::string& text, double fraction) {
+    HeldLines::instance().release();  // the input was accepted: the computation has begun
     const std::lock_guard<std::mutex> lock(mutex_);
     if (stderr_is_terminal()) {
       std::fprintf(stderr, "\r%s", text.c_str());
@@ -59,8 +87,10 @@ class ProgressLine {
 };
 
 // A stage without a measure of its own progress (reading a mesh, building the traversal): silent
-// when it ends within a second; past a second, one line "<label> ..." then, at its end,
-// "<label>: <summary> (<seconds> s)" (issue 33: a 10M-tet mesh takes tens of seconds to load).
+// when it ends within a second. Past a second, on a terminal, an open line "<label> ..." (erased
+// when the stage ends, by success or by an error); at its end, held (HeldLines) until the input is
+// accepted, "<label>: <summary> (<seconds> s)" (issue 33: a 10M-tet mesh takes tens of seconds to
+// load). In a log only the held line is written, so a log never holds a stage without its end.
 class SlowStage {
  public:
   SlowStage(std::string label, bool quiet) : label_(std::move(label)), start_(std::chrono::steady_clock::now()) {
@@ -68,24 +98,29 @@ class SlowStage {
     watcher_ = std::thread([this] {
       std::unique_lock<std::mutex> lock(mutex_);
       if (cv_.wait_for(lock, std::chrono::seconds(1), [this] { return ended_; })) return;
-      std::fprintf(stderr, "%s ...\n", label_.c_str());
-      std::fflush(stderr);
       announced_ = true;
+      if (!stderr_is_terminal()) return;
+      std::fprintf(stderr, "\r%s ...", label_.c_str());
+      std::fflush(stderr);
+      line_open_ = true;
+      progress_line_open() = true;
     });
   }
   ~SlowStage() { stop(); }
   SlowStage(const SlowStage&) = delete;
   SlowStage& operator=(const SlowStage&) = delete;
-  // Ends the stage; prints the summary when the stage was announced.
+  // Ends the stage; holds the summary when the stage took over a second.
   void done(const std::string& summary) {
     stop();
     if (!announced_) return;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    std::fprintf(stderr, "%s: %s (%.1f s)\n", label_.c_str(), summary.c_str(), s);
-    std::fflush(stderr);
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, " (%.1f s)", s);
+    HeldLines::instance().hold(label_ + ": " + summary + seconds);
   }
 
  private:
+  // Joins the watcher and erases its open terminal line.
   void stop() {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -93,6 +128,12 @@ class SlowStage {
     }
     cv_.notify_all();
     if (watcher_.joinable()) watcher_.join();
+    if (line_open_) {
+      std::fputs("\r\033[K", stderr);
+      std::fflush(stderr);
+      line_open_ = false;
+      progress_line_open() = false;
+    }
   }
   std::string label_;
   std::chrono::steady_clock::time_point start_;
@@ -100,6 +141,7 @@ class SlowStage {
   std::condition_variable cv_;
   bool ended_ = false;
   bool announced_ = false;  // written by the watcher, read after join
+  bool line_open_ = false;  // the same: the terminal line "<label> ..." is on screen
   std::thread watcher_;
 };
 

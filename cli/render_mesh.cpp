@@ -158,9 +158,9 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
   if (mc.split && !options.quiet) {
     long cells = 0;
     for (const auto& [type, n] : mc.split->cells) cells += type == "tetra" ? 0 : n;
-    std::fprintf(stderr, "rayint render: --cells split: %ld cells tetrahedralised into %zu tetrahedra as VTK's "
-                 "vtkDataSetTriangleFilter does (an approximation of the cells' own interpolation)\n",
-                 cells, mc.mesh.tets.size());
+    HeldLines::instance().hold("rayint render: --cells split: " + std::to_string(cells) + " cells tetrahedralised into " +
+                               std::to_string(mc.mesh.tets.size()) + " tetrahedra as VTK's vtkDataSetTriangleFilter "
+                               "does (an approximation of the cells' own interpolation)");
   }
   const std::string fitted = options.fit ? fit_camera_to_mesh(mc) : std::string();
   if (!mc.camera) throw InputError(options.input + ": camera: required to render a mesh case");
@@ -244,11 +244,12 @@ void render_own_cells(MeshCase& mc, const RenderOptions& options, const json_sou
   if (!options.quiet && !merging()) {
     std::string types;
     for (const auto& [type, n] : cell_counts(mesh.mesh())) types += (types.empty() ? "" : ", ") + std::to_string(n) + " " + type;
-    std::fprintf(stderr, "rayint render: mode own: %s integrated in their own (isoparametric) interpolation "
-                 "(--cells split: VTK's tetrahedralisation instead)\n", types.c_str());
+    HeldLines::instance().hold("rayint render: mode own: " + types + " integrated in their own (isoparametric) "
+                               "interpolation (--cells split: VTK's tetrahedralisation instead)");
     if (mc.repairs.zero_volume > 0)
-      std::fprintf(stderr, "rayint render: mode own: %ld zero-volume cells dropped (no volume, no length along any ray; "
-                   "--strict-mesh refuses them)\n", mc.repairs.zero_volume);
+      HeldLines::instance().hold("rayint render: mode own: " + std::to_string(mc.repairs.zero_volume) +
+                                 " zero-volume cells dropped (no volume, no length along any ray; --strict-mesh "
+                                 "refuses them)");
   }
   // One band (--shard), the merged bands (rayint merge), or the whole image.
   const auto render_band = [&] {
