@@ -78,14 +78,9 @@ void set_check_command(CLI::App& app) {
                   "z-test: pass when at least this fraction of pixel channels pass (Mitsuba 3: 0.9975)")
       ->check(float_range(0.0, 1.0))
       ->capture_default_str();
-  cmd->add_option("--rel-tol", opt->check.rel_tol,
-                  "Relative tolerance: a channel passes if "
-                  "|got - expected| <= max(abs-tol, rel-tol * |expected|)")
-      ->check(kTolerance)
-      ->capture_default_str();
-  cmd->add_option("--abs-tol", opt->check.abs_tol, "Absolute tolerance (see --rel-tol)")
-      ->check(kTolerance)
-      ->capture_default_str();
+  add_tolerance_options(cmd, opt->check.rel_tol, opt->check.abs_tol,
+                        "Relative tolerance: a channel passes if "
+                        "|got - expected| <= max(abs-tol, rel-tol * |expected|)");
   cmd->add_flag("--no-reference", opt->no_reference,
                 "Skip the 50-digit reference (reported for context only; costs time on big cases)");
   cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");

@@ -47,13 +47,8 @@ void set_gradcheck_command(CLI::App& app) {
   cmd->add_option("case", opt->case_file, "Case file (JSON, ray case)")->required();
   cmd->add_option("--candidate", opt->candidate_file, "The renderer's gradients (JSON, docs/gradients.md)")
       ->required();
-  cmd->add_option("--rel-tol", opt->check.rel_tol,
-                  "Relative tolerance, of the largest |exact| entry of the ray's channel")
-      ->check(kTolerance)
-      ->capture_default_str();
-  cmd->add_option("--abs-tol", opt->check.abs_tol, "Absolute tolerance (see --rel-tol)")
-      ->check(kTolerance)
-      ->capture_default_str();
+  add_tolerance_options(cmd, opt->check.rel_tol, opt->check.abs_tol,
+                        "Relative tolerance, of the largest |exact| entry of the ray's channel");
   cmd->add_flag("--reference", opt->reference,
                 "Check against the 50-digit reference gradient instead of the analytic exact one (slow "
                 "on long rays; the truth where an entry is ill-conditioned, docs/gradients.md)");

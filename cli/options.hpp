@@ -54,6 +54,13 @@ inline const CLI::Validator kTolerance(
     },
     "TOL>=0");
 
+// --rel-tol and --abs-tol of check and gradcheck: both tolerances (kTolerance) with their defaults
+// shown; `rel_help` says what --rel-tol is relative to.
+inline void add_tolerance_options(CLI::App* cmd, double& rel_tol, double& abs_tol, const std::string& rel_help) {
+  cmd->add_option("--rel-tol", rel_tol, rel_help)->check(kTolerance)->capture_default_str();
+  cmd->add_option("--abs-tol", abs_tol, "Absolute tolerance (see --rel-tol)")->check(kTolerance)->capture_default_str();
+}
+
 }  // namespace rayint::cli
 
 namespace rayint::cli {

@@ -52,4 +52,21 @@ SlabInterval padded_slab_interval(const Vec3& lower, const Vec3& upper, double p
   return s;
 }
 
+MeshWalkStart mesh_walk_start(const ViewRay& ray, const Vec3& lower, const Vec3& upper, double diagonal) {
+  MeshWalkStart w;
+  Vec3 d = ray.direction;
+  const double dnorm = d.norm();
+  if (dnorm > 0.0 && std::isfinite(dnorm)) d /= dnorm;
+  w.direction = d;
+  w.origin = ray.origin;
+  const SlabInterval box = padded_slab_interval(lower, upper, 1e-6 * diagonal + 1e-300, ray.origin, d);
+  w.empty = !(box.t1 >= std::max(box.t0, 0.0)) || !(dnorm > 0.0);
+  if (w.empty) return w;
+  const double t_base = box.t0 - 0.01 * diagonal;
+  w.origin = ray.origin + t_base * d;
+  w.t_eye = -t_base;
+  w.t_end = box.t1 - t_base + 0.01 * diagonal;
+  return w;
+}
+
 }  // namespace rayint

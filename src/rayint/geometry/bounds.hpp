@@ -34,12 +34,27 @@ struct Bounds {
 
 // The same slabs against [lower - pad, upper + pad], NOT restricted to t >= 0: {t0, t1} with t0
 // negative when the origin is inside, and t1 < max(t0, 0) (or -1) when the ray misses. The mesh
-// traversals start their walk just before t0 and stop just after t1.
+// traversals start their walk just before t0 and stop just after t1 (mesh_walk_start).
 struct SlabInterval {
   double t0;
   double t1;
 };
 SlabInterval padded_slab_interval(const Vec3& lower, const Vec3& upper, double pad, const Vec3& origin,
                                   const Vec3& direction);
+
+// Where the mesh traversals (mesh/tet_traversal.hpp, mesh/cell_traversal.hpp) walk a viewing ray
+// through a mesh whose bounding box is [lower, upper] with diagonal `diagonal`: the direction
+// made unit (kept as given when its norm is 0 or not finite), the ray clipped against the box
+// padded by 1e-6 diagonal (+1e-300, for a box of one point), and the walk's origin put 0.01
+// diagonal before the padded entry, so that the walk starts just outside the box. Every t is
+// measured from that origin.
+struct MeshWalkStart {
+  Vec3 direction;       // unit
+  Vec3 origin;          // the walk's origin; the ray's own origin when `empty`
+  double t_eye = 0.0;   // where the eye is: > 0 when it is inside the box (clip there); 0 when `empty`
+  double t_end = 0.0;   // just past the padded box's exit (0.01 diagonal beyond it)
+  bool empty = true;    // no walk: the ray misses the box, the box is behind the eye, or d = 0
+};
+MeshWalkStart mesh_walk_start(const ViewRay& ray, const Vec3& lower, const Vec3& upper, double diagonal);
 
 }  // namespace rayint

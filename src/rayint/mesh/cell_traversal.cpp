@@ -647,27 +647,20 @@ void CellTraversal::trace(const ViewRay& ray, CellTrace& out, CellTraversalStats
   out.failed_chords = 0;
   CellTraversalStats local;
   local.rays = 1;
-  Vec3 d = ray.direction;
-  const double dnorm = d.norm();
-  if (dnorm > 0.0 && std::isfinite(dnorm)) d /= dnorm;
-  out.direction = d;
-  out.origin = ray.origin;
-  out.t_eye = 0.0;
-  const SlabInterval box = padded_slab_interval(box_min_, box_max_, 1e-6 * diagonal_ + 1e-300, ray.origin, d);
-  const double tb0 = box.t0, tb1 = box.t1;
-  if (!(tb1 >= std::max(tb0, 0.0)) || !(dnorm > 0.0)) {
+  const MeshWalkStart start = mesh_walk_start(ray, box_min_, box_max_, diagonal_);
+  out.direction = start.direction;
+  out.origin = start.origin;
+  out.t_eye = start.t_eye;
+  if (start.empty) {
     if (stats) stats->add(local);
     return;
   }
-  const double t_base = tb0 - 0.01 * diagonal_;
-  out.origin = ray.origin + t_base * d;
-  out.t_eye = -t_base;
   Walk w;
   w.o = out.origin;
-  w.d = d;
+  w.d = start.direction;
   w.frame.emplace(w.ray());
   w.self = this;
-  const double t_end = tb1 - t_base + 0.01 * diagonal_;
+  const double t_end = start.t_end;
   const long budget = 8 * static_cast<long>(cells_.size()) + 1000;
   long steps = 0;
   double t = 0.0;

@@ -240,27 +240,21 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
   out.crossings.clear();
   TraversalStats local;
   local.rays = 1;
-  Vec3 d = ray.direction;
-  const double dnorm = d.norm();
-  if (dnorm > 0.0 && std::isfinite(dnorm)) d /= dnorm;
-  out.direction = d;
   // Ray against the bounding box (slabs), to move the walk's origin just outside it.
-  const SlabInterval box = padded_slab_interval(box_min_, box_max_, 1e-6 * diagonal_ + 1e-300, ray.origin, d);
-  const double tb0 = box.t0, tb1 = box.t1;
-  out.origin = ray.origin;
-  out.t_eye = 0.0;
-  if (!(tb1 >= std::max(tb0, 0.0)) || !(dnorm > 0.0)) {
+  const MeshWalkStart start = mesh_walk_start(ray, box_min_, box_max_, diagonal_);
+  out.direction = start.direction;
+  out.origin = start.origin;
+  out.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
+  if (start.empty) {
     if (stats) stats->add(local);
     return;
   }
-  const double t_base = tb0 - 0.01 * diagonal_;  // walk origin: just outside the box
-  out.origin = ray.origin + t_base * d;
-  out.t_eye = -t_base;  // > 0 when the eye is inside the box: clip there
+  const Vec3 d = start.direction;
   Walk w;
   w.o = out.origin;
   w.d = d;
   w.self = this;
-  const double t_end = tb1 - t_base + 0.01 * diagonal_;
+  const double t_end = start.t_end;
   const V2 dx = {d[0], d[0]}, dy = {d[1], d[1]}, dz = {d[2], d[2]};
   const V2 ox = {w.o[0], w.o[0]}, oy = {w.o[1], w.o[1]}, oz = {w.o[2], w.o[2]};
   const long budget = 8 * static_cast<long>(mesh_.tets.size()) + 1000;

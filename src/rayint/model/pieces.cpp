@@ -331,8 +331,9 @@ void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const {
 // and the baseline one. AVX2 only, not FMA: no multiply-add can be contracted (and -std=c++17
 // keeps -ffp-contract=off), so both copies compute the same IEEE operations in the same order
 // (issue 33, round 6: the splitting took ~19% of a mesh render).
-__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
-                                                                             PieceChannelColumns& out) const {
+template <class Columns>
+[[gnu::always_inline]] inline long PieceSplitter::append_ray_columns(const std::vector<Segment>& segments,
+                                                                     Columns& out) const {
   RegionHint hint;
   long count = 0;
   for (const Segment& seg : segments) count += append_columns(seg, out, hint);
@@ -340,11 +341,13 @@ __attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(con
 }
 
 __attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
+                                                                             PieceChannelColumns& out) const {
+  return append_ray_columns(segments, out);
+}
+
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
                                                                              GreyPieceColumns& out) const {
-  RegionHint hint;
-  long count = 0;
-  for (const Segment& seg : segments) count += append_columns(seg, out, hint);
-  return count;
+  return append_ray_columns(segments, out);
 }
 
 __attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,

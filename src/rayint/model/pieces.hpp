@@ -207,6 +207,10 @@ class PieceSplitter {
   // of append() above for this segment.
   template <class Columns>
   long append_columns(const Segment& segment, Columns& out, RegionHint& hint) const;
+  // The per-ray column append()s: append_columns over the segments with one hint; returns the
+  // sum of their counts. Inlined into each of the append()s' CPU-specific copies.
+  template <class Columns>
+  long append_ray_columns(const std::vector<Segment>& segments, Columns& out) const;
 
   const TransferFunctions* tf_ = nullptr;
   std::vector<double> breakpoints_;
