@@ -4,13 +4,13 @@
 
 #include <cmath>
 
+#include "rayint/report/json_number.hpp"
 #include "rayint/report/stress_json.hpp"  // to_json(ErrorStats)
 
 namespace rayint {
 
 namespace {
 using json = nlohmann::ordered_json;
-json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 }  // namespace
 
 nlohmann::ordered_json to_json(const CellsReport& r) {
@@ -33,22 +33,22 @@ nlohmann::ordered_json to_json(const CellsReport& r) {
     for (const auto& l : c.levels)
       levels.push_back(json{{"level", l.level},
                             {"rel_error", to_json(l.rel)},
-                            {"segments_per_ray", number(l.segments_per_ray)},
-                            {"decompose_us_per_ray", number(l.decompose_us_per_ray)},
-                            {"exact_us_per_ray", number(l.exact_us_per_ray)}});
+                            {"segments_per_ray", number_or_null<json>(l.segments_per_ray)},
+                            {"decompose_us_per_ray", number_or_null<json>(l.decompose_us_per_ray)},
+                            {"exact_us_per_ray", number_or_null<json>(l.exact_us_per_ray)}});
     t["levels"] = levels;
     json steps = json::array();
-    for (double s : c.order_steps) steps.push_back(number(s));
-    t["order"] = json{{"median_fit", number(c.order_median)},
-                      {"max_fit", number(c.order_max)},
+    for (double s : c.order_steps) steps.push_back(number_or_null<json>(s));
+    t["order"] = json{{"median_fit", number_or_null<json>(c.order_median)},
+                      {"max_fit", number_or_null<json>(c.order_max)},
                       {"median_per_doubling", steps}};
     t["ode"] = json{{"rtol", o.ode_rtol},
                     {"rel_error", to_json(c.ode_rel)},
-                    {"us_per_ray", number(c.ode_us_per_ray)},
-                    {"steps_per_ray", number(c.ode_steps_per_ray)}};
-    t["reference"] = json{{"ms_per_ray", number(c.reference_ms_per_ray)},
-                          {"pieces_per_ray", number(c.pieces_per_ray)},
-                          {"max_rel_error_bound", number(c.max_reference_bound_rel)}};
+                    {"us_per_ray", number_or_null<json>(c.ode_us_per_ray)},
+                    {"steps_per_ray", number_or_null<json>(c.ode_steps_per_ray)}};
+    t["reference"] = json{{"ms_per_ray", number_or_null<json>(c.reference_ms_per_ray)},
+                          {"pieces_per_ray", number_or_null<json>(c.pieces_per_ray)},
+                          {"max_rel_error_bound", number_or_null<json>(c.max_reference_bound_rel)}};
     cells.push_back(t);
   }
   j["cells"] = cells;
@@ -58,11 +58,11 @@ nlohmann::ordered_json to_json(const CellsReport& r) {
                           {"points_per_axis", v.points_per_axis},
                           {"rays", v.samples},
                           {"rel_error", to_json(v.rel)},
-                          {"segments_per_ray", number(v.segments_per_ray)},
-                          {"exact_us_per_ray", number(v.exact_us_per_ray)},
-                          {"reference_ms_per_ray", number(v.reference_ms_per_ray)}});
+                          {"segments_per_ray", number_or_null<json>(v.segments_per_ray)},
+                          {"exact_us_per_ray", number_or_null<json>(v.exact_us_per_ray)},
+                          {"reference_ms_per_ray", number_or_null<json>(v.reference_ms_per_ray)}});
   j["voxels"] = voxels;
-  j["seconds"] = number(r.seconds);
+  j["seconds"] = number_or_null<json>(r.seconds);
   return j;
 }
 

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "rayint/report/json_number.hpp"
+
 namespace rayint {
 
 namespace {
@@ -11,19 +13,17 @@ constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
 
 using ojson = nlohmann::ordered_json;
 
-ojson number_or_null(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
-
 ojson channel_json(const ChannelCheck& ch, int k, bool with_reference) {
   ojson j = {{"channel", kChannelNames[k]},
              {"pass", ch.pass},
-             {"expected", number_or_null(ch.expected)},
-             {"got", number_or_null(ch.got)},
-             {"abs_error", number_or_null(ch.abs_error)},
-             {"rel_error", number_or_null(ch.rel_error)},
-             {"allowed", number_or_null(ch.allowed)}};
+             {"expected", number_or_null<ojson>(ch.expected)},
+             {"got", number_or_null<ojson>(ch.got)},
+             {"abs_error", number_or_null<ojson>(ch.abs_error)},
+             {"rel_error", number_or_null<ojson>(ch.rel_error)},
+             {"allowed", number_or_null<ojson>(ch.allowed)}};
   if (with_reference) {
-    j["reference"] = number_or_null(ch.reference);
-    j["expected_error"] = number_or_null(ch.expected_error);
+    j["reference"] = number_or_null<ojson>(ch.reference);
+    j["expected_error"] = number_or_null<ojson>(ch.expected_error);
   }
   return j;
 }
@@ -37,11 +37,11 @@ nlohmann::ordered_json check_report_json(const CheckResult& r) {
                    {"failed_rays", s.failed_rays},
                    {"channels", s.channels},
                    {"failed_channels", s.failed_channels},
-                   {"max_abs_error", number_or_null(s.max_abs_error)},
-                   {"max_rel_error", number_or_null(s.max_rel_error)},
+                   {"max_abs_error", number_or_null<ojson>(s.max_abs_error)},
+                   {"max_rel_error", number_or_null<ojson>(s.max_rel_error)},
                    {"worst", {{"ray", s.worst_ray}, {"channel", kChannelNames[s.worst_channel]}}}};
   if (with_ref)
-    summary["expected_max_rel_uncertainty"] = number_or_null(s.expected_max_rel_uncertainty);
+    summary["expected_max_rel_uncertainty"] = number_or_null<ojson>(s.expected_max_rel_uncertainty);
   const bool own = r.expected_method != "exact";  // own interpolation: its failures are counted
   if (own) {
     summary["expected_failed_rays"] = s.expected_failed_rays;

@@ -5,14 +5,6 @@
 
 namespace rayint {
 
-nlohmann::json number_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-}
-
-nlohmann::json rgb_json(const Rgb& v) {
-  return nlohmann::json::array({number_or_null(v[0]), number_or_null(v[1]), number_or_null(v[2])});
-}
-
 nlohmann::json to_json(const Diagnostics& d) {
   nlohmann::json j = nlohmann::json::object();
   j["branches"] = d.branches;

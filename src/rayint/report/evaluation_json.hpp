@@ -7,12 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "rayint/report/json_number.hpp"  // number_or_null, rgb_json
 #include "rayint/studies/evaluate.hpp"
 
 namespace rayint {
 
-nlohmann::json number_or_null(double x);
-nlohmann::json rgb_json(const Rgb& v);
 nlohmann::json to_json(const Diagnostics& d);
 nlohmann::json to_json(const ReferenceRay& ref);
 // with_reference false: without the error fields.

@@ -3,22 +3,20 @@
 #include <cmath>
 #include <string>
 
+#include "rayint/report/json_number.hpp"
+
 namespace rayint {
 namespace {
 
 using ojson = nlohmann::ordered_json;
 constexpr const char* kChannelNames[kChannels] = {"r", "g", "b"};
 
-ojson number_or_null(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
-
-ojson rgb(const Rgb& v) { return ojson::array({number_or_null(v[0]), number_or_null(v[1]), number_or_null(v[2])}); }
-
 ojson nodes(const std::array<std::vector<NodeDerivative>, kChannels>& per_channel) {
   ojson j = ojson::object();
   for (int c = 0; c < kChannels; ++c) {
     ojson list = ojson::array();
     for (const NodeDerivative& d : per_channel[c])
-      list.push_back(ojson::array({number_or_null(d.position), number_or_null(d.value)}));
+      list.push_back(ojson::array({number_or_null<ojson>(d.position), number_or_null<ojson>(d.value)}));
     j[kChannelNames[c]] = list;
   }
   return j;
@@ -32,7 +30,7 @@ ojson preset_json(const PresetPointGradient& p) {
     for (int c = 0; c < kChannels; ++c) {
       ojson list = ojson::array();
       for (const auto& e : p.rgb_points[c])
-        list.push_back(ojson::array({number_or_null(e[0]), number_or_null(e[1]), number_or_null(e[2]), number_or_null(e[3])}));
+        list.push_back(ojson::array({number_or_null<ojson>(e[0]), number_or_null<ojson>(e[1]), number_or_null<ojson>(e[2]), number_or_null<ojson>(e[3])}));
       j[kChannelNames[c]] = list;
     }
     out["RGBPoints"] = j;
@@ -44,7 +42,7 @@ ojson preset_json(const PresetPointGradient& p) {
     ojson j = ojson::object();
     for (int c = 0; c < kChannels; ++c) {
       ojson list = ojson::array();
-      for (const auto& e : p.points[c]) list.push_back(ojson::array({number_or_null(e[0]), number_or_null(e[1])}));
+      for (const auto& e : p.points[c]) list.push_back(ojson::array({number_or_null<ojson>(e[0]), number_or_null<ojson>(e[1])}));
       j[kChannelNames[c]] = list;
     }
     out["Points"] = j;
@@ -60,10 +58,10 @@ ojson preset_json(const PresetPointGradient& p) {
 ojson gradient_json(const RayGradient& g) {
   ojson length = ojson::array(), scalar = ojson::array();
   for (std::size_t j = 0; j < g.length.size(); ++j) {
-    length.push_back(rgb(g.length[j]));
-    scalar.push_back(ojson::array({rgb(g.scalar_far[j]), rgb(g.scalar_exit[j])}));
+    length.push_back(rgb_json<ojson>(g.length[j]));
+    scalar.push_back(ojson::array({rgb_json<ojson>(g.scalar_far[j]), rgb_json<ojson>(g.scalar_exit[j])}));
   }
-  ojson out = {{"background", rgb(g.background)},
+  ojson out = {{"background", rgb_json<ojson>(g.background)},
                 {"length", length},
                 {"scalar", scalar},
                 {"density", nodes(g.density)},
@@ -81,9 +79,9 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
       const GradRayResult& r = c.rays[i];
       ojson ray = {{"index", i}};
       if (r.reference) {
-        ray["reference"] = {{"intensity", rgb(r.reference->gradient.intensity)},
+        ray["reference"] = {{"intensity", rgb_json<ojson>(r.reference->gradient.intensity)},
                             {"gradient", gradient_json(r.reference->gradient)},
-                            {"noise", rgb(r.reference->noise)}};
+                            {"noise", rgb_json<ojson>(r.reference->noise)}};
         if (r.reference_preset) ray["reference"]["preset_gradient"] = preset_json(*r.reference_preset);
       } else {
         ray["reference"] = nullptr;
@@ -94,12 +92,12 @@ ojson grad_report_json(const std::vector<GradCaseResult>& cases) {
           methods[m.label] = {{"intensity", nullptr}, {"gradient", nullptr}, {"error", m.error}};
           continue;
         }
-        methods[m.label] = {{"intensity", rgb(m.gradient.intensity)},
+        methods[m.label] = {{"intensity", rgb_json<ojson>(m.gradient.intensity)},
                             {"gradient", gradient_json(m.gradient)},
                             {"errors",
-                             {{"gradient_max_rel_vs_reference", rgb(m.error_vs_reference)},
-                              {"gradient_max_rel_vs_exact", rgb(m.error_vs_exact)},
-                              {"intensity_rel_vs_reference", rgb(m.intensity_error)}}}};
+                             {{"gradient_max_rel_vs_reference", rgb_json<ojson>(m.error_vs_reference)},
+                              {"gradient_max_rel_vs_exact", rgb_json<ojson>(m.error_vs_exact)},
+                              {"intensity_rel_vs_reference", rgb_json<ojson>(m.intensity_error)}}}};
         if (m.preset) methods[m.label]["preset_gradient"] = preset_json(*m.preset);
       }
       ray["methods"] = methods;
@@ -135,10 +133,10 @@ ojson gradcheck_report_json(const GradCheckResult& r) {
             {"index", e->index},
             {"parameter", e->parameter},
             {"channel", kChannelNames[e->channel]},
-            {"got", number_or_null(e->got)},
-            {"exact", number_or_null(e->exact)},
-            {"allowed", number_or_null(e->allowed)},
-            {"excess", number_or_null(e->excess)}};
+            {"got", number_or_null<ojson>(e->got)},
+            {"exact", number_or_null<ojson>(e->exact)},
+            {"allowed", number_or_null<ojson>(e->allowed)},
+            {"excess", number_or_null<ojson>(e->excess)}};
   };
   return {{"tool", "rayint"},
           {"report", "gradcheck"},
@@ -151,7 +149,7 @@ ojson gradcheck_report_json(const GradCheckResult& r) {
                          "ray's channel) for every entry; an entry's \"exact\" holds the reference's value"
                        : "pass if |got - exact| <= max(abs_tol, rel_tol * largest |exact| entry of the ray's "
                          "channel) for every entry"},
-          {"exact_vs_reference", r.against == GradCheckAgainst::reference ? rgb(r.exact_vs_reference)
+          {"exact_vs_reference", r.against == GradCheckAgainst::reference ? rgb_json<ojson>(r.exact_vs_reference)
                                                                         : ojson(nullptr)},
           {"rel_tol", r.rel_tol},
           {"abs_tol", r.abs_tol},

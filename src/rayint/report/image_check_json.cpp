@@ -2,15 +2,11 @@
 
 #include <cmath>
 
+#include "rayint/report/json_number.hpp"
 #include "rayint/report/text_format.hpp"
 
 namespace rayint {
 namespace {
-
-nlohmann::ordered_json number(double x) {
-  if (std::isfinite(x)) return x;
-  return nullptr;
-}
 
 const char* kChannelNames[3] = {"r", "g", "b"};
 
@@ -34,7 +30,7 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
     ref["what"] = "the scene's reference image: each named term by its effect's independent reference, "
                   "summed as rayint render sums the terms";
     ref["image"] = r->image.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r->image);
-    ref["max_error_estimate"] = number(r->max_error);
+    ref["max_error_estimate"] = number_or_null<nlohmann::ordered_json>(r->max_error);
     ref["unconverged_pixels"] = r->unconverged;
     ref["evaluations"] = r->evaluations;
     ref["seconds"] = r->seconds;
@@ -59,10 +55,10 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
   j["failed_channels"] = c.failed_channels;
   j["non_finite_channels"] = c.non_finite;
   j["fraction_within_tolerance"] = c.fraction_within;
-  j["abs_error"] = {{"max", number(c.max_abs)}, {"mean", number(c.mean_abs)}, {"p99", number(c.p99_abs)}};
-  j["rel_error"] = {{"max", number(c.max_rel)}, {"mean", number(c.mean_rel)}, {"p99", number(c.p99_rel)}};
+  j["abs_error"] = {{"max", number_or_null<nlohmann::ordered_json>(c.max_abs)}, {"mean", number_or_null<nlohmann::ordered_json>(c.mean_abs)}, {"p99", number_or_null<nlohmann::ordered_json>(c.p99_abs)}};
+  j["rel_error"] = {{"max", number_or_null<nlohmann::ordered_json>(c.max_rel)}, {"mean", number_or_null<nlohmann::ordered_json>(c.mean_rel)}, {"p99", number_or_null<nlohmann::ordered_json>(c.p99_rel)}};
   if (std::isinf(c.psnr) && c.psnr > 0) j["psnr_db"] = "inf";
-  else j["psnr_db"] = number(c.psnr);
+  else j["psnr_db"] = number_or_null<nlohmann::ordered_json>(c.psnr);
   j["heat_map"] = ctx.heat_map.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(ctx.heat_map);
   nlohmann::ordered_json worst = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < c.worst.size(); ++i) {
@@ -71,11 +67,11 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
     p["x"] = w.x;
     p["y"] = w.y;
     p["channel"] = kChannelNames[w.channel];
-    p["expected"] = number(w.expected);
-    p["got"] = number(w.got);
-    p["abs_error"] = number(w.abs_error);
-    p["rel_error"] = number(w.rel_error);
-    p["allowed"] = number(w.allowed);
+    p["expected"] = number_or_null<nlohmann::ordered_json>(w.expected);
+    p["got"] = number_or_null<nlohmann::ordered_json>(w.got);
+    p["abs_error"] = number_or_null<nlohmann::ordered_json>(w.abs_error);
+    p["rel_error"] = number_or_null<nlohmann::ordered_json>(w.rel_error);
+    p["allowed"] = number_or_null<nlohmann::ordered_json>(w.allowed);
     p["pass"] = w.pass;
     if (i < ctx.worst_cases.size() && !ctx.worst_cases[i].empty())
       p[ctx.scene_reference ? "scene_file" : "case_file"] = ctx.worst_cases[i];
@@ -98,7 +94,7 @@ nlohmann::ordered_json image_check_json(const ImageCheckContext& ctx, const Imag
     t["min_p"] = z->min_p;
     t["smallest_threshold"] = z->holm_threshold;
     t["worst"] = {{"x", z->worst_x}, {"y", z->worst_y}, {"channel", kChannelNames[z->worst_channel]},
-                  {"abs_z", number(z->worst_z)}};
+                  {"abs_z", number_or_null<nlohmann::ordered_json>(z->worst_z)}};
     j["z_test"] = t;
     j["tolerance_note"] = "in z-test mode the tolerance figures above are for information; the z-test decides";
   }

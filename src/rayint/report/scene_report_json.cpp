@@ -2,24 +2,20 @@
 
 #include <cmath>
 
+#include "rayint/report/json_number.hpp"
 #include "rayint/scene/grid_field.hpp"
 
 namespace rayint {
 
-namespace {
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-nlohmann::json rgb(const Rgb& c) { return nlohmann::json::array({number(c[0]), number(c[1]), number(c[2])}); }
-}  // namespace
-
 nlohmann::json term_error_json(const TermError& e) {
   return {{"rays", e.rays},
-          {"max_abs", number(e.max_abs)},
-          {"mean_abs", number(e.mean_abs)},
-          {"peak_reference", number(e.peak_reference)},
-          {"max_rel_to_peak", number(e.max_rel_to_peak)},
-          {"reference_error_estimate", number(e.max_reference_error)},
+          {"max_abs", number_or_null(e.max_abs)},
+          {"mean_abs", number_or_null(e.mean_abs)},
+          {"peak_reference", number_or_null(e.peak_reference)},
+          {"max_rel_to_peak", number_or_null(e.max_rel_to_peak)},
+          {"reference_error_estimate", number_or_null(e.max_reference_error)},
           {"reference_converged", e.reference_converged},
-          {"reference_seconds", number(e.reference_seconds)}};
+          {"reference_seconds", number_or_null(e.reference_seconds)}};
 }
 
 nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r) {
@@ -39,7 +35,7 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
   j["setup_cpu_seconds"] = r.setup_cpu_seconds;
   j["setup_seconds"] = r.setup_seconds;
   j["error_seconds"] = r.error_seconds;
-  j["image_mean"] = rgb(r.image_mean);
+  j["image_mean"] = rgb_json(r.image_mean);
   nlohmann::json effects = nlohmann::json::array();
   for (const EffectReport& e : r.effects) {
     nlohmann::json x = {{"effect", e.effect},
@@ -54,7 +50,7 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
                         {"shadow_rays", e.work.shadow_rays},
                         {"shadow_samples", e.work.shadow_samples},
                         {"light_grid_lookups", e.work.lookups},
-                        {"mean_term", rgb(e.mean_term)}};
+                        {"mean_term", rgb_json(e.mean_term)}};
     if (e.has_error) x["error"] = term_error_json(e.error);
     effects.push_back(x);
   }
@@ -66,8 +62,8 @@ nlohmann::json scene_report_json(const Scene& scene, const SceneRenderResult& r)
       nlohmann::json terms = nlohmann::json::object();
       std::size_t e = 0;
       for (const EffectReport& rep : r.effects)
-        if (rep.role != "modifier" && e < r.ray_terms[i].size()) terms[rep.effect] = rgb(r.ray_terms[i][e++]);
-      rays.push_back({{"pixel", rgb(r.image.pixels[i])}, {"terms", terms}});
+        if (rep.role != "modifier" && e < r.ray_terms[i].size()) terms[rep.effect] = rgb_json(r.ray_terms[i][e++]);
+      rays.push_back({{"pixel", rgb_json(r.image.pixels[i])}, {"terms", terms}});
     }
     j["rays"] = rays;
   }

@@ -6,15 +6,12 @@
 #include <system_error>
 
 #include "rayint/report/case_writer.hpp"
+#include "rayint/report/json_number.hpp"
 
 namespace rayint {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
-
-json rgb(const Rgb& v) { return json::array({number(v[0]), number(v[1]), number(v[2])}); }
 
 json counts(const std::map<std::string, long>& m) {
   json j = json::object();
@@ -29,11 +26,11 @@ json worst_json(const WorstSample& w) {
   j["sample_seed"] = w.sample_seed;
   j["non_finite"] = w.non_finite;
   if (!w.failure.empty()) j["failure"] = w.failure;
-  j["rel_error"] = number(w.rel_error);
-  j["ulp_error"] = number(w.ulp_error);
-  j["abs_error"] = number(w.abs_error);
-  j["intensity"] = rgb(w.value);
-  j["reference"] = rgb(w.reference);
+  j["rel_error"] = number_or_null<json>(w.rel_error);
+  j["ulp_error"] = number_or_null<json>(w.ulp_error);
+  j["abs_error"] = number_or_null<json>(w.abs_error);
+  j["intensity"] = rgb_json<json>(w.value);
+  j["reference"] = rgb_json<json>(w.reference);
   j["branches"] = counts(w.diagnostics.branches);
   j["case"] = w.replay.name;
   if (!w.file.empty()) j["file"] = w.file;
@@ -43,7 +40,7 @@ json worst_json(const WorstSample& w) {
 }  // namespace
 
 nlohmann::ordered_json to_json(const ErrorStats& s) {
-  return json{{"max", number(s.max)}, {"p99", number(s.p99)}, {"median", number(s.median)}};
+  return json{{"max", number_or_null<json>(s.max)}, {"p99", number_or_null<json>(s.p99)}, {"median", number_or_null<json>(s.median)}};
 }
 
 nlohmann::ordered_json to_json(const MethodStress& m) {
@@ -56,7 +53,7 @@ nlohmann::ordered_json to_json(const MethodStress& m) {
   j["underflow"] = m.underflow;
   j["rel_error"] = to_json(m.rel);
   j["ulp_error"] = to_json(m.ulp);
-  j["max_abs_error_underflow"] = number(m.max_abs_error_underflow);
+  j["max_abs_error_underflow"] = number_or_null<json>(m.max_abs_error_underflow);
   j["branches"] = counts(m.branches);
   if (m.worst.present) j["worst"] = worst_json(m.worst);
   if (m.worst_finite.present) j["worst_finite"] = worst_json(m.worst_finite);
@@ -69,7 +66,7 @@ nlohmann::ordered_json to_json(const RegimeStress& r) {
   j["level"] = r.ray_level ? "ray" : "piece";
   j["samples"] = r.samples;
   j["pieces"] = r.pieces;
-  j["reference_max_rel_bound"] = number(r.max_reference_rel_bound);
+  j["reference_max_rel_bound"] = number_or_null<json>(r.max_reference_rel_bound);
   j["reference_failures"] = r.reference_failures;
   if (!r.reference_failure.empty()) j["reference_failure"] = r.reference_failure;
   json methods = json::array();
@@ -99,8 +96,8 @@ nlohmann::ordered_json to_json(const GateReport& r) {
     json j;
     j["name"] = c.name;
     j["pass"] = c.pass;
-    j["measured"] = number(c.measured);
-    j["limit"] = number(c.limit);
+    j["measured"] = number_or_null<json>(c.measured);
+    j["limit"] = number_or_null<json>(c.limit);
     if (!c.note.empty()) j["note"] = c.note;
     checks.push_back(std::move(j));
   }
