@@ -532,6 +532,34 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa, const Pie
   return g;
 }
 
+namespace {
+
+// The exact pieces' derivatives as chain_ray_gradient asks for them.
+void exact_ray_chain(const detail::GradientPreparation& prep, const Ray& ray, RayGradient& grad,
+                     GradientBlocks blocks) {
+  detail::chain_ray_gradient(
+      prep, ray, grad,
+      [](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
+        exact_pieces_grad(in, dkappa, out, grey ? kChannels : 1);
+      },
+      detail::PieceEnds::fixed_along_segment, blocks);
+}
+
+}  // namespace
+
+ExactRayGradient::ExactRayGradient(const TransferFunctions& tf)
+    : prep_(std::make_shared<const detail::GradientPreparation>(tf)) {}
+
+RayGradient ExactRayGradient::operator()(const Ray& ray) const {
+  RayGradient grad;
+  (*this)(ray, grad);
+  return grad;
+}
+
+void ExactRayGradient::operator()(const Ray& ray, RayGradient& grad, GradientBlocks blocks) const {
+  exact_ray_chain(*prep_, ray, grad, blocks);
+}
+
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
   RayGradient grad;
   exact_ray_gradient(tf, ray, grad);
@@ -539,12 +567,7 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
 }
 
 void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, GradientBlocks blocks) {
-  detail::chain_ray_gradient(
-      tf, ray, grad,
-      [](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
-        exact_pieces_grad(in, dkappa, out, grey ? kChannels : 1);
-      },
-      detail::PieceEnds::fixed_along_segment, blocks);
+  exact_ray_chain(detail::thread_preparation(tf), ray, grad, blocks);
 }
 
 }  // namespace rayint
