@@ -75,8 +75,9 @@ struct Expm1Op {
 // entry T = hi + lo (detail::Exp2Table): e^-x = 2^m (hi + (lo + hi p)). (The compiler may fuse a
 // product and a sum on targets with FMA: the last bit can differ between targets, the bound not.)
 // Errors: the final addition 0.5 ulp; hi p (|p| < 0.011) 0.006 ulp; r, p and
-// lo together below 0.01 ulp: at most ~0.52 ulp, measured 0.5 + 2.3e-3 ulp against expl
-// (tests/test_special_simd.cpp). The result is normal (x <= 700), so the scaling is exact.
+// lo together below 0.01 ulp: at most ~0.52 ulp; measured against 50 digits on 8715 arguments
+// in [0, 700] (tests/test_special_simd.cpp): 0.514 ulp (AVX2, AVX-512), 0.516 (SSE4), std::exp
+// 0.501 on the same points; 24-26 of them differ from std::exp (in the last bit). The result is normal (x <= 700), so the scaling is exact.
 constexpr double kExpNegVectorMax = 700.0;
 template <class D, class V>
 HWY_INLINE V ExpNegAccurate(D d, V x) {
