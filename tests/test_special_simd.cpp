@@ -141,6 +141,44 @@ TEST_CASE("Highway Exp and Expm1 on the ranges exact_batch uses, against 50 digi
   CHECK(out[1] == 0.0);
 }
 
+TEST_CASE("exp_neg_array (the gradient's transmittance) against 50 digits, on every SIMD target",
+          "[special_simd][simd_targets]") {
+  using reference_detail::Real;
+  // x in [0, 745]: uniform, log-spaced from 1e-300, each table step's ends (k ln2/32) and their
+  // neighbours, and the vector range's end 700 with what lies beyond (std::exp there).
+  std::vector<double> x{0.0, 5e-324, 1e-300, 700.0, 700.5, 708.0, 745.0, 746.0};
+  for (int i = 0; i <= 4000; ++i) x.push_back(690.0 * i / 4000 + 1e-4 * (i % 7));
+  for (int i = 0; i <= 100; ++i) x.push_back(690.0 + 60.0 * i / 100);
+  for (int i = 0; i <= 600; ++i) x.push_back(std::pow(10.0, -300.0 + 302.8 * i / 600));
+  for (int k = 0; k <= 1000; ++k) {
+    const double e = k * 0.6931471805599453 / 32;
+    for (const double v : {e, std::nextafter(e, 0.0), std::nextafter(e, 1e9), e + 0.6931471805599453 / 64})
+      x.push_back(v);
+  }
+  std::vector<Real> ref(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) ref[i] = exp(-Real(x[i]));
+  rayint::test::for_each_simd_target([&] {
+    std::vector<double> y(x.size());
+    special::exp_neg_array(x.data(), y.data(), x.size());
+    double max_ulp = 0.0, at = 0.0, max_std = 0.0;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const ExtendedValue r = reference_detail::to_extended(ref[i]);
+      if (x[i] > 700.0) {  // std::exp's lanes
+        CHECK(y[i] == std::exp(-x[i]));
+        continue;
+      }
+      const double u = ulp_error(y[i], r);
+      if (u > max_ulp) max_ulp = u, at = x[i];
+      max_std = std::max(max_std, ulp_error(std::exp(-x[i]), r));
+      differ += y[i] != std::exp(-x[i]);
+    }
+    WARN("target " << special::simd_target_name() << ": exp_neg_array max " << max_ulp << " ulp at x = " << at
+                   << "; " << differ << " of " << x.size() << " differ from std::exp (its max " << max_std << " ulp)");
+    CHECK(max_ulp <= SimdTolerances::exp_neg_ulp);
+  });
+}
+
 TEST_CASE("the dispatch names its target", "[special_simd]") {
   const char* name = special::simd_target_name();
   REQUIRE(name != nullptr);

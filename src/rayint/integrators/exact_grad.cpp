@@ -46,8 +46,9 @@
 // Batched (exact_pieces_grad, what exact_ray_gradient uses): exact_batch forms the optics of all
 // pieces and, for thin_series lanes, the moments above with the same recurrence and stop in its
 // vector kernel (OpticsColumns::m1); the other branches' moments come from closed_form_moments
-// below, the same functions exact_piece_grad calls; exp(-T) is exact_piece's (std::exp: the
-// vector Exp's extra ulp doubled a saturated ray's worst length entry). Against exact_piece_grad:
+// below, the same functions exact_piece_grad calls; exp(-T) from special::exp_neg_array (std::exp's
+// accuracy class, in vectors: the batch's Exp's extra ulp doubled a saturated ray's worst length
+// entry). Against exact_piece_grad:
 // GradTolerances::batch_vs_scalar_rel (tests/test_grad_batch.cpp, every regime and SIMD target).
 // Measured accuracy against the 50-digit reference gradient (reference/reference_grad.hpp):
 // see docs/gradients.md and tests/test_grad.cpp ([grad]).
@@ -62,6 +63,7 @@
 #include <vector>
 
 #include "rayint/integrators/exact_batch.hpp"
+#include "rayint/special/erfcx_simd.hpp"
 #include "rayint/special/special_functions.hpp"
 
 namespace rayint {
@@ -441,7 +443,7 @@ void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exi
                        int same_depth_stride) {
   struct Columns {
     std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
-    std::vector<double> transmittance, emission, weight_exit, weight_far, m1, m2, e0;
+    std::vector<double> transmittance, emission, weight_exit, weight_far, m1, m2, e0, depth;
   };
   thread_local Columns col;
   const std::size_t n = in.size;
@@ -450,7 +452,8 @@ void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exi
   const std::size_t stride = same_depth_stride > 1 ? static_cast<std::size_t>(same_depth_stride) : 1;
   const std::size_t m = (n + stride - 1) / stride;
   if (col.transmittance.size() < m)
-    for (auto* v : {&col.transmittance, &col.emission, &col.weight_exit, &col.weight_far, &col.m1, &col.m2, &col.e0})
+    for (auto* v : {&col.transmittance, &col.emission, &col.weight_exit, &col.weight_far, &col.m1, &col.m2, &col.e0,
+                    &col.depth})
       v->resize(m);
   PieceColumns batch_in = in;
   if (stride > 1) {  // every s-th piece, gathered
@@ -473,47 +476,56 @@ void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exi
   oc.m2 = col.m2.data();
   oc.e0 = col.e0.data();
   exact_batch(batch_in, oc);
-  double t = 1.0, dt_length = 0.0, dt_rho = 0.0;  // of the piece's depth (lane 0's)
-  bool transparent = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    const ChannelPiece p{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
-    PieceDerivatives& g = out[i];
-    const std::size_t j = i / stride;
-    if (i % stride == 0) {
-      // exp(-T) as exact_piece forms it: exact_batch's vector Exp (1 ulp) doubled the worst error
-      // of a saturated ray's length entry (out_of_range: 1.1e-13 of the channel's largest entry
-      // against 5.7e-14, tests/test_grad.cpp), which amplifies the transmittance's rounding.
-      const double a = p.rho_exit * p.length, b = p.rho_far * p.length, T = 0.5 * (a + b);
-      transparent = !(T > 0.0);
-      t = transparent ? 1.0 : std::exp(-T);
-      // The batch formed the moments of thin_series and transparent lanes; the others are NaN.
-      if (std::isnan(col.m1[j])) {
-        PieceOptics o;
-        o.transmittance = t;
-        o.weight_exit = col.weight_exit[j];
-        o.weight_far = col.weight_far[j];
-        o.branch = branch_of(a, b);
-        const Moments mo = closed_form_moments(o, a, 0.5 * (b - a), T);
-        col.m1[j] = mo.m1;
-        col.m2[j] = mo.m2;
-      }
-      dt_rho = -0.5 * t * p.length;
-      dt_length = -0.5 * t * (p.rho_exit + p.rho_far);
-      g.emission = col.emission[j];
-    } else {
-      // the same depth as piece i - i % s: exact_piece_grad's same_depth overload (a transparent
-      // piece keeps its 0)
-      g.emission = transparent ? 0.0 : p.kappa_exit * col.weight_exit[j] + p.kappa_far * col.weight_far[j];
+  // The depth of every batch entry, then its transmittance exp(-T) through exp_neg_array
+  // (special/erfcx_simd.hpp: at most ~0.52 ulp, std::exp's class, in vectors). exact_batch's
+  // own Exp (1 ulp) doubled the worst error of a saturated ray's length entry (out_of_range:
+  // 1.1e-13 of the channel's largest entry against 5.7e-14, tests/test_grad.cpp), which amplifies
+  // the transmittance's rounding; std::exp per piece was ~6% of a long ray's gradient.
+  for (std::size_t j = 0; j < m; ++j) {
+    const double a = batch_in.rho_exit[j] * batch_in.length[j], b = batch_in.rho_far[j] * batch_in.length[j];
+    col.depth[j] = 0.5 * (a + b);
+  }
+  special::exp_neg_array(col.depth.data(), col.transmittance.data(), m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const double T = col.depth[j];
+    if (!(T > 0.0)) col.transmittance[j] = 1.0;  // transparent
+    // The batch formed the moments of thin_series and transparent lanes; the others are NaN.
+    if (std::isnan(col.m1[j])) {
+      const double a = batch_in.rho_exit[j] * batch_in.length[j], b = batch_in.rho_far[j] * batch_in.length[j];
+      PieceOptics o;
+      o.transmittance = col.transmittance[j];
+      o.weight_exit = col.weight_exit[j];
+      o.weight_far = col.weight_far[j];
+      o.branch = branch_of(a, b);
+      const Moments mo = closed_form_moments(o, a, 0.5 * (b - a), T);
+      col.m1[j] = mo.m1;
+      col.m2[j] = mo.m2;
     }
-    g.transmittance = t;
-    g.de_kappa_exit = col.weight_exit[j];
-    g.de_kappa_far = col.weight_far[j];
-    g.dt_rho = dt_rho;
-    g.dt_length = dt_length;
-    const KappaTerms k = kappa_terms(col.m1[j], col.m2[j], t, p, kappa_far_minus_exit[i]);
-    g.de_length = k.de_length;
-    g.de_rho_far = k.de_rho_far;
-    g.de_rho_exit = k.de_rho_exit;
+  }
+  // Piece i = j s + r: r = 0 is the batch entry j itself, r > 0 the same depth (a grey medium's
+  // other channels: exact_piece_grad's same_depth overload; a transparent piece keeps its 0).
+  for (std::size_t j = 0; j < m; ++j) {
+    const double t = col.transmittance[j];
+    const double w_exit = col.weight_exit[j], w_far = col.weight_far[j], m1 = col.m1[j], m2 = col.m2[j];
+    const bool transparent = !(col.depth[j] > 0.0);
+    const std::size_t i0 = j * stride, i1 = std::min(n, i0 + stride);
+    const double dt_rho = -0.5 * t * in.length[i0];
+    const double dt_length = -0.5 * t * (in.rho_exit[i0] + in.rho_far[i0]);
+    for (std::size_t i = i0; i < i1; ++i) {
+      const ChannelPiece p{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
+      PieceDerivatives& g = out[i];
+      g.emission = i == i0 ? col.emission[j]
+                           : (transparent ? 0.0 : p.kappa_exit * w_exit + p.kappa_far * w_far);
+      g.transmittance = t;
+      g.de_kappa_exit = w_exit;
+      g.de_kappa_far = w_far;
+      g.dt_rho = dt_rho;
+      g.dt_length = dt_length;
+      const KappaTerms k = kappa_terms(m1, m2, t, p, kappa_far_minus_exit[i]);
+      g.de_length = k.de_length;
+      g.de_rho_far = k.de_rho_far;
+      g.de_rho_exit = k.de_rho_exit;
+    }
   }
 }
 
@@ -532,6 +544,34 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa, const Pie
   return g;
 }
 
+namespace {
+
+// The exact pieces' derivatives as chain_ray_gradient asks for them.
+void exact_ray_chain(const detail::GradientPreparation& prep, const Ray& ray, RayGradient& grad,
+                     GradientBlocks blocks) {
+  detail::chain_ray_gradient(
+      prep, ray, grad,
+      [](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
+        exact_pieces_grad(in, dkappa, out, grey ? kChannels : 1);
+      },
+      detail::PieceEnds::fixed_along_segment, blocks);
+}
+
+}  // namespace
+
+ExactRayGradient::ExactRayGradient(const TransferFunctions& tf)
+    : prep_(std::make_shared<const detail::GradientPreparation>(tf)) {}
+
+RayGradient ExactRayGradient::operator()(const Ray& ray) const {
+  RayGradient grad;
+  (*this)(ray, grad);
+  return grad;
+}
+
+void ExactRayGradient::operator()(const Ray& ray, RayGradient& grad, GradientBlocks blocks) const {
+  exact_ray_chain(*prep_, ray, grad, blocks);
+}
+
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
   RayGradient grad;
   exact_ray_gradient(tf, ray, grad);
@@ -539,12 +579,7 @@ RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray) {
 }
 
 void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, GradientBlocks blocks) {
-  detail::chain_ray_gradient(
-      tf, ray, grad,
-      [](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
-        exact_pieces_grad(in, dkappa, out, grey ? kChannels : 1);
-      },
-      detail::PieceEnds::fixed_along_segment, blocks);
+  exact_ray_chain(detail::thread_preparation(tf), ray, grad, blocks);
 }
 
 }  // namespace rayint

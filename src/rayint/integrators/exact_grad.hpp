@@ -2,6 +2,8 @@
 // Exact derivatives of the exact piece integral (integrators/exact.hpp) and of a ray's intensity
 // with respect to every input of the ray (issue 28). See exact_grad.cpp for the forms by region
 // and docs/gradients.md for the mathematics, the conventions at kinks and the measured accuracy.
+#include <memory>
+
 #include "rayint/integrators/exact.hpp"
 #include "rayint/integrators/exact_batch.hpp"
 #include "rayint/model/ray_gradient.hpp"
@@ -66,7 +68,9 @@ inline PieceDerivatives derivatives_of(const PieceOpticsGrad& g) {
 // exact_piece_grad on n pieces at once, through exact_batch (integrators/exact_batch.hpp): the
 // emission weights and the thin_series moments from its vector kernels (the same branches,
 // thresholds, series and stop), the other branches' moments by the functions exact_piece_grad
-// uses, the transmittance exp(-T) as exact_piece forms it (std::exp). Within
+// uses, the transmittance exp(-T) from special::exp_neg_array (vectors, std::exp's accuracy
+// class: at most ~0.52 ulp; it differs from exact_piece's std::exp in the last bit for ~0.3% of
+// arguments). Within
 // GradTolerances::batch_vs_scalar_rel of exact_piece_grad's (tests/test_grad_batch.cpp), bit for
 // bit neither exact path's. With same_depth_stride s > 1, pieces i with i % s != 0 have the
 // length, rho_far and rho_exit of piece i - i % s (a grey medium's channels): only every s-th
@@ -78,18 +82,37 @@ void exact_pieces_grad(const ChannelPiece* pieces, const double* kappa_far_minus
 void exact_pieces_grad(const PieceColumns& pieces, const double* kappa_far_minus_exit, PieceDerivatives* out,
                        int same_depth_stride = 1);
 
-// The gradient of every channel's intensity with respect to every input of the ray. Its pieces go
-// through exact_pieces_grad; the forward intensity composites exact_piece's transmittance with
-// exact_batch's emission: within GradTolerances::forward_rel (2.5e-15 relative; 1.1e-15 measured)
-// of both exact paths, bit for bit neither (tests/test_grad.cpp). Pieces are those of append_pieces
-// (model/pieces.hpp), from a PieceSplitter kept per thread for the last transfer functions seen;
-// compositing far -> near is differentiated in reverse. Throws
-// std::invalid_argument for a non-finite segment length or scalar or background.
+namespace detail {
+class GradientPreparation;
+}
+
+// The gradient of every channel's intensity with respect to every input of the ray, for transfer
+// functions prepared once (a copy of them, their PieceSplitter and per-function tables), as
+// ExactIntegrator holds its splitter: for many rays with the same functions (images, losses).
+// Its pieces go through exact_pieces_grad; the forward intensity composites exact_piece's
+// transmittance with exact_batch's emission: within GradTolerances::forward_rel (2.5e-15
+// relative; 1.1e-15 measured) of both exact paths, bit for bit neither (tests/test_grad.cpp).
+// Pieces are those of append_pieces (model/pieces.hpp); compositing far -> near is
+// differentiated in reverse. Throws std::invalid_argument for a non-finite segment length or
+// scalar or background. Copies share the preparation; calls may run on several threads at once.
+class ExactRayGradient {
+ public:
+  explicit ExactRayGradient(const TransferFunctions& tf);
+  RayGradient operator()(const Ray& ray) const;
+  // The same into `out`, reusing its storage (no allocation per ray once warm). With
+  // GradientBlocks::segments the node blocks are not computed (left empty): what an image loss
+  // with respect to the scene's scalars needs, at a lower cost; every other entry is the same,
+  // bit for bit.
+  void operator()(const Ray& ray, RayGradient& out, GradientBlocks blocks = GradientBlocks::all) const;
+
+ private:
+  std::shared_ptr<const detail::GradientPreparation> prep_;
+};
+
+// ExactRayGradient's gradient without a prepared object: the same code, with a preparation kept
+// per thread for the last transfer functions seen (compared point for point; rebuilt when they
+// change, a cost per ray when every ray has its own functions).
 RayGradient exact_ray_gradient(const TransferFunctions& tf, const Ray& ray);
-// The same into `out`, reusing its storage (no allocation per ray once warm). With
-// GradientBlocks::segments the node blocks are not computed (left empty): what an image loss
-// with respect to the scene's scalars needs, at a lower cost; every other entry is the same,
-// bit for bit.
 void exact_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& out,
                         GradientBlocks blocks = GradientBlocks::all);
 

@@ -140,8 +140,8 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
-// The same transfer functions, point for point and bit for bit (the gradient keeps its splitter
-// for the last functions seen).
+// The same transfer functions, point for point and bit for bit (the free gradient functions keep
+// a preparation for the last functions seen).
 inline bool same_points(const TransferFunctions& a, const TransferFunctions& b) {
   const auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
     return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
@@ -153,6 +153,69 @@ inline bool same_points(const TransferFunctions& a, const TransferFunctions& b) 
       if (!same(f.scalar, g.scalar) || !same(f.value, g.value)) return false;
     }
   return true;
+}
+
+// What chain_ray_gradient prepares once per transfer functions, as ExactIntegrator holds its
+// splitter: a copy of the functions, their PieceSplitter (the forward's pieces), and per function
+// (slot c: density[c], slot kChannels + c: color[c]) its interval_slope per interval and its
+// interval for each interval u = 0..m of the union of breakpoints: upper_bound(f.scalar,
+// breakpoints[u - 1]), 0 below the first. For any x in [breakpoints[u - 1], breakpoints[u]) that
+// is upper_bound(f.scalar, x): no node of f lies in between, so a non-constant piece's intervals
+// are read from its region, no search per piece. Not copyable (the splitter refers to the copy).
+class GradientPreparation {
+ public:
+  GradientPreparation() = default;
+  explicit GradientPreparation(const TransferFunctions& tf) { reset(tf); }
+  GradientPreparation(const GradientPreparation&) = delete;
+  GradientPreparation& operator=(const GradientPreparation&) = delete;
+  // Prepared for `tf` (copied), reusing the storage held.
+  void reset(const TransferFunctions& tf) {
+    tf_ = tf;  // vector assignments: the storage held is reused
+    splitter_.reset(tf_);
+    jumps_ = tf_.has_jump();
+    grey_ = tf_.grey();
+    const std::vector<double>& breakpoints = splitter_.breakpoints();
+    for (int c = 0; c < kChannels; ++c)
+      for (const bool density : {true, false}) {
+        const PiecewiseLinear& f = density ? tf_.density[c] : tf_.color[c];
+        const std::size_t slot = density ? static_cast<std::size_t>(c) : static_cast<std::size_t>(kChannels + c);
+        std::vector<std::uint32_t>& table = region_interval_[slot];
+        table.resize(breakpoints.size() + 1);
+        table[0] = 0;
+        std::size_t k = 0;
+        for (std::size_t u = 1; u <= breakpoints.size(); ++u) {
+          while (k < f.scalar.size() && f.scalar[k] <= breakpoints[u - 1]) ++k;
+          table[u] = static_cast<std::uint32_t>(k);
+        }
+        std::vector<double>& slopes = slopes_[slot];
+        slopes.resize(f.scalar.size() + 1);
+        for (std::size_t i = 0; i < slopes.size(); ++i) slopes[i] = interval_slope(f, i);
+      }
+    ready_ = true;
+  }
+  // Whether it was prepared for functions equal to `tf` point for point.
+  bool ready_for(const TransferFunctions& tf) const { return ready_ && same_points(tf_, tf); }
+  const TransferFunctions& transfer() const { return tf_; }
+  const PieceSplitter& splitter() const { return splitter_; }
+  bool jumps() const { return jumps_; }
+  bool grey() const { return grey_; }
+  const double* slopes(std::size_t slot) const { return slopes_[slot].data(); }
+  const std::uint32_t* region_interval(std::size_t slot) const { return region_interval_[slot].data(); }
+
+ private:
+  TransferFunctions tf_;
+  PieceSplitter splitter_;
+  bool ready_ = false, jumps_ = false, grey_ = false;
+  std::vector<double> slopes_[2 * kChannels];
+  std::vector<std::uint32_t> region_interval_[2 * kChannels];
+};
+
+// The free gradient functions' preparation: one per thread, for the last transfer functions seen
+// (rebuilt when they change, compared point for point).
+inline const GradientPreparation& thread_preparation(const TransferFunctions& tf) {
+  thread_local GradientPreparation prep;
+  if (!prep.ready_for(tf)) prep.reset(tf);
+  return prep;
 }
 
 // The reverse pass's node entries of one transfer function, summed per interval and formed once
@@ -281,12 +344,14 @@ inline void moving_ends(const TransferFunctions& tf, const Ray& ray, const Piece
 //
 // The pieces and their end values are the forward's: PieceSplitter (model/pieces.hpp), the
 // splitter ExactIntegrator's batch path uses, with each piece's place (PiecePlace), so the
-// gradient differentiates the very pieces the forward integrates. One splitter per thread is
-// kept for the last transfer functions seen (compared point for point, bit for bit).
+// gradient differentiates the very pieces the forward integrates. The transfer functions are
+// prep.transfer(); the overload below takes them and uses the thread's preparation for the last
+// functions seen (compared point for point, bit for bit).
 template <class PieceGrad>
-void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
+void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
                         PieceEnds ends_mode = PieceEnds::fixed_along_segment,
                         GradientBlocks blocks = GradientBlocks::all) {
+  const TransferFunctions& tf = prep.transfer();
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("gradient: background must be finite");
@@ -305,9 +370,6 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
   };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
-    TransferFunctions split_tf;                // the functions `splitter` was built for
-    bool split_ready = false;
-    PieceSplitter splitter;
     PieceChannelColumns columns;               // the pieces' inputs, written by the splitter
     std::vector<PiecePlace> places;
     std::vector<PieceRecord> pieces;
@@ -316,17 +378,9 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     std::vector<double> dkappas;
     std::vector<PieceDerivatives> derivs;
     IntervalSums rho_sums[kChannels], kappa_sums[kChannels];
-    std::vector<double> slopes[2 * kChannels];  // interval_slope per interval: density[c], color[c]
-    std::vector<std::uint32_t> region_interval[2 * kChannels];  // density[c], color[c]
   };
   thread_local Scratch scratch;
-  if (!scratch.split_ready || !same_points(scratch.split_tf, tf)) {
-    scratch.split_tf = tf;  // vector assignments: the storage held is reused
-    scratch.splitter.reset(scratch.split_tf);
-    scratch.split_ready = true;
-  }
-  const PieceSplitter& splitter = scratch.splitter;
-  const std::vector<double>& breakpoints = splitter.breakpoints();
+  const PieceSplitter& splitter = prep.splitter();
   PieceChannelColumns& columns = scratch.columns;
   columns.clear();
   splitter.append(ray.segments, columns, scratch.places);
@@ -340,9 +394,9 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
       grad.density[c].clear();
       grad.color[c].clear();
     }
-  const bool jumps = tf.has_jump();
+  const bool jumps = prep.jumps();
   // Every channel's density is the same function (bit for bit): one depth per piece.
-  const bool grey = tf.grey();
+  const bool grey = prep.grey();
   // The scalar whose interval a piece's values come from, per function: lo, the smaller end,
   // except for a constant piece on a jump, which takes the left value (operator()): the interval
   // below.
@@ -351,33 +405,18 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
                ? std::nextafter(lo, -std::numeric_limits<double>::infinity())
                : lo;
   };
-  // Per function, its interval (upper_bound of its nodes) for each interval u = 0..m of the
-  // union of breakpoints: upper_bound(f.scalar, breakpoints[u - 1]), 0 below the first. For any x
-  // in [breakpoints[u - 1], breakpoints[u]) it is upper_bound(f.scalar, x): no node of f lies in
-  // between. A non-constant piece's intervals are read from its region, no search per piece.
-  // And interval_slope per interval, for dkappa here and for the reverse pass.
+  // Per function, its interval for each region of the breakpoints and its slope per interval
+  // (GradientPreparation): for dkappa here and for the reverse pass.
   const double* rho_slope[kChannels];
   const double* kappa_slope[kChannels];
   const std::uint32_t* rho_interval[kChannels];
   const std::uint32_t* kappa_interval[kChannels];
-  for (int c = 0; c < kChannels; ++c)
-    for (const bool density : {true, false}) {
-      const PiecewiseLinear& f = density ? tf.density[c] : tf.color[c];
-      const std::size_t slot = density ? static_cast<std::size_t>(c) : static_cast<std::size_t>(kChannels + c);
-      std::vector<std::uint32_t>& table = scratch.region_interval[slot];
-      table.resize(breakpoints.size() + 1);
-      table[0] = 0;
-      std::size_t k = 0;
-      for (std::size_t u = 1; u <= breakpoints.size(); ++u) {
-        while (k < f.scalar.size() && f.scalar[k] <= breakpoints[u - 1]) ++k;
-        table[u] = static_cast<std::uint32_t>(k);
-      }
-      std::vector<double>& slopes = scratch.slopes[slot];
-      slopes.resize(f.scalar.size() + 1);
-      for (std::size_t i = 0; i < slopes.size(); ++i) slopes[i] = interval_slope(f, i);
-      (density ? rho_slope : kappa_slope)[c] = slopes.data();
-      (density ? rho_interval : kappa_interval)[c] = table.data();
-    }
+  for (int c = 0; c < kChannels; ++c) {
+    rho_slope[c] = prep.slopes(static_cast<std::size_t>(c));
+    kappa_slope[c] = prep.slopes(static_cast<std::size_t>(kChannels + c));
+    rho_interval[c] = prep.region_interval(static_cast<std::size_t>(c));
+    kappa_interval[c] = prep.region_interval(static_cast<std::size_t>(kChannels + c));
+  }
   std::vector<double>& incoming = scratch.incoming;
   if (incoming.size() < n * kChannels) incoming.resize(n * kChannels);
   // The interval of a constant piece (a search; the value itself is the splitter's).
@@ -539,6 +578,13 @@ void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient
     if (nodes_wanted) tie_jump_positions(tf, grad.density, grad.color);
     mark_jump_tangencies(tf, ray, grad, nodes_wanted);
   }
+}
+
+template <class PieceGrad>
+void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
+                        PieceEnds ends_mode = PieceEnds::fixed_along_segment,
+                        GradientBlocks blocks = GradientBlocks::all) {
+  chain_ray_gradient(thread_preparation(tf), ray, grad, std::forward<PieceGrad>(piece_grads), ends_mode, blocks);
 }
 
 }  // namespace rayint::detail

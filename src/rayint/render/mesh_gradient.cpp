@@ -220,6 +220,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
     RayGradient grad;
   };
   std::vector<Part> parts(workers);
+  const ExactRayGradient gradient(mc.transfer);  // prepared once for every pixel
   for (Part& p : parts) {
     p.d_scalar.assign(n_scalar, 0.0);
     if (positions) p.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
@@ -230,7 +231,7 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
     for (int x = 0; x < cam.width; ++x) {
       mesh.trace(cam.ray_for_pixel(x, y), p.trace);
       ray_from_trace(p.trace, mc.background, p.ray);
-      exact_ray_gradient(mc.transfer, p.ray, p.grad, GradientBlocks::segments);
+      gradient(p.ray, p.grad, GradientBlocks::segments);
       out.image.at(x, y) = p.grad.intensity;
       LossSink sink;
       bool finite = true;

@@ -15,11 +15,15 @@ double GridPixelJacobian::channel_scale(int c) const {
   return s;
 }
 
-GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const TransferFunctions& tf, const ViewRay& view,
-                                      const Rgb& background) {
+namespace {
+
+// gradient(ray, g): the ray's segment blocks into g (exact_ray_gradient or an ExactRayGradient).
+template <class Gradient>
+GridPixelJacobian pixel_jacobian(const VoxelGrid& grid, const Gradient& gradient, const ViewRay& view,
+                                 const Rgb& background) {
   const Ray ray = ray_segments(grid, view, background);
   RayGradient g;  // the chain below reads the segment blocks only
-  exact_ray_gradient(tf, ray, g, GradientBlocks::segments);
+  gradient(ray, g);
   GridPixelJacobian out;
   out.intensity = g.intensity;
   out.undefined = g.undefined;
@@ -47,6 +51,22 @@ GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const TransferFunct
     out.d_value.push_back(d);
   }
   return out;
+}
+
+}  // namespace
+
+GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const TransferFunctions& tf, const ViewRay& view,
+                                      const Rgb& background) {
+  return pixel_jacobian(
+      grid, [&tf](const Ray& ray, RayGradient& g) { exact_ray_gradient(tf, ray, g, GradientBlocks::segments); },
+      view, background);
+}
+
+GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const ExactRayGradient& gradient, const ViewRay& view,
+                                      const Rgb& background) {
+  return pixel_jacobian(
+      grid, [&gradient](const Ray& ray, RayGradient& g) { gradient(ray, g, GradientBlocks::segments); }, view,
+      background);
 }
 
 }  // namespace rayint

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "rayint/grid/voxel_grid.hpp"
+#include "rayint/integrators/exact_grad.hpp"
 #include "rayint/model/ray.hpp"
 
 namespace rayint {
@@ -34,6 +35,9 @@ struct GridPixelJacobian {
 };
 
 GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const TransferFunctions& tf, const ViewRay& view,
+                                      const Rgb& background);
+// The same with the transfer functions prepared once (an image's pixels).
+GridPixelJacobian grid_pixel_jacobian(const VoxelGrid& grid, const ExactRayGradient& gradient, const ViewRay& view,
                                       const Rgb& background);
 
 }  // namespace rayint

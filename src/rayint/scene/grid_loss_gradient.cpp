@@ -46,6 +46,7 @@ GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const I
   const bool trilinear = field.interpolation() == GridInterpolation::trilinear;
   std::unique_ptr<TrilinearIntegrator> integrator;
   if (trilinear) integrator = std::make_unique<TrilinearIntegrator>(tf);
+  const ExactRayGradient gradient(tf);  // Kuhn path: the functions prepared once for every pixel
 
   GridLossGradient out;
   out.interpolation = field.interpolation();
@@ -79,7 +80,7 @@ GridLossGradient grid_image_loss_gradient(const ScenePipeline& pipeline, const I
         d_value = std::move(g.d_value);
         undefined = std::move(g.undefined);
       } else {
-        GridPixelJacobian g = grid_pixel_jacobian(grid, tf, view, pr.background);
+        GridPixelJacobian g = grid_pixel_jacobian(grid, gradient, view, pr.background);
         intensity = g.intensity;
         index = std::move(g.index);
         d_value = std::move(g.d_value);

@@ -29,7 +29,7 @@ GradientFunction gradient_function(const MethodSpec& spec, const TransferFunctio
     for (const auto& [key, value] : spec.params)
       if (key != "path")
         throw std::invalid_argument("method " + spec.label() + ": unknown parameter " + key);
-    return [&tf](const Ray& ray) { return exact_ray_gradient(tf, ray); };
+    return [g = ExactRayGradient(tf)](const Ray& ray) { return g(ray); };
   }
   if (spec.name == "riemann")
     return [&tf, o = riemann_options(spec)](const Ray& ray) { return riemann_ray_gradient(tf, ray, o); };
@@ -96,9 +96,10 @@ GradCaseResult grad_case(const Case& c, const GradStudyOptions& options) {
       setup_error[k] = e.what();
     }
   }
+  const ExactRayGradient exact(c.transfer);
   for (const Ray& ray : c.rays) {
     GradRayResult r;
-    r.exact = exact_ray_gradient(c.transfer, ray);
+    r.exact = exact(ray);
     if (options.reference) {
       ReferenceGradientOptions ro;
       ro.threads = options.threads;
@@ -147,8 +148,9 @@ GradCheckResult grad_check(const Case& c, const GradCandidate& candidate, const 
   res.rel_tol = rel_tol;
   res.abs_tol = abs_tol;
   if (against_reference) res.exact_vs_reference = Rgb{};
+  const ExactRayGradient exact_gradient(c.transfer);
   for (std::size_t i = 0; i < c.rays.size(); ++i) {
-    RayGradient exact = exact_ray_gradient(c.transfer, c.rays[i]);
+    RayGradient exact = exact_gradient(c.rays[i]);
     if (against_reference) {
       ReferenceGradientOptions ro;
       ro.threads = options.threads;
