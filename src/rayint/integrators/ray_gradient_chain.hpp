@@ -140,6 +140,20 @@ inline void mark_jump_tangencies(const TransferFunctions& tf, const Ray& ray, Ra
   }
 }
 
+// Whether every segment's length and scalars are finite: their exponent bits, or-ed without a
+// branch per number (a branch per number was ~2% of a long ray's gradient).
+inline bool all_finite(const std::vector<Segment>& segments) {
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000u;
+  std::uint64_t not_finite = 0;
+  for (const Segment& seg : segments)
+    for (const double x : {seg.length, seg.scalar_far, seg.scalar_exit}) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      not_finite |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
+    }
+  return not_finite == 0;
+}
+
 // The same transfer functions, point for point and bit for bit (the free gradient functions keep
 // a preparation for the last functions seen).
 inline bool same_points(const TransferFunctions& a, const TransferFunctions& b) {
@@ -355,12 +369,13 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
   for (int c = 0; c < kChannels; ++c)
     if (!std::isfinite(ray.background[c]))
       throw std::invalid_argument("gradient: background must be finite");
-  for (std::size_t j = 0; j < ray.segments.size(); ++j) {
-    const Segment& seg = ray.segments[j];
-    if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
-      throw std::invalid_argument("gradient: segment " + std::to_string(j) +
-                                  ": length and scalars must be finite");
-  }
+  if (!all_finite(ray.segments))
+    for (std::size_t j = 0; j < ray.segments.size(); ++j) {
+      const Segment& seg = ray.segments[j];
+      if (!(std::isfinite(seg.length) && std::isfinite(seg.scalar_far) && std::isfinite(seg.scalar_exit)))
+        throw std::invalid_argument("gradient: segment " + std::to_string(j) +
+                                    ": length and scalars must be finite");
+    }
   // What the reverse pass needs of a piece-channel besides its optics' derivatives
   // (PieceDerivatives): per function (density[c], color[c]), the interval its values come from
   // (upper_bound of the scalar that chooses it, see interval_lo below). The slopes and node
@@ -372,7 +387,6 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
   struct Scratch {
     PieceChannelColumns columns;               // the pieces' inputs, written by the splitter
     std::vector<PiecePlace> places;
-    std::vector<PieceRecord> pieces;
     std::vector<double> incoming;
     std::vector<ChannelEnds> ends;
     std::vector<double> dkappas;
@@ -440,31 +454,43 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
     derivs.resize(n * kChannels);
     dkappas.resize(n * kChannels);
   }
-  std::vector<PieceRecord>& pieces = scratch.pieces;
-  if (pieces.size() < n) pieces.resize(std::max<std::size_t>(64, n));
-  // What the reverse pass needs of each piece: where its ends lie along its segment (the
-  // divisions of append_pieces'; a piece's far end is the previous one's exit), and per channel
-  // its intervals and kappa_far - kappa_exit (one pass over the pieces).
-  for (std::size_t k = 0; k < n; ++k) {
+  // A piece's record (where its ends lie along its segment: the divisions of append_pieces'), formed
+  // where it is used (the reverse pass, once per piece) from its place and its segment instead of
+  // being kept for the whole ray: a piece's far end is the previous one's exit, so its phi_far is
+  // that piece's phi_exit, the same division.
+  const auto record = [&](std::size_t k) {
     const PiecePlace& pl = places[k];
     const Segment& seg = ray.segments[pl.segment];
     const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
-    PieceRecord& pr = pieces[k];
-    ChannelEnds* rec = &ends[k * kChannels];
-    double* dkappa = &dkappas[k * kChannels];
+    PieceRecord pr;
     pr.segment = pl.segment;
     pr.s_far = pl.s_far;
     pr.s_exit = pl.s_exit;
     pr.length = columns.length[k * kChannels];
-    pr.region = pl.region;
-    if (s0 == s1) {
-      pr.fraction = 1.0;
-      pr.phi_far = 0.0;
-      pr.phi_exit = 1.0;
-      pr.far_is_end = pr.exit_is_end = true;
-      pr.span = 0.0;
+    if (s0 == s1) {  // a constant piece: one per segment, the whole of it
       pr.region = kConstantPiece;
+      return pr;
+    }
+    const double span = s1 - s0;
+    pr.region = pl.region;
+    pr.span = span;
+    pr.far_is_end = pl.s_far == s0;
+    pr.exit_is_end = pl.s_exit == s1;
+    // one piece: the fraction is exactly 1 (append_pieces' span / span)
+    pr.fraction = pr.far_is_end && pr.exit_is_end ? 1.0 : (pl.s_exit - pl.s_far) / span;
+    pr.phi_exit = pr.exit_is_end ? 1.0 : (pl.s_exit - s0) / span;
+    pr.phi_far = pr.far_is_end ? 0.0 : (pl.s_far - s0) / span;
+    return pr;
+  };
+  // Per piece and channel, its intervals and kappa_far - kappa_exit (one pass over the pieces).
+  for (std::size_t k = 0; k < n; ++k) {
+    const PiecePlace& pl = places[k];
+    const Segment& seg = ray.segments[pl.segment];
+    ChannelEnds* rec = &ends[k * kChannels];
+    double* dkappa = &dkappas[k * kChannels];
+    if (seg.scalar_far == seg.scalar_exit) {
       // a constant piece: no slope, its intervals by search
+      const PieceRecord pr = record(k);
       for (int c = 0; c < kChannels; ++c) {
         rec[c].rho_k = constant_interval(tf.density[c], pr);
         rec[c].kappa_k = constant_interval(tf.color[c], pr);
@@ -472,26 +498,13 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
       }
       continue;
     }
-    const double span = s1 - s0;
-    pr.span = span;
-    pr.far_is_end = pl.s_far == s0;
-    pr.exit_is_end = pl.s_exit == s1;
-    // one piece: the fraction is exactly 1 (append_pieces' span / span)
-    pr.fraction = pr.far_is_end && pr.exit_is_end ? 1.0 : (pl.s_exit - pl.s_far) / span;
-    pr.phi_exit = pr.exit_is_end ? 1.0 : (pl.s_exit - s0) / span;
-    if (pr.far_is_end)
-      pr.phi_far = 0.0;
-    else if (k > 0 && places[k - 1].segment == pl.segment && places[k - 1].s_exit == pl.s_far)
-      pr.phi_far = pieces[k - 1].phi_exit;
-    else  // the piece before was dropped (zero length)
-      pr.phi_far = (pl.s_far - s0) / span;
     // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
     // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
     // multiplied by a density slope of 3e23 in dI/ds). The extensions have slope 0.
-    const double ds = pr.s_far - pr.s_exit;
+    const double ds = pl.s_far - pl.s_exit;
     for (int c = 0; c < kChannels; ++c) {
-      rec[c].rho_k = rho_interval[c][pr.region];
-      rec[c].kappa_k = kappa_interval[c][pr.region];
+      rec[c].rho_k = rho_interval[c][pl.region];
+      rec[c].kappa_k = kappa_interval[c][pl.region];
       dkappa[c] = kappa_slope[c][rec[c].kappa_k] * ds;
     }
   }
@@ -523,16 +536,27 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
       kappa_sums[c].reset(tf.color[c]);
     }
   Rgb adjoint{1.0, 1.0, 1.0};
+  // The arrays read and the blocks written, as local pointers: the pass's rare calls (a jump's
+  // crossing) would otherwise make every piece reload them from the scratch and the gradient.
+  const PieceDerivatives* const piece_derivs = derivs.data();
+  const ChannelEnds* const piece_ends = ends.data();
+  const double* const piece_light = incoming.data();
+  Rgb* const length_block = grad.length.data();
+  Rgb* const scalar_far_block = grad.scalar_far.data();
+  Rgb* const scalar_exit_block = grad.scalar_exit.data();
   for (std::size_t k = n; k-- > 0;) {
-    const PieceRecord& pr = pieces[k];
-    Rgb& seg_length = grad.length[pr.segment];
-    Rgb& scalar_far = grad.scalar_far[pr.segment];
-    Rgb& scalar_exit = grad.scalar_exit[pr.segment];
+    const PieceRecord pr = record(k);
+    // the piece before it in the same segment, for a jump crossed between them
+    const bool crossing = jumps && !pr.far_is_end && k > 0;
+    const PieceRecord before = crossing ? record(k - 1) : PieceRecord{};
+    Rgb& seg_length = length_block[pr.segment];
+    Rgb& scalar_far = scalar_far_block[pr.segment];
+    Rgb& scalar_exit = scalar_exit_block[pr.segment];
     for (int c = 0; c < kChannels; ++c) {
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
-      const PieceDerivatives& g = derivs[i];
-      const ChannelEnds& ce = ends[i];
-      const double light = incoming[i];
+      const PieceDerivatives& g = piece_derivs[i];
+      const ChannelEnds& ce = piece_ends[i];
+      const double light = piece_light[i];
       const double e_bar = adjoint[c];
       const double t_bar = adjoint[c] * light;
       const double len_bar = e_bar * g.de_length + t_bar * g.dt_length;
@@ -563,8 +587,8 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
         moving_ends(tf, ray, pr, c, len_bar, far_s_bar, exit_s_bar, nodes_wanted, jumps, grad);
       }
       adjoint[c] *= g.transmittance;
-      if (jumps && !pr.far_is_end && k > 0)
-        add_jump_crossing(tf, ray, pieces[k - 1], pr, c, light, adjoint[c], grad,
+      if (crossing)
+        add_jump_crossing(tf, ray, before, pr, c, light, adjoint[c], grad,
                           ends_mode == PieceEnds::fixed_along_segment, nodes_wanted);
     }
   }

@@ -2,10 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace rayint {
+namespace {
+
+// v resized to n entries, all zero, as bytes (an all-zero double is +0.0): memset is several
+// times faster than assign()'s loop over 24-byte entries (~3% of a long ray's gradient).
+template <class T>
+void assign_zeros(std::vector<T>& v, std::size_t n) {
+  static_assert(std::is_trivially_copyable<T>::value, "zeroed as bytes");
+  v.resize(n);
+  if (n > 0) std::memset(static_cast<void*>(v.data()), 0, n * sizeof(T));
+}
+
+}  // namespace
 
 RayGradient RayGradient::zeros(const TransferFunctions& tf, const Ray& ray) {
   RayGradient g;
@@ -17,12 +31,12 @@ void RayGradient::reset(const TransferFunctions& tf, const Ray& ray) {
   const std::size_t m = ray.segments.size();
   intensity = background = Rgb{};
   undefined.clear();
-  length.assign(m, Rgb{});
-  scalar_far.assign(m, Rgb{});
-  scalar_exit.assign(m, Rgb{});
+  assign_zeros(length, m);
+  assign_zeros(scalar_far, m);
+  assign_zeros(scalar_exit, m);
   for (int c = 0; c < kChannels; ++c) {
-    density[c].assign(tf.density[c].scalar.size(), NodeDerivative{});
-    color[c].assign(tf.color[c].scalar.size(), NodeDerivative{});
+    assign_zeros(density[c], tf.density[c].scalar.size());
+    assign_zeros(color[c], tf.color[c].scalar.size());
   }
 }
 
