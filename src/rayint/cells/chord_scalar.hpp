@@ -41,14 +41,6 @@ namespace rayint {
 inline constexpr int kTaylorMaxOrder = 24;
 inline constexpr double kTaylorNegligible = 1e-17;
 
-// x(p) = sum_m x[m] mono_m(p), mono = 1, r, s, t, rs, rt, st, rst.
-struct MultilinearCell {
-  std::array<Vec3, 8> x{};
-  double magnitude = 0.0;  // largest |node coordinate| (Newton's residual scale)
-  LinearCellType type = LinearCellType::hexahedron;
-};
-MultilinearCell multilinear_form(const LinearCell& cell);
-
 // An affine cell's scalar along the ray on [a, b] (cell.affine: voxel, hexahedron or wedge):
 // p(t) = A^-1 (o + t d - x0) is linear, so with t = (a + b) / 2 + x (b - a) / 2 every shape
 // function N_i(p(x)) is a product of at most three linear factors in x and f = sum_i N_i f_i a
@@ -76,6 +68,15 @@ class ChordScalar {
   // below kTaylorNegligible). Infinite when the series was not expanded to convergence, and
   // for wedges and pyramids (see chord_scalar.cpp).
   double taylor_tail(int n) const;
+  // f on the last expand()'s [a, b] from its Taylor series alone (no samples, no DCT), as
+  // Chebyshev coefficients c[0 .. degree] in x = (t - t_c) / h: the series truncated at the
+  // smallest degree m whose taylor_tail(m) is <= `chop`, converted exactly (a
+  // table of x^k's Chebyshev coefficients). `error` bounds |f - sum c_k T_k| on the chord: taylor_tail(m) plus the
+  // rounding of f's monomial coefficients, of the series' arithmetic (scaled by J's condition
+  // number) and of the nodal f at the centre (see chord_scalar.cpp). False where
+  // taylor_tail is infinite (not converged; wedges, pyramids) or no degree <= the series' order
+  // meets `chop`.
+  bool series_chebyshev(double chop, std::array<double, kTaylorMaxOrder + 1>& c, int& degree, double& error) const;
 
   int samples = 0;           // sample() calls
   int newton_steps = 0;      // Newton steps taken (0 when every prediction was accepted)
@@ -83,16 +84,21 @@ class ChordScalar {
 
  private:
   bool newton(const Vec3& target, Vec3& p, bool step_first);
-  MultilinearCell m_;
+  const MultilinearForm* m_;  // cell_->multilinear
   const LinearCell* cell_;
   Vec3 o_, d_;
   Vec3 start_;  // last converged point
   double t_c_ = 0.0;
+  double a_ = 0.0, b_ = 0.0;  // the last expand()'s interval, and its result
+  bool expanded_ = false;
+  double f_c_ = 0.0;       // f at P_0 from the nodal form (the series' a_0)
+  double condition_ = 0.0; // |J(P_0)| |J(P_0)^-1| (infinity norms)
   int order_ = -1;  // -1: no expansion
   bool converged_ = false;  // the series' last two terms were negligible
   std::array<Vec3, kTaylorMaxOrder + 1> P_{};
   std::array<double, kTaylorMaxOrder + 1> f_series_{};  // a_k = f_k h^k
-  std::array<double, 8> F_{};  // f's monomial coefficients (1, r, s, t, rs, rt, st, rst)
+  std::array<double, kTaylorMaxOrder + 1> f_abs_{};     // the same sums over absolute values
+  std::array<double, kTaylorMaxOrder + 1> mono_abs_{};  // h^k sum of |coefficients| of r, s, t, rs, rt, st, rst
 };
 
 }  // namespace rayint
