@@ -673,7 +673,7 @@ CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell,
     sampler.exact_degree = 3;
   // Degree 8 first where taylor_tail can accept it (hexahedra, voxels; affine cells: exact_degree).
   const bool hex = cell.type == LinearCellType::hexahedron || cell.type == LinearCellType::voxel;
-  sampler.chop = kChopFraction * std::max(kChebyshevTail * value_scale, std::numeric_limits<double>::min());
+  sampler.chop = kSeriesTruncation * std::max(kChebyshevTail * value_scale, std::numeric_limits<double>::min());
   return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton && !hex ? 16 : 8,
                            use_newton ? CellPath::isoparametric : CellPath::polynomial);
 }

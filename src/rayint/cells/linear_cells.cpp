@@ -260,15 +260,18 @@ std::array<V, 8> monomial_coefficients(LinearCellType type, const V* node, const
       corner[Q] = v;
     }
   }
-  // In place, one coordinate direction at a time (the fast Moebius transform: 12 differences,
-  // each of two values one step apart; the sums over q written out were 27 additions with a
-  // branch each, ~5 % of `rayint bench` twisted12, 2026-12-05).
-  for (int bit = 1; bit < 8; bit <<= 1)
-    for (int q = 0; q < 8; ++q)
-      if ((q & bit) != 0) corner[static_cast<std::size_t>(q)] -= corner[static_cast<std::size_t>(q ^ bit)];
   constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};  // slots 1, r, s, t, rs, rt, st, rst
   std::array<V, 8> out;
-  for (int slot = 0; slot < 8; ++slot) out[static_cast<std::size_t>(slot)] = corner[static_cast<std::size_t>(kBits[slot])];
+  for (int slot = 0; slot < 8; ++slot) {
+    const int bits = kBits[slot];
+    V v = zero;
+    for (int q = 0; q < 8; ++q) {
+      if ((q & ~bits) != 0) continue;
+      const int parity = __builtin_popcount(static_cast<unsigned>(bits ^ q)) % 2;
+      v += (parity == 0 ? 1.0 : -1.0) * corner[static_cast<std::size_t>(q)];
+    }
+    out[static_cast<std::size_t>(slot)] = v;
+  }
   return out;
 }
 
