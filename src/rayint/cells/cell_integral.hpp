@@ -112,6 +112,9 @@
 // On the affine box12 mesh (`rayint bench`, scripts/cells/bench_hex_meshes.py) own/split was
 // 4.7-4.9x before the 2026-12-05 changes (vectorised integrand, the ellipse walk, no heap
 // allocation per chord, the factorised cubic), ~3.0x after (reports/cells/bench_own29box_measurements.txt).
+// On the twisted12 mesh 12.4-12.5x before hexahedra took f's own Taylor series (no samples) and
+// the classification its Newton on the multilinear form, 6.7-7.5x after (2026-12-05,
+// reports/cells/bench_own29twist_measurements.txt).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
