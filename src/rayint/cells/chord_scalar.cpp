@@ -160,7 +160,9 @@ bool ChordScalar::expand(double a, double b) {
     order_ = k;
     hk *= h;
     f_series_[K] = hk * (F[1] * Pk[0] + F[2] * Pk[1] + F[3] * Pk[2] + F[4] * U[K] + F[5] * V[K] + F[6] * W[K] + F[7] * X);
-    const double mono[7] = {std::abs(Pk[0]), std::abs(Pk[1]), std::abs(Pk[2]), std::abs(U[K]), std::abs(V[K]), std::abs(W[K]), std::abs(X)};
+    // The same sums over absolute values (series_chebyshev's rounding bound).
+    const double mono[7] = {std::abs(Pk[0]), std::abs(Pk[1]), std::abs(Pk[2]), std::abs(U[K]),
+                            std::abs(V[K]),  std::abs(W[K]),  std::abs(X)};
     double f_abs = 0.0, mono_abs = 0.0;
     for (std::size_t j = 0; j < 7; ++j) f_abs += std::abs(F[j + 1]) * mono[j], mono_abs += mono[j];
     f_abs_[K] = hk * f_abs, mono_abs_[K] = hk * mono_abs;
@@ -174,22 +176,24 @@ bool ChordScalar::expand(double a, double b) {
   return true;
 }
 
-// The series' value bound. With f's exact Taylor coefficients a_k (in x), the computed ones and
-// the conversion differ by (kEps = eps):
-//   - truncation: taylor_tail(m) (its own allowance for the orders beyond the series);
-//   - the rounding of f's monomial coefficients (MultilinearForm::f): each coefficient an alternating sum of <= 8 values f_i - f_ref, off by
-//     <= 9 eps f_spread (3 differences and the subtraction of f_ref, a few eps each); f - f(P_0) = sum_j F_j (mono_j(p) - mono_j(P_0)), so the series is off
-//     by <= 9 eps f_spread sum_k mono_abs_[k];
-//   - arithmetic of the orders k >= 1: P_k = J^-1 (rhs) carries rounding ~ eps cond(J) |P_k|
-//     (the inverse's and the products' rounding), the 7-term dot products a few eps, the
-//     Chebyshev conversion ~2 eps per order: (16 + 8 cond + 4 m) eps x sum_{k >= 1} |a_k|_abs (the
-//     Chebyshev coefficients of that part are bounded by sum_{k >= 1} |a_k|, |T_j| <= 1);
+// The series' value bound. f's exact Taylor coefficients (in x) and the computed Chebyshev
+// coefficients differ by (kEps = eps):
+//   - truncation: taylor_tail(m) (with its allowance for the orders beyond the series);
+//   - the rounding of f's monomial coefficients (MultilinearForm::f): each an alternating sum of
+//     <= 8 values f_i - f_ref (7 additions, each off by <= eps x the sum of the |terms|, and the
+//     subtractions of f_ref): <= 9 eps f_spread. As f - f(P_0) = sum_j F_j (mono_j(p) -
+//     mono_j(P_0)), the series is off by <= 9 eps f_spread sum_k mono_abs_[k];
+//   - arithmetic of the orders k >= 1: P_k = J^-1 (rhs) carries ~ eps cond(J) |P_k| (the
+//     inverse's and the products' rounding), the 7-term dot products a few eps, the Chebyshev
+//     conversion ~2 eps per order: (16 + 8 cond + 4 m) eps x sum_{k >= 1} |a_k| over absolute
+//     values (that part's Chebyshev coefficients are bounded by sum_{k >= 1} |a_k|, |T_j| <= 1);
 //   - a_0 = f(P_0) in the nodal form, added to c_0 last: N_i products of three factors (~4 eps
 //     each), a sum of 8 nonnegative-weighted terms (7 eps max|f_i|), the final addition (1 eps):
 //     16 eps max|f_i|; P_0 after a polishing Newton step (expand), off by rounding only (~eps |p|
 //     times |grad f|, inside the same allowance).
-// The constants are generous (rounding bounds of this shape are ~n eps; measured in
-// tools/cell_accuracy, reports/cells/bench.md "Chord scalar from its Taylor series").
+// The constants are generous (rounding bounds of this shape are ~n eps); measured with
+// tools/cell_accuracy and `rayint eval` (reports/cells/bench.md, "Hexahedra's chord scalar from
+// its own Taylor series"): no chord's error above its estimate, worst errors main's.
 bool ChordScalar::series_chebyshev(double chop, std::array<double, kTaylorMaxOrder + 1>& c, int& degree,
                                    double& error) const {
   const bool hex = cell_->type == LinearCellType::hexahedron || cell_->type == LinearCellType::voxel;
@@ -198,7 +202,8 @@ bool ChordScalar::series_chebyshev(double chop, std::array<double, kTaylorMaxOrd
   double tail = taylor_tail(order_);
   if (!(tail <= chop) || order_ < 1) return false;
   int m = order_;
-  while (m > 1 && tail + std::abs(f_series_[static_cast<std::size_t>(m)]) <= chop) tail += std::abs(f_series_[static_cast<std::size_t>(m--)]);
+  while (m > 1 && tail + std::abs(f_series_[static_cast<std::size_t>(m)]) <= chop)
+    tail += std::abs(f_series_[static_cast<std::size_t>(m--)]);
   double a_abs = 0.0, mono_abs = 0.0;
   for (int k = 1; k <= order_; ++k) {
     const auto K = static_cast<std::size_t>(k);
@@ -216,9 +221,10 @@ bool ChordScalar::series_chebyshev(double chop, std::array<double, kTaylorMaxOrd
   static const auto B = [] {
     std::array<std::array<double, kTaylorMaxOrder + 2>, kTaylorMaxOrder + 1> t{};
     t[0][0] = 1.0;
-    for (std::size_t k = 1; k <= kTaylorMaxOrder; ++k) {  // x T_0 = T_1, x T_j = (T_{j+1} + T_{j-1}) / 2
+    for (std::size_t k = 1; k <= kTaylorMaxOrder; ++k) {  // x T_0 = T_1, x T_j = (T_j+1 + T_j-1) / 2
       t[k][1] += t[k - 1][0];
-      for (std::size_t j = 1; j < k; ++j) t[k][j + 1] += 0.5 * t[k - 1][j], t[k][j - 1] += 0.5 * t[k - 1][j];
+      for (std::size_t j = 1; j < k; ++j)
+        t[k][j + 1] += 0.5 * t[k - 1][j], t[k][j - 1] += 0.5 * t[k - 1][j];
     }
     return t;
   }();

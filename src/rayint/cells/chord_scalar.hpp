@@ -47,8 +47,8 @@
 // ((16 + 8 cond(J) + 4 m) eps x sum_{k>=1} |a_k| over absolute values) and of a_0 = f(P_0) in the
 // nodal form (16 eps max|f_i|); P_0 takes one polishing Newton step. Where the bound misses the
 // interpolant's tail target, or the series did not converge, the samples follow from the same
-// expansion. Measured (`rayint bench`, reports/cells/bench.md "Chord scalar from its Taylor
-// series"): every chord of the twisted grid takes it (mean degree 8.4), 97 % of gmsh-hex's (7.3);
+// expansion. Measured (`rayint bench`, reports/cells/bench.md "Hexahedra's chord scalar from its
+// own Taylor series"): every chord of the twisted grid takes it (mean degree 8.4), 97 % of gmsh-hex's (7.3);
 // own time 1.7x lower on the twisted grid; eval's max errors against the 50-digit reference unchanged;
 // wedges and pyramids keep the samples (taylor_tail's reason).
 #include <array>
@@ -75,8 +75,9 @@ class ChordScalar {
   // `start`: Newton's first start (a point near the chord, e.g. ChordInterval::p_mid) when given,
   // finite and within 0.25 of the domain; else the cell's centre.
   ChordScalar(const LinearCell& cell, const ViewRay& ray, const Vec3* start = nullptr);
-  // Sets the Taylor predictor about the centre of [a, b] (a Newton solve there). Returns false
-  // when that solve did not converge (sampling still works, from warm starts only).
+  // Sets the Taylor predictor about the centre of [a, b] (a Newton solve there, ending on at
+  // least one step) and f's series. Returns false when that solve did not converge (sampling
+  // still works, from warm starts only). A second call on the same [a, b] reuses the expansion.
   bool expand(double a, double b);
   // f(t); false when the inverse map did not converge (from every start).
   bool sample(double t, double& f);
@@ -89,10 +90,10 @@ class ChordScalar {
   double taylor_tail(int n) const;
   // f on the last expand()'s [a, b] from its Taylor series alone (no samples, no DCT), as
   // Chebyshev coefficients c[0 .. degree] in x = (t - t_c) / h: the series truncated at the
-  // smallest degree m whose taylor_tail(m) is <= `chop`, converted exactly (a
-  // table of x^k's Chebyshev coefficients). `error` bounds |f - sum c_k T_k| on the chord: taylor_tail(m) plus the
-  // rounding of f's monomial coefficients, of the series' arithmetic (scaled by J's condition
-  // number) and of the nodal f at the centre (see chord_scalar.cpp). False where
+  // smallest degree m whose taylor_tail(m) is <= `chop`, converted exactly (a table of x^k's
+  // Chebyshev coefficients). `error` bounds |f - sum c_k T_k| on the chord: taylor_tail(m) plus
+  // the rounding of f's monomial coefficients, of the series' arithmetic (scaled by J's
+  // condition number) and of the nodal f at the centre (see chord_scalar.cpp). False where
   // taylor_tail is infinite (not converged; wedges, pyramids) or no degree <= the series' order
   // meets `chop`.
   bool series_chebyshev(double chop, std::array<double, kTaylorMaxOrder + 1>& c, int& degree, double& error) const;
