@@ -436,8 +436,19 @@ struct Sampler {
   double tail_bound(int n) const { return use_newton ? scalar->taylor_tail(n) : 0.0; }
   // An affine cell: f's coefficients on [a, b] multiplied out (affine_chord_chebyshev), with
   // their rounding as the tail; false on the Newton path.
-  bool exact(double a, double b, Coefficients& c, double& rounding) const {
-    if (use_newton) return false;
+  // On the Newton path (hexahedra, voxels): f's own Taylor series about the centre of [a, b],
+  // when it converged and a degree meets `chop` (ChordScalar::series_chebyshev: no samples, no
+  // DCT), with its error bound as the tail; else false (the samples follow, from the same
+  // expansion).
+  double chop = 0.0;
+  bool exact(double a, double b, Coefficients& c, double& rounding) {
+    if (use_newton) {
+      std::array<double, kTaylorMaxOrder + 1> series;
+      int degree = 0;
+      if (!scalar->expand(a, b) || !scalar->series_chebyshev(chop, series, degree, rounding)) return false;
+      c.assign(series.begin(), series.begin() + degree + 1);
+      return true;
+    }
     std::array<double, 4> c4{};
     rounding = affine_chord_chebyshev(*cell, *ray, a, b, c4);
     c.assign(c4.begin(), c4.end());
@@ -662,6 +673,7 @@ CellPieceIntegral LinearCellIntegrator::integrate_curved(const LinearCell& cell,
     sampler.exact_degree = 3;
   // Degree 8 first where taylor_tail can accept it (hexahedra, voxels; affine cells: exact_degree).
   const bool hex = cell.type == LinearCellType::hexahedron || cell.type == LinearCellType::voxel;
+  sampler.chop = kSeriesTruncation * std::max(kChebyshevTail * value_scale, std::numeric_limits<double>::min());
   return integrate_sampled(sampler, value_scale, ray, t_near, t_far, use_newton && !hex ? 16 : 8,
                            use_newton ? CellPath::isoparametric : CellPath::polynomial);
 }

@@ -28,6 +28,10 @@
 //                  t_far] through inverse maps (cells/chord_scalar.hpp: the cell's multilinear
 //                  form, Newton started from a Taylor expansion of p(t) about the interval's
 //                  centre, accepted by inverse_map's own residual test, then one polishing step).
+//                  Hexahedra and voxels first try f's own Taylor series about the chord's centre
+//                  (chord_scalar.hpp "f's own series"): where it converged and its truncation
+//                  is <= eps max|f_i| / 4 (kSeriesTruncation), its Chebyshev coefficients with their rounding bound as
+//                  e_f replace step 1's samples (no Newton solve per sample, no DCT).
 // Quadratic cells (cells/quadratic_isoparametric.hpp: tet10, hex20, wedge15, curved too) take the
 // isoparametric path with their own inverse map, or the polynomial path when affine (a
 // straight-edged tet10: f is a quadratic in t); the steps below are the same code
@@ -108,6 +112,9 @@
 // On the affine box12 mesh (`rayint bench`, scripts/cells/bench_hex_meshes.py) own/split was
 // 4.7-4.9x before the 2026-12-05 changes (vectorised integrand, the ellipse walk, no heap
 // allocation per chord, the factorised cubic), ~3.0x after (reports/cells/bench_own29box_measurements.txt).
+// On the twisted12 mesh 12.4-12.5x before hexahedra took f's own Taylor series (no samples) and
+// the classification its Newton on the multilinear form, 6.7-7.5x after (2026-12-05,
+// reports/cells/bench_own29twist_measurements.txt).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"
@@ -121,6 +128,13 @@ inline constexpr double kChebyshevTail = 64 * 2.220446049250313e-16;
 inline constexpr int kMaxBisections = 6;
 inline constexpr double kQuadratureTolerance = 1e-14;
 inline constexpr double kChopFraction = 1.0 / 64;  // trailing coefficients dropped: <= eps max|f_i|
+// f's own Taylor series (hexahedra, voxels: chord_scalar.hpp) is truncated where its tail is <= this
+// fraction of the tail target, i.e. <= eps max|f_i| / 4: the truncation is systematic along the
+// chord (not the samples' scattered rounding), so it is held below their noise. Measured with
+// tools/cell_accuracy --seed 1, hex_twisted: at eps max|f_i| (1/64) the worst relative emission
+// error rose 3.9e-14 -> 1.5e-13 (a near-zero channel, absolute 3.9e-16), at 1/256 it is main's;
+// `rayint bench` twisted12 and gmsh-hex equally fast with both; at 1/1024 gmsh-hex 30 % slower.
+inline constexpr double kSeriesTruncation = kChopFraction / 4;
 
 enum class CellPath { linear_exact, polynomial, isoparametric };
 const char* cell_path_name(CellPath path);  // "linear_exact", "polynomial", "isoparametric"

@@ -12,70 +12,6 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-struct Monomials {
-  double r, s, t, rs, rt, st, rst;
-  explicit Monomials(const Vec3& p)
-      : r(p[0]), s(p[1]), t(p[2]), rs(p[0] * p[1]), rt(p[0] * p[2]), st(p[1] * p[2]), rst(p[0] * p[1] * p[2]) {}
-};
-
-Vec3 position(const MultilinearCell& m, const Monomials& q) {
-  return m.x[0] + q.r * m.x[1] + q.s * m.x[2] + q.t * m.x[3] + q.rs * m.x[4] + q.rt * m.x[5] + q.st * m.x[6] +
-         q.rst * m.x[7];
-}
-
-Eigen::Matrix3d jacobian(const MultilinearCell& m, const Monomials& q) {
-  Eigen::Matrix3d J;
-  J.col(0) = m.x[1] + q.s * m.x[4] + q.t * m.x[5] + q.st * m.x[7];
-  J.col(1) = m.x[2] + q.r * m.x[4] + q.t * m.x[6] + q.rt * m.x[7];
-  J.col(2) = m.x[3] + q.r * m.x[5] + q.s * m.x[6] + q.rs * m.x[7];
-  return J;
-}
-
-}  // namespace
-
-namespace {
-
-// The coefficients of a per-node quantity (positions, scalars) in the monomials 1, r, s, t, rs,
-// rt, st, rst: its values at the corners q of the unit cube (bit 0: r, bit 1: s, bit 2: t) from
-// the nodal form, then Moebius inversion (the coefficient of the monomial with exponent bits m
-// is the alternating sum over the corners q contained in m). A hexahedron's or voxel's corners
-// are its nodes (the shape functions are exactly 0 and 1 there, so reading the node is the
-// same value bit for bit); a wedge's, pyramid's or tetra's corners outside the domain come
-// from the shape functions, which are polynomials.
-template <class V>
-std::array<V, 8> monomial_coefficients(LinearCellType type, const V* node, const V& zero) {
-  constexpr int kHexCorner[8] = {0, 1, 3, 2, 4, 5, 7, 6};  // node at corner q
-  const int n = linear_node_count(type);
-  std::array<V, 8> corner;
-  double N[kMaxLinearNodes];
-  for (int q = 0; q < 8; ++q) {
-    const auto Q = static_cast<std::size_t>(q);
-    if (type == LinearCellType::hexahedron) {
-      corner[Q] = node[kHexCorner[q]];
-    } else if (type == LinearCellType::voxel) {
-      corner[Q] = node[q];
-    } else {
-      linear_shape_functions(type, Vec3((q & 1) ? 1.0 : 0.0, (q & 2) ? 1.0 : 0.0, (q & 4) ? 1.0 : 0.0), N);
-      V v = zero;
-      for (int i = 0; i < n; ++i) v += N[i] * node[i];
-      corner[Q] = v;
-    }
-  }
-  constexpr int kBits[8] = {0, 1, 2, 4, 3, 5, 6, 7};  // slots 1, r, s, t, rs, rt, st, rst
-  std::array<V, 8> out;
-  for (int slot = 0; slot < 8; ++slot) {
-    const int bits = kBits[slot];
-    V v = zero;
-    for (int q = 0; q < 8; ++q) {
-      if ((q & ~bits) != 0) continue;
-      const int parity = __builtin_popcount(static_cast<unsigned>(bits ^ q)) % 2;
-      v += (parity == 0 ? 1.0 : -1.0) * corner[static_cast<std::size_t>(q)];
-    }
-    out[static_cast<std::size_t>(slot)] = v;
-  }
-  return out;
-}
-
 }  // namespace
 
 double affine_chord_chebyshev(const LinearCell& cell, const ViewRay& ray, double a, double b, std::array<double, 4>& c) {
@@ -147,77 +83,56 @@ double affine_chord_chebyshev(const LinearCell& cell, const ViewRay& ray, double
   return 8 * kEps * (g_abs[0] + g_abs[1] + g_abs[2] + g_abs[3]) + kEps * std::abs(f_ref);
 }
 
-MultilinearCell multilinear_form(const LinearCell& cell) {
-  MultilinearCell m;
-  m.type = cell.type;
-  const int n = linear_node_count(cell.type);
-  for (int i = 0; i < n; ++i) m.magnitude = std::max(m.magnitude, cell.x[static_cast<std::size_t>(i)].cwiseAbs().maxCoeff());
-  m.x = monomial_coefficients<Vec3>(cell.type, cell.x.data(), Vec3::Zero());
-  return m;
-}
-
 ChordScalar::ChordScalar(const LinearCell& cell, const ViewRay& ray, const Vec3* start)
-    : m_(multilinear_form(cell)), cell_(&cell), o_(ray.origin), d_(ray.direction),
-      start_(linear_reference_centre(cell.type)) {
+    : m_(&cell.multilinear), cell_(&cell), o_(ray.origin), d_(ray.direction), start_(linear_reference_centre(cell.type)) {
   if (start != nullptr && start->allFinite() && inside_reference(cell.type, *start, 0.25)) start_ = *start;
-  // f's monomial coefficients, as x's: used only for taylor_tail's bound, never for a value of f.
-  F_ = monomial_coefficients<double>(cell.type, cell.value.data(), 0.0);
 }
 
 double ChordScalar::taylor_tail(int n) const {
   // Hexahedra and voxels only: on wedges the degree-8 start and the bound's chop moved
   // tools/cell_accuracy's worst wedge errors up at the rounding level (2.42e-14 -> 2.58e-14
   // relative, 7.33e-15 -> 7.44e-15 absolute, wedge_gmsh), so wedges and pyramids keep degree 16.
-  const bool hex = m_.type == LinearCellType::hexahedron || m_.type == LinearCellType::voxel;
+  const bool hex = cell_->type == LinearCellType::hexahedron || cell_->type == LinearCellType::voxel;
   if (!converged_ || !hex) return std::numeric_limits<double>::infinity();
   // The series' truncation: every |P_k| h^k beyond order_ taken as kTaylorNegligible, times f's
   // linear coefficients, and 4x for the products and the rest of the (geometric) tail.
-  double sum = 4 * kTaylorNegligible * (std::abs(F_[1]) + std::abs(F_[2]) + std::abs(F_[3]) + std::abs(F_[4]) +
-                                        std::abs(F_[5]) + std::abs(F_[6]) + std::abs(F_[7]));
+  const std::array<double, 8>& F = m_->f;
+  double sum = 4 * kTaylorNegligible * (std::abs(F[1]) + std::abs(F[2]) + std::abs(F[3]) + std::abs(F[4]) +
+                                        std::abs(F[5]) + std::abs(F[6]) + std::abs(F[7]));
   for (int k = n + 1; k <= order_; ++k) sum += std::abs(f_series_[static_cast<std::size_t>(k)]);
   return sum;
 }
 
-// linear_cells.cpp's inverse_map on the multilinear form: the same tolerances and budget.
-// With `step_first` the residual test is skipped before the first step: a point that passes it
-// by a hair (a Taylor prediction) still takes one step, and near a singular Jacobian (a
-// pyramid's apex) the residual bound alone leaves the point off by |J^-1| 8 eps |x|.
 bool ChordScalar::newton(const Vec3& target, Vec3& p, bool step_first) {
-  const double residual_tolerance = 8 * kEps * std::max(m_.magnitude, target.cwiseAbs().maxCoeff());
-  for (int it = 0; it < kNewtonMaxIterations; ++it) {
-    const Monomials q(p);
-    const Vec3 residual = target - position(m_, q);
-    if (!(step_first && it == 0) && residual.cwiseAbs().maxCoeff() <= residual_tolerance) return true;
-    Vec3 step = jacobian(m_, q).inverse() * residual;
-    ++newton_steps;
-    if (!step.allFinite()) return false;
-    const double size = step.cwiseAbs().maxCoeff();
-    if (size > kNewtonMaxStep) step *= kNewtonMaxStep / size;
-    p += step;
-    if (size <= kNewtonStepTolerance) return true;
-  }
-  return false;
+  return multilinear_newton(*m_, target, p, step_first, newton_steps);
 }
 
 bool ChordScalar::expand(double a, double b) {
+  if (order_ >= 0 && a == a_ && b == b_) return expanded_;  // series_chebyshev's expansion, reused
+  a_ = a, b_ = b;
+  expanded_ = false;
   order_ = -1;
   converged_ = false;
   t_c_ = 0.5 * (a + b);
   const double h = 0.5 * (b - a);
   Vec3 p0 = start_;
-  if (!newton(o_ + t_c_ * d_, p0, false)) {
+  // At least one step (as every sample takes): P_0 is the series' a_0 in series_chebyshev.
+  if (!newton(o_ + t_c_ * d_, p0, true)) {
     p0 = linear_reference_centre(cell_->type);
     if (!newton(o_ + t_c_ * d_, p0, false)) return false;
   }
   start_ = p0;
   P_[0] = p0;
-  const Monomials q0(p0);
-  const Eigen::Matrix3d Jinv = jacobian(m_, q0).inverse();
+  const Eigen::Matrix3d J0 = multilinear_jacobian(*m_, p0);
+  const Eigen::Matrix3d Jinv = J0.inverse();
   if (!Jinv.allFinite()) return false;
+  f_c_ = cell_scalar(*cell_, p0);
+  condition_ = J0.cwiseAbs().rowwise().sum().maxCoeff() * Jinv.cwiseAbs().rowwise().sum().maxCoeff();
   // Series of the products: U = rs, V = rt, W = st (full coefficients once P_k is known).
   std::array<double, kTaylorMaxOrder + 1> U{}, V{}, W{};
-  U[0] = q0.rs, V[0] = q0.rt, W[0] = q0.st;
+  U[0] = p0[0] * p0[1], V[0] = p0[0] * p0[2], W[0] = p0[1] * p0[2];
   const double r0 = p0[0], s0 = p0[1], t0 = p0[2];
+  const std::array<double, 8>& F = m_->f;
   int small = 0;
   double hk = 1.0;
   order_ = 0;
@@ -233,7 +148,7 @@ bool ChordScalar::expand(double a, double b) {
       Xk += U[i] * P_[K - i][2];
     }
     Xk += Uk * t0;
-    const Vec3 Q = Uk * m_.x[4] + Vk * m_.x[5] + Wk * m_.x[6] + Xk * m_.x[7];
+    const Vec3 Q = Uk * m_->x[4] + Vk * m_->x[5] + Wk * m_->x[6] + Xk * m_->x[7];
     const Vec3 rhs = (k == 1 ? d_ : Vec3::Zero()) - Q;
     const Vec3 Pk = Jinv * rhs;
     if (!Pk.allFinite()) break;
@@ -241,16 +156,85 @@ bool ChordScalar::expand(double a, double b) {
     U[K] = Uk + r0 * Pk[1] + Pk[0] * s0;
     V[K] = Vk + r0 * Pk[2] + Pk[0] * t0;
     W[K] = Wk + s0 * Pk[2] + Pk[1] * t0;
-    const double X = Xk + q0.rs * Pk[2] + (r0 * Pk[1] + Pk[0] * s0) * t0;  // rst's coefficient
+    const double X = Xk + U[0] * Pk[2] + (r0 * Pk[1] + Pk[0] * s0) * t0;  // rst's coefficient
     order_ = k;
     hk *= h;
-    f_series_[K] = hk * (F_[1] * Pk[0] + F_[2] * Pk[1] + F_[3] * Pk[2] + F_[4] * U[K] + F_[5] * V[K] + F_[6] * W[K] + F_[7] * X);
+    f_series_[K] = hk * (F[1] * Pk[0] + F[2] * Pk[1] + F[3] * Pk[2] + F[4] * U[K] + F[5] * V[K] + F[6] * W[K] + F[7] * X);
+    // The same sums over absolute values (series_chebyshev's rounding bound).
+    const double mono[7] = {std::abs(Pk[0]), std::abs(Pk[1]), std::abs(Pk[2]), std::abs(U[K]),
+                            std::abs(V[K]),  std::abs(W[K]),  std::abs(X)};
+    double f_abs = 0.0, mono_abs = 0.0;
+    for (std::size_t j = 0; j < 7; ++j) f_abs += std::abs(F[j + 1]) * mono[j], mono_abs += mono[j];
+    f_abs_[K] = hk * f_abs, mono_abs_[K] = hk * mono_abs;
     small = (Pk.cwiseAbs().maxCoeff() * hk <= kTaylorNegligible) ? small + 1 : 0;
     if (small >= 2) {
       converged_ = true;
       break;
     }
   }
+  expanded_ = true;
+  return true;
+}
+
+// The series' value bound. f's exact Taylor coefficients (in x) and the computed Chebyshev
+// coefficients differ by (kEps = eps):
+//   - truncation: taylor_tail(m) (with its allowance for the orders beyond the series);
+//   - the rounding of f's monomial coefficients (MultilinearForm::f): each an alternating sum of
+//     <= 8 values f_i - f_ref (7 additions, each off by <= eps x the sum of the |terms|, and the
+//     subtractions of f_ref): <= 9 eps f_spread. As f - f(P_0) = sum_j F_j (mono_j(p) -
+//     mono_j(P_0)), the series is off by <= 9 eps f_spread sum_k mono_abs_[k];
+//   - arithmetic of the orders k >= 1: P_k = J^-1 (rhs) carries ~ eps cond(J) |P_k| (the
+//     inverse's and the products' rounding), the 7-term dot products a few eps, the Chebyshev
+//     conversion ~2 eps per order: (16 + 8 cond + 4 m) eps x sum_{k >= 1} |a_k| over absolute
+//     values (that part's Chebyshev coefficients are bounded by sum_{k >= 1} |a_k|, |T_j| <= 1);
+//   - a_0 = f(P_0) in the nodal form, added to c_0 last: N_i products of three factors (~4 eps
+//     each), a sum of 8 nonnegative-weighted terms (7 eps max|f_i|), the final addition (1 eps):
+//     16 eps max|f_i|; P_0 after a polishing Newton step (expand), off by rounding only (~eps |p|
+//     times |grad f|, inside the same allowance).
+// The constants are generous (rounding bounds of this shape are ~n eps); measured with
+// tools/cell_accuracy and `rayint eval` (reports/cells/bench.md, "Hexahedra's chord scalar from
+// its own Taylor series"): no chord's error above its estimate, worst errors main's.
+bool ChordScalar::series_chebyshev(double chop, std::array<double, kTaylorMaxOrder + 1>& c, int& degree,
+                                   double& error) const {
+  const bool hex = cell_->type == LinearCellType::hexahedron || cell_->type == LinearCellType::voxel;
+  if (!expanded_ || !converged_ || !hex) return false;
+  // The smallest m >= 1 with taylor_tail(m) <= chop (the tail falls as m grows): from the top.
+  double tail = taylor_tail(order_);
+  if (!(tail <= chop) || order_ < 1) return false;
+  int m = order_;
+  while (m > 1 && tail + std::abs(f_series_[static_cast<std::size_t>(m)]) <= chop)
+    tail += std::abs(f_series_[static_cast<std::size_t>(m--)]);
+  double a_abs = 0.0, mono_abs = 0.0;
+  for (int k = 1; k <= order_; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    if (k <= m) a_abs += f_abs_[K];
+    mono_abs += mono_abs_[K];
+  }
+  double value_scale = 0.0;
+  for (int i = 0; i < linear_node_count(cell_->type); ++i)
+    value_scale = std::max(value_scale, std::abs(cell_->value[static_cast<std::size_t>(i)]));
+  error = tail + 9 * kEps * m_->f_spread * mono_abs + (16 + 8 * condition_ + 4 * m) * kEps * a_abs +
+          16 * kEps * value_scale;
+  if (!std::isfinite(error)) return false;
+  // c_j = sum_k a_k B_kj with x^k = sum_j B_kj T_j (a static table: dyadic rationals times
+  // binomials, exact in double up to k = 24; sum_j |B_kj| = 1), a_0 = f(P_0) added last.
+  static const auto B = [] {
+    std::array<std::array<double, kTaylorMaxOrder + 2>, kTaylorMaxOrder + 1> t{};
+    t[0][0] = 1.0;
+    for (std::size_t k = 1; k <= kTaylorMaxOrder; ++k) {  // x T_0 = T_1, x T_j = (T_j+1 + T_j-1) / 2
+      t[k][1] += t[k - 1][0];
+      for (std::size_t j = 1; j < k; ++j)
+        t[k][j + 1] += 0.5 * t[k - 1][j], t[k][j - 1] += 0.5 * t[k - 1][j];
+    }
+    return t;
+  }();
+  for (int j = 0; j <= m; ++j) {
+    double sum = 0.0;
+    for (int k = m - ((m - j) % 2); k >= std::max(j, 1); k -= 2)
+      sum += f_series_[static_cast<std::size_t>(k)] * B[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)];
+    c[static_cast<std::size_t>(j)] = j == 0 ? f_c_ + sum : sum;
+  }
+  degree = m;
   return true;
 }
 

@@ -91,6 +91,19 @@ struct FaceNodes {
 };
 FaceNodes linear_face(LinearCellType type, int face);
 
+// A linear cell's map and scalar in the monomials 1, r, s, t, rs, rt, st, rst (every linear
+// cell's shape functions are multilinear in p: cells/chord_scalar.hpp describes the form and its
+// use): x(p) = sum_m x[m] mono_m(p); f[m] the same for the node values relative to their
+// midrange (f[0] is therefore not f's constant term; f[1..7] are f's). Derived by
+// make_linear_cell, once per cell (until 2026-12-05 per chord, in ChordScalar's constructor:
+// ~3 % of `rayint bench` twisted12).
+struct MultilinearForm {
+  std::array<Vec3, 8> x{};
+  double magnitude = 0.0;  // largest |node coordinate| (Newton's residual scale)
+  std::array<double, 8> f{};
+  double f_spread = 0.0;   // sum_i |f_i - midrange|: the rounding scale of f[1..7]
+};
+
 struct LinearCell {
   LinearCellType type = LinearCellType::hexahedron;
   std::array<Vec3, kMaxLinearNodes> x{};        // node positions, VTK order
@@ -100,6 +113,7 @@ struct LinearCell {
   Eigen::Matrix3d affine_inverse = Eigen::Matrix3d::Identity();  // p = A^-1 (x - x(0)) if affine
   Vec3 affine_origin = Vec3::Zero();                             // x(p = 0)
   double extent = 0.0;                                           // largest node-node distance
+  MultilinearForm multilinear;
 };
 
 // A cell from n = linear_node_count(type) nodes and values. Throws std::invalid_argument for a
@@ -166,6 +180,15 @@ InverseMap newton_inverse_map(const Vec3* x, int n, const Vec3& world, const Vec
   return out;
 }
 InverseMap inverse_map(const LinearCell& cell, const Vec3& world);
+
+// inverse_map's Newton iteration on the cell's multilinear form (the same tolerances, budget and
+// step clamp; x and J ~50 flops instead of the shape-function sums): p from its start to the
+// solution in place. With `step_first` the residual test is skipped before the first step (a
+// start that passes it by a hair still takes one step: chord_scalar.hpp). `steps` counts the
+// steps taken. False when it did not converge (p is then not a result).
+bool multilinear_newton(const MultilinearForm& m, const Vec3& target, Vec3& p, bool step_first, int& steps);
+Vec3 multilinear_position(const MultilinearForm& m, const Vec3& p);
+Eigen::Matrix3d multilinear_jacobian(const MultilinearForm& m, const Vec3& p);
 
 // ---- Ray and faces -------------------------------------------------------------------------
 
