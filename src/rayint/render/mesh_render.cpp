@@ -127,6 +127,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
                        const RayIntegrator* compare, const MeshRenderSettings& settings) {
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: a mesh case needs a \"camera\" to render");
   const Camera& cam = *mc.camera;
+  const CameraRays camera_rays(cam);
   const int width = cam.width, height = cam.height;
   const unsigned threads = parallel_workers(height, settings.threads);
   MeshRender out;
@@ -177,7 +178,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       const auto t0 = Clock::now();
       for (int k = 0; k < n; ++k) {
         RayTrace& trace = sc.traces[static_cast<std::size_t>(k)];
-        mesh.trace(cam.ray_for_pixel(x0 + k % w, y0 + k / w), trace, &cost.traversal);
+        mesh.trace(camera_rays.ray_for_pixel(x0 + k % w, y0 + k / w), trace, &cost.traversal);
         if (!quadratic) ray_from_trace(trace, mc.background, sc.rays[static_cast<std::size_t>(k)]);
       }
       const auto t1 = Clock::now();
