@@ -237,11 +237,46 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
 }
 
 void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats) const {
+  // Ray against the bounding box (slabs), to move the walk's origin just outside it.
+  walk(mesh_walk_start(ray, box_min_, box_max_, diagonal_), out, stats, nullptr);
+}
+
+void TetTraversal::trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats) const {
+  constexpr int kPacket = BoundaryFirstHit::kPacket;
+  for (std::size_t i0 = 0; i0 < n; i0 += kPacket) {
+    const int m = static_cast<int>(std::min<std::size_t>(kPacket, n - i0));
+    MeshWalkStart start[kPacket];
+    Vec3 origin[kPacket], direction[kPacket];
+    double t_near[kPacket], t_far[kPacket];
+    bool active[kPacket];
+    Walk w[kPacket];
+    const void* users[kPacket];
+    std::int64_t prim[kPacket];
+    for (int i = 0; i < m; ++i) {
+      start[i] = mesh_walk_start(rays[i0 + static_cast<std::size_t>(i)], box_min_, box_max_, diagonal_);
+      // The walk's first query (t = 0), as walk() would ask it.
+      w[i].o = start[i].origin;
+      w[i].d = start[i].direction;
+      w[i].self = this;
+      w[i].t_lo = 0.0;
+      w[i].tol = kStarTolerance * (diagonal_ + std::fabs(0.0));
+      users[i] = &w[i];
+      origin[i] = start[i].origin;
+      direction[i] = start[i].direction;
+      t_near[i] = 0.0 - (1e-5 * diagonal_ + 1e-6 * std::fabs(0.0));
+      t_far[i] = start[i].t_end;
+      active[i] = !start[i].empty;
+    }
+    first_hit_->first_packet(origin, direction, t_near, t_far, active, m, &FirstHitFilterAccess::accept, users, prim);
+    for (int i = 0; i < m; ++i) walk(start[i], out[i0 + static_cast<std::size_t>(i)], stats, &prim[i]);
+  }
+}
+
+void TetTraversal::walk(const MeshWalkStart& start, RayTrace& out, TraversalStats* stats,
+                        const std::int64_t* first_prim) const {
   out.crossings.clear();
   TraversalStats local;
   local.rays = 1;
-  // Ray against the bounding box (slabs), to move the walk's origin just outside it.
-  const MeshWalkStart start = mesh_walk_start(ray, box_min_, box_max_, diagonal_);
   out.direction = start.direction;
   out.origin = start.origin;
   out.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
@@ -294,7 +329,8 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
     w.tol = kStarTolerance * (diagonal_ + std::fabs(t));
     ++local.first_hit_queries;
     const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
-    const std::int64_t prim = first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);
+    const std::int64_t prim = first_prim ? *first_prim : first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);
+    first_prim = nullptr;  // re-entries are asked here
     if (prim < 0) break;
     std::int32_t cell = boundary_[static_cast<std::size_t>(prim)].cells[0];
     double t_in = std::max(t, crossing(w, static_cast<std::size_t>(cell), boundary_k_[static_cast<std::size_t>(prim)]));
