@@ -236,65 +236,113 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
   return found;
 }
 
+// One ray's walk between its boundary queries (trace_many keeps several in flight).
+struct TetTraversal::WalkState {
+  Walk w;
+  RayTrace* out = nullptr;
+  double t = 0.0;
+  double t_end = 0.0;
+  long steps = 0;
+  long budget = 0;
+  TraversalStats local;
+  bool done = false;
+};
+
 void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats) const {
   // Ray against the bounding box (slabs), to move the walk's origin just outside it.
-  walk(mesh_walk_start(ray, box_min_, box_max_, diagonal_), out, stats, nullptr);
+  WalkState s;
+  walk_begin(mesh_walk_start(ray, box_min_, box_max_, diagonal_), out, s);
+  double t_near = 0.0;
+  while (walk_query(s, t_near))
+    walk_on(s, first_hit_->first(s.w.o, s.w.d, t_near, s.t_end, &FirstHitFilterAccess::accept, &s.w));
+  walk_end(s, stats);
 }
 
 void TetTraversal::trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats) const {
   constexpr int kPacket = BoundaryFirstHit::kPacket;
   for (std::size_t i0 = 0; i0 < n; i0 += kPacket) {
     const int m = static_cast<int>(std::min<std::size_t>(kPacket, n - i0));
-    MeshWalkStart start[kPacket];
+    WalkState s[kPacket];
     Vec3 origin[kPacket], direction[kPacket];
     double t_near[kPacket], t_far[kPacket];
     bool active[kPacket];
-    Walk w[kPacket];
     const void* users[kPacket];
     std::int64_t prim[kPacket];
     for (int i = 0; i < m; ++i) {
-      start[i] = mesh_walk_start(rays[i0 + static_cast<std::size_t>(i)], box_min_, box_max_, diagonal_);
-      // The walk's first query (t = 0), as walk() would ask it.
-      w[i].o = start[i].origin;
-      w[i].d = start[i].direction;
-      w[i].self = this;
-      w[i].t_lo = 0.0;
-      w[i].tol = kStarTolerance * (diagonal_ + std::fabs(0.0));
-      users[i] = &w[i];
-      origin[i] = start[i].origin;
-      direction[i] = start[i].direction;
-      t_near[i] = 0.0 - (1e-5 * diagonal_ + 1e-6 * std::fabs(0.0));
-      t_far[i] = start[i].t_end;
-      active[i] = !start[i].empty;
+      const std::size_t r = i0 + static_cast<std::size_t>(i);
+      walk_begin(mesh_walk_start(rays[r], box_min_, box_max_, diagonal_), out[r], s[i]);
+      users[i] = &s[i].w;
     }
-    first_hit_->first_packet(origin, direction, t_near, t_far, active, m, &FirstHitFilterAccess::accept, users, prim);
-    for (int i = 0; i < m; ++i) walk(start[i], out[i0 + static_cast<std::size_t>(i)], stats, &prim[i]);
+    // Every ray that asks a boundary query (its first, or a re-entry after it left the mesh) in
+    // one packet, then each walks on from its answer; the rays' own steps are trace()'s.
+    for (;;) {
+      bool any = false;
+      for (int i = 0; i < m; ++i) {
+        active[i] = walk_query(s[i], t_near[i]);
+        any = any || active[i];
+        origin[i] = s[i].w.o;
+        direction[i] = s[i].w.d;
+        t_far[i] = s[i].t_end;
+      }
+      if (!any) break;
+      first_hit_->first_packet(origin, direction, t_near, t_far, active, m, &FirstHitFilterAccess::accept, users, prim);
+      for (int i = 0; i < m; ++i)
+        if (active[i]) walk_on(s[i], prim[i]);
+    }
+    for (int i = 0; i < m; ++i) walk_end(s[i], stats);
   }
 }
 
-void TetTraversal::walk(const MeshWalkStart& start, RayTrace& out, TraversalStats* stats,
-                        const std::int64_t* first_prim) const {
+void TetTraversal::walk_begin(const MeshWalkStart& start, RayTrace& out, WalkState& s) const {
   out.crossings.clear();
-  TraversalStats local;
-  local.rays = 1;
+  s.out = &out;
+  s.local = TraversalStats{};
+  s.local.rays = 1;
   out.direction = start.direction;
   out.origin = start.origin;
   out.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
-  if (start.empty) {
-    if (stats) stats->add(local);
+  s.done = start.empty;
+  s.w.o = out.origin;
+  s.w.d = start.direction;
+  s.w.self = this;
+  s.w.strict = false;
+  s.t_end = start.t_end;
+  s.budget = 8 * static_cast<long>(mesh_.tets.size()) + 1000;
+  s.steps = 0;
+  s.t = 0.0;
+}
+
+bool TetTraversal::walk_query(WalkState& s, double& t_near) const {
+  if (s.done || s.steps >= s.budget) return false;
+  // Outside the mesh: the next entering boundary face (rule 4).
+  const double t = s.t;
+  s.w.t_lo = t;
+  s.w.tol = kStarTolerance * (diagonal_ + std::fabs(t));
+  ++s.local.first_hit_queries;
+  const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
+  t_near = t - margin;
+  return true;
+}
+
+void TetTraversal::walk_end(WalkState& s, TraversalStats* stats) const {
+  if (s.steps >= s.budget) ++s.local.budget_exhausted;
+  if (stats) stats->add(s.local);
+}
+
+void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
+  if (prim < 0) {
+    s.done = true;
     return;
   }
-  const Vec3 d = start.direction;
-  Walk w;
-  w.o = out.origin;
-  w.d = d;
-  w.self = this;
-  const double t_end = start.t_end;
+  RayTrace& out = *s.out;
+  const Walk& w = s.w;
+  TraversalStats& local = s.local;
+  long& steps = s.steps;
+  const long budget = s.budget;
+  double& t = s.t;
+  const Vec3 d = w.d;
   const V2 dx = {d[0], d[0]}, dy = {d[1], d[1]}, dz = {d[2], d[2]};
   const V2 ox = {w.o[0], w.o[0]}, oy = {w.o[1], w.o[1]}, oz = {w.o[2], w.o[2]};
-  const long budget = 8 * static_cast<long>(mesh_.tets.size()) + 1000;
-  long steps = 0;
-  double t = 0.0;
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
@@ -323,15 +371,7 @@ void TetTraversal::walk(const MeshWalkStart& start, RayTrace& out, TraversalStat
     }
     ++local.crossings;
   };
-  while (steps < budget) {
-    // Outside the mesh: the next entering boundary face (rule 4).
-    w.t_lo = t;
-    w.tol = kStarTolerance * (diagonal_ + std::fabs(t));
-    ++local.first_hit_queries;
-    const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
-    const std::int64_t prim = first_prim ? *first_prim : first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);
-    first_prim = nullptr;  // re-entries are asked here
-    if (prim < 0) break;
+  {
     std::int32_t cell = boundary_[static_cast<std::size_t>(prim)].cells[0];
     double t_in = std::max(t, crossing(w, static_cast<std::size_t>(cell), boundary_k_[static_cast<std::size_t>(prim)]));
     const double t_entered = t_in;
@@ -413,11 +453,9 @@ void TetTraversal::walk(const MeshWalkStart& start, RayTrace& out, TraversalStat
       cell = next;
       t_in = t;
     }
-    w.strict = !progressed;  // rule 4: an entry that made no progress must not be taken again
+    s.w.strict = !progressed;  // rule 4: an entry that made no progress must not be taken again
     if (!progressed) t = std::max(t, t_entered);
   }
-  if (steps >= budget) ++local.budget_exhausted;
-  if (stats) stats->add(local);
 }
 
 Ray ray_from_trace(const RayTrace& trace, const Rgb& background) {
