@@ -206,9 +206,11 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     bool holds = true;
     // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d. A neighbour
     // whose closure does not hold p is passed over at its first face that says so.
+    std::array<double, 4> dist_from{};  // the first cell's four distances
     for (int k = 0; k < 4 && (holds || q == 0); ++k) {
       const Vec3 normal = r.normal(k);
       const double dist = normal.dot(p - face_point(r, k)) / normal.norm();
+      dist_from[static_cast<std::size_t>(k)] = dist;
       if (dist > tol) holds = false;
     }
     if (!holds && q > 0) continue;
@@ -226,6 +228,11 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     if (!holds) continue;
     for (int k = 0; k < 4; ++k) {
       const std::int32_t nb = neighbor(c, k);
+      // The first cell's neighbour across face k has that face with the normal negated exactly and
+      // the same point (rule 1), so its distance there is -dist_from[k], bit for bit: below -tol
+      // it cannot hold p and would be passed over (issue 33, round 12: most star searches are a
+      // ray's exit through the interior of a boundary face, where no neighbour holds p).
+      if (q == 0 && dist_from[static_cast<std::size_t>(k)] < -tol) continue;
       if (nb >= 0 && std::find(seen.begin(), seen.end(), nb) == seen.end()) {
         seen.push_back(nb);
         queue.push_back(nb);
