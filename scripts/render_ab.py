@@ -10,8 +10,12 @@ rounds of
   VTK frame       wall and CPU (process_time, llvmpipe's threads included) of a second Render().
 The images of the two binaries are compared: max relative pixel difference (0 = identical).
 
+With --png the timed renders write PNG files, as scripts/scaling.py's do (the render CPU then
+includes the 8-bit encoding and the deflate); the images are compared from one more .npy render
+of each binary after the rounds.
+
 usage: render_ab.py --old OLD_RAYINT --new NEW_RAYINT --case CASE512.json --small CASE16.json
-                    [--rounds 5] [--threads 1 2] [--vtk] [--json out.json]
+                    [--rounds 5] [--threads 1 2] [--vtk] [--png] [--json out.json]
 """
 import argparse
 import json
@@ -50,7 +54,9 @@ def main():
     ap.add_argument("--vtk", action="store_true")
     ap.add_argument("--work", default="/tmp/rayint-render-ab")
     ap.add_argument("--json")
+    ap.add_argument("--png", action="store_true", help="time renders to .png (as scaling.py), compare from .npy")
     a = ap.parse_args()
+    ext = "png" if a.png else "npy"
     os.makedirs(a.work, exist_ok=True)
     bins = {"old": a.old, "new": a.new}
     res = {"load_start": loadavg(), "runs": {}}
@@ -60,14 +66,14 @@ def main():
     for r in range(a.rounds):
         for t in a.threads:
             for b, exe in bins.items():
-                cpu, _, err = timed([exe, "render", a.case, "-o", os.path.join(a.work, "%s.npy" % b), "--threads",
+                cpu, _, err = timed([exe, "render", a.case, "-o", os.path.join(a.work, "%s.%s" % (b, ext)), "--threads",
                                      str(t), "-q", "--stats", os.path.join(a.work, "%s.json" % b)])
                 with open(os.path.join(a.work, "%s.json" % b)) as f:
                     wall = json.load(f)["cost"]["wall_seconds"]
                 samples[(b, t)]["wall"].append(wall)
                 samples[(b, t)]["cpu"].append(cpu)
         for b, exe in bins.items():
-            cpu, _, _ = timed([exe, "render", a.small, "-o", os.path.join(a.work, "small-%s.npy" % b), "-q"])
+            cpu, _, _ = timed([exe, "render", a.small, "-o", os.path.join(a.work, "small-%s.%s" % (b, ext)), "-q"])
             small[b].append(cpu)
         if a.vtk:
             p = subprocess.run(["xvfb-run", "-a", "/usr/bin/python3", os.path.join(ROOT, "scripts", "scaling.py"),
@@ -77,6 +83,9 @@ def main():
             vtk.append(json.loads(p.stdout.strip().splitlines()[-1]))
         print("round %d done, load %s" % (r + 1, loadavg()), file=sys.stderr, flush=True)
     res["load_end"] = loadavg()
+    if a.png:  # the images to compare
+        for b, exe in bins.items():
+            timed([exe, "render", a.case, "-o", os.path.join(a.work, "%s.npy" % b), "-q"])
     old_img = np.load(os.path.join(a.work, "old.npy"))
     new_img = np.load(os.path.join(a.work, "new.npy"))
     den = np.abs(old_img)

@@ -24,23 +24,31 @@ void Camera::validate() const {
 
 ViewRay Camera::ray_for_pixel(int x, int y) const { return ray_at(x + 0.5, y + 0.5); }
 
-ViewRay Camera::ray_at(double px, double py) const {
-  const Vec3 forward = (look_at - position).normalized();
-  const Vec3 right = forward.cross(up).normalized();
-  const Vec3 true_up = right.cross(forward);
-  const double aspect = static_cast<double>(width) / static_cast<double>(height);
+ViewRay Camera::ray_at(double px, double py) const { return CameraRays(*this).ray_at(px, py); }
+
+CameraRays::CameraRays(const Camera& camera)
+    : position_(camera.position),
+      forward_((camera.look_at - camera.position).normalized()),
+      right_(forward_.cross(camera.up).normalized()),
+      true_up_(right_.cross(forward_)),
+      aspect_(static_cast<double>(camera.width) / static_cast<double>(camera.height)),
+      half_(camera.projection == Camera::Projection::perspective ? std::tan(0.5 * camera.fov_deg * kPi / 180.0)
+                                                                 : 0.5 * camera.ortho_height),
+      width_(camera.width),
+      height_(camera.height),
+      perspective_(camera.projection == Camera::Projection::perspective) {}
+
+ViewRay CameraRays::ray_at(double px, double py) const {
   // Normalized device coordinates in [-1, 1], y up.
-  const double u = (2.0 * px / width - 1.0) * aspect;
-  const double v = 1.0 - 2.0 * py / height;
+  const double u = (2.0 * px / width_ - 1.0) * aspect_;
+  const double v = 1.0 - 2.0 * py / height_;
   ViewRay ray;
-  if (projection == Projection::perspective) {
-    const double half = std::tan(0.5 * fov_deg * kPi / 180.0);
-    ray.origin = position;
-    ray.direction = (forward + u * half * right + v * half * true_up).normalized();
+  if (perspective_) {
+    ray.origin = position_;
+    ray.direction = (forward_ + u * half_ * right_ + v * half_ * true_up_).normalized();
   } else {
-    const double half = 0.5 * ortho_height;
-    ray.origin = position + u * half * right + v * half * true_up;
-    ray.direction = forward;
+    ray.origin = position_ + u * half_ * right_ + v * half_ * true_up_;
+    ray.direction = forward_;
   }
   return ray;
 }

@@ -34,4 +34,19 @@ struct Camera {
   ViewRay ray_at(double px, double py) const;
 };
 
+// A camera's frame (forward, right, true_up, the half extent), formed once: the rays of
+// Camera::ray_for_pixel / ray_at, bit for bit (those call this), without two normalisations, a
+// cross product and a tangent per ray (~2% of a 512 x 512 mesh render; issue 33, round 12).
+class CameraRays {
+ public:
+  explicit CameraRays(const Camera& camera);
+  ViewRay ray_for_pixel(int x, int y) const { return ray_at(x + 0.5, y + 0.5); }
+  ViewRay ray_at(double px, double py) const;
+
+ private:
+  Vec3 position_, forward_, right_, true_up_;
+  double aspect_ = 1.0, half_ = 1.0, width_ = 1.0, height_ = 1.0;
+  bool perspective_ = true;
+};
+
 }  // namespace rayint

@@ -27,7 +27,7 @@ namespace {
 struct FilterContext {
   RTCIntersectContext base;  // first member: Embree passes a pointer to it
   BoundaryFirstHit::Filter filter;
-  const void* user;
+  const void* const* users;  // the filter's user of each ray, by the ray's id
 };
 
 void intersect_filter(const RTCFilterFunctionNArguments* args) {
@@ -35,8 +35,13 @@ void intersect_filter(const RTCFilterFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     const unsigned face = RTCHitN_primID(args->hit, args->N, i);
-    if (!ctx->filter(ctx->user, face)) args->valid[i] = 0;
+    const unsigned id = RTCRayN_id(args->ray, args->N, i);
+    if (!ctx->filter(ctx->users[id], face)) args->valid[i] = 0;
   }
+}
+
+float embree_t_far(double t_far) {
+  return std::isfinite(t_far) && t_far < 3e38 ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
 }
 
 [[noreturn]] void embree_failed(RTCDevice device, const char* what) {
@@ -100,13 +105,51 @@ std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, 
   FilterContext ctx;
   rtcInitIntersectContext(&ctx.base);
   ctx.filter = filter;
-  ctx.user = user;
+  ctx.users = &user;  // init_ray_hit gives the ray id 0
   RTCRayHit rh;
-  init_ray_hit(rh, origin, direction, t_near,
-               std::isfinite(t_far) && t_far < 3e38 ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity());
+  init_ray_hit(rh, origin, direction, t_near, embree_t_far(t_far));
   rtcIntersect1(impl_->scene, &ctx.base, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
   return static_cast<std::int64_t>(rh.hit.primID);
+}
+
+void BoundaryFirstHit::first_packet(const Vec3* origins, const Vec3* directions, const double* t_near,
+                                    const double* t_far, const bool* active, int n, Filter filter,
+                                    const void* const* users, std::int64_t* result) const {
+  if (n < 0 || n > kPacket) throw std::invalid_argument("BoundaryFirstHit::first_packet: n must be in [0, 8]");
+  FilterContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  ctx.filter = filter;
+  ctx.users = users;
+  alignas(32) RTCRayHit8 rh;
+  alignas(32) int valid[kPacket];
+  // Each lane as init_ray_hit fills a single ray (the same single-precision values).
+  for (int i = 0; i < kPacket; ++i) {
+    RTCRayHit one;
+    const bool on = i < n && active[i];
+    valid[i] = on ? -1 : 0;
+    if (on) init_ray_hit(one, origins[i], directions[i], t_near[i], embree_t_far(t_far[i]));
+    else init_ray_hit(one, Vec3::Zero(), Vec3::UnitZ(), 0.0, 0.0f);
+    rh.ray.org_x[i] = one.ray.org_x;
+    rh.ray.org_y[i] = one.ray.org_y;
+    rh.ray.org_z[i] = one.ray.org_z;
+    rh.ray.dir_x[i] = one.ray.dir_x;
+    rh.ray.dir_y[i] = one.ray.dir_y;
+    rh.ray.dir_z[i] = one.ray.dir_z;
+    rh.ray.tnear[i] = one.ray.tnear;
+    rh.ray.tfar[i] = one.ray.tfar;
+    rh.ray.time[i] = one.ray.time;
+    rh.ray.mask[i] = one.ray.mask;
+    rh.ray.id[i] = static_cast<unsigned>(i);  // the filter's user: users[i]
+    rh.ray.flags[i] = one.ray.flags;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, impl_->scene, &ctx.base, &rh);
+  for (int i = 0; i < n; ++i)
+    result[i] = valid[i] && rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID ? static_cast<std::int64_t>(rh.hit.primID[i]) : -1;
 }
 
 }  // namespace rayint

@@ -34,6 +34,14 @@ class BoundaryFirstHit {
   // Thread-safe.
   std::int64_t first(const Vec3& origin, const Vec3& direction, double t_near, double t_far,
                      Filter filter, const void* user) const;
+  // The same for up to kPacket rays at once (Embree's 8-wide packet traversal over coherent rays,
+  // e.g. neighbouring pixels): ray i has origins[i], directions[i], t_near[i], t_far[i] and
+  // filter user users[i]; active[i] false skips it (result -1). result[i] is what first() gives
+  // for ray i, up to which of two faces Embree takes where both are hit at the same single-precision
+  // t (an edge): its packet and single-ray kernels are the same watertight test.
+  static constexpr int kPacket = 8;
+  void first_packet(const Vec3* origins, const Vec3* directions, const double* t_near, const double* t_far,
+                    const bool* active, int n, Filter filter, const void* const* users, std::int64_t* result) const;
 
  private:
   struct Impl;

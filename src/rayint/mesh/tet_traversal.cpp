@@ -206,9 +206,11 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     bool holds = true;
     // normal = sign * n exactly, so these are sign * n.(p - a) / |n| and sign * n.d. A neighbour
     // whose closure does not hold p is passed over at its first face that says so.
+    std::array<double, 4> dist_from{};  // the first cell's four distances
     for (int k = 0; k < 4 && (holds || q == 0); ++k) {
       const Vec3 normal = r.normal(k);
       const double dist = normal.dot(p - face_point(r, k)) / normal.norm();
+      dist_from[static_cast<std::size_t>(k)] = dist;
       if (dist > tol) holds = false;
     }
     if (!holds && q > 0) continue;
@@ -226,6 +228,11 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
     if (!holds) continue;
     for (int k = 0; k < 4; ++k) {
       const std::int32_t nb = neighbor(c, k);
+      // The first cell's neighbour across face k has that face with the normal negated exactly and
+      // the same point (rule 1), so its distance there is -dist_from[k], bit for bit: below -tol
+      // it cannot hold p and would be passed over (issue 33, round 12: most star searches are a
+      // ray's exit through the interior of a boundary face, where no neighbour holds p).
+      if (q == 0 && dist_from[static_cast<std::size_t>(k)] < -tol) continue;
       if (nb >= 0 && std::find(seen.begin(), seen.end(), nb) == seen.end()) {
         seen.push_back(nb);
         queue.push_back(nb);
@@ -236,30 +243,113 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
   return found;
 }
 
-void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats) const {
-  out.crossings.clear();
+// One ray's walk between its boundary queries (trace_many keeps several in flight).
+struct TetTraversal::WalkState {
+  Walk w;
+  RayTrace* out = nullptr;
+  double t = 0.0;
+  double t_end = 0.0;
+  long steps = 0;
+  long budget = 0;
   TraversalStats local;
-  local.rays = 1;
+  bool done = false;
+};
+
+void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats) const {
   // Ray against the bounding box (slabs), to move the walk's origin just outside it.
-  const MeshWalkStart start = mesh_walk_start(ray, box_min_, box_max_, diagonal_);
+  WalkState s;
+  walk_begin(mesh_walk_start(ray, box_min_, box_max_, diagonal_), out, s);
+  double t_near = 0.0;
+  while (walk_query(s, t_near))
+    walk_on(s, first_hit_->first(s.w.o, s.w.d, t_near, s.t_end, &FirstHitFilterAccess::accept, &s.w));
+  walk_end(s, stats);
+}
+
+void TetTraversal::trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats) const {
+  constexpr int kPacket = BoundaryFirstHit::kPacket;
+  for (std::size_t i0 = 0; i0 < n; i0 += kPacket) {
+    const int m = static_cast<int>(std::min<std::size_t>(kPacket, n - i0));
+    WalkState s[kPacket];
+    Vec3 origin[kPacket], direction[kPacket];
+    double t_near[kPacket], t_far[kPacket];
+    bool active[kPacket];
+    const void* users[kPacket];
+    std::int64_t prim[kPacket];
+    for (int i = 0; i < m; ++i) {
+      const std::size_t r = i0 + static_cast<std::size_t>(i);
+      walk_begin(mesh_walk_start(rays[r], box_min_, box_max_, diagonal_), out[r], s[i]);
+      users[i] = &s[i].w;
+    }
+    // Every ray that asks a boundary query (its first, or a re-entry after it left the mesh) in
+    // one packet, then each walks on from its answer; the rays' own steps are trace()'s.
+    for (;;) {
+      bool any = false;
+      for (int i = 0; i < m; ++i) {
+        active[i] = walk_query(s[i], t_near[i]);
+        any = any || active[i];
+        origin[i] = s[i].w.o;
+        direction[i] = s[i].w.d;
+        t_far[i] = s[i].t_end;
+      }
+      if (!any) break;
+      first_hit_->first_packet(origin, direction, t_near, t_far, active, m, &FirstHitFilterAccess::accept, users, prim);
+      for (int i = 0; i < m; ++i)
+        if (active[i]) walk_on(s[i], prim[i]);
+    }
+    for (int i = 0; i < m; ++i) walk_end(s[i], stats);
+  }
+}
+
+void TetTraversal::walk_begin(const MeshWalkStart& start, RayTrace& out, WalkState& s) const {
+  out.crossings.clear();
+  s.out = &out;
+  s.local = TraversalStats{};
+  s.local.rays = 1;
   out.direction = start.direction;
   out.origin = start.origin;
   out.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
-  if (start.empty) {
-    if (stats) stats->add(local);
+  s.done = start.empty;
+  s.w.o = out.origin;
+  s.w.d = start.direction;
+  s.w.self = this;
+  s.w.strict = false;
+  s.t_end = start.t_end;
+  s.budget = 8 * static_cast<long>(mesh_.tets.size()) + 1000;
+  s.steps = 0;
+  s.t = 0.0;
+}
+
+bool TetTraversal::walk_query(WalkState& s, double& t_near) const {
+  if (s.done || s.steps >= s.budget) return false;
+  // Outside the mesh: the next entering boundary face (rule 4).
+  const double t = s.t;
+  s.w.t_lo = t;
+  s.w.tol = kStarTolerance * (diagonal_ + std::fabs(t));
+  ++s.local.first_hit_queries;
+  const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
+  t_near = t - margin;
+  return true;
+}
+
+void TetTraversal::walk_end(WalkState& s, TraversalStats* stats) const {
+  if (s.steps >= s.budget) ++s.local.budget_exhausted;
+  if (stats) stats->add(s.local);
+}
+
+void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
+  if (prim < 0) {
+    s.done = true;
     return;
   }
-  const Vec3 d = start.direction;
-  Walk w;
-  w.o = out.origin;
-  w.d = d;
-  w.self = this;
-  const double t_end = start.t_end;
+  RayTrace& out = *s.out;
+  const Walk& w = s.w;
+  TraversalStats& local = s.local;
+  long& steps = s.steps;
+  const long budget = s.budget;
+  double& t = s.t;
+  const Vec3 d = w.d;
   const V2 dx = {d[0], d[0]}, dy = {d[1], d[1]}, dz = {d[2], d[2]};
   const V2 ox = {w.o[0], w.o[0]}, oy = {w.o[1], w.o[1]}, oz = {w.o[2], w.o[2]};
-  const long budget = 8 * static_cast<long>(mesh_.tets.size()) + 1000;
-  long steps = 0;
-  double t = 0.0;
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
@@ -288,14 +378,7 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
     }
     ++local.crossings;
   };
-  while (steps < budget) {
-    // Outside the mesh: the next entering boundary face (rule 4).
-    w.t_lo = t;
-    w.tol = kStarTolerance * (diagonal_ + std::fabs(t));
-    ++local.first_hit_queries;
-    const double margin = 1e-5 * diagonal_ + 1e-6 * std::fabs(t);
-    const std::int64_t prim = first_hit_->first(w.o, d, t - margin, t_end, &FirstHitFilterAccess::accept, &w);
-    if (prim < 0) break;
+  {
     std::int32_t cell = boundary_[static_cast<std::size_t>(prim)].cells[0];
     double t_in = std::max(t, crossing(w, static_cast<std::size_t>(cell), boundary_k_[static_cast<std::size_t>(prim)]));
     const double t_entered = t_in;
@@ -377,11 +460,9 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
       cell = next;
       t_in = t;
     }
-    w.strict = !progressed;  // rule 4: an entry that made no progress must not be taken again
+    s.w.strict = !progressed;  // rule 4: an entry that made no progress must not be taken again
     if (!progressed) t = std::max(t, t_entered);
   }
-  if (steps >= budget) ++local.budget_exhausted;
-  if (stats) stats->add(local);
 }
 
 Ray ray_from_trace(const RayTrace& trace, const Rgb& background) {
@@ -392,13 +473,24 @@ Ray ray_from_trace(const RayTrace& trace, const Rgb& background) {
 
 void ray_from_trace(const RayTrace& trace, const Rgb& background, Ray& r) {
   r.background = background;
-  r.segments.clear();
-  r.segments.reserve(trace.crossings.size());
-  for (auto it = trace.crossings.rbegin(); it != trace.crossings.rend(); ++it) {
-    if (it->q != 0.0)
-      throw std::invalid_argument("ray_from_trace: a crossing of a quadratic tetrahedron (cell " +
-                                  std::to_string(it->cell) + ") is not a linear segment");
-    r.segments.push_back(Segment{it->t_out - it->t_in, it->s_out, it->s_in});
+  const std::size_t n = trace.crossings.size();
+  // Sized once and written field by field (a Segment pushed back went through the stack and
+  // stalled on store forwarding: ~2.7% of a 105k-tet render; issue 33, round 12).
+  r.segments.resize(n);
+  bool quadratic = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const CellCrossing& c = trace.crossings[n - 1 - i];
+    Segment& s = r.segments[i];
+    s.length = c.t_out - c.t_in;
+    s.scalar_far = c.s_out;
+    s.scalar_exit = c.s_in;
+    quadratic = quadratic || c.q != 0.0;
+  }
+  if (quadratic) {
+    const auto it = std::find_if(trace.crossings.rbegin(), trace.crossings.rend(),  // the first in the Ray's order (far -> near)
+                                 [](const CellCrossing& c) { return c.q != 0.0; });
+    throw std::invalid_argument("ray_from_trace: a crossing of a quadratic tetrahedron (cell " +
+                                std::to_string(it->cell) + ") is not a linear segment");
   }
 }
 

@@ -50,6 +50,7 @@
 
 #include "rayint/core/counters.hpp"
 #include "rayint/core/prefaulted.hpp"
+#include "rayint/geometry/bounds.hpp"
 #include "rayint/geometry/vec3.hpp"
 #include "rayint/mesh/tet_adjacency.hpp"
 #include "rayint/mesh/quadratic_tets.hpp"
@@ -136,6 +137,13 @@ class TetTraversal {
 
   // Every crossing of the viewing ray (origin = eye, direction normalized here). Thread-safe.
   void trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats = nullptr) const;
+  // The same for n rays: out[i] is trace(rays[i]), except that the rays' boundary queries (the
+  // first entry, and the re-entry asked after each exit) go to Embree as packets of 8 (a render's
+  // tile of neighbouring pixels: coherent rays), each lane with its own filter; Embree's packet
+  // and single-ray kernels are the same watertight test, so the face found is trace()'s up to a
+  // tie between faces hit at the same single-precision t (issue 33, round 12: renders
+  // cmp-identical on the scaling meshes and the mesh cases).
+  void trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats = nullptr) const;
 
   struct Face {
     std::array<std::int32_t, 3> points{};  // sorted ascending
@@ -182,6 +190,15 @@ class TetTraversal {
   // Rule 1: the crossing parameter of local face k of `cell`, the same double whichever cell asks.
   double crossing(const Walk& w, std::size_t cell, int k) const;
   bool star_search(const Walk& w, std::int32_t from, double t, std::int32_t& cell, double& t_out) const;
+  // trace() in steps, so that trace_many can ask several rays' boundary queries at once:
+  // walk_begin from the ray's start (mesh_walk_start); while walk_query says a boundary query is
+  // due (its t_near; the rest is in the state), walk_on from its answer (-1: none, the ray is
+  // done); walk_end adds the counts.
+  struct WalkState;
+  void walk_begin(const MeshWalkStart& start, RayTrace& out, WalkState& s) const;
+  bool walk_query(WalkState& s, double& t_near) const;
+  void walk_on(WalkState& s, std::int64_t prim) const;
+  void walk_end(WalkState& s, TraversalStats* stats) const;
   friend struct FirstHitFilterAccess;
 
   TetMesh mesh_;

@@ -58,9 +58,14 @@ std::string encode_png(const Image& image, const PngOptions& options) {
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;
-  png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&png, nullptr, &size, 0, rgb.data(), 0, nullptr))
-    throw std::runtime_error(std::string("PNG encoding failed: ") + png.message);
+  // libpng's speed setting (no row filters, zlib level 3): the PNG is a preview, and its deflate
+  // at the default setting was ~6% of a 512 x 512 render's CPU at 105k tets (issue 33). The same
+  // pixels; the file is larger or smaller by the image (render-13-vtk at 512 x 512: 76,004 ->
+  // 96,101 bytes, 28.6 -> 3.9 ms; reports/scaling/NOTES.md, round 12).
+  png.flags = PNG_IMAGE_FLAG_FAST;
+  // One pass into a buffer of the format's bound: with a null buffer libpng compresses the whole
+  // image once only to report its size, and then again.
+  png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::string bytes(size, '\0');
   if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, rgb.data(), 0, nullptr))
     throw std::runtime_error(std::string("PNG encoding failed: ") + png.message);

@@ -2,6 +2,8 @@
 // An RGB image of linear radiance values, and its PNG form (libpng's simplified API).
 // PNG files are 8-bit sRGB: writing scales by `exposure`, clamps to [0, 1] and applies the sRGB
 // transfer curve; reading inverts the curve, so a background image read from PNG is linear.
+// They are previews, written with libpng's speed setting (PNG_IMAGE_FLAG_FAST: no row filters,
+// zlib level 3); the float formats (render/float_image.hpp) are the exact ones.
 #include <string>
 #include <vector>
 

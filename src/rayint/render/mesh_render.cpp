@@ -127,6 +127,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
                        const RayIntegrator* compare, const MeshRenderSettings& settings) {
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: a mesh case needs a \"camera\" to render");
   const Camera& cam = *mc.camera;
+  const CameraRays camera_rays(cam);
   const int width = cam.width, height = cam.height;
   const unsigned threads = parallel_workers(height, settings.threads);
   MeshRender out;
@@ -161,6 +162,7 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
   constexpr int kChunk = kTileW * kStrip;
   const int strips = (band + kStrip - 1) / kStrip;
   struct Scratch {  // per worker, reused (no allocation per ray once warm)
+    std::array<ViewRay, kChunk> view;
     std::array<RayTrace, kChunk> traces;
     std::array<Ray, kChunk> rays;
     std::array<RayResult, kChunk> results, compared;
@@ -175,11 +177,12 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       const int w = std::min(kTileW, width - x0);
       const int n = w * h;  // ray k is pixel (x0 + k % w, y0 + k / w)
       const auto t0 = Clock::now();
-      for (int k = 0; k < n; ++k) {
-        RayTrace& trace = sc.traces[static_cast<std::size_t>(k)];
-        mesh.trace(cam.ray_for_pixel(x0 + k % w, y0 + k / w), trace, &cost.traversal);
-        if (!quadratic) ray_from_trace(trace, mc.background, sc.rays[static_cast<std::size_t>(k)]);
-      }
+      // The tile's rays traced together: their first boundary queries go to Embree as packets.
+      for (int k = 0; k < n; ++k) sc.view[static_cast<std::size_t>(k)] = camera_rays.ray_for_pixel(x0 + k % w, y0 + k / w);
+      mesh.trace_many(sc.view.data(), static_cast<std::size_t>(n), sc.traces.data(), &cost.traversal);
+      if (!quadratic)
+        for (int k = 0; k < n; ++k)
+          ray_from_trace(sc.traces[static_cast<std::size_t>(k)], mc.background, sc.rays[static_cast<std::size_t>(k)]);
       const auto t1 = Clock::now();
       // Unshaded linear segments: the tile's rays in one call (the exact method integrates their
       // pieces in one kernel batch, and counts them on the way: tile_pieces).
