@@ -439,22 +439,30 @@ PieceOpticsGrad exact_piece_grad(const ChannelPiece& p, double dkappa) {
   return g;
 }
 
-void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exit, PieceDerivatives* out,
-                       int same_depth_stride) {
+namespace {
+
+// What exact_pieces_grad forms before the derivatives: per batch entry j (piece j s, s the
+// stride) its transmittance, emission weights and moments M1, M2; per piece its emission.
+struct MomentColumns {
+  double* transmittance = nullptr;
+  double* weight_exit = nullptr;
+  double* weight_far = nullptr;
+  double* m1 = nullptr;
+  double* m2 = nullptr;
+  double* emission = nullptr;  // in.size entries
+};
+
+void pieces_moments(const PieceColumns& in, const MomentColumns& out, std::size_t stride) {
   struct Columns {
-    std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit;
-    std::vector<double> transmittance, emission, weight_exit, weight_far, m1, m2, e0, depth;
+    std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit, emission, e0, depth;
   };
   thread_local Columns col;
   const std::size_t n = in.size;
   // With a stride s > 1 only every s-th piece (the first channel of a grey medium's piece) goes
   // through the batch; the others reuse its depth below.
-  const std::size_t stride = same_depth_stride > 1 ? static_cast<std::size_t>(same_depth_stride) : 1;
   const std::size_t m = (n + stride - 1) / stride;
-  if (col.transmittance.size() < m)
-    for (auto* v : {&col.transmittance, &col.emission, &col.weight_exit, &col.weight_far, &col.m1, &col.m2, &col.e0,
-                    &col.depth})
-      v->resize(m);
+  if (col.e0.size() < m)
+    for (auto* v : {&col.emission, &col.e0, &col.depth}) v->resize(m);
   PieceColumns batch_in = in;
   if (stride > 1) {  // every s-th piece, gathered
     if (col.length.size() < m)
@@ -469,11 +477,11 @@ void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exi
     batch_in = PieceColumns{col.length.data(), col.rho_far.data(), col.rho_exit.data(), col.kappa_far.data(),
                             col.kappa_exit.data(), m};
   }
-  OpticsColumns oc{col.transmittance.data(), col.emission.data()};
-  oc.weight_exit = col.weight_exit.data();
-  oc.weight_far = col.weight_far.data();
-  oc.m1 = col.m1.data();
-  oc.m2 = col.m2.data();
+  OpticsColumns oc{out.transmittance, stride > 1 ? col.emission.data() : out.emission};
+  oc.weight_exit = out.weight_exit;
+  oc.weight_far = out.weight_far;
+  oc.m1 = out.m1;
+  oc.m2 = out.m2;
   oc.e0 = col.e0.data();
   exact_batch(batch_in, oc);
   // The depth of every batch entry, then its transmittance exp(-T) through exp_neg_array
@@ -485,47 +493,118 @@ void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exi
     const double a = batch_in.rho_exit[j] * batch_in.length[j], b = batch_in.rho_far[j] * batch_in.length[j];
     col.depth[j] = 0.5 * (a + b);
   }
-  special::exp_neg_array(col.depth.data(), col.transmittance.data(), m);
+  special::exp_neg_array(col.depth.data(), out.transmittance, m);
   for (std::size_t j = 0; j < m; ++j) {
     const double T = col.depth[j];
-    if (!(T > 0.0)) col.transmittance[j] = 1.0;  // transparent
+    if (!(T > 0.0)) out.transmittance[j] = 1.0;  // transparent
     // The batch formed the moments of thin_series and transparent lanes; the others are NaN.
-    if (std::isnan(col.m1[j])) {
+    if (std::isnan(out.m1[j])) {
       const double a = batch_in.rho_exit[j] * batch_in.length[j], b = batch_in.rho_far[j] * batch_in.length[j];
       PieceOptics o;
-      o.transmittance = col.transmittance[j];
-      o.weight_exit = col.weight_exit[j];
-      o.weight_far = col.weight_far[j];
+      o.transmittance = out.transmittance[j];
+      o.weight_exit = out.weight_exit[j];
+      o.weight_far = out.weight_far[j];
       o.branch = branch_of(a, b);
       const Moments mo = closed_form_moments(o, a, 0.5 * (b - a), T);
-      col.m1[j] = mo.m1;
-      col.m2[j] = mo.m2;
+      out.m1[j] = mo.m1;
+      out.m2[j] = mo.m2;
     }
   }
+  if (stride == 1) return;
   // Piece i = j s + r: r = 0 is the batch entry j itself, r > 0 the same depth (a grey medium's
   // other channels: exact_piece_grad's same_depth overload; a transparent piece keeps its 0).
   for (std::size_t j = 0; j < m; ++j) {
-    const double t = col.transmittance[j];
-    const double w_exit = col.weight_exit[j], w_far = col.weight_far[j], m1 = col.m1[j], m2 = col.m2[j];
+    const double w_exit = out.weight_exit[j], w_far = out.weight_far[j];
     const bool transparent = !(col.depth[j] > 0.0);
     const std::size_t i0 = j * stride, i1 = std::min(n, i0 + stride);
-    const double dt_rho = -0.5 * t * in.length[i0];
-    const double dt_length = -0.5 * t * (in.rho_exit[i0] + in.rho_far[i0]);
-    for (std::size_t i = i0; i < i1; ++i) {
-      const ChannelPiece p{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
-      PieceDerivatives& g = out[i];
-      g.emission = i == i0 ? col.emission[j]
-                           : (transparent ? 0.0 : p.kappa_exit * w_exit + p.kappa_far * w_far);
-      g.transmittance = t;
-      g.de_kappa_exit = w_exit;
-      g.de_kappa_far = w_far;
-      g.dt_rho = dt_rho;
-      g.dt_length = dt_length;
-      const KappaTerms k = kappa_terms(m1, m2, t, p, kappa_far_minus_exit[i]);
-      g.de_length = k.de_length;
-      g.de_rho_far = k.de_rho_far;
-      g.de_rho_exit = k.de_rho_exit;
-    }
+    out.emission[i0] = col.emission[j];
+    for (std::size_t i = i0 + 1; i < i1; ++i)
+      out.emission[i] = transparent ? 0.0 : in.kappa_exit[i] * w_exit + in.kappa_far[i] * w_far;
+  }
+}
+
+// A piece-channel's derivatives (exact_piece_grad's entries) from its batch entry's
+// transmittance, weights and moments (shared by a grey medium's channels), its inputs and
+// kappa_far - kappa_exit. The emission is left 0 (pieces_moments writes it).
+inline PieceDerivatives piece_derivatives(double t, double w_exit, double w_far, double m1, double m2,
+                                          const ChannelPiece& p, double dkappa) {
+  PieceDerivatives g;
+  g.transmittance = t;
+  g.de_kappa_exit = w_exit;
+  g.de_kappa_far = w_far;
+  g.dt_rho = -0.5 * t * p.length;
+  g.dt_length = -0.5 * t * (p.rho_exit + p.rho_far);
+  const KappaTerms k = kappa_terms(m1, m2, t, p, dkappa);
+  g.de_length = k.de_length;
+  g.de_rho_far = k.de_rho_far;
+  g.de_rho_exit = k.de_rho_exit;
+  return g;
+}
+
+// chain_ray_gradient's PieceSource for the exact pieces: pieces_moments' columns kept for the
+// whole ray (per piece for a grey medium, per piece-channel otherwise), the derivatives formed
+// from them where the reverse pass uses them (piece_derivatives): no PieceDerivatives record is
+// written per piece-channel and read back.
+class ExactPieceSource {
+ public:
+  void start(std::size_t piece_channels, bool grey) {
+    struct Columns {
+      std::vector<double> transmittance, weight_exit, weight_far, m1, m2, emission;
+    };
+    thread_local Columns col;
+    grey_ = grey;
+    const std::size_t entries = grey ? piece_channels / kChannels : piece_channels;
+    if (col.transmittance.size() < entries)
+      for (auto* v : {&col.transmittance, &col.weight_exit, &col.weight_far, &col.m1, &col.m2}) v->resize(entries);
+    if (col.emission.size() < piece_channels) col.emission.resize(piece_channels);
+    t_ = col.transmittance.data();
+    w_exit_ = col.weight_exit.data();
+    w_far_ = col.weight_far.data();
+    m1_ = col.m1.data();
+    m2_ = col.m2.data();
+    emission_ = col.emission.data();
+  }
+  void evaluate(const PieceColumns& in, std::size_t first) {
+    const std::size_t j0 = grey_ ? first / kChannels : first;
+    pieces_moments(in, MomentColumns{t_ + j0, w_exit_ + j0, w_far_ + j0, m1_ + j0, m2_ + j0, emission_ + first},
+                   grey_ ? kChannels : 1);
+  }
+  double transmittance(std::size_t k, int c) const { return t_[entry(k, c)]; }
+  double emission(std::size_t k, int c) const { return emission_[kChannels * k + static_cast<std::size_t>(c)]; }
+  PieceDerivatives derivatives(std::size_t k, int c, const ChannelPiece& p, double dkappa) const {
+    const std::size_t j = entry(k, c);
+    return piece_derivatives(t_[j], w_exit_[j], w_far_[j], m1_[j], m2_[j], p, dkappa);
+  }
+
+ private:
+  std::size_t entry(std::size_t k, int c) const { return grey_ ? k : kChannels * k + static_cast<std::size_t>(c); }
+  bool grey_ = false;
+  double *t_ = nullptr, *w_exit_ = nullptr, *w_far_ = nullptr, *m1_ = nullptr, *m2_ = nullptr, *emission_ = nullptr;
+};
+
+}  // namespace
+
+void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exit, PieceDerivatives* out,
+                       int same_depth_stride) {
+  struct Columns {
+    std::vector<double> transmittance, weight_exit, weight_far, m1, m2, emission;
+  };
+  thread_local Columns col;
+  const std::size_t n = in.size;
+  const std::size_t stride = same_depth_stride > 1 ? static_cast<std::size_t>(same_depth_stride) : 1;
+  const std::size_t m = (n + stride - 1) / stride;
+  if (col.transmittance.size() < m)
+    for (auto* v : {&col.transmittance, &col.weight_exit, &col.weight_far, &col.m1, &col.m2}) v->resize(m);
+  if (col.emission.size() < n) col.emission.resize(n);
+  pieces_moments(in, MomentColumns{col.transmittance.data(), col.weight_exit.data(), col.weight_far.data(),
+                                   col.m1.data(), col.m2.data(), col.emission.data()},
+                 stride);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = i / stride;
+    const ChannelPiece p{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
+    out[i] = piece_derivatives(col.transmittance[j], col.weight_exit[j], col.weight_far[j], col.m1[j], col.m2[j], p,
+                               kappa_far_minus_exit[i]);
+    out[i].emission = col.emission[i];
   }
 }
 
@@ -549,12 +628,8 @@ namespace {
 // The exact pieces' derivatives as chain_ray_gradient asks for them.
 void exact_ray_chain(const detail::GradientPreparation& prep, const Ray& ray, RayGradient& grad,
                      GradientBlocks blocks) {
-  detail::chain_ray_gradient(
-      prep, ray, grad,
-      [](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
-        exact_pieces_grad(in, dkappa, out, grey ? kChannels : 1);
-      },
-      detail::PieceEnds::fixed_along_segment, blocks);
+  ExactPieceSource source;
+  detail::chain_ray_gradient(prep, ray, grad, source, detail::PieceEnds::fixed_along_segment, blocks);
 }
 
 }  // namespace

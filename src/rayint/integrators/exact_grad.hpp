@@ -89,7 +89,9 @@ class GradientPreparation;
 // The gradient of every channel's intensity with respect to every input of the ray, for transfer
 // functions prepared once (a copy of them, their PieceSplitter and per-function tables), as
 // ExactIntegrator holds its splitter: for many rays with the same functions (images, losses).
-// Its pieces go through exact_pieces_grad; the forward intensity composites exact_piece's
+// Its pieces go through exact_pieces_grad's arithmetic (bit for bit its entries: the batch's
+// columns are kept for the ray and each piece's derivatives formed where the reverse pass uses
+// them, exact_grad.cpp's ExactPieceSource); the forward intensity composites exact_piece's
 // transmittance with exact_batch's emission: within GradTolerances::forward_rel (2.5e-15
 // relative; 1.1e-15 measured) of both exact paths, bit for bit neither (tests/test_grad.cpp).
 // Pieces are those of append_pieces (model/pieces.hpp); compositing far -> near is

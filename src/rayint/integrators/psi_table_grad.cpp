@@ -75,9 +75,10 @@ PieceOpticsGrad psi_piece_grad(const PsiTable& table, table::Lookup lookup, cons
 RayGradient psi_table_ray_gradient(const TransferFunctions& tf, const Ray& ray, int size, table::Lookup lookup) {
   const std::shared_ptr<const PsiTable> table = PsiTable::shared(size, lookup);
   RayGradient grad;
-  detail::chain_ray_gradient(tf, ray, grad, detail::each_piece_channel([&](const ChannelPiece& cp, double, const PieceOpticsGrad*) {
+  auto source = detail::each_piece_channel([&](const ChannelPiece& cp, const PieceOpticsGrad*) {
     return psi_piece_grad(*table, lookup, cp);
-  }), detail::PieceEnds::moving);
+  });
+  detail::chain_ray_gradient(tf, ray, grad, source, detail::PieceEnds::moving);
   return grad;
 }
 

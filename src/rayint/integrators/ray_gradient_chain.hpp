@@ -246,11 +246,18 @@ inline const GradientPreparation& thread_preparation(const TransferFunctions& tf
 // entry, the case corpus 1.92e-15 -> 1.98e-15, every other regime unchanged; docs/gradients.md).
 class IntervalSums {
  public:
-  void reset(const PiecewiseLinear& f) {
+  // For f, whose interval_slope per interval is slopes[0..n] (GradientPreparation's table).
+  // Zeroes the sums in place (no call per vector: a ray of a few pieces pays this per function).
+  void reset(const PiecewiseLinear& f, const double* slopes) {
     f_ = &f;
+    slopes_ = slopes;
     n_ = f.scalar.size();
-    lo_.assign(n_ + 1, 0.0);
-    hi_.assign(n_ + 1, 0.0);
+    if (lo_.size() < n_ + 1) {
+      lo_.resize(n_ + 1);
+      hi_.resize(n_ + 1);
+    }
+    std::fill_n(lo_.data(), n_ + 1, 0.0);
+    std::fill_n(hi_.data(), n_ + 1, 0.0);
   }
   // The two ends of a piece lying in interval k, far end first.
   void add(std::size_t k, double s_far, double far_bar, double s_exit, double exit_bar) {
@@ -272,7 +279,7 @@ class IntervalSums {
     for (std::size_t k = 1; k < n_; ++k) {
       if (lo_[k] == 0.0 && hi_[k] == 0.0) continue;  // no end here (a jump's zero-width interval)
       const double span = f_->scalar[k] - f_->scalar[k - 1];
-      const double slope = interval_slope(*f_, k);
+      const double slope = slopes_[k];  // interval_slope(*f_, k)
       const double u0 = lo_[k] / span, u1 = hi_[k] / span;
       nodes[k - 1].value += u0;
       nodes[k - 1].position += -slope * u0;
@@ -283,25 +290,46 @@ class IntervalSums {
 
  private:
   const PiecewiseLinear* f_ = nullptr;
+  const double* slopes_ = nullptr;
   std::size_t n_ = 0;
   std::vector<double> lo_, hi_;  // per interval 0..n: sums of bar (p1 - s), of bar (s - p0)
 };
 
-// chain_ray_gradient's piece_grads from piece_grad(const ChannelPiece&, double
-// kappa_far_minus_exit, const PieceOpticsGrad* same_depth) -> PieceOpticsGrad, one piece-channel
-// at a time; same_depth points to channel 0's result of a grey medium's piece, else null.
+// A PieceSource (chain_ray_gradient) from piece_grad(const ChannelPiece&, const PieceOpticsGrad*
+// same_depth) -> PieceOpticsGrad, one piece-channel at a time; same_depth points to channel 0's
+// result of a grey medium's piece, else null. Its derivatives are kept per piece-channel for the
+// whole ray (PieceDerivatives).
 template <class PieceGrad>
-auto each_piece_channel(PieceGrad piece_grad) {
-  return [piece_grad](const PieceColumns& in, const double* dkappa, bool grey, PieceDerivatives* out) {
+class EachPieceChannel {
+ public:
+  explicit EachPieceChannel(PieceGrad piece_grad) : piece_grad_(std::move(piece_grad)) {}
+  void start(std::size_t piece_channels, bool grey) {
+    derivs_.resize(piece_channels);
+    grey_ = grey;
+  }
+  void evaluate(const PieceColumns& in, std::size_t first) {
     PieceOpticsGrad channel0;  // a piece's channel 0, for the other channels of a grey medium
     for (std::size_t i = 0; i < in.size; ++i) {
       const std::size_t c = i % kChannels;
       const ChannelPiece cp{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
-      const PieceOpticsGrad g = piece_grad(cp, dkappa[i], grey && c > 0 ? &channel0 : nullptr);
-      out[i] = derivatives_of(g);
+      const PieceOpticsGrad g = piece_grad_(cp, grey_ && c > 0 ? &channel0 : nullptr);
+      derivs_[first + i] = derivatives_of(g);
       if (c == 0) channel0 = g;
     }
-  };
+  }
+  double transmittance(std::size_t k, int c) const { return at(k, c).transmittance; }
+  double emission(std::size_t k, int c) const { return at(k, c).emission; }
+  PieceDerivatives derivatives(std::size_t k, int c, const ChannelPiece&, double) const { return at(k, c); }
+
+ private:
+  const PieceDerivatives& at(std::size_t k, int c) const { return derivs_[kChannels * k + static_cast<std::size_t>(c)]; }
+  PieceGrad piece_grad_;
+  std::vector<PieceDerivatives> derivs_;
+  bool grey_ = false;
+};
+template <class PieceGrad>
+EachPieceChannel<PieceGrad> each_piece_channel(PieceGrad piece_grad) {
+  return EachPieceChannel<PieceGrad>(std::move(piece_grad));
 }
 
 // PieceEnds::moving's end scalars for channel c of piece pr: its length's adjoint len_bar (len =
@@ -347,12 +375,19 @@ inline void moving_ends(const TransferFunctions& tf, const Ray& ray, const Piece
   route(false, pr.s_exit, exit_s_bar);
 }
 
-// piece_grads(const PieceColumns& in, const double* kappa_far_minus_exit, bool grey,
-// PieceDerivatives* out): the optics of in.size piece-channels and their derivatives, at once
-// (index kChannels k + c: channel c of the k-th piece of the call; exact_pieces_grad evaluates
-// them through the SIMD batch). With grey true the channels of a piece share its length, rho_far
-// and rho_exit (a grey medium, TransferFunctions::grey): a piece_grads may reuse channel 0's
-// results for them, or ignore it. each_piece_channel adapts a function of one piece-channel.
+// source, a PieceSource: the optics of the ray's piece-channels and their derivatives, formed a
+// chunk at a time. With index kChannels k + c for channel c of the ray's k-th piece:
+//   start(std::size_t piece_channels, bool grey): before the ray's first chunk. With grey true the
+//     channels of a piece share its length, rho_far and rho_exit (a grey medium,
+//     TransferFunctions::grey): the source may reuse channel 0's results for them, or ignore it.
+//   evaluate(const PieceColumns& in, std::size_t first): forms piece-channels first ..
+//     first + in.size - 1 (whole pieces) from their inputs in; called for consecutive chunks.
+//   transmittance(k, c), emission(k, c): the optics of an evaluated piece-channel.
+//   derivatives(k, c, const ChannelPiece& p, double kappa_far_minus_exit) -> PieceDerivatives:
+//     its derivatives, given its inputs p and kappa_far - kappa_exit (the interval's slope times
+//     s_far - s_exit; 0 for a constant piece). exact_grad.cpp's source forms them here, in the
+//     reverse pass, from columns of the batch (no per-piece-channel record written and read back);
+//     each_piece_channel keeps a PieceDerivatives per piece-channel.
 // blocks = GradientBlocks::segments leaves the node blocks empty and skips their accumulation.
 // Throws std::invalid_argument for a non-finite length, scalar or background.
 //
@@ -361,8 +396,8 @@ inline void moving_ends(const TransferFunctions& tf, const Ray& ray, const Piece
 // gradient differentiates the very pieces the forward integrates. The transfer functions are
 // prep.transfer(); the overload below takes them and uses the thread's preparation for the last
 // functions seen (compared point for point, bit for bit).
-template <class PieceGrad>
-void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
+template <class PieceSource>
+void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGradient& grad, PieceSource& source,
                         PieceEnds ends_mode = PieceEnds::fixed_along_segment,
                         GradientBlocks blocks = GradientBlocks::all) {
   const TransferFunctions& tf = prep.transfer();
@@ -376,21 +411,11 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
         throw std::invalid_argument("gradient: segment " + std::to_string(j) +
                                     ": length and scalars must be finite");
     }
-  // What the reverse pass needs of a piece-channel besides its optics' derivatives
-  // (PieceDerivatives): per function (density[c], color[c]), the interval its values come from
-  // (upper_bound of the scalar that chooses it, see interval_lo below). The slopes and node
-  // weights follow from the interval and the piece's end scalars.
-  struct ChannelEnds {
-    std::uint32_t rho_k = 0, kappa_k = 0;
-  };
   // Per-thread scratch: no allocation per ray once warm (timing loops, images).
   struct Scratch {
-    PieceChannelColumns columns;               // the pieces' inputs, written by the splitter
+    PieceChannelColumns columns;  // the pieces' inputs, written by the splitter
     std::vector<PiecePlace> places;
     std::vector<double> incoming;
-    std::vector<ChannelEnds> ends;
-    std::vector<double> dkappas;
-    std::vector<PieceDerivatives> derivs;
     IntervalSums rho_sums[kChannels], kappa_sums[kChannels];
   };
   thread_local Scratch scratch;
@@ -420,7 +445,7 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
                : lo;
   };
   // Per function, its interval for each region of the breakpoints and its slope per interval
-  // (GradientPreparation): for dkappa here and for the reverse pass.
+  // (GradientPreparation): for kappa_far - kappa_exit and the reverse pass.
   const double* rho_slope[kChannels];
   const double* kappa_slope[kChannels];
   const std::uint32_t* rho_interval[kChannels];
@@ -438,22 +463,13 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
     return static_cast<std::uint32_t>(
         std::upper_bound(f.scalar.begin(), f.scalar.end(), interval_lo(f, pr, pr.s_far)) - f.scalar.begin());
   };
-  // The pieces go to piece_grads in chunks of kChunkPieces (their inputs and the batch's columns
+  // The pieces go to the source in chunks of kChunkPieces (their inputs and the batch's scratch
   // stay in cache however long the ray), each composited as soon as it is evaluated. What the
-  // reverse pass needs of a piece-channel is kept for the whole ray: the light entering it, its
-  // intervals (ChannelEnds) and its optics' derivatives (PieceDerivatives, written by piece_grads).
-  // (Keeping them for one chunk only and forming every other chunk again in the reverse pass, to
-  // spare the memory traffic of a long ray's ~5 MB, cost more than it saved: 8.8 -> 10.2 ms on
-  // bench_grad's set 1.)
+  // reverse pass needs of a piece-channel is kept for the whole ray: the light entering it, and
+  // what the source keeps. (Keeping them for one chunk only and forming every other chunk again
+  // in the reverse pass, to spare the memory traffic of a long ray's ~5 MB, cost more than it
+  // saved: 8.8 -> 10.2 ms on bench_grad's set 1.)
   constexpr std::size_t kChunkPieces = 512;
-  std::vector<ChannelEnds>& ends = scratch.ends;
-  std::vector<double>& dkappas = scratch.dkappas;
-  std::vector<PieceDerivatives>& derivs = scratch.derivs;
-  if (ends.size() < n * kChannels) {
-    ends.resize(n * kChannels);
-    derivs.resize(n * kChannels);
-    dkappas.resize(n * kChannels);
-  }
   // A piece's record (where its ends lie along its segment: the divisions of append_pieces'), formed
   // where it is used (the reverse pass, once per piece) from its place and its segment instead of
   // being kept for the whole ray: a piece's far end is the previous one's exit, so its phi_far is
@@ -482,46 +498,21 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
     pr.phi_far = pr.far_is_end ? 0.0 : (pl.s_far - s0) / span;
     return pr;
   };
-  // Per piece and channel, its intervals and kappa_far - kappa_exit (one pass over the pieces).
-  for (std::size_t k = 0; k < n; ++k) {
-    const PiecePlace& pl = places[k];
-    const Segment& seg = ray.segments[pl.segment];
-    ChannelEnds* rec = &ends[k * kChannels];
-    double* dkappa = &dkappas[k * kChannels];
-    if (seg.scalar_far == seg.scalar_exit) {
-      // a constant piece: no slope, its intervals by search
-      const PieceRecord pr = record(k);
-      for (int c = 0; c < kChannels; ++c) {
-        rec[c].rho_k = constant_interval(tf.density[c], pr);
-        rec[c].kappa_k = constant_interval(tf.color[c], pr);
-        dkappa[c] = 0.0;
-      }
-      continue;
-    }
-    // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
-    // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
-    // multiplied by a density slope of 3e23 in dI/ds). The extensions have slope 0.
-    const double ds = pl.s_far - pl.s_exit;
-    for (int c = 0; c < kChannels; ++c) {
-      rec[c].rho_k = rho_interval[c][pl.region];
-      rec[c].kappa_k = kappa_interval[c][pl.region];
-      dkappa[c] = kappa_slope[c][rec[c].kappa_k] * ds;
-    }
-  }
   const std::size_t n_chunks = (n + kChunkPieces - 1) / kChunkPieces;
   // Forward: the optics of every piece-channel and the light entering it.
+  source.start(n * kChannels, grey);
   Rgb intensity = ray.background;
   for (std::size_t q = 0; q < n_chunks; ++q) {
     const std::size_t k0 = q * kChunkPieces, k1 = std::min(n, k0 + kChunkPieces);
     const std::size_t i0 = k0 * kChannels, m = (k1 - k0) * kChannels;
-    piece_grads(PieceColumns{columns.length.data() + i0, columns.rho_far.data() + i0, columns.rho_exit.data() + i0,
-                             columns.kappa_far.data() + i0, columns.kappa_exit.data() + i0, m},
-                dkappas.data() + i0, grey, derivs.data() + i0);
-    for (std::size_t i = i0; i < i0 + m; i += kChannels)
+    source.evaluate(PieceColumns{columns.length.data() + i0, columns.rho_far.data() + i0,
+                                 columns.rho_exit.data() + i0, columns.kappa_far.data() + i0,
+                                 columns.kappa_exit.data() + i0, m},
+                    i0);
+    for (std::size_t k = k0; k < k1; ++k)
       for (int c = 0; c < kChannels; ++c) {
-        const PieceDerivatives& g = derivs[i + static_cast<std::size_t>(c)];
-        incoming[i + static_cast<std::size_t>(c)] = intensity[c];
-        intensity[c] = intensity[c] * g.transmittance + g.emission;
+        incoming[k * kChannels + static_cast<std::size_t>(c)] = intensity[c];
+        intensity[c] = intensity[c] * source.transmittance(k, c) + source.emission(k, c);
       }
   }
   grad.intensity = intensity;
@@ -532,15 +523,18 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
   IntervalSums* kappa_sums = scratch.kappa_sums;
   if (nodes_wanted)
     for (int c = 0; c < kChannels; ++c) {
-      rho_sums[c].reset(tf.density[c]);
-      kappa_sums[c].reset(tf.color[c]);
+      rho_sums[c].reset(tf.density[c], rho_slope[c]);
+      kappa_sums[c].reset(tf.color[c], kappa_slope[c]);
     }
   Rgb adjoint{1.0, 1.0, 1.0};
   // The arrays read and the blocks written, as local pointers: the pass's rare calls (a jump's
   // crossing) would otherwise make every piece reload them from the scratch and the gradient.
-  const PieceDerivatives* const piece_derivs = derivs.data();
-  const ChannelEnds* const piece_ends = ends.data();
   const double* const piece_light = incoming.data();
+  const double* const in_length = columns.length.data();
+  const double* const in_rho_far = columns.rho_far.data();
+  const double* const in_rho_exit = columns.rho_exit.data();
+  const double* const in_kappa_far = columns.kappa_far.data();
+  const double* const in_kappa_exit = columns.kappa_exit.data();
   Rgb* const length_block = grad.length.data();
   Rgb* const scalar_far_block = grad.scalar_far.data();
   Rgb* const scalar_exit_block = grad.scalar_exit.data();
@@ -552,10 +546,28 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
     Rgb& seg_length = length_block[pr.segment];
     Rgb& scalar_far = scalar_far_block[pr.segment];
     Rgb& scalar_exit = scalar_exit_block[pr.segment];
+    const bool constant = pr.region == kConstantPiece;
+    const double ds = pr.s_far - pr.s_exit;
     for (int c = 0; c < kChannels; ++c) {
       const std::size_t i = k * kChannels + static_cast<std::size_t>(c);
-      const PieceDerivatives& g = piece_derivs[i];
-      const ChannelEnds& ce = piece_ends[i];
+      // The intervals the piece's values come from: by the region of the breakpoints it lies in,
+      // or by a search for a constant piece (no slope: kappa_far - kappa_exit is 0). Else
+      // kappa_far - kappa_exit from the interval's slope: the difference of the rounded end
+      // values loses its digits on short pieces (narrow_pulse: 4% of a 1e-14 difference,
+      // multiplied by a density slope of 3e23 in dI/ds). The extensions have slope 0.
+      std::uint32_t rho_k, kappa_k;
+      double dkappa;
+      if (constant) {
+        rho_k = constant_interval(tf.density[c], pr);
+        kappa_k = constant_interval(tf.color[c], pr);
+        dkappa = 0.0;
+      } else {
+        rho_k = rho_interval[c][pr.region];
+        kappa_k = kappa_interval[c][pr.region];
+        dkappa = kappa_slope[c][kappa_k] * ds;
+      }
+      const ChannelPiece p{in_length[i], in_rho_far[i], in_rho_exit[i], in_kappa_far[i], in_kappa_exit[i]};
+      const PieceDerivatives g = source.derivatives(k, c, p, dkappa);
       const double light = piece_light[i];
       const double e_bar = adjoint[c];
       const double t_bar = adjoint[c] * light;
@@ -573,12 +585,12 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
       // without the factor L/(s_exit - s_far) and the cancellation between the two pieces at a
       // breakpoint that the latter carries (it cost 1e-6 of the channel's largest entry on a
       // 7e-13-wide segment of narrow_pulse). d f/d s at both ends is the interval's slope.
-      const double rho_slope_k = rho_slope[c][ce.rho_k], kappa_slope_k = kappa_slope[c][ce.kappa_k];
+      const double rho_slope_k = rho_slope[c][rho_k], kappa_slope_k = kappa_slope[c][kappa_k];
       const double far_s_bar = rho_far_bar * rho_slope_k + kappa_far_bar * kappa_slope_k;
       const double exit_s_bar = rho_exit_bar * rho_slope_k + kappa_exit_bar * kappa_slope_k;
       if (nodes_wanted) {
-        rho_sums[c].add(ce.rho_k, pr.s_far, rho_far_bar, pr.s_exit, rho_exit_bar);
-        kappa_sums[c].add(ce.kappa_k, pr.s_far, kappa_far_bar, pr.s_exit, kappa_exit_bar);
+        rho_sums[c].add(rho_k, pr.s_far, rho_far_bar, pr.s_exit, rho_exit_bar);
+        kappa_sums[c].add(kappa_k, pr.s_far, kappa_far_bar, pr.s_exit, kappa_exit_bar);
       }
       if (ends_mode == PieceEnds::fixed_along_segment) {
         scalar_far[c] += far_s_bar * (1.0 - pr.phi_far) + exit_s_bar * (1.0 - pr.phi_exit);
@@ -604,11 +616,11 @@ void chain_ray_gradient(const GradientPreparation& prep, const Ray& ray, RayGrad
   }
 }
 
-template <class PieceGrad>
-void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceGrad&& piece_grads,
+template <class PieceSource>
+void chain_ray_gradient(const TransferFunctions& tf, const Ray& ray, RayGradient& grad, PieceSource& source,
                         PieceEnds ends_mode = PieceEnds::fixed_along_segment,
                         GradientBlocks blocks = GradientBlocks::all) {
-  chain_ray_gradient(thread_preparation(tf), ray, grad, std::forward<PieceGrad>(piece_grads), ends_mode, blocks);
+  chain_ray_gradient(thread_preparation(tf), ray, grad, source, ends_mode, blocks);
 }
 
 }  // namespace rayint::detail
