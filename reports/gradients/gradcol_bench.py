@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # usage: gradcol_bench.py rounds filter label=binary ...  -> CPU-time medians per round per label
-# (gradlast_bench.py with one decimal and the mesh image loss / render ratios; run the mesh
+# (CPU medians with one decimal, and the mesh image loss / render ratios when those ran; the mesh
 # benchmarks from build/bench: they read ../../cases/)
 import json, subprocess, sys, statistics, os
 rounds = int(sys.argv[1]); filt = sys.argv[2]
