@@ -297,7 +297,6 @@ MultilinearForm multilinear_form(const LinearCell& cell) {
 
 }  // namespace
 
-Vec3 multilinear_position(const MultilinearForm& m, const Vec3& p) { return position(m, Monomials(p)); }
 Eigen::Matrix3d multilinear_jacobian(const MultilinearForm& m, const Vec3& p) { return jacobian(m, Monomials(p)); }
 
 // inverse_map's iteration (newton_inverse_map) on the multilinear form: the same tolerances,

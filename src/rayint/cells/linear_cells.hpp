@@ -187,7 +187,6 @@ InverseMap inverse_map(const LinearCell& cell, const Vec3& world);
 // start that passes it by a hair still takes one step: chord_scalar.hpp). `steps` counts the
 // steps taken. False when it did not converge (p is then not a result).
 bool multilinear_newton(const MultilinearForm& m, const Vec3& target, Vec3& p, bool step_first, int& steps);
-Vec3 multilinear_position(const MultilinearForm& m, const Vec3& p);
 Eigen::Matrix3d multilinear_jacobian(const MultilinearForm& m, const Vec3& p);
 
 // ---- Ray and faces -------------------------------------------------------------------------

@@ -452,6 +452,21 @@ struct MomentColumns {
   double* emission = nullptr;  // in.size entries
 };
 
+// Storage for pieces_moments' columns, reused (a thread's): `entries` batch entries and
+// `piece_channels` emissions; columns() points at them.
+struct MomentStore {
+  std::vector<double> transmittance, weight_exit, weight_far, m1, m2, emission;
+  void reserve(std::size_t entries, std::size_t piece_channels) {
+    if (transmittance.size() < entries)
+      for (auto* v : {&transmittance, &weight_exit, &weight_far, &m1, &m2}) v->resize(entries);
+    if (emission.size() < piece_channels) emission.resize(piece_channels);
+  }
+  MomentColumns columns() {
+    return MomentColumns{transmittance.data(), weight_exit.data(), weight_far.data(), m1.data(), m2.data(),
+                         emission.data()};
+  }
+};
+
 void pieces_moments(const PieceColumns& in, const MomentColumns& out, std::size_t stride) {
   struct Columns {
     std::vector<double> length, rho_far, rho_exit, kappa_far, kappa_exit, emission, e0, depth;
@@ -548,57 +563,41 @@ inline PieceDerivatives piece_derivatives(double t, double w_exit, double w_far,
 class ExactPieceSource {
  public:
   void start(std::size_t piece_channels, bool grey) {
-    struct Columns {
-      std::vector<double> transmittance, weight_exit, weight_far, m1, m2, emission;
-    };
-    thread_local Columns col;
+    thread_local MomentStore store;
     grey_ = grey;
-    const std::size_t entries = grey ? piece_channels / kChannels : piece_channels;
-    if (col.transmittance.size() < entries)
-      for (auto* v : {&col.transmittance, &col.weight_exit, &col.weight_far, &col.m1, &col.m2}) v->resize(entries);
-    if (col.emission.size() < piece_channels) col.emission.resize(piece_channels);
-    t_ = col.transmittance.data();
-    w_exit_ = col.weight_exit.data();
-    w_far_ = col.weight_far.data();
-    m1_ = col.m1.data();
-    m2_ = col.m2.data();
-    emission_ = col.emission.data();
+    store.reserve(grey ? piece_channels / kChannels : piece_channels, piece_channels);
+    at_ = store.columns();  // the reverse pass reads through these pointers (no reload per piece)
   }
   void evaluate(const PieceColumns& in, std::size_t first) {
     const std::size_t j0 = grey_ ? first / kChannels : first;
-    pieces_moments(in, MomentColumns{t_ + j0, w_exit_ + j0, w_far_ + j0, m1_ + j0, m2_ + j0, emission_ + first},
+    pieces_moments(in,
+                   MomentColumns{at_.transmittance + j0, at_.weight_exit + j0, at_.weight_far + j0, at_.m1 + j0,
+                                 at_.m2 + j0, at_.emission + first},
                    grey_ ? kChannels : 1);
   }
-  double transmittance(std::size_t k, int c) const { return t_[entry(k, c)]; }
-  double emission(std::size_t k, int c) const { return emission_[kChannels * k + static_cast<std::size_t>(c)]; }
+  double transmittance(std::size_t k, int c) const { return at_.transmittance[entry(k, c)]; }
+  double emission(std::size_t k, int c) const { return at_.emission[kChannels * k + static_cast<std::size_t>(c)]; }
   PieceDerivatives derivatives(std::size_t k, int c, const ChannelPiece& p, double dkappa) const {
     const std::size_t j = entry(k, c);
-    return piece_derivatives(t_[j], w_exit_[j], w_far_[j], m1_[j], m2_[j], p, dkappa);
+    return piece_derivatives(at_.transmittance[j], at_.weight_exit[j], at_.weight_far[j], at_.m1[j], at_.m2[j], p,
+                             dkappa);
   }
 
  private:
   std::size_t entry(std::size_t k, int c) const { return grey_ ? k : kChannels * k + static_cast<std::size_t>(c); }
   bool grey_ = false;
-  double *t_ = nullptr, *w_exit_ = nullptr, *w_far_ = nullptr, *m1_ = nullptr, *m2_ = nullptr, *emission_ = nullptr;
+  MomentColumns at_;  // the thread's MomentStore, from entry 0
 };
 
 }  // namespace
 
 void exact_pieces_grad(const PieceColumns& in, const double* kappa_far_minus_exit, PieceDerivatives* out,
                        int same_depth_stride) {
-  struct Columns {
-    std::vector<double> transmittance, weight_exit, weight_far, m1, m2, emission;
-  };
-  thread_local Columns col;
+  thread_local MomentStore col;
   const std::size_t n = in.size;
   const std::size_t stride = same_depth_stride > 1 ? static_cast<std::size_t>(same_depth_stride) : 1;
-  const std::size_t m = (n + stride - 1) / stride;
-  if (col.transmittance.size() < m)
-    for (auto* v : {&col.transmittance, &col.weight_exit, &col.weight_far, &col.m1, &col.m2}) v->resize(m);
-  if (col.emission.size() < n) col.emission.resize(n);
-  pieces_moments(in, MomentColumns{col.transmittance.data(), col.weight_exit.data(), col.weight_far.data(),
-                                   col.m1.data(), col.m2.data(), col.emission.data()},
-                 stride);
+  col.reserve((n + stride - 1) / stride, n);
+  pieces_moments(in, col.columns(), stride);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = i / stride;
     const ChannelPiece p{in.length[i], in.rho_far[i], in.rho_exit[i], in.kappa_far[i], in.kappa_exit[i]};
