@@ -83,7 +83,7 @@ void set_check_command(CLI::App& app) {
                         "|got - expected| <= max(abs-tol, rel-tol * |expected|)");
   cmd->add_flag("--no-reference", opt->no_reference,
                 "Skip the 50-digit reference (reported for context only; costs time on big cases)");
-  cmd->add_option("-o,--output", opt->output, "Write the diff to this file instead of stdout");
+  add_output_option(cmd, opt->output, "Write the diff to this file instead of stdout");
   add_strict_mesh_flag(cmd, opt->mesh.strict);
   add_cells_option(cmd, opt->mesh.split_cells);
   add_quiet_flag(cmd, opt->image.quiet);  // the verdict line on stderr; the diff and exit status stay

@@ -137,7 +137,7 @@ void set_converge_command(CLI::App& app) {
   cmd->add_option("--error-map-dir", opt->error_map_dir,
                   "write each step's per-pixel error (H x W float64) as DIR/step-<i>.npy");
   add_threads_option(cmd, opt->threads, "worker threads (0: all cores)");
-  cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
+  add_output_option(cmd, opt->output, "write the JSON here (default: stdout)");
   add_quiet_flag(cmd, opt->quiet);
   cmd->callback([opt] {
     if (opt->methods.empty() == opt->command.empty())

@@ -47,7 +47,7 @@ void set_eval_command(CLI::App& app) {
                   "Comma-separated methods, each name[:key=value...] (default: exact,paper)");
   cmd->add_option("--format", opt->format, "json or table")
       ->check(CLI::IsMember({"json", "table"}));
-  cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
+  add_output_option(cmd, opt->output);
   cmd->add_flag("--no-timing", opt->no_timing, "Skip the timing runs (seconds_per_ray = 0)");
   cmd->add_flag("--no-reference", opt->no_reference,
                 "Skip the 50-digit reference and the error fields (costs time on big cases)");

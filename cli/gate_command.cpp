@@ -107,7 +107,7 @@ void set_gate_command(CLI::App& app) {
       ->capture_default_str();
   add_threads_option(cmd, opt->threads)->capture_default_str();
   cmd->add_flag("--json", opt->json, "JSON instead of one line per check");
-  cmd->add_option("-o,--output", opt->output, "Write the result to this file instead of stdout");
+  add_output_option(cmd, opt->output, "Write the result to this file instead of stdout");
   add_quiet_flag(cmd, opt->quiet);
   cmd->add_option("--junit", opt->junit, "Also write the checks as JUnit XML to this file");
   auto* baseline = cmd->add_option(

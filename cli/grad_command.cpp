@@ -35,7 +35,7 @@ void set_grad_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-reference", opt->no_reference, "Skip the 50-digit reference gradient (slow on long rays)");
   add_threads_option(cmd, opt->threads, "Threads for the reference gradient (0: all cores)");
-  cmd->add_option("-o,--output", opt->output, "Write the JSON to this file instead of stdout");
+  add_output_option(cmd, opt->output, "Write the JSON to this file instead of stdout");
   cmd->callback([opt] {
     GradStudyOptions so;
     so.methods = parse_method_list(opt->methods);

@@ -54,7 +54,7 @@ void set_gradcheck_command(CLI::App& app) {
                 "on long rays; the truth where an entry is ill-conditioned, docs/gradients.md)");
   add_threads_option(cmd, opt->check.threads, "Threads for the reference gradient (0: all cores)");
   cmd->add_option("--junit", opt->junit, "Also write the result as JUnit XML to this file");
-  cmd->add_option("-o,--output", opt->output, "Write the JSON verdict to this file instead of stdout");
+  add_output_option(cmd, opt->output, "Write the JSON verdict to this file instead of stdout");
   cmd->callback([opt] {
     const Case c = read_case_file(opt->case_file);
     const GradCandidate cand = read_grad_candidate_file(opt->candidate_file, c);

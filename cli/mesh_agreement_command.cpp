@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/report/mesh_agreement_json.hpp"
 
 namespace rayint::cli {
@@ -21,7 +22,7 @@ void set_mesh_agreement_command(CLI::App& app) {
   cmd->add_option("--n", opt->n, "linear-box resolution (6 (2n)^3 tets)")->check(CLI::Range(1, 60));
   cmd->add_option("--vertex-rays", (*vertex)[0], "rays through pairs of grid vertices")->check(CLI::Range(0, 100000000));
   cmd->add_option("--grid", (*vertex)[1], "cubes per edge of the structured mesh for --vertex-rays")->check(CLI::Range(1, 60));
-  cmd->add_option("-o,--output", *out, "write the JSON here instead of stdout");
+  add_output_option(cmd, *out, "write the JSON here instead of stdout");
   cmd->callback([opt, out, vertex] {
     const MeshAgreement a = measure_linear_field_agreement(*opt);
     const VertexRayChords v = measure_vertex_ray_chords((*vertex)[1], (*vertex)[0], opt->seed);

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/input/mesh_case_reader.hpp"
-#include "rayint/core/error.hpp"
 #include "rayint/mesh/mesh_check.hpp"
 #include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/report/mesh_info.hpp"
@@ -33,7 +33,7 @@ void set_mesh_command(CLI::App& app) {
   cmd->add_flag("--check", opt->check, "Look for overlapping tetrahedra, every candidate pair (exit 1 naming two when found)");
   cmd->add_flag("--quick-check", opt->quick, "The check a mesh case runs on load: only pairs that share no point");
   cmd->add_option("--format", opt->format, "text or json")->check(CLI::IsMember({"text", "json"}));
-  cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
+  add_output_option(cmd, opt->output);
   cmd->callback([opt] {
     // Read as cells: a file of tetrahedra only continues as before; one with hexahedra, wedges,
     // pyramids or voxels is reported by type (it has no tetrahedra to check for overlaps).

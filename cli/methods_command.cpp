@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/report/method_table.hpp"
 
 namespace rayint::cli {
@@ -17,7 +18,7 @@ void set_methods_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "methods", "List every method with its parameters, types, defaults and allowed values");
   cmd->add_option("--format", opt->format, "text or json")->check(CLI::IsMember({"text", "json"}));
-  cmd->add_option("-o,--output", opt->output, "Write to this file instead of stdout");
+  add_output_option(cmd, opt->output);
   cmd->callback([opt] {
     emit(opt->format == "json" ? methods_json(method_table()).dump(2) : methods_text(method_table()),
          opt->output);

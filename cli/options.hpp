@@ -15,6 +15,14 @@ CLI::Option* add_threads_option(CLI::App* cmd, Int& threads,
   return cmd->add_option("--threads", threads, help)->check(CLI::NonNegativeNumber);
 }
 
+// -o,--output FILE: the command writes its report to FILE instead of stdout (emit, commands.hpp:
+// atomically); `help` names the report where the default does not say enough.
+inline CLI::Option* add_output_option(
+    CLI::App* cmd, std::string& output,
+    const std::string& help = "Write to this file instead of stdout") {
+  return cmd->add_option("-o,--output", output, help);
+}
+
 // -q,--quiet: no progress on stderr.
 inline CLI::Option* add_quiet_flag(CLI::App* cmd, bool& quiet) {
   return cmd->add_flag("-q,--quiet", quiet, "No progress on stderr");

@@ -50,7 +50,7 @@ void set_scatter_command(CLI::App& app) {
   cmd->add_option("--zonal-grids", s->comparison.zonal_grids, "zonal cells per axis (default 6,8,10; isotropic only)")->delimiter(',');
   cmd->add_option("--images", s->images, "write PNGs of every image into this folder");
   cmd->add_option("--exposure", s->exposure, "PNG exposure (default 1)")->check(CLI::PositiveNumber);
-  cmd->add_option("-o,--output", s->output, "JSON report here (atomically) instead of stdout");
+  add_output_option(cmd, s->output, "JSON report here (atomically) instead of stdout");
   add_quiet_flag(cmd, s->quiet);
   add_shard_option(cmd, s->shard);
   cmd->callback([s]() {

@@ -30,7 +30,7 @@ void set_scene_sweep_command(CLI::App& app) {
                   "EFFECT=METHOD[,EFFECT=METHOD...], one configuration (repeatable)")->required();
   cmd->add_option("--errors", opt->errors, "compare on K x K pixels")->check(CLI::Range(1, 4096));
   add_threads_option(cmd, opt->threads, "worker threads (0: all cores)");
-  cmd->add_option("-o,--output", opt->output, "write the JSON here (default: stdout)");
+  add_output_option(cmd, opt->output, "write the JSON here (default: stdout)");
   add_quiet_flag(cmd, opt->quiet);
   cmd->callback([opt] {
     const Scene scene = read_scene_file(opt->input);

@@ -18,6 +18,7 @@
 
 #include "rayint/core/shard.hpp"
 #include "rayint/input/json_source.hpp"
+#include "rayint/input/shard_reader.hpp"
 
 namespace rayint::cli {
 
@@ -61,12 +62,12 @@ void check_merge_inputs(const std::string& command, const std::vector<std::strin
 ShardSpec merged_shard(std::size_t index);
 
 // Merge mode: the shards' parts of the run, after check_merge_inputs(command, input_files): the
-// data of each shard present, read by `read` (a *_from_json of input/shard_reader.hpp, given the
+// data of each shard present, read by `read` (a PartReader of input/shard_reader.hpp, given the
 // shard's file and the field "data"), then `check(index, part)` (what the shard must cover:
 // check_shard_band, check_shard_cover, check_shard_count) before the next shard is read.
 template <class Part, class Check>
-std::vector<Part> merged_parts(const std::string& command, const std::vector<std::string>& input_files,
-                               Part (*read)(const nlohmann::json&, const std::string&, const std::string&),
+std::vector<Part> merged_parts(const std::string& command,
+                               const std::vector<std::string>& input_files, PartReader<Part>* read,
                                Check check) {
   check_merge_inputs(command, input_files);
   const ShardContext& c = shard_context();

@@ -208,7 +208,7 @@ void set_slab_command(CLI::App& app) {
                 "Monte Carlo of every order (default: exact orders 0-1 plus Monte Carlo of orders >= 2)");
   cmd->add_flag("--json", s->json, "benchmark: JSON instead of a table");
   add_quiet_flag(cmd, s->quiet);
-  cmd->add_option("-o,--output", s->output, "write the result here (atomically) instead of stdout");
+  add_output_option(cmd, s->output, "write the result here (atomically) instead of stdout");
   add_shard_option(cmd, s->shard);
   cmd->add_option("--tau", s->tau, "one problem: optical thickness");
   cmd->add_option("--albedo", s->albedo, "one problem: single-scattering albedo");

@@ -61,7 +61,7 @@ void set_stress_command(CLI::App& app) {
       ->capture_default_str();
   add_threads_option(cmd, opt->threads)->capture_default_str();
   cmd->add_flag("--json", opt->json, "JSON report instead of the table");
-  cmd->add_option("-o,--output", opt->output, "Write the report to this file instead of stdout");
+  add_output_option(cmd, opt->output, "Write the report to this file instead of stdout");
   cmd->add_option("--worst-dir", opt->worst_dir,
                   "Folder (created when missing) for the worst sample of each regime and method, as "
                   "case files; without it they are not written");

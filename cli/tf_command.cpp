@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "rayint/input/paraview_preset.hpp"
 #include "rayint/report/tf_import_json.hpp"
 
@@ -55,7 +56,7 @@ void set_tf_command(CLI::App& app) {
                   "ParaView's default, a ramp 0 -> 1 over the colour range)");
   cmd->add_option("--range", opt->range, "LO HI: rescale the preset's scalars to [LO, HI] (as ParaView does)")
       ->expected(2);
-  cmd->add_option("-o,--output", opt->output, "Write the transfer_function object here instead of stdout");
+  add_output_option(cmd, opt->output, "Write the transfer_function object here instead of stdout");
   cmd->add_option("--report", opt->report, "Write the import report (JSON) here");
   cmd->add_flag("-q,--quiet", opt->quiet, "No report on stderr");
   cmd->callback([opt] {

@@ -197,14 +197,21 @@ StressPartial stress_partial_from_json(const nlohmann::json& j, const std::strin
 
 namespace {
 
-// The band both mesh renders' shard parts share: its size and rows (checked), the image and,
-// when compared, the compared image and per-pixel errors. Returns the band's pixel count.
+// The rows [row_begin, row_end) of a width x height image a part holds (report/shard_json.cpp
+// rows_json): four integers >= 0, which the caller checks against its own limits.
 template <class Part>
-std::size_t read_band(const Reader& r, const nlohmann::json& j, const std::string& path, Part& p) {
+void read_rows(const Reader& r, const nlohmann::json& j, const std::string& path, Part& p) {
   p.width = static_cast<int>(r.nonneg(j, path, "width"));
   p.height = static_cast<int>(r.nonneg(j, path, "height"));
   p.row_begin = static_cast<int>(r.nonneg(j, path, "row_begin"));
   p.row_end = static_cast<int>(r.nonneg(j, path, "row_end"));
+}
+
+// The band both mesh renders' shard parts share: its rows (checked), the image and, when
+// compared, the compared image and per-pixel errors. Returns the band's pixel count.
+template <class Part>
+std::size_t read_band(const Reader& r, const nlohmann::json& j, const std::string& path, Part& p) {
+  read_rows(r, j, path, p);
   if (p.width > 65536 || p.height > 65536 || static_cast<long long>(p.width) * p.height > (1LL << 26) ||
       p.row_end > p.height || p.row_begin > p.row_end)
     r.fail(path, "needs width, height <= 65536, at most 2^26 pixels and 0 <= row_begin <= row_end <= height");
@@ -385,10 +392,7 @@ VolumeComparisonPart volume_comparison_part_from_json(const nlohmann::json& j, c
                                                       const std::string& path) {
   const Reader r{source};
   VolumeComparisonPart p;
-  p.width = static_cast<int>(r.nonneg(j, path, "width"));
-  p.height = static_cast<int>(r.nonneg(j, path, "height"));
-  p.row_begin = static_cast<int>(r.nonneg(j, path, "row_begin"));
-  p.row_end = static_cast<int>(r.nonneg(j, path, "row_end"));
+  read_rows(r, j, path, p);
   if (p.width < 1 || p.height < 1 || p.width > 4096 || p.height > 4096 || p.row_end > p.height ||
       p.row_begin > p.row_end)
     r.fail(path, "needs 1 <= width, height <= 4096 and 0 <= row_begin <= row_end <= height");

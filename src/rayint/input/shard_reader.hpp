@@ -15,21 +15,20 @@
 
 namespace rayint {
 
-MonteCarloPart monte_carlo_part_from_json(const nlohmann::json& j, const std::string& source,
-                                          const std::string& path);
-StressPartial stress_partial_from_json(const nlohmann::json& j, const std::string& source,
-                                       const std::string& path);
-MeshRenderPart mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
-                                          const std::string& path);
-CellMeshRenderPart cell_mesh_render_part_from_json(const nlohmann::json& j, const std::string& source,
-                                                   const std::string& path);
-SceneRenderPart scene_render_part_from_json(const nlohmann::json& j, const std::string& source,
-                                            const std::string& path);
-SweepPart sweep_part_from_json(const nlohmann::json& j, const std::string& source,
-                               const std::string& path);
-VolumeComparisonPart volume_comparison_part_from_json(const nlohmann::json& j, const std::string& source,
-                                                      const std::string& path);
-CellsSamples cells_samples_from_json(const nlohmann::json& j, const std::string& source,
-                                     const std::string& path);
+// A shard part's reader: `j` the part's data, `source` the shard file (named in messages),
+// `path` the field path of `j` in it ("data"). Every part type has one; cli/shard.hpp
+// merged_parts takes it.
+template <class Part>
+using PartReader = Part(const nlohmann::json& j, const std::string& source,
+                        const std::string& path);
+
+PartReader<MonteCarloPart> monte_carlo_part_from_json;
+PartReader<StressPartial> stress_partial_from_json;
+PartReader<MeshRenderPart> mesh_render_part_from_json;
+PartReader<CellMeshRenderPart> cell_mesh_render_part_from_json;
+PartReader<SceneRenderPart> scene_render_part_from_json;
+PartReader<SweepPart> sweep_part_from_json;
+PartReader<VolumeComparisonPart> volume_comparison_part_from_json;
+PartReader<CellsSamples> cells_samples_from_json;
 
 }  // namespace rayint

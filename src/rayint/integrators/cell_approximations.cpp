@@ -34,7 +34,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rayint/integrators/factories.hpp"
 #include "rayint/model/pieces.hpp"
 
 namespace rayint {
@@ -122,19 +121,6 @@ RayResult CellIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) 
     if (rule_ == CellRule::eq8) diag->count("alpha_clamped", clamped);
   }
   return r;
-}
-
-std::unique_ptr<RayIntegrator> make_eq5(const MethodSpec&, const TransferFunctions& tf) {
-  return std::make_unique<CellIntegrator>(tf, CellRule::eq5);
-}
-std::unique_ptr<RayIntegrator> make_eq6(const MethodSpec&, const TransferFunctions& tf) {
-  return std::make_unique<CellIntegrator>(tf, CellRule::eq6);
-}
-std::unique_ptr<RayIntegrator> make_eq7(const MethodSpec&, const TransferFunctions& tf) {
-  return std::make_unique<CellIntegrator>(tf, CellRule::eq7);
-}
-std::unique_ptr<RayIntegrator> make_eq8(const MethodSpec&, const TransferFunctions& tf) {
-  return std::make_unique<CellIntegrator>(tf, CellRule::eq8);
 }
 
 }  // namespace rayint

@@ -1,10 +1,12 @@
 #pragma once
-// Factories of the methods other than exact/paper; each is defined in the file named after it.
+// Factories of the methods other than exact/paper; each is defined in the file named after it
+// (the cell rules' here).
 #include <cstddef>
 #include <initializer_list>
 #include <memory>
 #include <string>
 
+#include "rayint/integrators/cell_approximations.hpp"
 #include "rayint/integrators/integrator.hpp"
 
 namespace rayint {
@@ -17,10 +19,11 @@ std::size_t choice_of(const MethodSpec& spec, const std::string& key, std::initi
 std::unique_ptr<RayIntegrator> make_ode(const MethodSpec&, const TransferFunctions&);        // ode.cpp
 std::unique_ptr<RayIntegrator> make_rk4(const MethodSpec&, const TransferFunctions&);        // rk4.cpp
 std::unique_ptr<RayIntegrator> make_riemann(const MethodSpec&, const TransferFunctions&);    // riemann.cpp
-std::unique_ptr<RayIntegrator> make_eq5(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
-std::unique_ptr<RayIntegrator> make_eq6(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
-std::unique_ptr<RayIntegrator> make_eq7(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
-std::unique_ptr<RayIntegrator> make_eq8(const MethodSpec&, const TransferFunctions&);        // cell_approximations.cpp
+// eq5, eq6, eq7, eq8: the one CellIntegrator (cell_approximations.hpp), its rule the method's.
+template <CellRule rule>
+std::unique_ptr<RayIntegrator> make_cell_rule(const MethodSpec&, const TransferFunctions& tf) {
+  return std::make_unique<CellIntegrator>(tf, rule);
+}
 std::unique_ptr<RayIntegrator> make_particle(const MethodSpec&, const TransferFunctions&);   // particle.cpp
 std::unique_ptr<RayIntegrator> make_preintegrated(const MethodSpec&, const TransferFunctions&);  // preintegrated.cpp
 std::unique_ptr<RayIntegrator> make_psi_table(const MethodSpec&, const TransferFunctions&);  // psi_table.cpp

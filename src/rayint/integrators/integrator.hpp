@@ -58,7 +58,7 @@ class RayIntegrator {
     return integrate_many_segments(rays, n, out, pieces);
   }
   // True for the methods that evaluate the scalar along a segment where they need it (sampling
-  // methods: riemann, nerf, rk4) and so take quadratic segments as they are.
+  // methods: riemann, nerf, rk4; SamplingIntegrator below) and so take quadratic segments as they are.
   virtual bool takes_quadratic_segments() const { return false; }
 
   static constexpr const char* kLinearSegmentsOnly =
@@ -83,6 +83,17 @@ class PieceIntegrator : public RayIntegrator {
 
  protected:
   PieceSplitter splitter_;
+};
+
+// A sampling method (riemann, rk4, nerf): evaluates the transfer functions at the scalar of the
+// points where it samples a segment, so it takes quadratic chords (model/ray.hpp) as they are.
+class SamplingIntegrator : public RayIntegrator {
+ public:
+  bool takes_quadratic_segments() const final { return true; }
+
+ protected:
+  explicit SamplingIntegrator(const TransferFunctions& tf) : tf_(tf) {}
+  const TransferFunctions& tf_;
 };
 
 // "name" or "name:key=value:key=value", e.g. "riemann:n=64", "ode:rtol=1e-8".

@@ -92,7 +92,7 @@ NerfOptions pl_nerf_options(const MethodSpec& spec) {
 
 NerfIntegrator::NerfIntegrator(const TransferFunctions& tf, const NerfOptions& options,
                                bool piecewise_linear)
-    : tf_(tf), opt_(options), linear_(piecewise_linear) {}
+    : SamplingIntegrator(tf), opt_(options), linear_(piecewise_linear) {}
 
 RayResult NerfIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   const int n = opt_.n;

@@ -71,15 +71,12 @@ inline constexpr double kNerfLastDelta = 1e10;
 NerfOptions nerf_options(const MethodSpec& spec);
 NerfOptions pl_nerf_options(const MethodSpec& spec);
 
-class NerfIntegrator final : public RayIntegrator {
+class NerfIntegrator final : public SamplingIntegrator {
  public:
   NerfIntegrator(const TransferFunctions& tf, const NerfOptions& options, bool piecewise_linear);
   RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
-  // Samples the scalar where it needs it: quadratic chords (model/ray.hpp) are sampled as they are.
-  bool takes_quadratic_segments() const override { return true; }
 
  private:
-  const TransferFunctions& tf_;
   NerfOptions opt_;
   bool linear_;  // pl_nerf
 };

@@ -178,7 +178,7 @@ RiemannOptions riemann_options(const MethodSpec& spec) {
 }
 
 RiemannIntegrator::RiemannIntegrator(const TransferFunctions& tf, const RiemannOptions& options)
-    : tf_(tf), opt_(options) {}
+    : SamplingIntegrator(tf), opt_(options) {}
 
 RayResult RiemannIntegrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   RayResult r;

@@ -57,15 +57,12 @@ inline StepOpacity step_opacity(double x) {
 // throws std::runtime_error instead of running for minutes.
 inline constexpr double kRiemannSampleBudget = 67108864.0;
 
-class RiemannIntegrator final : public RayIntegrator {
+class RiemannIntegrator final : public SamplingIntegrator {
  public:
   RiemannIntegrator(const TransferFunctions& tf, const RiemannOptions& options);
   RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
-  // Samples the scalar where it needs it: quadratic chords (model/ray.hpp) are sampled as they are.
-  bool takes_quadratic_segments() const override { return true; }
 
  private:
-  const TransferFunctions& tf_;
   RiemannOptions opt_;
 };
 

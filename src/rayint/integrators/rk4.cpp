@@ -35,7 +35,7 @@ using State = eq3::State;
 }  // namespace
 
 Rk4Integrator::Rk4Integrator(const TransferFunctions& tf, int steps_per_segment)
-    : tf_(tf), n_(steps_per_segment) {}
+    : SamplingIntegrator(tf), n_(steps_per_segment) {}
 
 RayResult Rk4Integrator::integrate_segments(const Ray& ray, Diagnostics* diag) const {
   odeint::runge_kutta4<State> stepper;

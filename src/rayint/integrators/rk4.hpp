@@ -8,15 +8,12 @@ namespace rayint {
 // At most this many steps per ray (2^24, ~2 s); beyond it integrate() throws std::runtime_error.
 inline constexpr double kRk4StepBudget = 16777216.0;
 
-class Rk4Integrator final : public RayIntegrator {
+class Rk4Integrator final : public SamplingIntegrator {
  public:
   Rk4Integrator(const TransferFunctions& tf, int steps_per_segment);
   RayResult integrate_segments(const Ray& ray, Diagnostics* diag) const override;
-  // Samples the scalar where it needs it: quadratic chords (model/ray.hpp) are sampled as they are.
-  bool takes_quadratic_segments() const override { return true; }
 
  private:
-  const TransferFunctions& tf_;
   int n_;
 };
 

@@ -12,22 +12,18 @@ std::string cells_table(const CellsReport& r) {
                     std::to_string(o.count) + " cells per type x " +
                     std::to_string(o.rays_per_cell) + " rays; error = max relative error of the "
                     "intensity over r, g, b, against the 50-digit polynomial reference\n\n";
-  char line[256];
-  std::snprintf(line, sizeof line, "%-6s %-10s %10s %10s %10s %10s %10s %10s\n", "cell",
-                "method", "max rel", "p99 rel", "med rel", "segments", "us/ray", "");
-  out += line;
+  appendf(out, "%-6s %-10s %10s %10s %10s %10s %10s %10s\n", "cell", "method", "max rel", "p99 rel",
+          "med rel", "segments", "us/ray", "");
   for (const auto& c : r.cells) {
     for (const auto& l : c.levels) {
-      std::snprintf(line, sizeof line, "%-6s %-10s %10s %10s %10s %10.1f %10.1f\n", c.type.c_str(),
-                    ("tets n=" + std::to_string(l.level)).c_str(), g3(l.rel.max).c_str(),
-                    g3(l.rel.p99).c_str(), g3(l.rel.median).c_str(), l.segments_per_ray,
-                    l.decompose_us_per_ray + l.exact_us_per_ray);
-      out += line;
+      appendf(out, "%-6s %-10s %10s %10s %10s %10.1f %10.1f\n", c.type.c_str(),
+              ("tets n=" + std::to_string(l.level)).c_str(), g3(l.rel.max).c_str(),
+              g3(l.rel.p99).c_str(), g3(l.rel.median).c_str(), l.segments_per_ray,
+              l.decompose_us_per_ray + l.exact_us_per_ray);
     }
-    std::snprintf(line, sizeof line, "%-6s %-10s %10s %10s %10s %10.1f %10.1f\n", c.type.c_str(),
-                  "ode", g3(c.ode_rel.max).c_str(), g3(c.ode_rel.p99).c_str(),
-                  g3(c.ode_rel.median).c_str(), c.ode_steps_per_ray, c.ode_us_per_ray);
-    out += line;
+    appendf(out, "%-6s %-10s %10s %10s %10s %10.1f %10.1f\n", c.type.c_str(), "ode",
+            g3(c.ode_rel.max).c_str(), g3(c.ode_rel.p99).c_str(), g3(c.ode_rel.median).c_str(),
+            c.ode_steps_per_ray, c.ode_us_per_ray);
     std::string steps;
     for (double s : c.order_steps) steps += (steps.empty() ? "" : ", ") + g3(s);
     out += "       order of the tets' error: median fit " + g3(c.order_median) + ", max fit " +
@@ -36,16 +32,13 @@ std::string cells_table(const CellsReport& r) {
            " pieces/ray, bound <= " + g3(c.max_reference_bound_rel) + "\n";
   }
   out += "\nvoxel grids: Kuhn tetrahedra + exact against the trilinear interpolant (reference)\n";
-  std::snprintf(line, sizeof line, "%-8s %8s %6s %10s %10s %10s %10s %10s %12s\n", "field",
-                "points", "rays", "max rel", "p99 rel", "med rel", "segments", "us/ray",
-                "ref ms/ray");
-  out += line;
+  appendf(out, "%-8s %8s %6s %10s %10s %10s %10s %10s %12s\n", "field", "points", "rays", "max rel",
+          "p99 rel", "med rel", "segments", "us/ray", "ref ms/ray");
   for (const auto& v : r.voxels) {
-    std::snprintf(line, sizeof line, "%-8s %8s %6d %10s %10s %10s %10.1f %10.1f %12.1f\n",
-                  v.field.c_str(), (std::to_string(v.points_per_axis) + "^3").c_str(), v.samples,
-                  g3(v.rel.max).c_str(), g3(v.rel.p99).c_str(), g3(v.rel.median).c_str(),
-                  v.segments_per_ray, v.exact_us_per_ray, v.reference_ms_per_ray);
-    out += line;
+    appendf(out, "%-8s %8s %6d %10s %10s %10s %10.1f %10.1f %12.1f\n", v.field.c_str(),
+            (std::to_string(v.points_per_axis) + "^3").c_str(), v.samples, g3(v.rel.max).c_str(),
+            g3(v.rel.p99).c_str(), g3(v.rel.median).c_str(), v.segments_per_ray, v.exact_us_per_ray,
+            v.reference_ms_per_ray);
   }
   out += "\n(ode: segments column = accepted steps per ray; us/ray: thread CPU time per ray, "
          "tets including the decomposition; " + std::to_string(o.threads) + " thread(s), " +

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rayint/report/text_format.hpp"
+
 namespace rayint {
 
 // One line per case and method. The errors and time are over the rays on which the method did
@@ -12,10 +14,8 @@ namespace rayint {
 std::string evaluation_table(const std::vector<CaseEvaluation>& cases) {
   std::string out;
   std::string failures;
-  char line[1024];
-  std::snprintf(line, sizeof line, "%-34s %-22s %5s %6s %11s %11s %11s %12s  %s\n", "case", "method",
-                "rays", "failed", "max rel", "max ulp", "ref rel est", "time/ray", "branches");
-  out += line;
+  appendf(out, "%-34s %-22s %5s %6s %11s %11s %11s %12s  %s\n", "case", "method", "rays", "failed",
+          "max rel", "max ulp", "ref rel est", "time/ray", "branches");
   out += std::string(137, '-') + "\n";
   const auto number = [](double x, const char* format) {
     char buf[32];
@@ -41,12 +41,11 @@ std::string evaluation_table(const std::vector<CaseEvaluation>& cases) {
       for (const auto& [k, v] : merged.branches)
         branches += (branches.empty() ? "" : " ") + k + "=" + std::to_string(v);
       const std::string time = number(s.mean_seconds_per_ray * 1e6, "%9.3g") + " us";
-      std::snprintf(line, sizeof line, "%-34.34s %-22.22s %5zu %6zu %11s %11s %11s %12s  %s%s\n",
-                    c.name.c_str(), s.method.c_str(), s.rays, s.failed,
-                    number(s.max_rel_error, "%.3g").c_str(), number(s.max_ulp_error, "%.3g").c_str(),
-                    c.with_reference ? number(ref_rel, "%.1e").c_str() : "skipped", time.c_str(),
-                    s.failed > 0 ? (branches.empty() ? "FAILED" : "FAILED ") : "", branches.c_str());
-      out += line;
+      appendf(out, "%-34.34s %-22.22s %5zu %6zu %11s %11s %11s %12s  %s%s\n", c.name.c_str(),
+              s.method.c_str(), s.rays, s.failed, number(s.max_rel_error, "%.3g").c_str(),
+              number(s.max_ulp_error, "%.3g").c_str(),
+              c.with_reference ? number(ref_rel, "%.1e").c_str() : "skipped", time.c_str(),
+              s.failed > 0 ? (branches.empty() ? "FAILED" : "FAILED ") : "", branches.c_str());
       if (s.failed > 0)
         failures += "FAILED " + c.name + " " + s.method + " on " + std::to_string(s.failed) +
                     " of " + std::to_string(s.rays) + " rays; first: " + s.first_failure + "\n";

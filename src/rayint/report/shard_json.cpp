@@ -29,12 +29,21 @@ nlohmann::json counters(const Stats& s, const std::array<Counter<Stats>, N>& lis
   return a;
 }
 
+// The rows [row_begin, row_end) of a width x height image that a part holds: the mesh renders'
+// bands and the volume comparison's (input/shard_reader.cpp read_rows reads them back).
+template <class Part>
+nlohmann::json rows_json(const Part& p) {
+  return {
+      {"width", p.width}, {"height", p.height}, {"row_begin", p.row_begin}, {"row_end", p.row_end}};
+}
+
 // The band both mesh renders' parts share (input/shard_reader.cpp read_band reads it back): its
-// size and rows, the image and, when compared, the compared image and per-pixel errors.
+// rows, the image and, when compared, the compared image and per-pixel errors.
 template <class Part>
 nlohmann::json band_json(const Part& p) {
-  nlohmann::json j = {{"width", p.width},       {"height", p.height},   {"row_begin", p.row_begin},
-                      {"row_end", p.row_end},   {"compared", p.compared}, {"image", pixels(p.image)}};
+  nlohmann::json j = rows_json(p);
+  j["compared"] = p.compared;
+  j["image"] = pixels(p.image);
   if (p.compared) {
     j["compared_image"] = pixels(p.compared_image);
     j["rel_error"] = numbers(p.rel_error);
@@ -215,13 +224,11 @@ nlohmann::json to_json(const VolumeComparisonPart& part) {
                     {"gather_seconds", exact_json(r.gather_seconds)},
                     {"image", numbers(r.image)}});
   }
-  return {{"width", part.width},
-          {"height", part.height},
-          {"row_begin", part.row_begin},
-          {"row_end", part.row_end},
-          {"reference_all", estimate(part.reference_all)},
-          {"reference_single", estimate(part.reference_single)},
-          {"runs", runs}};
+  nlohmann::json j = rows_json(part);
+  j["reference_all"] = estimate(part.reference_all);
+  j["reference_single"] = estimate(part.reference_single);
+  j["runs"] = runs;
+  return j;
 }
 
 nlohmann::json to_json(const CellsSamples& part) {

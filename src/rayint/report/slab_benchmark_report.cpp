@@ -9,38 +9,31 @@ namespace rayint {
 
 std::string slab_benchmark_table(const BenchmarkReport& r, const BenchmarkRunOptions& o) {
   std::string out;
-  char line[512];
-  std::snprintf(line, sizeof line, "%-4s %-30s %12s %8s | %12s %10s %4s | %13s %8s %10s | %12s %10s %25s %10s %3s %4s  %s\n",
-                "id", "value", "published", "tol", "doubling", "rel dev", "ok", "integral eq", "est err",
-                "rel dev", "monte carlo",
-                "rel dev", "95% interval", "4 SE/pub", "in", "ok", "verdict");
-  out += line;
+  appendf(out,
+          "%-4s %-30s %12s %8s | %12s %10s %4s | %13s %8s %10s | %12s %10s %25s %10s %3s %4s  %s\n",
+          "id", "value", "published", "tol", "doubling", "rel dev", "ok", "integral eq", "est err",
+          "rel dev", "monte carlo", "rel dev", "95% interval", "4 SE/pub", "in", "ok", "verdict");
   for (const auto& row : r.rows) {
-    std::snprintf(line, sizeof line, "%-4s %-30s %12.6g %8.0e | ", row.problem_id.c_str(),
-                  row.value.label().c_str(), row.value.published, row.value.tolerance_rel);
-    out += line;
+    appendf(out, "%-4s %-30s %12.6g %8.0e | ", row.problem_id.c_str(), row.value.label().c_str(),
+            row.value.published, row.value.tolerance_rel);
     if (row.has_doubling)
-      std::snprintf(line, sizeof line, "%12.7g %10.2e %4s | ", row.doubling, row.doubling_rel_dev,
-                    row.doubling_pass ? "yes" : "NO");
+      appendf(out, "%12.7g %10.2e %4s | ", row.doubling, row.doubling_rel_dev,
+              row.doubling_pass ? "yes" : "NO");
     else
-      std::snprintf(line, sizeof line, "%12s %10s %4s | ", "-", "-", "-");
-    out += line;
+      appendf(out, "%12s %10s %4s | ", "-", "-", "-");
     if (row.has_integral_equation)
-      std::snprintf(line, sizeof line, "%13.10g %8.1e %10.2e | ", row.integral_equation, row.ie_error,
-                    row.ie_rel_dev);
+      appendf(out, "%13.10g %8.1e %10.2e | ", row.integral_equation, row.ie_error, row.ie_rel_dev);
     else
-      std::snprintf(line, sizeof line, "%13s %8s %10s | ", "-", "-", "-");
-    out += line;
+      appendf(out, "%13s %8s %10s | ", "-", "-", "-");
     if (row.has_monte_carlo) {
       const Estimate& e = row.monte_carlo;
-      std::snprintf(line, sizeof line, "%12.7g %10.2e [%11.6g,%11.6g] %10.2e %3s %4s  %s\n", e.mean,
-                    row.mc_rel_dev, e.lo95(), e.hi95(),
-                    row.value.published != 0 ? 4 * e.std_error / row.value.published : 0.0,
-                    row.mc_in_95 ? "yes" : "no", row.mc_pass ? "yes" : "NO", row.verdict_name());
+      appendf(out, "%12.7g %10.2e [%11.6g,%11.6g] %10.2e %3s %4s  %s\n", e.mean, row.mc_rel_dev,
+              e.lo95(), e.hi95(),
+              row.value.published != 0 ? 4 * e.std_error / row.value.published : 0.0,
+              row.mc_in_95 ? "yes" : "no", row.mc_pass ? "yes" : "NO", row.verdict_name());
     } else {
-      std::snprintf(line, sizeof line, "%12s  %s\n", "-", row.verdict_name());
+      appendf(out, "%12s  %s\n", "-", row.verdict_name());
     }
-    out += line;
   }
   const BenchmarkTotals t = benchmark_totals(r);
   if (o.doubling)

@@ -52,11 +52,9 @@ std::string stress_table(const StressReport& r) {
   for (const auto& m : r.methods) methods += (methods.empty() ? "" : ",") + m;
   std::string out = "rayint stress: seed " + std::to_string(r.seed) + ", " +
                     std::to_string(r.count) + " pieces requested, methods " + methods + "\n";
-  char line[512];
-  std::snprintf(line, sizeof line, "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7s %6s %6s  %s\n",
-                "regime", "method", "samples", "pieces", "max rel", "p99 rel", "med rel",
-                "max ulp", "p99 ulp", "med ulp", "nonfin", "failed", "uflow", "branches");
-  out += line;
+  appendf(out, "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7s %6s %6s  %s\n", "regime", "method",
+          "samples", "pieces", "max rel", "p99 rel", "med rel", "max ulp", "p99 ulp", "med ulp",
+          "nonfin", "failed", "uflow", "branches");
   out += std::string(157, '-') + "\n";
   long samples = 0, pieces = 0;
   for (const auto& reg : r.regimes) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rayint/report/text_format.hpp"
+
 namespace rayint {
 namespace {
 
@@ -63,24 +65,20 @@ std::string sweep_progress_line(const SweepProgress& p) {
 
 std::string sweep_targets_table(const SweepResult& r) {
   std::string out;
-  char line[256];
-  std::snprintf(line, sizeof line, "exact: %s per ray (mean over %zu rays)\n",
-                format_seconds(r.exact_seconds_per_ray).c_str(), r.rays);
-  out += line;
-  std::snprintf(line, sizeof line, "%-8s %-14s %-28s %12s %10s\n", "max err", "method",
-                "cheapest setting", "time/ray", "x exact");
-  out += line;
+  appendf(out, "exact: %s per ray (mean over %zu rays)\n",
+          format_seconds(r.exact_seconds_per_ray).c_str(), r.rays);
+  appendf(out, "%-8s %-14s %-28s %12s %10s\n", "max err", "method", "cheapest setting", "time/ray",
+          "x exact");
   for (const auto& t : r.targets) {
     if (t.statistic != ErrorStatistic::max) continue;
     char target[16];
     std::snprintf(target, sizeof target, "%.0e", t.target);
     if (t.reached)
-      std::snprintf(line, sizeof line, "%-8s %-14s %-28s %12s %10.3g\n", target, t.method.c_str(),
-                    t.label.c_str(), format_seconds(t.seconds_per_ray).c_str(), t.cost_vs_exact);
+      appendf(out, "%-8s %-14s %-28s %12s %10.3g\n", target, t.method.c_str(), t.label.c_str(),
+              format_seconds(t.seconds_per_ray).c_str(), t.cost_vs_exact);
     else
-      std::snprintf(line, sizeof line, "%-8s %-14s %-28s\n", target, t.method.c_str(),
-                    t.truncated ? "not reached (sweep truncated)" : "not reached");
-    out += line;
+      appendf(out, "%-8s %-14s %-28s\n", target, t.method.c_str(),
+              t.truncated ? "not reached (sweep truncated)" : "not reached");
   }
   if (r.truncated) out += "truncated: " + r.truncation + "\n";
   // Settings that failed on some rays (threw, e.g. particle on a case with several transfer
@@ -104,19 +102,16 @@ std::string sweep_targets_table(const SweepResult& r) {
 
 std::string own_split_table(const OwnSplitRun& run) {
   std::string out;
-  char line[400];
-  std::snprintf(line, sizeof line, "%-24s %8s %8s %12s %12s %9s %11s\n", "own vs split", "cells", "tets",
-                "own", "split", "own/split", "max |diff|");
-  out += line;
+  appendf(out, "%-24s %8s %8s %12s %12s %9s %11s\n", "own vs split", "cells", "tets", "own",
+          "split", "own/split", "max |diff|");
   for (const OwnSplitCase& c : run.cases) {
     const std::string tets = c.split_ran ? std::to_string(c.tets) : "-";
     const std::string split = c.split_ran ? format_seconds(c.split_seconds) : "-";
     char ratio[32] = "-";
     if (std::isfinite(c.ratio())) std::snprintf(ratio, sizeof ratio, "%.2f", c.ratio());
     const std::string diff = c.compared_rays > 0 ? format_error(c.max_abs_difference) : "-";
-    std::snprintf(line, sizeof line, "%-24s %8ld %8s %12s %12s %9s %11s\n", c.name.c_str(), c.cell_total, tets.c_str(),
-                  format_seconds(c.own_seconds).c_str(), split.c_str(), ratio, diff.c_str());
-    out += line;
+    appendf(out, "%-24s %8ld %8s %12s %12s %9s %11s\n", c.name.c_str(), c.cell_total, tets.c_str(),
+            format_seconds(c.own_seconds).c_str(), split.c_str(), ratio, diff.c_str());
   }
   out += "(" + std::to_string(run.repetitions) + " repetitions, median CPU time of every ray once, single thread)\n";
   for (const OwnSplitCase& c : run.cases) {
