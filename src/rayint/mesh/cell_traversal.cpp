@@ -49,6 +49,17 @@ struct CellTraversal::Walk {
   mutable std::vector<int> candidate_faces;
   mutable std::vector<std::int32_t> tried, points;
   std::optional<RayFrame> frame;  // the ray's frame for the bilinear faces (set with o, d)
+  // The last kFaceCacheSize bilinear faces' hits on this ray (face_hits): a face shared by two
+  // cells is solved once, though both cells' chords read it (the walk's exit face is the next
+  // cell's entry face); the same numbers, bit for bit, as solving it again.
+  struct CachedFace {
+    std::int32_t face = -1;
+    int count = 0;
+    double t[2] = {0.0, 0.0};
+  };
+  static constexpr std::size_t kFaceCacheSize = 8;
+  mutable std::array<CachedFace, kFaceCacheSize> face_cache{};
+  mutable std::size_t face_cache_next = 0;
   ViewRay ray() const { return ViewRay{o, d}; }
   double slack(double t) const { return kCellEntrySlack * (self->diagonal_ + std::fabs(t)); }
 };
@@ -285,8 +296,16 @@ double plane_hit(const Vec3& normal, double offset, const Vec3& o, const Vec3& d
 int CellTraversal::face_hits(std::size_t i, const Walk& w, double* t) const {
   const FaceGeometry& g = faces_[i];
   if (!g.planar) {
+    for (const Walk::CachedFace& cached : w.face_cache)
+      if (cached.face == static_cast<std::int32_t>(i)) {
+        t[0] = cached.t[0], t[1] = cached.t[1];
+        return cached.count;
+      }
     const FaceHits h = intersect_face(g.nodes, g.count, w.ray(), *w.frame);
-    for (int k = 0; k < h.count; ++k) t[k] = h.hit[static_cast<std::size_t>(k)].t;
+    Walk::CachedFace& slot = w.face_cache[w.face_cache_next];
+    w.face_cache_next = (w.face_cache_next + 1) % Walk::kFaceCacheSize;
+    slot.face = static_cast<std::int32_t>(i), slot.count = h.count;
+    for (int k = 0; k < h.count; ++k) t[k] = slot.t[k] = h.hit[static_cast<std::size_t>(k)].t;
     return h.count;
   }
   double den;
@@ -550,6 +569,19 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
     box_max_ = box_max_.cwiseMax(p);
   }
   diagonal_ = (box_max_ - box_min_).norm();
+  // Each linear cell's corner box (next_cell's star filter), padded like the first-hit boxes
+  // (1e-7 of the diagonal: ~1e5 x the face hits' slack on a cell of 1e-2 of the mesh).
+  cell_box_pad_ = 1e-7 * diagonal_;
+  cell_box_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    const LinearCell& cell = cells_[c];
+    Vec3 lo = cell.x[0], hi = cell.x[0];
+    for (int k = 1; k < linear_node_count(cell.type); ++k) {
+      lo = lo.cwiseMin(cell.x[static_cast<std::size_t>(k)]);
+      hi = hi.cwiseMax(cell.x[static_cast<std::size_t>(k)]);
+    }
+    cell_box_[c] = {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
+  }
   first_hit_ = std::make_unique<CellBoundaryFirstHit>(*this);
 }
 
@@ -632,9 +664,25 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   tried.push_back(static_cast<std::int32_t>(from));
+  // A linear cell that holds t has a point of its chord within slack(t) of x(t) (rule 2), and its
+  // chord lies in its corners' convex hull up to the face hits' slack (kFaceSlack of the face) and
+  // rounding, far inside cell_box_pad_: a candidate whose padded corner box misses x(t) by more
+  // than slack(t) cannot hold t and is not solved (on a mesh's boundary exit every cell around the
+  // exit face's corners was solved before; `rayint bench` twisted12: ~6 per exit).
+  const Vec3 x = w.o + t * w.d;
+  const double reach = cell_box_pad_ + w.slack(t);
+  const auto may_hold = [&](std::int32_t c) {
+    if (quadratic_cell(static_cast<std::size_t>(c)) != nullptr) return true;
+    const std::array<double, 6>& b = cell_box_[static_cast<std::size_t>(c)];
+    for (int k = 0; k < 3; ++k)
+      if (!(x[k] >= b[static_cast<std::size_t>(k)] - reach && x[k] <= b[static_cast<std::size_t>(k + 3)] + reach)) return false;
+    return true;
+  };
   for (std::int32_t p : points)
-    for (std::int32_t i = point_cells_offsets_[static_cast<std::size_t>(p)]; i < point_cells_offsets_[static_cast<std::size_t>(p) + 1]; ++i)
-      consider_once(point_cells_[static_cast<std::size_t>(i)]);
+    for (std::int32_t i = point_cells_offsets_[static_cast<std::size_t>(p)]; i < point_cells_offsets_[static_cast<std::size_t>(p) + 1]; ++i) {
+      const std::int32_t c = point_cells_[static_cast<std::size_t>(i)];
+      if (may_hold(c)) consider_once(c);
+    }
   if (found) {
     ++stats.star_steps;
     t_far = best;
