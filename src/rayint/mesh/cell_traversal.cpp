@@ -49,17 +49,6 @@ struct CellTraversal::Walk {
   mutable std::vector<int> candidate_faces;
   mutable std::vector<std::int32_t> tried, points;
   std::optional<RayFrame> frame;  // the ray's frame for the bilinear faces (set with o, d)
-  // The last kFaceCacheSize bilinear faces' hits on this ray (face_hits): a face shared by two
-  // cells is solved once, though both cells' chords read it (the walk's exit face is the next
-  // cell's entry face); the same numbers, bit for bit, as solving it again.
-  struct CachedFace {
-    std::int32_t face = -1;
-    int count = 0;
-    double t[2] = {0.0, 0.0};
-  };
-  static constexpr std::size_t kFaceCacheSize = 8;
-  mutable std::array<CachedFace, kFaceCacheSize> face_cache{};
-  mutable std::size_t face_cache_next = 0;
   ViewRay ray() const { return ViewRay{o, d}; }
   double slack(double t) const { return kCellEntrySlack * (self->diagonal_ + std::fabs(t)); }
 };
@@ -296,16 +285,8 @@ double plane_hit(const Vec3& normal, double offset, const Vec3& o, const Vec3& d
 int CellTraversal::face_hits(std::size_t i, const Walk& w, double* t) const {
   const FaceGeometry& g = faces_[i];
   if (!g.planar) {
-    for (const Walk::CachedFace& cached : w.face_cache)
-      if (cached.face == static_cast<std::int32_t>(i)) {
-        t[0] = cached.t[0], t[1] = cached.t[1];
-        return cached.count;
-      }
     const FaceHits h = intersect_face(g.nodes, g.count, w.ray(), *w.frame);
-    Walk::CachedFace& slot = w.face_cache[w.face_cache_next];
-    w.face_cache_next = (w.face_cache_next + 1) % Walk::kFaceCacheSize;
-    slot.face = static_cast<std::int32_t>(i), slot.count = h.count;
-    for (int k = 0; k < h.count; ++k) t[k] = slot.t[k] = h.hit[static_cast<std::size_t>(k)].t;
+    for (int k = 0; k < h.count; ++k) t[k] = h.hit[static_cast<std::size_t>(k)].t;
     return h.count;
   }
   double den;
@@ -569,9 +550,11 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
     box_max_ = box_max_.cwiseMax(p);
   }
   diagonal_ = (box_max_ - box_min_).norm();
-  // Each linear cell's corner box (next_cell's star filter), padded like the first-hit boxes
-  // (1e-7 of the diagonal: ~1e5 x the face hits' slack on a cell of 1e-2 of the mesh).
-  cell_box_pad_ = 1e-7 * diagonal_;
+  // Each linear cell's corner box (next_cell's star filter), padded by 1e-7 of the diagonal plus
+  // the largest |coordinate|: >= 1e5 x the face hits' reach beyond their face (kFaceSlack 1e-12 of
+  // the face's edges) and >= 1e8 ulps of the coordinates (the rounding of x(t) and of the hits,
+  // also for a mesh far from the origin).
+  cell_box_pad_ = 1e-7 * (diagonal_ + std::max(box_min_.cwiseAbs().maxCoeff(), box_max_.cwiseAbs().maxCoeff()));
   cell_box_.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
     const LinearCell& cell = cells_[c];
