@@ -33,6 +33,9 @@
 //     the chord); when none of them continues the ray beyond t_far (an exit through an edge or a
 //     vertex, into a cell that shares only that edge or vertex), among every cell that shares a
 //     point with those faces; the one whose chord interval holding t_far reaches furthest wins.
+//     (That star search skips a linear cell whose corner box, padded by 1e-7 x (mesh diagonal +
+//     largest |coordinate|), misses the exit point by more than the slack below: its chord lies
+//     in its corners' hull up to the face hits' slack, so it cannot hold t_far.)
 //     A candidate "holds" t when its interval starts at or before t + kCellEntrySlack x the
 //     length scale (mesh diagonal + |t|) and ends beyond t.
 //  3. No cell continues the ray: it has left the mesh. The next entry is the nearest boundary
