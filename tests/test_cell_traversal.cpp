@@ -190,16 +190,23 @@ TEST_CASE("own traversal: rays through shared vertices and along shared edges lo
       ++rays;
     }
   // Diagonals through the interior vertex (0.2, 0.1, 0.3) and the vertex (0.7, 0.1, 0.3).
+  CellTraversalStats stats;
   for (const Vec3& v : {Vec3(0.2, 0.1, 0.3), Vec3(0.7, 0.1, 0.3)}) {
     std::mt19937_64 rng(7);
     for (int i = 0; i < 20; ++i) {
       CellTrace trace;
-      m.trace(ray_through(m, v, rng), trace);
+      m.trace(ray_through(m, v, rng), trace, &stats);
       check_chords_match(trace, brute_force(m, trace));
       ++rays;
     }
   }
   CHECK(rays == 49);
+  // Where no face neighbour continues a ray through the vertex, the next cell is found by the
+  // star search (rule 2; its candidates filtered by their padded corner boxes, cell_traversal.cpp
+  // next_cell), never by a re-entry: the box is convex, so each ray asks the first-hit structure
+  // twice (its entry, and nothing after its exit).
+  CHECK(stats.star_steps > 0);
+  CHECK(stats.first_hit_queries == 2 * 40);
   // Curved faces: the twisted grid's interior vertices and edge midpoints.
   const CellMesh twisted = read_cell_mesh_file(kDir + "cells-twisted.vts");
   const std::vector<Vec3> vertices = shared_points(twisted, 4);

@@ -114,7 +114,8 @@
 // allocation per chord, the factorised cubic), ~3.0x after (reports/cells/bench_own29box_measurements.txt).
 // On the twisted12 mesh 12.4-12.5x before hexahedra took f's own Taylor series (no samples) and
 // the classification its Newton on the multilinear form, 6.7-7.5x after (2026-12-05,
-// reports/cells/bench_own29twist_measurements.txt).
+// reports/cells/bench_own29twist_measurements.txt); 6.8-7.1x (own 6 % faster, the walk's star
+// search filtered) on 2026-12-06 (reports/cells/bench_own29fast_measurements.txt).
 #include <vector>
 
 #include "rayint/cells/linear_cells.hpp"

@@ -33,6 +33,9 @@
 //     the chord); when none of them continues the ray beyond t_far (an exit through an edge or a
 //     vertex, into a cell that shares only that edge or vertex), among every cell that shares a
 //     point with those faces; the one whose chord interval holding t_far reaches furthest wins.
+//     (That star search skips a linear cell whose corner box, padded by 1e-7 x (mesh diagonal +
+//     largest |coordinate|), misses the exit point by more than the slack below: its chord lies
+//     in its corners' hull up to the face hits' slack, so it cannot hold t_far.)
 //     A candidate "holds" t when its interval starts at or before t + kCellEntrySlack x the
 //     length scale (mesh diagonal + |t|) and ends beyond t.
 //  3. No cell continues the ray: it has left the mesh. The next entry is the nearest boundary
@@ -228,6 +231,8 @@ class CellTraversal {
   std::vector<std::int32_t> cell_faces_;  // neighbor_offsets_[c] + f: face f of cell c in faces_ (-1: quadratic cell)
   std::vector<std::int8_t> face_out_;     // neighbor_offsets_[c] + f: +1 when the face's normal points out of c, else -1
   std::vector<char> clip_;                // per cell: affine with every face planar: its chord is the planes' clip
+  std::vector<std::array<double, 6>> cell_box_;  // per cell: its corners' box (min xyz, max xyz)
+  double cell_box_pad_ = 0.0;             // next_cell's padding of cell_box_ (cell_traversal.cpp)
   std::size_t face_count_ = 0;
   Vec3 box_min_, box_max_;
   double diagonal_ = 0.0;
