@@ -85,8 +85,8 @@ void PieceSplitter::reset(const TransferFunctions& tf) {
   // upper_bound walked along the sorted breakpoints instead of searched for each.
   at_breakpoint_.resize(m);
   above_breakpoint_.resize(m);
-  for (int f = 0; f < kFunctions; ++f) {  // f: the slot
-    const PiecewiseLinear& fn = function(kSlotFunction[f]);
+  for (int f = 0; f < kFunctions; ++f) {
+    const PiecewiseLinear& fn = function(f);
     const std::vector<double>& x = fn.scalar;
     const std::size_t nx = x.size();
     std::size_t lower = 0, upper = 0;  // lower_bound and upper_bound of s in x
@@ -110,7 +110,7 @@ void PieceSplitter::reset(const TransferFunctions& tf) {
       row.keep[f] = -1;
       if (r % 2 == 1) {  // at breakpoint (r - 1) / 2: the stored value, as operator() returns it
         // (operator() is limit(s, false): at_breakpoint_'s entry, formed above)
-        row.constant[f] = at_breakpoint_[(r - 1) / 2][static_cast<std::size_t>(f)];
+        row.constant[f] = at_breakpoint_[(r - 1) / 2][static_cast<std::size_t>(kSlotFunction[f])];
       } else if (r == 0) {  // below every function's first point
         row.constant[f] = fn.value.front();
       } else if (r == 2 * m) {  // above every function's last point
@@ -200,14 +200,17 @@ template <class V, class M, class Row>
   // then two (rho g, b), without a jump (which end is nearer is unpredictable); a constant is
   // selected over the line. Written in four lanes: one AVX2 instruction in the AVX2 copy of the
   // per-ray append()s below, two SSE2 ones otherwise; the same IEEE operations in every lane.
-  // The values stay in slot order (issue 33, round 13: spreading them into function order and
-  // back took ~20 of the ~150 instructions a segment cost in the grey columns' append).
   static_assert(kFunctions == 6 && kSlotFunction[0] == 0 && kSlotFunction[1] == 3 && kSlotFunction[4] == 1);
-  interpolate_slots<V4, M4>(row, 0, s, v);  // slots 0-3: rho r, kappa r, g, b
+  double grey4[4];  // slots 0-3: rho r, kappa r, g, b
+  interpolate_slots<V4, M4>(row, 0, s, grey4);
+  v[0] = grey4[0];
+  v[3] = grey4[1];
+  v[4] = grey4[2];
+  v[5] = grey4[3];
   if (grey_) {
-    v[4] = v[5] = v[0];
+    v[1] = v[2] = v[0];
   } else {
-    interpolate_slots<V2, M2>(row, 4, s, v + 4);  // slots 4, 5: rho g, b
+    interpolate_slots<V2, M2>(row, 4, s, v + 1);  // slots 4, 5: rho g, b
   }
 }
 
@@ -286,12 +289,7 @@ void PieceSplitter::append(const Segment& seg, std::vector<Piece>& out) const {
   split(
       seg,
       [&out](double length, double s_far, double s_exit, const double* far, const double* exit, std::size_t) {
-        double far_f[kFunctions], exit_f[kFunctions];  // function order, as Piece's constructor takes them
-        for (int f = 0; f < kFunctions; ++f) {
-          far_f[kSlotFunction[f]] = far[f];
-          exit_f[kSlotFunction[f]] = exit[f];
-        }
-        out.emplace_back(length, s_far, s_exit, far_f, exit_f);
+        out.emplace_back(length, s_far, s_exit, far, exit);
       },
       hint);
 }
@@ -314,7 +312,7 @@ template <class Columns>
   return split(
       seg,
       [&out](double length, double, double, const double* far, const double* exit, std::size_t) {
-        out.push_slots(length, far, exit);
+        out.push(length, far, exit);
       },
       hint);
 }
@@ -366,7 +364,7 @@ __attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(con
     count += split(
         seg,
         [&](double length, double s_far, double s_exit, const double* far, const double* exit, std::size_t region) {
-          out.push_slots(length, far, exit);
+          out.push(length, far, exit);
           // Written field by field in place: a PiecePlace formed on the stack and copied was read
           // back in 16 bytes over two 4-byte stores, a failed store forwarding per piece (~5% of
           // a ray gradient).

@@ -72,19 +72,6 @@ struct PieceChannelColumns {
     }
     n_ += kChannels;
   }
-  // The same from values in PieceSplitter's slot order (rho r, kappa r, g, b, rho g, b).
-  void push_slots(double len, const double* far, const double* exit) {
-    if (n_ + kChannels > length.size()) grow();
-    constexpr std::size_t kRho[kChannels] = {0, 4, 5};
-    for (std::size_t c = 0; c < kChannels; ++c) {
-      length[n_ + c] = len;
-      rho_far[n_ + c] = far[kRho[c]];
-      rho_exit[n_ + c] = exit[kRho[c]];
-      kappa_far[n_ + c] = far[1 + c];
-      kappa_exit[n_ + c] = exit[1 + c];
-    }
-    n_ += kChannels;
-  }
 
  private:
   void grow();
@@ -108,18 +95,6 @@ struct GreyPieceColumns {
     for (std::size_t c = 0; c < kChannels; ++c) {
       kappa_far[c][n_] = far[c + kChannels];
       kappa_exit[c][n_] = exit[c + kChannels];
-    }
-    ++n_;
-  }
-  // The same from values in PieceSplitter's slot order (rho r, kappa r, g, b, ...).
-  void push_slots(double len, const double* far, const double* exit) {
-    if (n_ == length.size()) grow();
-    length[n_] = len;
-    rho_far[n_] = far[0];
-    rho_exit[n_] = exit[0];
-    for (std::size_t c = 0; c < kChannels; ++c) {
-      kappa_far[c][n_] = far[1 + c];
-      kappa_exit[c][n_] = exit[1 + c];
     }
     ++n_;
   }
@@ -220,11 +195,11 @@ class PieceSplitter {
     std::size_t j = 0;
   };
   std::size_t region(double s, std::size_t& lt, std::size_t& le, RegionHint& hint) const;
-  // The six functions at s, in the row of its region, as operator() gives them, in slot order
-  // (rho r, kappa r, g, b, rho g, b).
+  // The six functions at s, in the row of its region, as operator() gives them, in function order
+  // (rho r, g, b, kappa r, g, b).
   void eval(const Row& row, double s, double* v) const;
   // The pieces of a segment with finite scalar ends, each handed to
-  // put(length, s_far, s_exit, far values, exit values) (in slot order); both append()s are this. Returns one
+  // put(length, s_far, s_exit, far values, exit values); both append()s are this. Returns one
   // more than the breakpoints strictly inside the scalar range (the count of append() above).
   template <class Put>
   long split(const Segment& segment, Put&& put, RegionHint& hint) const;
@@ -241,8 +216,8 @@ class PieceSplitter {
   std::vector<double> breakpoints_;
   std::array<double, 8> padded_{};  // breakpoints_ then NaN (never counted), when m <= 8
   std::vector<Row> rows_;           // 2m + 1
-  // The six functions at each breakpoint, in slot order (the constants of its row: at a jump the
-  // left value), and their limits from above (at a jump the right value).
+  // The six functions at each breakpoint, in function order (the constants of its row: at a
+  // jump the left value), and their limits from above (at a jump the right value).
   std::vector<std::array<double, kFunctions>> at_breakpoint_;
   std::vector<std::array<double, kFunctions>> above_breakpoint_;
   bool jumps_ = false;              // tf_->has_jump(): segment ends on a breakpoint need limits
