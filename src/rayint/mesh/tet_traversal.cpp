@@ -31,10 +31,9 @@ namespace {
 // at 4e252: Embree's assertion aborted the process; tests/test_mesh_io.cpp).
 constexpr double kMaxCoordinate = 1e18;
 
-// Two faces at a time in the walk: core/lanes.hpp.
-using lanes::load2;
-using lanes::M2;
-using lanes::V2;
+// The four faces at a time in the walk: core/lanes.hpp.
+using lanes::M4;
+using lanes::V4;
 }  // namespace
 
 TetTraversal::TetTraversal(TetMesh mesh, const std::string& source)
@@ -336,7 +335,12 @@ void TetTraversal::walk_end(WalkState& s, TraversalStats* stats) const {
   if (stats) stats->add(s.local);
 }
 
-void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
+// An AVX2 copy, picked at run time where the CPU has it, and the baseline one (issue 33, round 13:
+// the four faces' crossing parameters in one AVX2 instruction each, two SSE2 ones otherwise).
+// AVX2 only, not FMA: no multiply-add can be contracted (-std=c++17 keeps -ffp-contract=off), so
+// both copies compute the same IEEE operations in the same order, as the splitter's copies
+// (model/pieces.cpp).
+__attribute__((target_clones("avx2", "default"))) void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
   if (prim < 0) {
     s.done = true;
     return;
@@ -348,8 +352,8 @@ void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
   const long budget = s.budget;
   double& t = s.t;
   const Vec3 d = w.d;
-  const V2 dx = {d[0], d[0]}, dy = {d[1], d[1]}, dz = {d[2], d[2]};
-  const V2 ox = {w.o[0], w.o[0]}, oy = {w.o[1], w.o[1]}, oz = {w.o[2], w.o[2]};
+  const V4 dx = {d[0], d[0], d[0], d[0]}, dy = {d[1], d[1], d[1], d[1]}, dz = {d[2], d[2], d[2], d[2]};
+  const V4 ox = {w.o[0], w.o[0], w.o[0], w.o[0]}, oy = {w.o[1], w.o[1], w.o[1], w.o[1]}, oz = {w.o[2], w.o[2], w.o[2], w.o[2]};
   auto emit = [&](std::int32_t cell, double t_in, double t_out) {
     double a = std::max(t_in, out.t_eye);
     if (!(t_out > a)) return;
@@ -388,8 +392,9 @@ void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
       // Leave the cell through the face with the smallest crossing parameter (rules 1, 2).
       const auto c = static_cast<std::size_t>(cell);
       const CellRecord& r = cells_[c];
-      // Every face's t_f is computed, two faces per instruction (lanes 0, 1 and 2, 3 of the
-      // record's components), and only those with n.d > 0 are taken. The values, and so the
+      // Every face's t_f is computed, the four faces in the four lanes of the record's
+      // components (one AVX2 instruction, or two SSE2 ones, per operation), and only those with
+      // n.d > 0 are taken. The values, and so the
       // face chosen (the first of the smallest), are those of crossing() in a loop that skips the
       // others: the same IEEE operations in each lane. GCC compiles the scan below into branches;
       // the CPU then predicts the exit face and starts on the next cell before the division is
@@ -408,17 +413,22 @@ void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
       const Vec3& p_first = mesh_.points[static_cast<std::size_t>(r.first_point)];
       const Vec3& p_second = mesh_.points[static_cast<std::size_t>(r.second_point)];
       alignas(16) double nd[4], tf[4];
-      for (int h = 0; h < 4; h += 2) {  // faces h, h + 1
-        const M2 second = {r.k_second == h ? -1 : 0, r.k_second == h + 1 ? -1 : 0};
-        const V2 nx = load2(r.nx.data() + h), ny = load2(r.ny.data() + h), nz = load2(r.nz.data() + h);
-        const V2 ndv = (nx * dx + ny * dy) + nz * dz;  // sign * n.d, exactly
-        const V2 ax = second ? V2{p_second[0], p_second[0]} : V2{p_first[0], p_first[0]};
-        const V2 ay = second ? V2{p_second[1], p_second[1]} : V2{p_first[1], p_first[1]};
-        const V2 az = second ? V2{p_second[2], p_second[2]} : V2{p_first[2], p_first[2]};
-        const V2 tfv = (nx * (ax - ox) + ny * (ay - oy)) + nz * (az - oz);
-        std::memcpy(nd + h, &ndv, sizeof ndv);
-        const V2 q = tfv / ndv;
-        std::memcpy(tf + h, &q, sizeof q);
+      {
+        const std::int64_t ks = r.k_second;
+        const M4 second = {ks == 0 ? -1 : 0, ks == 1 ? -1 : 0, ks == 2 ? -1 : 0, ks == 3 ? -1 : 0};
+        V4 nx, ny, nz;
+        std::memcpy(&nx, r.nx.data(), sizeof nx);
+        std::memcpy(&ny, r.ny.data(), sizeof ny);
+        std::memcpy(&nz, r.nz.data(), sizeof nz);
+        const V4 ndv = (nx * dx + ny * dy) + nz * dz;  // sign * n.d, exactly
+        const V4 fx = {p_first[0], p_first[0], p_first[0], p_first[0]}, sx = {p_second[0], p_second[0], p_second[0], p_second[0]};
+        const V4 fy = {p_first[1], p_first[1], p_first[1], p_first[1]}, sy = {p_second[1], p_second[1], p_second[1], p_second[1]};
+        const V4 fz = {p_first[2], p_first[2], p_first[2], p_first[2]}, sz = {p_second[2], p_second[2], p_second[2], p_second[2]};
+        const V4 ax = second ? sx : fx, ay = second ? sy : fy, az = second ? sz : fz;
+        const V4 tfv = (nx * (ax - ox) + ny * (ay - oy)) + nz * (az - oz);
+        std::memcpy(nd, &ndv, sizeof ndv);
+        const V4 q = tfv / ndv;
+        std::memcpy(tf, &q, sizeof q);
       }
       double t_min = std::numeric_limits<double>::infinity();
       int k_min = -1;

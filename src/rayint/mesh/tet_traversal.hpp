@@ -166,8 +166,8 @@ class TetTraversal {
   // record was 256 bytes with the two points and the Eq. 9 field in it; the field's gradient is
   // now in gradients_, its anchor and scalar in the mesh). Renders are cmp-identical to the
   // 256-byte records (reports/scaling/README.md, "Memory"). The normals are stored by component
-  // (nx[k], ny[k], nz[k]), so that a step computes two faces' crossing parameters per
-  // instruction (issue 33, round 6); the arithmetic is Eigen's dot, (x0 y0 + x1 y1) + x2 y2
+  // (nx[k], ny[k], nz[k]), so that a step computes the faces' crossing parameters two (SSE2) or four
+  // (AVX2) per instruction (issue 33, rounds 6 and 13); the arithmetic is Eigen's dot, (x0 y0 + x1 y1) + x2 y2
   // (dot3 below), lane by lane.
   struct alignas(64) CellRecord {
     alignas(16) std::array<double, 4> nx, ny, nz;  // face opposite point k, times the cell's sign (outward)
