@@ -7,8 +7,9 @@ std::vector<MeshViewRay> evaluation_rays(const MeshCase& mc) {
   if (!mc.rays.empty() || !mc.camera) return mc.rays;
   std::vector<MeshViewRay> out;
   out.reserve(static_cast<std::size_t>(mc.camera->width) * static_cast<std::size_t>(mc.camera->height));
+  const CameraRays camera_rays(*mc.camera);  // the camera's frame once, the rays its bits
   for (int y = 0; y < mc.camera->height; ++y)
-    for (int x = 0; x < mc.camera->width; ++x) out.push_back({mc.camera->ray_for_pixel(x, y), mc.background});
+    for (int x = 0; x < mc.camera->width; ++x) out.push_back({camera_rays.ray_for_pixel(x, y), mc.background});
   return out;
 }
 

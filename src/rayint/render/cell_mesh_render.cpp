@@ -33,6 +33,7 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
   const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   if (!mc.camera) throw std::invalid_argument(mc.source + ": camera: a mesh case needs a \"camera\" to render");
   const Camera& cam = *mc.camera;
+  const CameraRays camera_rays(cam);  // the camera's frame once per render, the rays cam's bits
   const int width = cam.width, height = cam.height;
   const IndexRange rows = shard_range(static_cast<std::size_t>(height), settings.shard);
   const int band = static_cast<int>(rows.size());
@@ -54,7 +55,7 @@ CellMeshRender render_cell_mesh(const MeshCase& mc, const CellTraversal& mesh, c
     Worker& w = workers[id];
     for (int x = 0; x < width; ++x) {
       const auto t0 = Clock::now();
-      mesh.trace(cam.ray_for_pixel(x, y), w.trace, &w.traversal);
+      mesh.trace(camera_rays.ray_for_pixel(x, y), w.trace, &w.traversal);
       const auto t1 = Clock::now();
       const CellRayResult r = mesh.integrate(w.trace, integrator, mc.background);
       w.integration_seconds += seconds(Clock::now() - t1);

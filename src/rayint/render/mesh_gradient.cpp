@@ -225,11 +225,12 @@ LossGradient image_loss_gradient(const MeshCase& mc, const TetTraversal& mesh, c
     p.d_scalar.assign(n_scalar, 0.0);
     if (positions) p.d_position.assign(m.points.size(), {0.0, 0.0, 0.0});
   }
+  const CameraRays camera_rays(cam);  // the camera's frame once per render, the rays cam's bits
   parallel_for_striped(cam.height, threads, [&](long long row, unsigned id) {
     Part& p = parts[id];
     const int y = static_cast<int>(row);
     for (int x = 0; x < cam.width; ++x) {
-      mesh.trace(cam.ray_for_pixel(x, y), p.trace);
+      mesh.trace(camera_rays.ray_for_pixel(x, y), p.trace);
       ray_from_trace(p.trace, mc.background, p.ray);
       gradient(p.ray, p.grad, GradientBlocks::segments);
       out.image.at(x, y) = p.grad.intensity;

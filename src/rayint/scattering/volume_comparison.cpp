@@ -26,10 +26,11 @@ double mean_of(const std::vector<double>& v) {
 template <class Gather>
 std::vector<double> gather_image(const Camera& cam, unsigned threads, Gather gather) {
   std::vector<double> img(static_cast<std::size_t>(cam.width) * cam.height);
+  const CameraRays camera_rays(cam);  // the camera's frame once, the rays its bits
   parallel_for(cam.height, threads, [&](std::size_t y) {
     for (int x = 0; x < cam.width; ++x)
       img[y * static_cast<std::size_t>(cam.width) + static_cast<std::size_t>(x)] =
-          gather(cam.ray_for_pixel(x, static_cast<int>(y)));
+          gather(camera_rays.ray_for_pixel(x, static_cast<int>(y)));
   });
   return img;
 }

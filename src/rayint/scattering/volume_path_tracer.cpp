@@ -120,12 +120,13 @@ EstimateImage path_trace_rows(const ScatteringVolume& v, const Camera& camera,
   std::mutex stats_mutex;
   const double sigma_maj = v.majorant();
   const auto start = std::chrono::steady_clock::now();
+  const CameraRays camera_rays(camera);  // the camera's frame once, the rays its bits
   parallel_for(img.height, o.threads, [&](std::size_t local_row) {
     const std::size_t row = local_row + static_cast<std::size_t>(row_begin);
     PathTraceStats s;
     for (int x = 0; x < camera.width; ++x) {
       const std::size_t i = row * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
-      const Estimate e = trace_ray(v, camera.ray_for_pixel(x, static_cast<int>(row)),
+      const Estimate e = trace_ray(v, camera_rays.ray_for_pixel(x, static_cast<int>(row)),
                                    o.samples_per_pixel, o.seed, i, o.max_order, &s, o.min_order,
                                    sigma_maj);
       const std::size_t local = i - static_cast<std::size_t>(row_begin) * static_cast<std::size_t>(camera.width);

@@ -85,6 +85,7 @@ MethodSpec effective_method(const Scene& scene, const EffectInfo& effect) {
 
 ScenePipeline::ScenePipeline(const Scene& scene, unsigned threads)
     : scene_(scene), threads_(resolve_threads(threads)) {
+  if (scene.camera) camera_rays_.emplace(*scene.camera);
   for (const std::string& name : scene.effects)
     if (find_effect(name) == nullptr) throw std::invalid_argument("unknown effect " + name);
   const Clock::time_point t0 = Clock::now();
@@ -133,7 +134,7 @@ PixelRay ScenePipeline::ray(long long index) const {
     const Camera& cam = *scene_.camera;
     const int x = static_cast<int>(index % cam.width);
     const int y = static_cast<int>(index / cam.width);
-    pr.ray = cam.ray_for_pixel(x, y);
+    pr.ray = camera_rays_->ray_for_pixel(x, y);  // cam.ray_for_pixel's bits
     pr.background = scene_.background.at((x + 0.5) / cam.width, (y + 0.5) / cam.height);
   } else {
     pr.ray = scene_.rays[static_cast<std::size_t>(index)];

@@ -8,6 +8,7 @@
 // exists for them, and NoShadows casts no shadow ray.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -124,6 +125,7 @@ class ScenePipeline {
 
  private:
   const Scene& scene_;
+  std::optional<CameraRays> camera_rays_;  // scene_.camera's frame, formed once (ray())
   unsigned threads_;
   std::unique_ptr<Shadowing> shadowing_;
   std::vector<std::unique_ptr<Effect>> effects_;
