@@ -553,10 +553,16 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
   // Each linear cell's corner box (next_cell's star filter), padded by 1e-7 of the diagonal plus
   // the largest |coordinate|: >= 1e5 x the face hits' reach beyond their face (kFaceSlack 1e-12 of
   // the face's edges) and >= 1e8 ulps of the coordinates (the rounding of x(t) and of the hits,
-  // also for a mesh far from the origin).
+  // also for a mesh far from the origin). A quadratic cell's curved edges leave its corners' box:
+  // its box is unbounded (never skipped).
   cell_box_pad_ = 1e-7 * (diagonal_ + std::max(box_min_.cwiseAbs().maxCoeff(), box_max_.cwiseAbs().maxCoeff()));
   cell_box_.resize(n);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   for (std::size_t c = 0; c < n; ++c) {
+    if (quadratic_cell(c) != nullptr) {
+      cell_box_[c] = {-kInf, -kInf, -kInf, kInf, kInf, kInf};
+      continue;
+    }
     const LinearCell& cell = cells_[c];
     Vec3 lo = cell.x[0], hi = cell.x[0];
     for (int k = 1; k < linear_node_count(cell.type); ++k) {
@@ -651,11 +657,11 @@ bool CellTraversal::next_cell(const Walk& w, std::size_t from, const std::vector
   // chord lies in its corners' convex hull up to the face hits' slack (kFaceSlack of the face) and
   // rounding, far inside cell_box_pad_: a candidate whose padded corner box misses x(t) by more
   // than slack(t) cannot hold t and is not solved (on a mesh's boundary exit every cell around the
-  // exit face's corners was solved before; `rayint bench` twisted12: ~6 per exit).
+  // exit face's corners was solved before; `rayint bench` twisted12: ~6 per exit). Quadratic
+  // cells' boxes are unbounded.
   const Vec3 x = w.o + t * w.d;
   const double reach = cell_box_pad_ + w.slack(t);
   const auto may_hold = [&](std::int32_t c) {
-    if (quadratic_cell(static_cast<std::size_t>(c)) != nullptr) return true;
     const std::array<double, 6>& b = cell_box_[static_cast<std::size_t>(c)];
     for (int k = 0; k < 3; ++k)
       if (!(x[k] >= b[static_cast<std::size_t>(k)] - reach && x[k] <= b[static_cast<std::size_t>(k + 3)] + reach)) return false;

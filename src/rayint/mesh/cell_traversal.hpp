@@ -231,7 +231,7 @@ class CellTraversal {
   std::vector<std::int32_t> cell_faces_;  // neighbor_offsets_[c] + f: face f of cell c in faces_ (-1: quadratic cell)
   std::vector<std::int8_t> face_out_;     // neighbor_offsets_[c] + f: +1 when the face's normal points out of c, else -1
   std::vector<char> clip_;                // per cell: affine with every face planar: its chord is the planes' clip
-  std::vector<std::array<double, 6>> cell_box_;  // per cell: its corners' box (min xyz, max xyz)
+  std::vector<std::array<double, 6>> cell_box_;  // per cell: its corners' box (min xyz, max xyz; quadratic: unbounded)
   double cell_box_pad_ = 0.0;             // next_cell's padding of cell_box_ (cell_traversal.cpp)
   std::size_t face_count_ = 0;
   Vec3 box_min_, box_max_;
