@@ -20,16 +20,17 @@ namespace rayint::cli {
 
 void set_mesh_command(CLI::App& app) {
   struct Options {
-    std::string file, array, format = "text", output;
-    bool check = false, quick = false, point_average = false;
+    std::string file, format = "text", output;
+    ScalarChoice scalar;  // --array, --point-average
+    bool check = false, quick = false;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* mesh = app.add_subcommand("mesh", "Mesh files as rayint reads them");
   mesh->require_subcommand(1);
   CLI::App* cmd = mesh->add_subcommand("info", "Bounds, cells by type, arrays, the scalar, orientation (--check: overlaps)");
   cmd->add_option("file", opt->file, "A mesh file: .vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, .pvts, .pvtr, .vti (an image as its voxels)")->required();
-  cmd->add_option("--array", opt->array, "The array to take as the scalar (default: the rule of docs/meshes.md)");
-  cmd->add_flag("--point-average", opt->point_average, "A cell field becomes point data as ParaView's Cell Data to Point Data");
+  cmd->add_option("--array", opt->scalar.name, "The array to take as the scalar (default: the rule of docs/meshes.md)");
+  cmd->add_flag("--point-average", opt->scalar.cell_to_point, "A cell field becomes point data as ParaView's Cell Data to Point Data");
   cmd->add_flag("--check", opt->check, "Look for overlapping tetrahedra, every candidate pair (exit 1 naming two when found)");
   cmd->add_flag("--quick-check", opt->quick, "The check a mesh case runs on load: only pairs that share no point");
   cmd->add_option("--format", opt->format, "text or json")->check(CLI::IsMember({"text", "json"}));
@@ -43,10 +44,10 @@ void set_mesh_command(CLI::App& app) {
     CellMesh cells;
     std::optional<TetMesh> quadratic;
     try {
-      cells = read_cell_mesh_file(opt->file, opt->array, opt->point_average);
+      cells = read_cell_mesh_file(opt->file, opt->scalar);
     } catch (const InputError& cell_error) {
       if (std::string(cell_error.what()).find("quadratic tetra (VTK id 24)") == std::string::npos) throw;
-      quadratic = read_mesh_file(opt->file, opt->array, opt->point_average);  // its own line if it refuses
+      quadratic = read_mesh_file(opt->file, opt->scalar);  // its own line if it refuses
     }
     // The cell readers keep quadratic tetrahedra as cells (curved ones are integrated there); a
     // file of tetrahedra and tet10 only is reported by the tetrahedral reading, which says
@@ -57,7 +58,7 @@ void set_mesh_command(CLI::App& app) {
         tets = tets && (t == MeshCellType::tetra || t == MeshCellType::quadratic_tetra);
         tet10 = tet10 || t == MeshCellType::quadratic_tetra;
       }
-      if (tets && tet10) quadratic = read_mesh_file(opt->file, opt->array, opt->point_average);
+      if (tets && tet10) quadratic = read_mesh_file(opt->file, opt->scalar);
     }
     MeshInfo info;
     info.file = opt->file;

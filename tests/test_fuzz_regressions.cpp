@@ -44,24 +44,24 @@ std::string one_tet(const std::string& a) {
 TEST_CASE("fuzz regression: mesh points beyond +-1e18 are refused before Embree sees them", "[mesh][fuzz]") {
   struct Input {
     std::string file;
-    TetMesh (*parse)(std::string_view, const std::string&, const std::string&, bool);
+    TetMesh (*parse)(std::string_view, const std::string&, const ScalarChoice&);
   };
   for (const Input& in : {Input{"gmsh-huge-coordinate.msh", &parse_gmsh},
                           Input{"vtk-legacy-huge-coordinate.vtk", &parse_vtk_legacy}}) {
     INFO(in.file);
-    TetMesh mesh = in.parse(read_fuzz_input(in.file), in.file, "", false);
+    TetMesh mesh = in.parse(read_fuzz_input(in.file), in.file, {});
     REQUIRE_NOTHROW(repair_tet_mesh(mesh, in.file));
     CHECK_THROWS_WITH(TetTraversal(mesh, in.file),
                       Contains(in.file + ": points[") && Contains("beyond +-1e18"));
   }
-  TetMesh huge = parse_vtk_legacy(one_tet("1e300"), "big.vtk", "");
+  TetMesh huge = parse_vtk_legacy(one_tet("1e300"), "big.vtk");
   CHECK_THROWS_WITH(TetTraversal(huge, "big.vtk"),
                     Contains("big.vtk: points[1][0]: coordinate 1e+300 beyond +-1e18"));
   // At the limit the mesh is accepted (whether single precision traces it well there is another
   // matter); the same tet at scale 1 is traced through its inside.
-  TetMesh edge = parse_vtk_legacy(one_tet("1e18"), "edge.vtk", "");
+  TetMesh edge = parse_vtk_legacy(one_tet("1e18"), "edge.vtk");
   CHECK_NOTHROW(TetTraversal(edge, "edge.vtk"));
-  TetMesh unit = parse_vtk_legacy(one_tet("1"), "unit.vtk", "");
+  TetMesh unit = parse_vtk_legacy(one_tet("1"), "unit.vtk");
   const TetTraversal traversal(unit, "unit.vtk");
   RayTrace trace;
   traversal.trace(ViewRay{Vec3(0.2, 0.2, -0.5), Vec3(0, 0, 1)}, trace);

@@ -81,7 +81,7 @@ TEST_CASE("a .vti of cell data is read as its voxels, the cell values VTK reads,
   for (std::size_t i = 0; i < 60; ++i) CHECK(m.cell_scalars[i] == c["c"][i].get<double>());
   CHECK(m.points.size() == 6 * 5 * 4);
   // The second cell array by name.
-  const CellMesh m2 = read_vti_cells(kDir + "cells.vti", "c2");
+  const CellMesh m2 = read_vti_cells(kDir + "cells.vti", {"c2"});
   CHECK(m2.cell_scalars[7] == 0.5 + 0.01 * 7);
   // The scene's point-grid reader still refuses it, naming the arrays and the way to read it.
   try {

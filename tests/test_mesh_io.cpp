@@ -79,7 +79,7 @@ TEST_CASE("VTK legacy reader: extra arrays, named scalars, CELL_DATA, version 5.
                           "FIELD fd 1\nextra 2 4 double\n1 2 3 4 5 6 7 8\n"
                           "CELL_DATA 1\nSCALARS cs float 1\nLOOKUP_TABLE default\n4\n";
     CHECK(parse_vtk_legacy(v, "m.vtk").scalars[0] == 0.5);
-    CHECK(parse_vtk_legacy(v, "m.vtk", "other").scalars[0] == 7.0);
+    CHECK(parse_vtk_legacy(v, "m.vtk", {"other"}).scalars[0] == 7.0);
   }
   SECTION("version 5.1: OFFSETS and CONNECTIVITY") {
     std::string v = replace(base, "Version 3.0", "Version 5.1");

@@ -46,14 +46,14 @@ const nlohmann::json& oracle() {
 }
 
 // Any mesh file by extension, as a mesh case reads it.
-TetMesh read_any(const std::string& file, const std::string& name = "", bool cell_to_point = false) {
+TetMesh read_any(const std::string& file, const ScalarChoice& scalar = {}) {
   const std::string path = kDir + file;
   const std::string ext = fs::path(file).extension().string();
-  if (ext == ".msh") return read_gmsh(path, name, cell_to_point);
-  if (ext == ".vtk") return read_vtk_legacy(path, name, cell_to_point);
-  if (ext == ".vtu") return read_vtu(path, name, cell_to_point);
-  if (ext == ".pvtu") return read_pvtu(path, name, cell_to_point);
-  if (ext == ".ele") return read_tetgen(path, name);
+  if (ext == ".msh") return read_gmsh(path, scalar);
+  if (ext == ".vtk") return read_vtk_legacy(path, scalar);
+  if (ext == ".vtu") return read_vtu(path, scalar);
+  if (ext == ".pvtu") return read_pvtu(path, scalar);
+  if (ext == ".ele") return read_tetgen(path, scalar.name);
   FAIL("no reader for " << file);
   return {};
 }
@@ -201,7 +201,7 @@ TEST_CASE("markers are not fields: a file with tags only gets one line listing i
                       "point or cell array that is not a region marker (arrays: \"gmsh:physical\" (cell, 1 component, "
                       "a marker))");
   // Named, a marker may still be used (the user asked for it).
-  CHECK(read_any("markers-only.vtu", "gmsh:physical").cell_scalars.size() == 197);
+  CHECK(read_any("markers-only.vtu", {"gmsh:physical"}).cell_scalars.size() == 197);
 }
 
 TEST_CASE("cell data is integrated constant per cell, exactly, or averaged to points as ParaView does", "[mesh][readers]") {
@@ -221,7 +221,7 @@ TEST_CASE("cell data is integrated constant per cell, exactly, or averaged to po
     CHECK(rel <= test::Tolerances::exact_rel);
     // On request: point data as vtkCellDataToPointData makes it (plain average over the cells
     // using the point), bit for bit.
-    const TetMesh p = read_any(file, "", true);
+    const TetMesh p = read_any(file, {"", true});
     const auto& want = oracle()["cell-data.vtu"]["c2p"];
     REQUIRE(p.scalars.size() == want.size());
     CHECK(p.cell_scalars.empty());
@@ -233,14 +233,14 @@ TEST_CASE("cell data is integrated constant per cell, exactly, or averaged to po
 
 TEST_CASE("choosing the array: the active scalars by default, any point or cell array by name", "[mesh][readers]") {
   CHECK(read_any("several.vtu").info.scalar == "s");
-  const TetMesh t = read_any("several.vtu", "t");
+  const TetMesh t = read_any("several.vtu", {"t"});
   const auto& tv = oracle()["several.vtu"]["point_arrays"]["t"]["values"];
   REQUIRE(t.scalars.size() == tv.size());
   for (std::size_t i = 0; i < tv.size(); ++i) CHECK(t.scalars[i] == tv[i].get<double>());
-  CHECK(read_any("several.vtu", "c").info.scalar_association == "cell");
-  CHECK(rayint::test::input_error_of([] { read_any("several.vtu", "v"); }) ==
+  CHECK(read_any("several.vtu", {"c"}).info.scalar_association == "cell");
+  CHECK(rayint::test::input_error_of([] { read_any("several.vtu", {"v"}); }) ==
         kDir + "several.vtu: UnstructuredGrid/Piece/PointData: array \"v\" has 3 components; the scalar needs 1");
-  const std::string none = rayint::test::input_error_of([] { read_any("several.vtu", "nope"); });
+  const std::string none = rayint::test::input_error_of([] { read_any("several.vtu", {"nope"}); });
   CHECK(none == kDir + "several.vtu: UnstructuredGrid/Piece/PointData: no array named \"nope\" (arrays: \"s\" (point, 1 "
                        "component), \"t\" (point, 1 component), \"v\" (point, 3 components), \"c\" (cell, 1 component))");
   // A mesh case names it with "scalar_field".

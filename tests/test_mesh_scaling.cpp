@@ -219,12 +219,12 @@ TEST_CASE("legacy reader: binary arrays of every VTK type decode to their values
   }
   for (int a = 0; a < 10; ++a) {
     INFO(names[a]);
-    const TetMesh m = parse_vtk_legacy(f, "types.vtk", "a" + std::to_string(a));
+    const TetMesh m = parse_vtk_legacy(f, "types.vtk", {"a" + std::to_string(a)});
     REQUIRE(m.scalars.size() == 4);
     for (std::size_t i = 0; i < 4; ++i)
       CHECK(m.scalars[i] == (a == 8 ? static_cast<double>(static_cast<float>(expect[a][i])) : expect[a][i]));
   }
-  const TetMesh m = parse_vtk_legacy(f, "types.vtk", "a9");
+  const TetMesh m = parse_vtk_legacy(f, "types.vtk", {"a9"});
   REQUIRE(m.points.size() == 4);
   for (std::size_t i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) CHECK(m.points[i][k] == xyz[3 * i + static_cast<std::size_t>(k)]);

@@ -85,7 +85,7 @@ TEST_CASE("parallel structured grids written by VTK read as the serial grid they
     require_same_mesh(parallel, serial);
     // The cell array too (cellid: 0..23 in VTK's cell order), when asked for by name.
     if (name.find("twisted") != std::string::npos) {
-      const CellMesh ids = read_cell_mesh_file(kParallel + name, "cellid");
+      const CellMesh ids = read_cell_mesh_file(kParallel + name, {"cellid"});
       REQUIRE(ids.cell_scalars.size() == ids.cell_count());
       for (std::size_t c = 0; c < ids.cell_count(); ++c) CHECK(ids.cell_scalars[c] == static_cast<double>(c));
     }

@@ -121,7 +121,7 @@ TEST_CASE("quadratic cells: every reader's node order and interpolation equal VT
   int n = 0;
   for (const auto& s : j["samples"]) {
     const std::string file = s["file"];
-    if (!meshes.count(file)) meshes.emplace(file, read_cell_mesh_file(kDir + file, "r", false));
+    if (!meshes.count(file)) meshes.emplace(file, read_cell_mesh_file(kDir + file, {"r"}));
     const CellMesh& mesh = meshes.at(file);
     const std::size_t c = kept_index(mesh, s["cell"].get<long long>());
     CHECK(static_cast<int>(mesh.types[c]) == s["vtk_type"].get<int>());
@@ -164,7 +164,7 @@ TEST_CASE("quadratic cells: gmsh's .msh read through the cell table equals gmsh'
                                                        {"disc-prism18-22.msh", "disc-prism18-gmsh.vtk"}};
   for (const auto& [msh, vtk] : pairs) {
     INFO(msh << " vs " << vtk);
-    const CellMesh a = read_cell_mesh_file(kDir + msh, "r", false), b = read_cell_mesh_file(kDir + vtk, "r", false);
+    const CellMesh a = read_cell_mesh_file(kDir + msh, {"r"}), b = read_cell_mesh_file(kDir + vtk, {"r"});
     REQUIRE(a.cell_count() == b.cell_count());
     for (std::size_t c = 0; c < a.cell_count(); ++c) {
       REQUIRE(a.types[c] == b.types[c]);
@@ -197,7 +197,7 @@ TEST_CASE("quadratic cells: gmsh's 27-node hexahedra and 18-node prisms are read
       {"disc-prism18-22.msh", MeshCellType::biquadratic_quadratic_wedge, 15, {{0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}}};
   for (const Case& k : cases) {
     INFO(k.file);
-    const CellMesh mesh = read_cell_mesh_file(kDir + k.file, "r", false);
+    const CellMesh mesh = read_cell_mesh_file(kDir + k.file, {"r"});
     REQUIRE(mesh.cell_count() > 0);
     for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
       REQUIRE(mesh.types[c] == k.type);
@@ -223,7 +223,7 @@ TEST_CASE("quadratic cells: mesh rays against the 50-digit reference chord by ch
   const LinearCellIntegrator integrator(tf);
   for (const char* file : kMeshes) {
     INFO(file);
-    const CellTraversal m(read_cell_mesh_file(kDir + file, "r", false), file);
+    const CellTraversal m(read_cell_mesh_file(kDir + file, {"r"}), file);
     CellTrace trace;
     CellTraversalStats stats;
     double worst = 0.0;
@@ -272,7 +272,7 @@ TEST_CASE("quadratic cells: rays through shared curved faces, edges and vertices
                            "cylinder-tet10-41.msh", "annulus-hex27-41.msh", "disc-prism18-41.msh", "block-hex27.vtu",
                            "block-wedge18.vtk", "block-pyramid13.vtu", "transition-pyramid13-41.msh"}) {
     INFO(file);
-    const CellTraversal m(read_cell_mesh_file(kDir + file, "r", false), file);
+    const CellTraversal m(read_cell_mesh_file(kDir + file, {"r"}), file);
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> w(-1.0, 1.0);
     std::uniform_int_distribution<std::size_t> pick(0, m.mesh().points.size() - 1);
@@ -339,7 +339,7 @@ TEST_CASE("quadratic cells: rays through shared curved faces, edges and vertices
 TEST_CASE("quadratic cells: straight-edged tet10 in the own path equal the tetrahedral path's exact quadratic", "[quadratic][mesh][tet10]") {
   const TransferFunctions tf = steep_tf();
   const std::string file = RAYINT_SOURCE_DIR + "/tests/fixtures/readers/tet10-22.msh";
-  TetMesh tets = read_mesh_file(file, "r");
+  TetMesh tets = read_mesh_file(file, {"r"});
   REQUIRE(check_tet10_edges(tets).straight());
   const CellTraversal own(cell_mesh_of(TetMesh(tets)), file);
   repair_tet_mesh(tets, file);
@@ -369,7 +369,7 @@ TEST_CASE("quadratic cells: a folded cell in a file is refused naming the file a
   const std::string file = kDir + "block-hex20-folded.vtu";
   std::string msg;
   try {
-    const CellTraversal m(read_cell_mesh_file(file, "r", false), file);
+    const CellTraversal m(read_cell_mesh_file(file, {"r"}), file);
   } catch (const InputError& e) {
     msg = e.what();
   }
@@ -423,7 +423,7 @@ TEST_CASE("quadratic pyramid: gmsh's 13-node pyramids are read as VTK type 27, e
   std::vector<std::vector<Vec3>> seen;
   for (const char* file : {"transition-pyramid13-41.msh", "transition-pyramid13-22.msh"}) {
     INFO(file);
-    const CellMesh mesh = read_cell_mesh_file(kDir + file, "r", false);
+    const CellMesh mesh = read_cell_mesh_file(kDir + file, {"r"});
     int pyramids = 0;
     double worst = 0.0;
     std::vector<Vec3> nodes;

@@ -199,7 +199,7 @@ TEST_CASE("tet10 node order: every reader's quadratic field equals vtkQuadraticT
   REQUIRE(samples.size() == 300);
   for (const Format& fmt : kSameMesh) {
     INFO(fmt.file);
-    const TetMesh mesh = read_mesh_file(kDir + fmt.file, fmt.r);
+    const TetMesh mesh = read_mesh_file(kDir + fmt.file, {fmt.r});
     REQUIRE(mesh.tets.size() == 197);
     REQUIRE(mesh.edge_nodes.size() == 197);
     double worst = 0.0;
@@ -233,7 +233,7 @@ TEST_CASE("tet10 node order: every reader, TetGen's too, reproduces the quadrati
   all.push_back(kTetgen);
   for (const Format& fmt : all) {
     INFO(fmt.file);
-    const TetMesh mesh = read_mesh_file(kDir + fmt.file, fmt.q);
+    const TetMesh mesh = read_mesh_file(kDir + fmt.file, {fmt.q});
     REQUIRE_FALSE(mesh.edge_nodes.empty());
     const Tet10EdgeCheck edges = check_tet10_edges(mesh);
     CHECK(edges.quadratic_tets == static_cast<long>(mesh.tets.size()));
@@ -263,7 +263,7 @@ TEST_CASE("tet10 ray integral: q against the mesh-free 50-digit reference in eve
   all.push_back(kTetgen);
   for (const Format& fmt : all) {
     INFO(fmt.file);
-    TetMesh mesh = read_mesh_file(kDir + fmt.file, fmt.q);
+    TetMesh mesh = read_mesh_file(kDir + fmt.file, {fmt.q});
     repair_tet_mesh(mesh, fmt.file);
     const TetTraversal traversal(std::move(mesh), fmt.file);
     REQUIRE(traversal.quadratic());
@@ -292,7 +292,7 @@ TEST_CASE("tet10 ray integral: the non-polynomial r against a per-crossing 50-di
   const std::vector<ViewRay> rays = random_rays(40, 31);
   for (const Format& fmt : {kSameMesh[0], kTetgen}) {
     INFO(fmt.file);
-    TetMesh mesh = read_mesh_file(kDir + fmt.file, fmt.r);
+    TetMesh mesh = read_mesh_file(kDir + fmt.file, {fmt.r});
     repair_tet_mesh(mesh, fmt.file);
     const TetMesh copy = mesh;
     const TetTraversal traversal(std::move(mesh), fmt.file);
@@ -320,7 +320,7 @@ TEST_CASE("tet10: the same mesh read from five formats gives the same answers to
   std::vector<Rgb> first;
   for (const Format& fmt : kSameMesh) {
     INFO(fmt.file);
-    TetMesh mesh = read_mesh_file(kDir + fmt.file, fmt.r);
+    TetMesh mesh = read_mesh_file(kDir + fmt.file, {fmt.r});
     repair_tet_mesh(mesh, fmt.file);
     const TetTraversal traversal(std::move(mesh), fmt.file);
     RayTrace trace;
@@ -350,7 +350,7 @@ TEST_CASE("tet10: the same mesh read from five formats gives the same answers to
 
 TEST_CASE("tet10 whose mid-edge values are the corner averages integrates as the linear tet", "[tet10][mesh]") {
   const TransferFunctions tf = steep_tf();
-  TetMesh quad = read_mesh_file(kDir + "tet10-22.msh", "r");
+  TetMesh quad = read_mesh_file(kDir + "tet10-22.msh", {"r"});
   for (std::size_t t = 0; t < quad.tets.size(); ++t)
     for (std::size_t e = 0; e < 6; ++e)
       quad.scalars[static_cast<std::size_t>(quad.edge_nodes[t][e])] =
@@ -380,7 +380,7 @@ TEST_CASE("tet10 whose mid-edge values are the corner averages integrates as the
 
 TEST_CASE("tet10 with curved edges: the tetrahedral path's check names a cell, render integrates them isoparametrically", "[tet10][mesh][cli]") {
   const std::string sphere = kDir + "tet10-sphere-41.msh";
-  const TetMesh mesh = read_mesh_file(sphere, "q");
+  const TetMesh mesh = read_mesh_file(sphere, {"q"});
   const Tet10EdgeCheck c = check_tet10_edges(mesh);
   CHECK_FALSE(c.straight());
   CHECK(c.worst_offset > 1e-3);
@@ -519,7 +519,7 @@ TEST_CASE("tet10 chords: the same rays taken as linear segments would be another
   // 1e-4 bounds above can only hold when the methods sample the quadratic.
   const TransferFunctions tf = steep_tf();
   const std::vector<ViewRay> rays = random_rays(12, 91);
-  TetMesh mesh = read_mesh_file(kDir + std::string("tet10-41.msh"), "q");
+  TetMesh mesh = read_mesh_file(kDir + std::string("tet10-41.msh"), {"q"});
   repair_tet_mesh(mesh, "tet10-41.msh");
   const TetTraversal traversal(std::move(mesh), "tet10-41.msh");
   const ExactIntegrator linear(tf);

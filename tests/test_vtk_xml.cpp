@@ -69,11 +69,11 @@ TEST_CASE("every .vtu VTK and meshio wrote reads to what VTK's own reader read, 
     std::size_t arrays_read = 0;
     for (const auto& [name, array] : want["point_arrays"].items()) {
       if (array["components"] != 1) {
-        expect_error(rayint::test::input_error_of([&] { read_vtu(path, name); }), path + ": UnstructuredGrid/Piece/PointData: array \"" + name + "\" has 3 components; the scalar needs 1");
+        expect_error(rayint::test::input_error_of([&] { read_vtu(path, {name}); }), path + ": UnstructuredGrid/Piece/PointData: array \"" + name + "\" has 3 components; the scalar needs 1");
         continue;
       }
       INFO(name);
-      const TetMesh m = read_vtu(path, name);
+      const TetMesh m = read_vtu(path, {name});
       REQUIRE(m.points.size() == want["points"].size());
       REQUIRE(m.tets.size() == want["cells"].size());
       for (std::size_t i = 0; i < m.points.size(); ++i)
@@ -186,7 +186,7 @@ TEST_CASE("a scene's grid_file may be a .vti", "[vtkxml][grid]") {
 TEST_CASE("bad VTK XML input: one line naming the file and the field", "[vtkxml][bad_input]") {
   const std::string src = "bad.vtu";
   const auto vtu = [&](const std::string& text, const std::string& name = "") {
-    return rayint::test::input_error_of([&] { parse_vtu(text, src, name); });
+    return rayint::test::input_error_of([&] { parse_vtu(text, src, {name}); });
   };
   const std::string pts = src + ": UnstructuredGrid/Piece/Points/DataArray: ";
   const std::string binary = slurp(kDir / "mesh-binary.vtu");

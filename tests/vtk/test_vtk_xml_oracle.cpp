@@ -63,7 +63,7 @@ TEST_CASE("rayint's .vtu reader agrees with vtkXMLUnstructuredGridReader bit for
       vtkDataArray* array = pd->GetArray(a);
       if (array == nullptr || array->GetNumberOfComponents() != 1) continue;
       INFO(array->GetName());
-      const TetMesh m = read_vtu(file.string(), array->GetName());
+      const TetMesh m = read_vtu(file.string(), {array->GetName()});
       REQUIRE(static_cast<vtkIdType>(m.points.size()) == grid->GetNumberOfPoints());
       REQUIRE(static_cast<vtkIdType>(m.tets.size()) == grid->GetNumberOfCells());
       for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i) {

@@ -64,9 +64,8 @@ struct DataBlock {
 
 class MshReader {
  public:
-  MshReader(std::string_view bytes, const std::string& source, const std::string& scalar_name, bool cell_to_point,
-            bool keep_cells = false)
-      : c_(bytes, source, '\0'), scalar_name_(scalar_name), cell_to_point_(cell_to_point), keep_cells_(keep_cells) {}
+  MshReader(std::string_view bytes, const std::string& source, const ScalarChoice& scalar, bool keep_cells = false)
+      : c_(bytes, source, '\0'), scalar_name_(scalar.name), cell_to_point_(scalar.cell_to_point), keep_cells_(keep_cells) {}
 
   TetMesh read() {
     parse();
@@ -763,22 +762,20 @@ class MshReader {
 
 }  // namespace
 
-TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                   bool cell_to_point) {
-  return MshReader(bytes, source, scalar_name, cell_to_point).read();
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  return MshReader(bytes, source, scalar).read();
 }
 
-TetMesh read_gmsh(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_gmsh(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+TetMesh read_gmsh(const std::string& path, const ScalarChoice& scalar) {
+  return parse_gmsh(json_source::read_text_file(path), path, scalar);
 }
 
-CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                          bool cell_to_point) {
-  return MshReader(bytes, source, scalar_name, cell_to_point, true).read_cells();
+CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  return MshReader(bytes, source, scalar, true).read_cells();
 }
 
-CellMesh read_gmsh_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_gmsh_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+CellMesh read_gmsh_cells(const std::string& path, const ScalarChoice& scalar) {
+  return parse_gmsh_cells(json_source::read_text_file(path), path, scalar);
 }
 
 }  // namespace rayint

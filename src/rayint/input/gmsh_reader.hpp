@@ -13,7 +13,7 @@
 // Scalars: the first one-component $NodeData (meshio writes point data so), else the first
 // one-component $ElementNodeData (what gmsh's own "Save View" writes for a MathEval view), else
 // the first one-component $ElementData (cell data: constant per tetrahedron), or the one whose
-// name (first string tag) is scalar_field. Blocks named like markers (is_marker_array, e.g.
+// name (first string tag) is ScalarChoice::name. Blocks named like markers (is_marker_array, e.g.
 // meshio's "gmsh:physical") are never taken unless named. Element node data must agree at every node
 // (a continuous field): a node given two different values is refused. Every node of a tet needs a
 // value. Node tags may be sparse; tets refer to nodes by tag.
@@ -23,6 +23,7 @@
 #include <string>
 #include <string_view>
 
+#include "rayint/input/scalar_choice.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
@@ -30,18 +31,16 @@ namespace rayint {
 
 // `source` names the file in messages. Throws InputError. The mesh's structure is validated
 // (validate_tet_mesh_structure).
-// `cell_to_point`: a cell field ($ElementData) becomes point data averaged as ParaView does.
-TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                   bool cell_to_point = false);
-TetMesh read_gmsh(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+// `scalar.cell_to_point`: a cell field ($ElementData) becomes point data averaged as ParaView does.
+TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+TetMesh read_gmsh(const std::string& path, const ScalarChoice& scalar = {});
 
 // The same file as a CellMesh: every linear volume element kept (4-node tetrahedra, 8-node
 // hexahedra, 6-node prisms, 5-node pyramids), nodes permuted to VTK's order through the cell-type
 // table, $ElementNodeData values with them; interface points, lines, triangles and quadrangles
 // gmsh writes between its volumes are skipped and counted like boundary ones (they are never
 // boundaries: a CellMesh's boundary comes from its volume cells only).
-CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                          bool cell_to_point = false);
-CellMesh read_gmsh_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+CellMesh read_gmsh_cells(const std::string& path, const ScalarChoice& scalar = {});
 
 }  // namespace rayint

@@ -35,9 +35,9 @@ std::uint64_t bits(double v) {
 RawArray& choose_scalar(RawMesh& raw, const std::string& source, const AssemblyOptions& options,
                         const RawMeshFields& fields, const MeshFileInfo& info) {
   const RawArray* chosen = find_scalar_array(raw.arrays, options);
-  if (chosen == nullptr && !options.scalar_name.empty())
+  if (chosen == nullptr && !options.scalar.name.empty())
     field::fail(source, fields.point_data,
-                "no array named " + field::quoted(options.scalar_name) + " (arrays: " + list_arrays(info.arrays) + ")");
+                "no array named " + field::quoted(options.scalar.name) + " (arrays: " + list_arrays(info.arrays) + ")");
   if (chosen == nullptr)
     field::fail(source, fields.point_data,
                 "no field to integrate: no one-component point or cell array that is not a region marker (arrays: " +
@@ -151,7 +151,7 @@ std::string assign_scalar(RawMesh& raw, const std::string& source, const Assembl
                                    " values for " + std::to_string(expected) + (chosen.cell ? " cells" : " points"));
   info.scalar = chosen.name;
   info.scalar_association = chosen.cell ? "cell" : "point";
-  if (chosen.cell && !options.cell_to_point) {
+  if (chosen.cell && !options.scalar.cell_to_point) {
     // The kept cells are info.cell_ids (file cell indices, ascending).
     cell_scalars.reserve(info.cell_ids.size());
     for (const long long c : info.cell_ids) cell_scalars.push_back(chosen.values[static_cast<std::size_t>(c)]);
@@ -223,10 +223,10 @@ std::string assemble_cells(RawMesh& raw, const std::string& source, const Assemb
 }  // namespace
 
 const RawArray* find_scalar_array(const std::vector<RawArray>& arrays, const AssemblyOptions& options) {
-  if (!options.scalar_name.empty()) {  // by name: point data first, then cell data
+  if (!options.scalar.name.empty()) {  // by name: point data first, then cell data
     for (int pass = 0; pass < 2; ++pass)
       for (const RawArray& a : arrays)
-        if (a.cell == (pass == 1) && a.name == options.scalar_name) return &a;
+        if (a.cell == (pass == 1) && a.name == options.scalar.name) return &a;
     return nullptr;
   }
   for (const RawArray& a : arrays)

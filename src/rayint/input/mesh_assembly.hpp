@@ -14,13 +14,13 @@
 // is a copy of a point another piece holds, and merge_points joins copies with equal coordinates.
 //
 // The scalar (one rule for every VTK reader):
-//   - `scalar_name` given: the point array of that name, else the cell array of that name; it
+//   - a name given (ScalarChoice::name): the point array of that name, else the cell array of that name; it
 //     must have one component. Not found: one line listing the arrays that exist.
 //   - otherwise the first point array flagged active (legacy SCALARS, XML PointData Scalars="..."),
 //     else the first one-component point array, else the first one-component cell array (cell
 //     data: constant per cell, TetMesh::cell_scalars); region markers and physical tags
 //     (is_marker_array) are never taken. Nothing left: one line listing the arrays that exist.
-// `point_data` (from the case's "cell_data": "point_average") turns a chosen cell array into point
+// ScalarChoice::cell_to_point (from the case's "cell_data": "point_average") turns a chosen cell array into point
 // data the way ParaView's Cell Data to Point Data does (cell_to_point_average).
 #include <cstdint>
 #include <string>
@@ -28,6 +28,7 @@
 
 #include "rayint/core/prefaulted.hpp"
 #include "rayint/geometry/vec3.hpp"
+#include "rayint/input/scalar_choice.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
@@ -60,9 +61,8 @@ struct RawMeshFields {
 };
 
 struct AssemblyOptions {
-  std::string scalar_name;       // "" = the rule above
-  bool cell_to_point = false;    // a cell field becomes averaged point data
-  bool merge_points = false;     // join points with bitwise-equal coordinates (pieces of a .pvtu)
+  ScalarChoice scalar;         // name "" = the rule above; cell_to_point: a cell field becomes averaged point data
+  bool merge_points = false;   // join points with bitwise-equal coordinates (pieces of a .pvtu)
 };
 
 // Throws InputError "<source>: <field>: <what>". The result passes validate_tet_mesh_structure.

@@ -23,17 +23,17 @@
 namespace rayint {
 namespace {
 
-// The built-in readers, chosen by extension; each takes the array name and whether a cell field
-// becomes averaged point data ("cell_data": "point_average").
-using BuiltinReader = TetMesh (*)(const std::string& path, const std::string& scalar_name, bool cell_to_point);
-TetMesh read_tetgen_mesh(const std::string& path, const std::string& scalar_name, bool) {
-  return read_tetgen(path, scalar_name);  // TetGen point attributes are point data only
+// The built-in readers, chosen by extension; each takes the array to integrate and whether a cell
+// field becomes averaged point data ("cell_data": "point_average").
+using BuiltinReader = TetMesh (*)(const std::string& path, const ScalarChoice& scalar);
+TetMesh read_tetgen_mesh(const std::string& path, const ScalarChoice& scalar) {
+  return read_tetgen(path, scalar.name);  // TetGen point attributes are point data only
 }
 // Structured grids hold hexahedra (.vts) or voxels (.vtr, .vti): the tetrahedral path refuses them
 // the way it refuses any non-tetrahedral cell (unsupported_cell_message: use --cells split).
-template <CellMesh (*Read)(const std::string&, const std::string&, bool)>
-TetMesh read_structured_as_tets(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  CellMesh m = Read(path, scalar_name, cell_to_point);
+template <CellMesh (*Read)(const std::string&, const ScalarChoice&)>
+TetMesh read_structured_as_tets(const std::string& path, const ScalarChoice& scalar) {
+  CellMesh m = Read(path, scalar);
   for (std::size_t c = 0; c < m.cell_count(); ++c)
     if (m.types[c] != MeshCellType::tetra)
       throw InputError(path + ": cells[" + std::to_string(c) + "]: " + unsupported_cell_message(static_cast<int>(m.types[c])));
@@ -148,25 +148,25 @@ MeshFieldNames file_field_names(const std::string& extension) {
 
 }  // namespace
 
-TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+TetMesh read_mesh_file(const std::string& path, const ScalarChoice& scalar) {
   // One reader per format, chosen by extension (other mesh formats plug in here).
   const std::string ext = std::filesystem::path(path).extension().string();
   const auto extra = extra_mesh_readers().find(ext);
   const auto builtin = builtin_mesh_readers().find(ext);
   if (extra != extra_mesh_readers().end()) {
-    TetMesh mesh = extra->second(path, scalar_name);
-    if (cell_to_point && !mesh.cell_scalars.empty()) {
+    TetMesh mesh = extra->second(path, scalar.name);
+    if (scalar.cell_to_point && !mesh.cell_scalars.empty()) {
       mesh.scalars = cell_to_point_average(mesh);
       mesh.cell_scalars.clear();
     }
     return mesh;
   }
-  if (builtin != builtin_mesh_readers().end()) return builtin->second(path, scalar_name, cell_to_point);
+  if (builtin != builtin_mesh_readers().end()) return builtin->second(path, scalar);
   throw InputError(path + ": (file): unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
 }
 
 namespace {
-using CellReader = CellMesh (*)(const std::string&, const std::string&, bool);
+using CellReader = CellMesh (*)(const std::string&, const ScalarChoice&);
 const std::map<std::string, CellReader>& cell_readers() {
   static const std::map<std::string, CellReader> readers = {
       {".vtk", &read_vtk_legacy_cells}, {".vtu", &read_vtu_cells}, {".pvtu", &read_pvtu_cells},
@@ -181,14 +181,14 @@ bool has_cell_reader(const std::string& ext) {
 }
 }  // namespace
 
-CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+CellMesh read_cell_mesh_file(const std::string& path, const ScalarChoice& scalar) {
   const auto& readers = cell_readers();
   const std::string ext = std::filesystem::path(path).extension().string();
   const auto it = readers.find(ext);
-  if (it != readers.end() && extra_mesh_readers().count(ext) == 0) return it->second(path, scalar_name, cell_to_point);
+  if (it != readers.end() && extra_mesh_readers().count(ext) == 0) return it->second(path, scalar);
   // Formats of tetrahedra only (TetGen, registered readers): their TetMesh as cells.
   // Quadratic tetrahedra become quadratic tetra cells, as the cell readers give them.
-  return cell_mesh_of(read_mesh_file(path, scalar_name, cell_to_point));
+  return cell_mesh_of(read_mesh_file(path, scalar));
 }
 
 bool is_mesh_case(const json& root) {
@@ -224,11 +224,11 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
     mc.mesh_source = p.string();
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) s.fail("mesh_file", "no such file: " + mc.mesh_source);
-    const std::string name = scalar_field ? s.non_empty_string(*scalar_field, "scalar_field") : "";
-    bool cell_to_point = false;
+    ScalarChoice scalar;
+    if (scalar_field) scalar.name = s.non_empty_string(*scalar_field, "scalar_field");
     if (const json* cd = s.optional(root, "cell_data")) {
       const std::string how = s.non_empty_string(*cd, "cell_data");
-      if (how == "point_average") cell_to_point = true;
+      if (how == "point_average") scalar.cell_to_point = true;
       else if (how != "constant") s.fail("cell_data", "expected \"constant\" (default) or \"point_average\", got " + field::quoted(how));
     }
     const std::string ext = p.extension().string();
@@ -236,7 +236,7 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
       s.fail("mesh_file", "unsupported mesh format \"" + ext + "\" (read: " + known_mesh_extensions() + ")");
     if (options.split_cells) {
       CellSplitCounts counts;
-      CellMesh cells = read_cell_mesh_file(mc.mesh_source, name, cell_to_point);
+      CellMesh cells = read_cell_mesh_file(mc.mesh_source, scalar);
       for (std::size_t c = 0; c < cells.cell_count(); ++c)  // VTK's split of them is not reproduced
         if (is_quadratic(cells.types[c]))
           throw InputError(mc.mesh_source + ": cells[" +
@@ -246,14 +246,14 @@ MeshCase parse_mesh_case(const json& root, const std::string& source, const Mesh
       mc.split = counts;
     } else {
       try {
-        mc.mesh = read_mesh_file(mc.mesh_source, name, cell_to_point);
+        mc.mesh = read_mesh_file(mc.mesh_source, scalar);
       } catch (const InputError&) {
         // The tetrahedral readers refuse any other volume cell. A file that the cell readers take
         // and that holds such cells is integrated in their own interpolation ("mode": "own"); for
         // any other file the tetrahedral reader's message stands. Tetrahedra-only files never
         // come here: their path is unchanged.
         if (!has_cell_reader(ext)) throw;
-        CellMesh cells = read_cell_mesh_file(mc.mesh_source, name, cell_to_point);
+        CellMesh cells = read_cell_mesh_file(mc.mesh_source, scalar);
         if (cells.only_tets()) throw;
         mc.cells = std::move(cells);
       }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rayint/input/scalar_choice.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/mesh_case.hpp"
 
@@ -31,11 +32,11 @@ struct MeshReadOptions {
 
 // A mesh file alone, by extension (.vtk, .vtu, .pvtu, .msh, .ele, .vts, .vtr, .pvts, .pvtr, .vti, or a registered one), as a
 // mesh case's "mesh_file" reads it, before repair and checks (for `rayint mesh info`).
-TetMesh read_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+TetMesh read_mesh_file(const std::string& path, const ScalarChoice& scalar = {});
 
 // Any mesh file as a CellMesh (mesh/cell_mesh.hpp): .vtk, .vtu, .pvtu, .msh, .vts, .vtr, .pvts, .pvtr, .vti keep every
 // linear volume cell; formats of tetrahedra only (.ele, registered readers) give their tetrahedra.
-CellMesh read_cell_mesh_file(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh read_cell_mesh_file(const std::string& path, const ScalarChoice& scalar = {});
 
 MeshCase parse_mesh_case(const nlohmann::json& root, const std::string& source,
                          const MeshReadOptions& options = {});

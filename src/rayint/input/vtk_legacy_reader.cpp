@@ -468,31 +468,29 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
 
 // An UNSTRUCTURED_GRID's raw cells, with the assembly options the two mesh parsers take.
 std::pair<RawMesh, AssemblyOptions> parse_unstructured(std::string_view bytes, const std::string& source,
-                                                       const std::string& scalar_name, bool cell_to_point) {
+                                                       const ScalarChoice& scalar) {
   VtkCursor c(bytes, source);
   LegacyDataset d = parse_legacy(c, "UNSTRUCTURED_GRID");
   AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
+  o.scalar = scalar;
   return {std::move(d.raw), o};
 }
 
 }  // namespace
 
 TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
-                         const std::string& scalar_name, bool cell_to_point) {
-  auto [raw, options] = parse_unstructured(bytes, source, scalar_name, cell_to_point);
+                         const ScalarChoice& scalar) {
+  auto [raw, options] = parse_unstructured(bytes, source, scalar);
   return assemble_tet_mesh(std::move(raw), source, options);
 }
 
-CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                                bool cell_to_point) {
-  auto [raw, options] = parse_unstructured(bytes, source, scalar_name, cell_to_point);
+CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  auto [raw, options] = parse_unstructured(bytes, source, scalar);
   return assemble_cell_mesh(std::move(raw), source, options);
 }
 
-CellMesh read_vtk_legacy_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vtk_legacy_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+CellMesh read_vtk_legacy_cells(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vtk_legacy_cells(json_source::read_text_file(path), path, scalar);
 }
 
 VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& source,
@@ -555,8 +553,8 @@ VoxelGrid read_vtk_legacy_image(const std::string& path, const std::string& scal
   return parse_vtk_legacy_image(json_source::read_text_file(path), path, scalar_name);
 }
 
-TetMesh read_vtk_legacy(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vtk_legacy(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+TetMesh read_vtk_legacy(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vtk_legacy(json_source::read_text_file(path), path, scalar);
 }
 
 }  // namespace rayint

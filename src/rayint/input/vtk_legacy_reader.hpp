@@ -22,21 +22,23 @@
 #include <string_view>
 
 #include "rayint/grid/voxel_grid.hpp"
+#include "rayint/input/scalar_choice.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
 
 // `source` names the file in messages. Throws InputError. The mesh's structure is validated.
-// `cell_to_point`: a cell field becomes point data averaged as ParaView's Cell Data to Point Data.
+// `scalar`: the array to integrate; with cell_to_point a cell field becomes point data averaged
+// as ParaView's Cell Data to Point Data (input/scalar_choice.hpp).
 TetMesh parse_vtk_legacy(std::string_view bytes, const std::string& source,
-                         const std::string& scalar_name = "", bool cell_to_point = false);
-TetMesh read_vtk_legacy(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+                         const ScalarChoice& scalar = {});
+TetMesh read_vtk_legacy(const std::string& path, const ScalarChoice& scalar = {});
 
 // The same file as a CellMesh: every linear volume cell kept (mesh_assembly.hpp, assemble_cell_mesh).
 CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& source,
-                                const std::string& scalar_name = "", bool cell_to_point = false);
-CellMesh read_vtk_legacy_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+                                const ScalarChoice& scalar = {});
+CellMesh read_vtk_legacy_cells(const std::string& path, const ScalarChoice& scalar = {});
 
 VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& source,
                                  const std::string& scalar_name = "");

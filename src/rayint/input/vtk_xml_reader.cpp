@@ -212,15 +212,13 @@ namespace {
 
 // A .vtu's pieces as one RawMesh, handed to `assemble` (assemble_tet_mesh or assemble_cell_mesh).
 template <class Assemble>
-auto assemble_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                  bool cell_to_point, Assemble assemble) {
+auto assemble_vtu(std::string_view bytes, const std::string& source, const ScalarChoice& scalar, Assemble assemble) {
   const Document d(bytes, source, "UnstructuredGrid");
   const std::string piece_field = "UnstructuredGrid/Piece";
   RawMesh raw;
   std::size_t pieces = 0;
   AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
+  o.scalar = scalar;
   for (pugi::xml_node piece = d.dataset().child("Piece"); piece; piece = piece.next_sibling("Piece")) {
     append_vtu_piece(d, piece, pieces == 0 ? piece_field : piece_field + "[" + std::to_string(pieces) + "]", raw, o);
     ++pieces;
@@ -232,22 +230,20 @@ auto assemble_vtu(std::string_view bytes, const std::string& source, const std::
 
 }  // namespace
 
-TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                  bool cell_to_point) {
-  return assemble_vtu(bytes, source, scalar_name, cell_to_point, &assemble_tet_mesh);
+TetMesh parse_vtu(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  return assemble_vtu(bytes, source, scalar, &assemble_tet_mesh);
 }
 
-CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                         bool cell_to_point) {
-  return assemble_vtu(bytes, source, scalar_name, cell_to_point, &assemble_cell_mesh);
+CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  return assemble_vtu(bytes, source, scalar, &assemble_cell_mesh);
 }
 
-CellMesh read_vtu_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vtu_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+CellMesh read_vtu_cells(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vtu_cells(json_source::read_text_file(path), path, scalar);
 }
 
-TetMesh read_vtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vtu(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+TetMesh read_vtu(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vtu(json_source::read_text_file(path), path, scalar);
 }
 
 namespace {
@@ -272,15 +268,14 @@ std::vector<std::string> piece_sources(const Document& d, pugi::xml_node dataset
 namespace {
 
 template <class Assemble>
-auto assemble_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point, Assemble assemble) {
+auto assemble_pvtu(const std::string& path, const ScalarChoice& scalar, Assemble assemble) {
   const std::string text = json_source::read_text_file(path);
   const Document d(text, path, "PUnstructuredGrid");
   RawMesh raw;
   std::size_t pieces = 0;
   std::string last_field = "UnstructuredGrid/Piece";
   AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
+  o.scalar = scalar;
   for (const std::string& file : piece_sources(d, d.dataset(), "PUnstructuredGrid", path)) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec))
@@ -305,12 +300,12 @@ std::vector<std::string> pvtu_piece_files(const std::string& path) {
   return piece_sources(d, d.dataset(), "PUnstructuredGrid", path);
 }
 
-TetMesh read_pvtu(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return assemble_pvtu(path, scalar_name, cell_to_point, &assemble_tet_mesh);
+TetMesh read_pvtu(const std::string& path, const ScalarChoice& scalar) {
+  return assemble_pvtu(path, scalar, &assemble_tet_mesh);
 }
 
-CellMesh read_pvtu_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return assemble_pvtu(path, scalar_name, cell_to_point, &assemble_cell_mesh);
+CellMesh read_pvtu_cells(const std::string& path, const ScalarChoice& scalar) {
+  return assemble_pvtu(path, scalar, &assemble_cell_mesh);
 }
 
 namespace {
@@ -539,11 +534,10 @@ std::size_t cell_total(const std::array<int, 3>& n) {
 // The cells of the n[0] x n[1] x n[2] points (voxels, or hexahedra when not axis-aligned) and
 // the assembly, once points and arrays are in `raw` (the serial readers and the parallel ones).
 CellMesh assemble_structured(const std::array<int, 3>& n, bool voxels, RawMesh raw, const std::string& source,
-                             const std::string& scalar_name, bool cell_to_point, const RawMeshFields& fields) {
+                             const ScalarChoice& scalar, const RawMeshFields& fields) {
   structured_cells(n, voxels, raw);
   AssemblyOptions o;
-  o.scalar_name = scalar_name;
-  o.cell_to_point = cell_to_point;
+  o.scalar = scalar;
   CellMesh mesh = assemble_cell_mesh(std::move(raw), source, o, fields);
   mesh.structured = n;
   return mesh;
@@ -553,10 +547,10 @@ CellMesh assemble_structured(const std::array<int, 3>& n, bool voxels, RawMesh r
 // and cell arrays, then assemble_structured.
 CellMesh structured_mesh(const Document& d, pugi::xml_node piece, const std::string& type,
                          const std::array<int, 3>& n, bool voxels, RawMesh raw, const std::string& source,
-                         const std::string& scalar_name, bool cell_to_point, const RawMeshFields& fields) {
+                         const ScalarChoice& scalar, const RawMeshFields& fields) {
   const std::size_t points = raw.points.size();
   structured_arrays(d, piece, type, points, cell_total(n), raw);
-  return assemble_structured(n, voxels, std::move(raw), source, scalar_name, cell_to_point, fields);
+  return assemble_structured(n, voxels, std::move(raw), source, scalar, fields);
 }
 
 // A StructuredGrid piece's points (Points: one three-component DataArray, finite).
@@ -610,34 +604,30 @@ std::vector<Vec3> rectilinear_points(const std::array<std::vector<double>, 3>& a
 // its dimensions (structured_dims), its points as points_of(d, piece, type, n) gives them, then
 // structured_mesh.
 template <class Points>
-CellMesh parse_grid(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                    bool cell_to_point, const std::string& type, bool voxels, Points points_of) {
+CellMesh parse_grid(std::string_view bytes, const std::string& source, const ScalarChoice& scalar, const std::string& type, bool voxels, Points points_of) {
   const Document d(bytes, source, type);
   pugi::xml_node piece;
   const std::array<int, 3> n = structured_dims(d, type, piece);
   RawMesh raw;
   raw.points = points_of(d, piece, type, n);
-  return structured_mesh(d, piece, type, n, voxels, std::move(raw), source, scalar_name, cell_to_point,
+  return structured_mesh(d, piece, type, n, voxels, std::move(raw), source, scalar,
                          structured_fields(type));
 }
 
 }  // namespace
 
-CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                   bool cell_to_point) {
-  return parse_grid(bytes, source, scalar_name, cell_to_point, "StructuredGrid", false, structured_points);
+CellMesh parse_vts(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  return parse_grid(bytes, source, scalar, "StructuredGrid", false, structured_points);
 }
 
-CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                   bool cell_to_point) {
-  return parse_grid(bytes, source, scalar_name, cell_to_point, "RectilinearGrid", true,
+CellMesh parse_vtr(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
+  return parse_grid(bytes, source, scalar, "RectilinearGrid", true,
                     [](const Document& d, pugi::xml_node piece, const std::string& type, const std::array<int, 3>& n) {
                       return rectilinear_points(rectilinear_axes(d, piece, type, n));
                     });
 }
 
-CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name,
-                         bool cell_to_point) {
+CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
   const std::string type = "ImageData";
   const Document d(bytes, source, type);
   const ImageFrame f = image_frame(d, d.dataset(), type);
@@ -667,19 +657,19 @@ CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, cons
   // of the same corners.
   RawMeshFields fields = structured_fields(type);
   fields.points = type + " (Origin, Spacing, Direction)";
-  return structured_mesh(d, piece, type, n, axis_aligned, std::move(raw), source, scalar_name, cell_to_point, fields);
+  return structured_mesh(d, piece, type, n, axis_aligned, std::move(raw), source, scalar, fields);
 }
 
-CellMesh read_vti_cells(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vti_cells(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+CellMesh read_vti_cells(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vti_cells(json_source::read_text_file(path), path, scalar);
 }
 
-CellMesh read_vts(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vts(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+CellMesh read_vts(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vts(json_source::read_text_file(path), path, scalar);
 }
 
-CellMesh read_vtr(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
-  return parse_vtr(json_source::read_text_file(path), path, scalar_name, cell_to_point);
+CellMesh read_vtr(const std::string& path, const ScalarChoice& scalar) {
+  return parse_vtr(json_source::read_text_file(path), path, scalar);
 }
 
 // ---- Parallel structured grids (.pvts, .pvtr) ----------------------------------------------------
@@ -704,7 +694,7 @@ struct StructuredPiece {
 };
 
 CellMesh parse_parallel_structured(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
-                                   bool rectilinear, const std::string& scalar_name, bool cell_to_point) {
+                                   bool rectilinear, const ScalarChoice& scalar) {
   const std::string type = rectilinear ? "RectilinearGrid" : "StructuredGrid";
   const std::string ptype = "P" + type;
   const Document d(bytes, source, ptype);
@@ -865,7 +855,7 @@ CellMesh parse_parallel_structured(std::string_view bytes, const std::string& so
   }
   raw.arrays = std::move(arrays);
   return assemble_structured(N, rectilinear, std::move(raw), source + " (" + std::to_string(pieces.size()) + " pieces)",
-                             scalar_name, cell_to_point, structured_fields(type));
+                             scalar, structured_fields(type));
 }
 
 std::string read_piece_file(const std::string& source, const std::string& type, const std::string& file) {
@@ -878,23 +868,23 @@ std::string read_piece_file(const std::string& source, const std::string& type, 
 }  // namespace
 
 CellMesh parse_pvts(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
-                    const std::string& scalar_name, bool cell_to_point) {
-  return parse_parallel_structured(bytes, source, load, false, scalar_name, cell_to_point);
+                    const ScalarChoice& scalar) {
+  return parse_parallel_structured(bytes, source, load, false, scalar);
 }
 
 CellMesh parse_pvtr(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
-                    const std::string& scalar_name, bool cell_to_point) {
-  return parse_parallel_structured(bytes, source, load, true, scalar_name, cell_to_point);
+                    const ScalarChoice& scalar) {
+  return parse_parallel_structured(bytes, source, load, true, scalar);
 }
 
-CellMesh read_pvts(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+CellMesh read_pvts(const std::string& path, const ScalarChoice& scalar) {
   const auto load = [&](const std::string& file) { return read_piece_file(path, "StructuredGrid", file); };
-  return parse_pvts(json_source::read_text_file(path), path, load, scalar_name, cell_to_point);
+  return parse_pvts(json_source::read_text_file(path), path, load, scalar);
 }
 
-CellMesh read_pvtr(const std::string& path, const std::string& scalar_name, bool cell_to_point) {
+CellMesh read_pvtr(const std::string& path, const ScalarChoice& scalar) {
   const auto load = [&](const std::string& file) { return read_piece_file(path, "RectilinearGrid", file); };
-  return parse_pvtr(json_source::read_text_file(path), path, load, scalar_name, cell_to_point);
+  return parse_pvtr(json_source::read_text_file(path), path, load, scalar);
 }
 
 }  // namespace rayint

@@ -28,30 +28,30 @@
 #include <vector>
 
 #include "rayint/grid/voxel_grid.hpp"
+#include "rayint/input/scalar_choice.hpp"
 #include "rayint/mesh/cell_mesh.hpp"
 #include "rayint/mesh/tet_mesh.hpp"
 
 namespace rayint {
 
 // `source` names the file in messages. Throw InputError.
-// `cell_to_point`: a cell field becomes point data averaged as ParaView's Cell Data to Point Data.
-TetMesh parse_vtu(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                  bool cell_to_point = false);
-TetMesh read_vtu(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+// `scalar`: the array to integrate; with cell_to_point a cell field becomes point data averaged
+// as ParaView's Cell Data to Point Data (input/scalar_choice.hpp).
+TetMesh parse_vtu(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+TetMesh read_vtu(const std::string& path, const ScalarChoice& scalar = {});
 // A .pvtu (VTKFile type="PUnstructuredGrid"): the .vtu pieces its <Piece Source="..."> name,
 // relative to its folder, joined: points with bitwise-equal coordinates merged (the pieces of
 // one dataset repeat the points on their shared faces), ghost cells dropped (mesh_assembly.hpp).
 // The piece files a .pvtu names (its Piece Source attributes, resolved against its folder), for
 // a reader that reads them itself (VTK's): each is an input of the run (shard fingerprints).
 std::vector<std::string> pvtu_piece_files(const std::string& path);
-TetMesh read_pvtu(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+TetMesh read_pvtu(const std::string& path, const ScalarChoice& scalar = {});
 
 // The same files as CellMeshes (mesh/cell_mesh.hpp): every linear volume cell kept (tetrahedra,
 // voxels, hexahedra, wedges, pyramids), for `--cells split` and `rayint mesh info`.
-CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                         bool cell_to_point = false);
-CellMesh read_vtu_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
-CellMesh read_pvtu_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+CellMesh read_vtu_cells(const std::string& path, const ScalarChoice& scalar = {});
+CellMesh read_pvtu_cells(const std::string& path, const ScalarChoice& scalar = {});
 
 // Structured grids (one Piece whose Extent is the WholeExtent; a grid flat on an axis is refused):
 // .vts (VTKFile type="StructuredGrid": Points, PointData, CellData): hexahedral cells, VTK's
@@ -59,12 +59,10 @@ CellMesh read_pvtu_cells(const std::string& path, const std::string& scalar_name
 // DataArrays x, y, z in that order, strictly increasing, under any names): voxel cells, VTK's
 // vtkRectilinearGrid order. The scalar by the rule of input/mesh_assembly.hpp. The result keeps
 // its point dimensions (CellMesh::structured), which --cells split needs (mesh/cell_split.hpp).
-CellMesh parse_vts(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                   bool cell_to_point = false);
-CellMesh read_vts(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
-CellMesh parse_vtr(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                   bool cell_to_point = false);
-CellMesh read_vtr(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh parse_vts(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+CellMesh read_vts(const std::string& path, const ScalarChoice& scalar = {});
+CellMesh parse_vtr(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+CellMesh read_vtr(const std::string& path, const ScalarChoice& scalar = {});
 
 // Parallel structured grids, .pvts (VTKFile type="PStructuredGrid") and .pvtr
 // ("PRectilinearGrid"), as vtkXMLPStructuredGridWriter / vtkXMLPRectilinearGridWriter write
@@ -81,19 +79,18 @@ CellMesh read_vtr(const std::string& path, const std::string& scalar_name = "", 
 // the file, an InputError when missing; the fuzzer: its input's parts).
 using PieceFileLoader = std::function<std::string(const std::string& path)>;
 CellMesh parse_pvts(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
-                    const std::string& scalar_name = "", bool cell_to_point = false);
+                    const ScalarChoice& scalar = {});
 CellMesh parse_pvtr(std::string_view bytes, const std::string& source, const PieceFileLoader& load,
-                    const std::string& scalar_name = "", bool cell_to_point = false);
-CellMesh read_pvts(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
-CellMesh read_pvtr(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+                    const ScalarChoice& scalar = {});
+CellMesh read_pvts(const std::string& path, const ScalarChoice& scalar = {});
+CellMesh read_pvtr(const std::string& path, const ScalarChoice& scalar = {});
 
 // A .vti as a mesh of its voxels (CellMesh, like .vtr): points at Origin + Direction (index *
 // spacing), voxel cells (hexahedra of the same corners when Direction rotates them), point and
 // cell arrays, the scalar by the rule of input/mesh_assembly.hpp. The way to integrate an image
 // whose field is cell data: constant per voxel, exactly, with --cells split (docs/images.md).
-CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const std::string& scalar_name = "",
-                         bool cell_to_point = false);
-CellMesh read_vti_cells(const std::string& path, const std::string& scalar_name = "", bool cell_to_point = false);
+CellMesh parse_vti_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar = {});
+CellMesh read_vti_cells(const std::string& path, const ScalarChoice& scalar = {});
 
 VoxelGrid parse_vti(std::string_view bytes, const std::string& source, const std::string& scalar_name = "");
 VoxelGrid read_vti(const std::string& path, const std::string& scalar_name = "");
