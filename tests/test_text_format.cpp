@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+#include "rayint/report/gate_lines.hpp"
+#include "rayint/report/mesh_render_json.hpp"
 #include "rayint/report/text_format.hpp"
 
 TEST_CASE("appendf appends the formatted text, whatever its length", "[report]") {
@@ -17,4 +19,22 @@ TEST_CASE("appendf appends the formatted text, whatever its length", "[report]")
   const std::string before = out;
   rayint::appendf(out, "%s", "");
   CHECK(out == before);
+}
+
+// The summary and progress lines are written with appendf too: a long path or phase is kept whole
+// (they were cut at 512 or 1024 characters before).
+TEST_CASE("summary and progress lines keep a long heat-map path or phase whole", "[report]") {
+  const std::string path = "/tmp/" + std::string(2000, 'd') + "/heat.png";
+  const rayint::MeshRenderComparison compare{"riemann", path};
+  const std::string line = rayint::comparison_summary(compare, rayint::ErrorSummary{}, "exact");
+  CHECK(line.rfind("rayint render: riemann vs exact: ", 0) == 0);
+  CHECK(line.size() > path.size());
+  CHECK(line.substr(line.size() - path.size() - 1) == path + "\n");
+
+  rayint::GateProgress p;
+  p.phase = std::string(1500, 'p');
+  p.done = 3;
+  p.total = 7;
+  p.seconds = 2.0;
+  CHECK(rayint::gate_progress_line(p) == "gate: " + p.phase + " 3/7, 2 s\n");
 }

@@ -64,8 +64,9 @@ struct DataBlock {
 
 class MshReader {
  public:
-  MshReader(std::string_view bytes, const std::string& source, const ScalarChoice& scalar, bool keep_cells = false)
-      : c_(bytes, source, '\0'), scalar_name_(scalar.name), cell_to_point_(scalar.cell_to_point), keep_cells_(keep_cells) {}
+  MshReader(std::string_view bytes, const std::string& source, const ScalarChoice& scalar,
+            bool keep_cells = false)
+      : c_(bytes, source, '\0'), scalar_(scalar), keep_cells_(keep_cells) {}
 
   TetMesh read() {
     parse();
@@ -456,7 +457,7 @@ class MshReader {
     if (n < 0) c_.fail(f, "negative number of entities");
     mesh_.info.arrays.push_back({name, per_cell ? "cell" : per_element ? "point (per element)" : "point", comps,
                                  is_marker_array(name)});
-    const bool wanted_name = scalar_name_.empty() ? !is_marker_array(name) : name == scalar_name_;
+    const bool wanted_name = scalar_.name.empty() ? !is_marker_array(name) : name == scalar_.name;
     DataBlock& slot = per_element ? element_data_ : per_cell ? cell_data_ : node_data_;
     const bool take = wanted_name && comps == 1 && !slot.present;
     if (take) {
@@ -552,9 +553,10 @@ class MshReader {
 
   // What finish() and finish_cells() say when no data block gives the scalar.
   std::string no_scalar_text() const {
-    return scalar_name_.empty() ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
-                                : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
-                                      field::quoted(scalar_name_);
+    return scalar_.name.empty()
+               ? "no one-component $NodeData, $ElementNodeData or $ElementData that is not a marker"
+               : "no one-component $NodeData, $ElementNodeData or $ElementData named " +
+                     field::quoted(scalar_.name);
   }
 
   // $NodeData into value (have[i] = 1 for each point given one); nodes not saved are skipped.
@@ -627,7 +629,7 @@ class MshReader {
       }
       mesh_.info.scalar = cell_data_.name;
       mesh_.info.scalar_association = "cell";
-      if (cell_to_point_) {
+      if (scalar_.cell_to_point) {
         mesh_.scalars = cell_to_point_average(mesh_);
         mesh_.cell_scalars.clear();
         mesh_.info.scalar_association = "cell averaged to points";
@@ -705,7 +707,7 @@ class MshReader {
       }
       m.info.scalar = cell_data_.name;
       m.info.scalar_association = "cell";
-      if (cell_to_point_) {
+      if (scalar_.cell_to_point) {
         // vtkCellDataToPointData over the volume cells: plain average at each point.
         std::vector<long> count(m.points.size(), 0);
         for (std::size_t c = 0; c < m.cell_count(); ++c)
@@ -740,8 +742,7 @@ class MshReader {
   };
 
   LineCursor c_;
-  std::string scalar_name_;
-  bool cell_to_point_ = false;
+  ScalarChoice scalar_;  // the array to take, and whether a cell field becomes point data
   bool keep_cells_ = false;
   std::vector<RawCell> cells_;
   bool version4_ = false, binary_ = false;

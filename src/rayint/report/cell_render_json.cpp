@@ -1,7 +1,8 @@
 #include "rayint/report/cell_render_json.hpp"
 
-#include <cstdio>
 #include <sstream>
+
+#include "rayint/report/text_format.hpp"
 
 namespace rayint {
 
@@ -49,14 +50,14 @@ nlohmann::json cell_mesh_render_json(const MeshCase& mc, const CellTraversal& me
 }
 
 std::string cell_mesh_render_summary(const CellMeshRender& r, const MeshRenderComparison* compare) {
-  char line[512];
-  std::snprintf(line, sizeof line,
-                "rayint render: mode own: %ld rays, %ld cell chords in %.3f s on %u threads (%.3g rays/s); "
-                "largest error estimate %.2g; %ld failed pixels%s\n",
-                r.rays, r.chords, r.wall_seconds, r.threads,
-                r.wall_seconds > 0 ? static_cast<double>(r.rays) / r.wall_seconds : 0.0, r.max_error_estimate,
-                r.failed_pixels, r.failed_pixels > 0 ? " (NaN in the image, not a result)" : "");
-  std::string out = line;
+  std::string out;
+  appendf(
+      out,
+      "rayint render: mode own: %ld rays, %ld cell chords in %.3f s on %u threads (%.3g rays/s); "
+      "largest error estimate %.2g; %ld failed pixels%s\n",
+      r.rays, r.chords, r.wall_seconds, r.threads,
+      r.wall_seconds > 0 ? static_cast<double>(r.rays) / r.wall_seconds : 0.0, r.max_error_estimate,
+      r.failed_pixels, r.failed_pixels > 0 ? " (NaN in the image, not a result)" : "");
   if (compare) out += comparison_summary(*compare, r.error, "own");
   return out;
 }
@@ -128,22 +129,19 @@ std::string own_eval_table(const std::vector<OwnCaseEvaluation>& cases, bool wit
     s << ")\n  ray  chords  intensity r g b" << (with_reference ? "  abs_error" : "") << "\n";
     for (std::size_t i = 0; i < c.rays.size(); ++i) {
       const OwnRayEvaluation& r = c.rays[i];
-      char line[256];
+      std::string line;
       if (r.converged)
-        std::snprintf(line, sizeof line, "  %3zu  %6ld  %.17g %.17g %.17g", i, r.chords, r.intensity[0], r.intensity[1],
-                      r.intensity[2]);
+        appendf(line, "  %3zu  %6ld  %.17g %.17g %.17g", i, r.chords, r.intensity[0],
+                r.intensity[1], r.intensity[2]);
       else
-        std::snprintf(line, sizeof line, "  %3zu  %6ld  failed: %s", i, r.chords, r.failure.c_str());
-      s << line;
+        appendf(line, "  %3zu  %6ld  failed: %s", i, r.chords, r.failure.c_str());
       if (with_reference) {
-        if (r.referenced && r.converged) {
-          std::snprintf(line, sizeof line, "  %.2e", r.abs_error);
-          s << line;
-        } else {
-          s << "  -";
-        }
+        if (r.referenced && r.converged)
+          appendf(line, "  %.2e", r.abs_error);
+        else
+          line += "  -";
       }
-      s << "\n";
+      s << line << "\n";
     }
     s << "  failed rays: " << c.failed << "\n";
     if (c.dropped_zero_volume > 0) s << "  zero-volume cells dropped: " << c.dropped_zero_volume << "\n";

@@ -1,7 +1,8 @@
 #include "rayint/report/evaluation_json.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "rayint/report/text_format.hpp"
 
 namespace rayint {
 
@@ -111,14 +112,14 @@ nlohmann::json eval_report_json(const std::vector<CaseEvaluation>& cases) {
 }
 
 std::string eval_progress_line(const std::string& case_name, const EvalProgress& p, double seconds) {
-  char line[512];
+  std::string line;
   if (p.stage == EvalProgress::Stage::reference) {
     const double percent = p.total > 0 ? 100.0 * static_cast<double>(p.done) / static_cast<double>(p.total) : 100.0;
-    std::snprintf(line, sizeof line, "eval %s: reference %zu/%zu segments (%.0f%%), %.0f s\n",
-                  case_name.c_str(), p.done, p.total, percent, seconds);
+    appendf(line, "eval %s: reference %zu/%zu segments (%.0f%%), %.0f s\n", case_name.c_str(),
+            p.done, p.total, percent, seconds);
   } else {
-    std::snprintf(line, sizeof line, "eval %s: method %s, ray %zu/%zu, %.0f s\n", case_name.c_str(),
-                  p.method.c_str(), p.done + 1, p.total, seconds);
+    appendf(line, "eval %s: method %s, ray %zu/%zu, %.0f s\n", case_name.c_str(), p.method.c_str(),
+            p.done + 1, p.total, seconds);
   }
   return line;
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "rayint/report/text_format.hpp"
 
@@ -18,10 +17,7 @@ std::string evaluation_table(const std::vector<CaseEvaluation>& cases) {
           "max rel", "max ulp", "ref rel est", "time/ray", "branches");
   out += std::string(137, '-') + "\n";
   const auto number = [](double x, const char* format) {
-    char buf[32];
-    if (!std::isfinite(x)) return std::string("-");
-    std::snprintf(buf, sizeof buf, format, x);
-    return std::string(buf);
+    return std::isfinite(x) ? printf_number(format, x) : std::string("-");
   };
   for (const auto& c : cases) {
     if (c.rays.empty()) continue;

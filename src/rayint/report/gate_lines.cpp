@@ -24,8 +24,8 @@ std::string gate_lines(const GateReport& r) {
 }
 
 std::string gate_progress_line(const GateProgress& p) {
-  char line[512];
-  std::snprintf(line, sizeof line, "gate: %s %ld/%ld, %.0f s\n", p.phase.c_str(), p.done, p.total, p.seconds);
+  std::string line;
+  appendf(line, "gate: %s %ld/%ld, %.0f s\n", p.phase.c_str(), p.done, p.total, p.seconds);
   return line;
 }
 

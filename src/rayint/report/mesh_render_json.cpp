@@ -1,9 +1,8 @@
 #include "rayint/report/mesh_render_json.hpp"
 
-#include <cstdio>
-
 #include "rayint/mesh/quadratic_tets.hpp"
 #include "rayint/report/evaluation_json.hpp"
+#include "rayint/report/text_format.hpp"
 
 namespace rayint {
 
@@ -48,14 +47,14 @@ nlohmann::json mesh_render_json(const MeshCase& mc, const TetTraversal& mesh, co
 std::string mesh_render_summary(const MeshRender& r, const MeshRenderComparison* compare) {
   const MeshRenderCost& c = r.cost;
   const double busy = c.traversal_seconds + c.integration_seconds;
-  char line[1024];
-  std::snprintf(line, sizeof line,
-                "rayint render: %ld rays in %.3f s on %u threads: %.3g rays/s, %.3g pieces/s, "
-                "traversal %.0f%% / integration %.0f%%\n",
-                c.rays, c.wall_seconds, c.threads, static_cast<double>(c.rays) / c.wall_seconds,
-                static_cast<double>(c.pieces) / c.wall_seconds, busy > 0 ? 100 * c.traversal_seconds / busy : 0.0,
-                busy > 0 ? 100 * c.integration_seconds / busy : 0.0);
-  std::string out = line;
+  std::string out;
+  appendf(out,
+          "rayint render: %ld rays in %.3f s on %u threads: %.3g rays/s, %.3g pieces/s, "
+          "traversal %.0f%% / integration %.0f%%\n",
+          c.rays, c.wall_seconds, c.threads, static_cast<double>(c.rays) / c.wall_seconds,
+          static_cast<double>(c.pieces) / c.wall_seconds,
+          busy > 0 ? 100 * c.traversal_seconds / busy : 0.0,
+          busy > 0 ? 100 * c.integration_seconds / busy : 0.0);
   if (compare) out += comparison_summary(*compare, r.error, "exact");
   return out;
 }
@@ -73,9 +72,10 @@ nlohmann::json comparison_json(const MeshRenderComparison& compare, const ErrorS
 }
 
 std::string comparison_summary(const MeshRenderComparison& compare, const ErrorSummary& e, const char* against) {
-  char line[1024];
-  std::snprintf(line, sizeof line, "rayint render: %s vs %s: max rel %.3g, median %.3g, p99 %.3g -> %s\n",
-                compare.label.c_str(), against, e.max_rel, e.median_rel, e.p99_rel, compare.heat_map.c_str());
+  std::string line;
+  appendf(line, "rayint render: %s vs %s: max rel %.3g, median %.3g, p99 %.3g -> %s\n",
+          compare.label.c_str(), against, e.max_rel, e.median_rel, e.p99_rel,
+          compare.heat_map.c_str());
   return line;
 }
 

@@ -35,13 +35,12 @@ std::string branch_shares(const std::map<std::string, long>& branches) {
 
 std::string method_row(const std::string& regime, const std::string& samples, const std::string& pieces,
                        const MethodStress& m) {
-  char line[512];
-  std::snprintf(line, sizeof line,
-                "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7ld %6ld %6ld  %s\n", regime.c_str(),
-                m.method.c_str(), samples.c_str(), pieces.c_str(), g3(m.rel.max).c_str(),
-                g3(m.rel.p99).c_str(), g3(m.rel.median).c_str(), g3(m.ulp.max).c_str(),
-                g3(m.ulp.p99).c_str(), g3(m.ulp.median).c_str(), m.non_finite, m.failures, m.underflow,
-                branch_shares(m.branches).c_str());
+  std::string line;
+  appendf(line, "%-20s %-14s %8s %9s %9s %9s %9s %9s %9s %9s %7ld %6ld %6ld  %s\n", regime.c_str(),
+          m.method.c_str(), samples.c_str(), pieces.c_str(), g3(m.rel.max).c_str(),
+          g3(m.rel.p99).c_str(), g3(m.rel.median).c_str(), g3(m.ulp.max).c_str(),
+          g3(m.ulp.p99).c_str(), g3(m.ulp.median).c_str(), m.non_finite, m.failures, m.underflow,
+          branch_shares(m.branches).c_str());
   return line;
 }
 
@@ -100,12 +99,12 @@ std::string stress_table(const StressReport& r) {
 std::string stress_progress_line(const StressProgress& p) {
   const double rate = p.seconds > 0 ? static_cast<double>(p.pieces_done) / p.seconds : 0.0;
   const double left = rate > 0 ? static_cast<double>(p.pieces_total - p.pieces_done) / rate : 0.0;
-  char line[512];
-  std::snprintf(line, sizeof line, "stress: %ld/%ld pieces (%.0f%%), %ld/%ld samples, %.0f pieces/s, %s elapsed%s\n",
-                p.pieces_done, p.pieces_total,
-                100.0 * static_cast<double>(p.pieces_done) / static_cast<double>(p.pieces_total),
-                p.samples_done, p.samples_total, rate, duration(p.seconds).c_str(),
-                p.pieces_done < p.pieces_total ? (", about " + duration(left) + " left").c_str() : "");
+  std::string line;
+  appendf(line, "stress: %ld/%ld pieces (%.0f%%), %ld/%ld samples, %.0f pieces/s, %s elapsed%s\n",
+          p.pieces_done, p.pieces_total,
+          100.0 * static_cast<double>(p.pieces_done) / static_cast<double>(p.pieces_total),
+          p.samples_done, p.samples_total, rate, duration(p.seconds).c_str(),
+          p.pieces_done < p.pieces_total ? (", about " + duration(left) + " left").c_str() : "");
   return line;
 }
 

@@ -9,10 +9,7 @@ namespace rayint {
 namespace {
 
 std::string format_error(double e) {
-  char buf[32];
-  if (!std::isfinite(e)) return "non-finite";
-  std::snprintf(buf, sizeof buf, "%.2e", e);
-  return buf;
+  return std::isfinite(e) ? printf_number("%.2e", e) : "non-finite";
 }
 
 std::string format_seconds(double s) {
@@ -29,11 +26,11 @@ std::string format_seconds(double s) {
 }  // namespace
 
 std::string sweep_progress_line(const SweepProgress& p) {
-  char line[320];
+  std::string line;
   switch (p.stage) {
     case SweepProgress::Stage::reference:
-      std::snprintf(line, sizeof line, "[reference %2zu/%zu] %-34s %7.1f s\n", p.done, p.total,
-                    p.what.c_str(), p.elapsed_seconds);
+      appendf(line, "[reference %2zu/%zu] %-34s %7.1f s\n", p.done, p.total, p.what.c_str(),
+              p.elapsed_seconds);
       break;
     case SweepProgress::Stage::setting: {
       const SettingResult& s = *p.setting;
@@ -47,17 +44,16 @@ std::string sweep_progress_line(const SweepProgress& p) {
         std::snprintf(setup, sizeof setup, "  set-up %.1f s", s.setup_seconds);
         note += setup;
       }
-      std::snprintf(line, sizeof line,
-                    "[%3zu/%zu] %-26s max %-10s median %-10s %11s/ray %7.1f s%s\n", p.done, p.total,
-                    p.what.c_str(), scored ? format_error(s.max_error).c_str() : "-",
-                    scored ? format_error(s.median_error).c_str() : "-",
-                    scored ? format_seconds(s.seconds_per_ray).c_str() : "-",
-                    p.elapsed_seconds, note.c_str());
+      appendf(line, "[%3zu/%zu] %-26s max %-10s median %-10s %11s/ray %7.1f s%s\n", p.done, p.total,
+              p.what.c_str(), scored ? format_error(s.max_error).c_str() : "-",
+              scored ? format_error(s.median_error).c_str() : "-",
+              scored ? format_seconds(s.seconds_per_ray).c_str() : "-", p.elapsed_seconds,
+              note.c_str());
       break;
     }
     case SweepProgress::Stage::skipped:
-      std::snprintf(line, sizeof line, "[%3zu/%zu] %-26s skipped: %s\n", p.done, p.total,
-                    p.what.c_str(), p.reason.c_str());
+      appendf(line, "[%3zu/%zu] %-26s skipped: %s\n", p.done, p.total, p.what.c_str(),
+              p.reason.c_str());
       break;
   }
   return line;
