@@ -599,7 +599,8 @@ Knots knots(const Interpolant& I, const std::vector<double>& breakpoints) {
     const double lo = monotone[k], hi = monotone[k + 1];
     if (!(hi > lo)) continue;
     out.push_back(lo);
-    const double f_lo = clenshaw(I.c, lo), f_hi = clenshaw(I.c, hi);
+    double f_lo = 0.0, f_hi = 0.0;
+    clenshaw_pair(I.c, lo, I.c, hi, f_lo, f_hi);
     const double f_min = std::min(f_lo, f_hi), f_max = std::max(f_lo, f_hi);
     for (double level : breakpoints)
       if (level > f_min && level < f_max) out.push_back(root(I.c, level, lo, hi, f_lo, f_hi));
