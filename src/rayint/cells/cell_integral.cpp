@@ -230,6 +230,21 @@ double clenshaw(const Coefficients& c, double x) {
   return x * b1 - b2 + (c.empty() ? 0.0 : c[0]);
 }
 
+// clenshaw(c, x) and clenshaw(e, y) at once: the two recurrences interleaved (each is a chain of
+// dependent operations, so alone it waits on latency), each with clenshaw's operations in its
+// order: bit for bit clenshaw's two values. A series shorter than the other enters with zero
+// coefficients above its length, which leave its recurrence at +0 until its own top term.
+void clenshaw_pair(const Coefficients& c, double x, const Coefficients& e, double y, double& fc, double& fe) {
+  double b1 = 0.0, b2 = 0.0, d1 = 0.0, d2 = 0.0;
+  for (std::size_t k = std::max(c.size(), e.size()); k-- > 1;) {
+    const double b0 = 2.0 * x * b1 - b2 + (k < c.size() ? c[k] : 0.0);
+    const double d0 = 2.0 * y * d1 - d2 + (k < e.size() ? e[k] : 0.0);
+    b2 = b1, b1 = b0, d2 = d1, d1 = d0;
+  }
+  fc = x * b1 - b2 + (c.empty() ? 0.0 : c[0]);
+  fe = y * d1 - d2 + (e.empty() ? 0.0 : e[0]);
+}
+
 // cos(pi m / n) for m = 0 .. 2n - 1 and the degrees used (n = 8 .. kMaxDegree, powers of 2),
 // computed once: the DCT and the Chebyshev points read them instead of calling cos.
 const double* cosine_table(int n) {
@@ -584,7 +599,8 @@ Knots knots(const Interpolant& I, const std::vector<double>& breakpoints) {
     const double lo = monotone[k], hi = monotone[k + 1];
     if (!(hi > lo)) continue;
     out.push_back(lo);
-    const double f_lo = clenshaw(I.c, lo), f_hi = clenshaw(I.c, hi);
+    double f_lo = 0.0, f_hi = 0.0;
+    clenshaw_pair(I.c, lo, I.c, hi, f_lo, f_hi);
     const double f_min = std::min(f_lo, f_hi), f_max = std::max(f_lo, f_hi);
     for (double level : breakpoints)
       if (level > f_min && level < f_max) out.push_back(root(I.c, level, lo, hi, f_lo, f_hi));
@@ -705,12 +721,17 @@ CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double val
     const double h = 0.5 * (I.b - I.a) * speed;  // world length per unit x
     const Knots xs = knots(I, breakpoints_);
     const Coefficients P = antiderivative(I.c);
+    // P at a piece's far end is P at the next piece's near end (the same knot): kept, not summed
+    // again; f at the piece's middle and P at its far end in one interleaved pass.
+    double x_last = std::numeric_limits<double>::quiet_NaN(), P_last = 0.0;
     for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
       const double x0 = xs[k], x1 = xs[k + 1];
       if (!(x1 > x0)) continue;
-      const double f_mid = clenshaw(I.c, 0.5 * (x0 + x1));
+      double f_mid = 0.0, P1 = 0.0;
+      clenshaw_pair(I.c, 0.5 * (x0 + x1), P, x1, f_mid, P1);
       const double length = h * (x1 - x0);
-      const double P0 = clenshaw(P, x0);
+      const double P0 = x0 == x_last ? P_last : clenshaw(P, x0);
+      x_last = x1, P_last = P1;
       ++out.pieces;
       std::array<LinearPart, kChannels> rho, kappa;
       bool emits = false;
@@ -724,7 +745,7 @@ CellPieceIntegral LinearCellIntegrator::integrate_sampled(F& sampler, double val
       const auto tau = [&](std::size_t c, double dx, double dP) {
         return h * (rho[c].v0 * dx + rho[c].beta * (dP - rho[c].s0 * dx));
       };
-      const double dP1 = clenshaw(P, x1) - P0;
+      const double dP1 = P1 - P0;
       Channels piece_emission{}, quadrature_error{};
       if (emits) {
         // At n nodes at once, vectorised over the nodes (emission_nodes.hpp: the same operations
