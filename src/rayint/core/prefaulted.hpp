@@ -10,6 +10,7 @@
 // madvise(MADV_HUGEPAGE)): 4-7 ms less at 105k tets but 10-25% more at 1.05M and bimodal (the
 // huge pages' clearing), NOTES.md round 10.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <new>
 
@@ -38,6 +39,51 @@ struct PrefaultedAllocator {
   bool operator==(const PrefaultedAllocator<U>&) const { return true; }
   template <class U>
   bool operator!=(const PrefaultedAllocator<U>&) const { return false; }
+};
+
+// The same for the arrays a render reads at random for its whole length (the walk's cell records
+// and Eq. 9 gradients: 13.5 + 2.5 MB at 105k tets), in transparent huge pages where the kernel
+// gives them (THP `madvise` mode): a block of at least 2 MiB is mapped 2 MiB-aligned, its whole
+// 2 MiB pages advised MADV_HUGEPAGE (the last partial one stays in 4 KiB pages, so the peak RSS
+// grows by less than a page), then populated (MADV_POPULATE_WRITE, Linux 5.14; where the kernel
+// refuses it the pages are faulted in by the first writes). Issue 33, round 15
+// (reports/scaling/NOTES.md): on the Zen 5 VM the 105k load 0.20 -> 0.17 s CPU, the render's own
+// CPU unchanged.
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+  static constexpr std::size_t kHuge = std::size_t{2} << 20;
+  static constexpr std::size_t kPage = std::size_t{4} << 10;
+  HugePageAllocator() = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}
+  static std::size_t mapped_bytes(std::size_t n) { return (n * sizeof(T) + kPage - 1) / kPage * kPage; }
+  T* allocate(std::size_t n) {
+    if (n * sizeof(T) < kHuge) return PrefaultedAllocator<T>().allocate(n);
+    const std::size_t bytes = mapped_bytes(n);
+    // Map one huge page more than needed and cut the unaligned head and the tail away.
+    void* raw = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) throw std::bad_alloc();
+    const auto start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
+    if (aligned > start) munmap(raw, aligned - start);
+    const std::size_t tail = start + kHuge - aligned;
+    if (tail > 0) munmap(reinterpret_cast<void*>(aligned + bytes), tail);
+    void* p = reinterpret_cast<void*>(aligned);
+    madvise(p, bytes / kHuge * kHuge, MADV_HUGEPAGE);
+#ifdef MADV_POPULATE_WRITE
+    madvise(p, bytes, MADV_POPULATE_WRITE);
+#endif
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t n) {
+    if (n * sizeof(T) < kHuge) return PrefaultedAllocator<T>().deallocate(p, n);
+    munmap(p, mapped_bytes(n));
+  }
+  template <class U>
+  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const HugePageAllocator<U>&) const { return false; }
 };
 
 }  // namespace rayint
