@@ -10,12 +10,32 @@
 // madvise(MADV_HUGEPAGE)): 4-7 ms less at 105k tets but 10-25% more at 1.05M and bimodal (the
 // huge pages' clearing), NOTES.md round 10.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <new>
 
 #include <sys/mman.h>
 
 namespace rayint {
+
+// The pages of an already allocated block [p, p + bytes) that is about to be written in full (a
+// malloc'd image, say), provided in one call (MADV_POPULATE_WRITE, Linux 5.14) instead of one page
+// fault per 4 KiB at the first writes: only the whole pages inside the block, nothing written, and
+// nothing done below 64 KiB or where the kernel refuses it (the writes then fault as before).
+// Issue 33, round 15: a 512 x 512 image (6.3 MB of doubles) was ~1,500 faults at ~6-10 us each on
+// the Zen 5 VM (reports/scaling/NOTES.md).
+inline void populate_pages(void* p, std::size_t bytes) {
+#ifdef MADV_POPULATE_WRITE
+  constexpr std::uintptr_t kPage = 4096;
+  if (bytes < (std::size_t{64} << 10)) return;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(p) + kPage - 1) / kPage * kPage;
+  const auto end = (reinterpret_cast<std::uintptr_t>(p) + bytes) / kPage * kPage;
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
 
 template <class T>
 struct PrefaultedAllocator {
@@ -38,6 +58,51 @@ struct PrefaultedAllocator {
   bool operator==(const PrefaultedAllocator<U>&) const { return true; }
   template <class U>
   bool operator!=(const PrefaultedAllocator<U>&) const { return false; }
+};
+
+// The same for the arrays a render reads at random for its whole length (the walk's cell records
+// and Eq. 9 gradients: 13.5 + 2.5 MB at 105k tets), in transparent huge pages where the kernel
+// gives them (THP `madvise` mode): a block of at least 2 MiB is mapped 2 MiB-aligned, its whole
+// 2 MiB pages advised MADV_HUGEPAGE (the last partial one stays in 4 KiB pages, so the peak RSS
+// grows by less than a page), then populated (MADV_POPULATE_WRITE, Linux 5.14; where the kernel
+// refuses it the pages are faulted in by the first writes). Issue 33, round 15
+// (reports/scaling/NOTES.md): on the Zen 5 VM the 105k load 0.20 -> 0.17 s CPU, the render's own
+// CPU unchanged.
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+  static constexpr std::size_t kHuge = std::size_t{2} << 20;
+  static constexpr std::size_t kPage = std::size_t{4} << 10;
+  HugePageAllocator() = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}
+  static std::size_t mapped_bytes(std::size_t n) { return (n * sizeof(T) + kPage - 1) / kPage * kPage; }
+  T* allocate(std::size_t n) {
+    if (n * sizeof(T) < kHuge) return PrefaultedAllocator<T>().allocate(n);
+    const std::size_t bytes = mapped_bytes(n);
+    // Map one huge page more than needed and cut the unaligned head and the tail away.
+    void* raw = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) throw std::bad_alloc();
+    const auto start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
+    if (aligned > start) munmap(raw, aligned - start);
+    const std::size_t tail = start + kHuge - aligned;
+    if (tail > 0) munmap(reinterpret_cast<void*>(aligned + bytes), tail);
+    void* p = reinterpret_cast<void*>(aligned);
+    madvise(p, bytes / kHuge * kHuge, MADV_HUGEPAGE);
+#ifdef MADV_POPULATE_WRITE
+    madvise(p, bytes, MADV_POPULATE_WRITE);
+#endif
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t n) {
+    if (n * sizeof(T) < kHuge) return PrefaultedAllocator<T>().deallocate(p, n);
+    munmap(p, mapped_bytes(n));
+  }
+  template <class U>
+  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const HugePageAllocator<U>&) const { return false; }
 };
 
 }  // namespace rayint
