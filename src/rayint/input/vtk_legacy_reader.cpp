@@ -490,7 +490,7 @@ CellMesh parse_vtk_legacy_cells(std::string_view bytes, const std::string& sourc
 }
 
 CellMesh read_vtk_legacy_cells(const std::string& path, const ScalarChoice& scalar) {
-  return parse_vtk_legacy_cells(json_source::read_text_file(path), path, scalar);
+  return parse_vtk_legacy_cells(json_source::read_big_file(path), path, scalar);
 }
 
 VoxelGrid parse_vtk_legacy_image(std::string_view bytes, const std::string& source,
@@ -554,7 +554,7 @@ VoxelGrid read_vtk_legacy_image(const std::string& path, const std::string& scal
 }
 
 TetMesh read_vtk_legacy(const std::string& path, const ScalarChoice& scalar) {
-  return parse_vtk_legacy(json_source::read_text_file(path), path, scalar);
+  return parse_vtk_legacy(json_source::read_big_file(path), path, scalar);
 }
 
 }  // namespace rayint
