@@ -10,6 +10,7 @@
 // madvise(MADV_HUGEPAGE)): 4-7 ms less at 105k tets but 10-25% more at 1.05M and bimodal (the
 // huge pages' clearing), NOTES.md round 10.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <new>
 
@@ -39,5 +40,27 @@ struct PrefaultedAllocator {
   template <class U>
   bool operator!=(const PrefaultedAllocator<U>&) const { return false; }
 };
+
+// The same for a std::vector that has its own allocator (TetMesh::tets, the adjacency, ...): after
+// `reserve`, the pages of its whole capacity are prefaulted writable with one
+// madvise(MADV_POPULATE_WRITE) call (Linux 5.14+; elsewhere the call fails and the pages fault in
+// as before). Only for a capacity of at least 256 KiB that is then written in full (issue 33:
+// each 4 KiB page faulted in one by one costs ~1-10 us on the Zen 5 VM, populated in one call a
+// fraction of that; NOTES.md round 15). Values are not touched.
+template <class Vector>
+void prefault_capacity(Vector& v) {
+  constexpr std::size_t kMinBytes = std::size_t{1} << 18;
+  const std::size_t bytes = v.capacity() * sizeof(typename Vector::value_type);
+  if (bytes < kMinBytes) return;
+  const auto page = static_cast<std::uintptr_t>(4096);
+  const auto begin = (reinterpret_cast<std::uintptr_t>(v.data()) + page - 1) & ~(page - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(v.data()) + bytes) & ~(page - 1);
+#ifdef MADV_POPULATE_WRITE
+  if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#else
+  (void)begin;
+  (void)end;
+#endif
+}
 
 }  // namespace rayint

@@ -216,6 +216,7 @@ std::string assemble_cells(RawMesh& raw, const std::string& source, const Assemb
   MeshFileInfo& info = mesh.info;
   const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
   info.cell_ids.reserve(n_cells);
+  prefault_capacity(info.cell_ids);
   LastType last;
   for (std::size_t i = 0; i < n_cells; ++i) {
     const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, accepted, last);
@@ -266,6 +267,7 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
   // Quadratic tetrahedra: corners as a tet, the six mid-edge nodes (VTK's order) beside it.
   TetMesh mesh;
   mesh.tets.reserve(raw.types.size());
+  prefault_capacity(mesh.tets);
   // edge_nodes only once a quadratic tet comes: the linear tets before it get -1 rows then, and
   // a mesh of linear tets never allocates them (24 B a tet that stayed allocated: issue 33).
   const std::array<std::int32_t, 6> linear{-1, -1, -1, -1, -1, -1};

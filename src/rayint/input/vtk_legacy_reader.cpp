@@ -342,6 +342,7 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
           raw.connectivity.clear();
           raw.offsets.reserve(n);
           raw.connectivity.reserve(size);
+          prefault_capacity(raw.offsets);
           for (std::size_t i = 0; i + 1 < n; ++i) {
             const auto a = static_cast<double>(offsets[i]), b = static_cast<double>(offsets[i + 1]);
             if (!(a >= 0 && b >= a && b <= static_cast<double>(size)))
@@ -369,6 +370,7 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
           raw.connectivity.clear();
           raw.offsets.reserve(n + 1);
           raw.connectivity.reserve(size);
+          prefault_capacity(raw.offsets);
           for (std::size_t i = 0; i < n; ++i) {
             if (k >= rawc.size())
               c.fail("CELLS[" + std::to_string(i) + "]", "cell list ends early (size " + std::to_string(size) + ")");
@@ -393,6 +395,7 @@ LegacyDataset parse_legacy(VtkCursor& c, const std::string& want) {
       const auto fill = [&](const auto& t) {
         raw.types.clear();
         raw.types.reserve(t.size());
+        prefault_capacity(raw.types);
         for (std::size_t i = 0; i < t.size(); ++i) {
           const auto v = static_cast<double>(t[i]);
           if (!(v >= 0 && v <= 1e6 && v == std::floor(v)))
