@@ -408,3 +408,45 @@ TEST_CASE("streamed segments: the same first message as the whole-tree reader", 
     CHECK(tree.find(expected) != std::string::npos);
   }
 }
+
+TEST_CASE("read_big_file gives read_text_file's bytes and messages", "[case_reader][reader]") {
+  // A file of 1 MiB or more is mapped (json_source.hpp, FileBytes); smaller ones, directories and
+  // missing files go through read_text_file's path. Bytes and messages must not depend on which.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "rayint_read_big_file";
+  fs::create_directories(dir);
+  for (const std::size_t size : {std::size_t{0}, std::size_t{1000}, (std::size_t{1} << 20) - 1, std::size_t{1} << 20,
+                                 (std::size_t{3} << 20) + 17}) {
+    INFO("size " << size);
+    std::string bytes(size, '\0');
+    for (std::size_t i = 0; i < size; ++i) bytes[i] = static_cast<char>((i * 2654435761u) >> 13);
+    const fs::path file = dir / ("f" + std::to_string(size));
+    {
+      std::FILE* f = std::fopen(file.string().c_str(), "wb");
+      REQUIRE(f != nullptr);
+      std::fwrite(bytes.data(), 1, bytes.size(), f);
+      std::fclose(f);
+    }
+    rayint::json_source::FileBytes big = rayint::json_source::read_big_file(file.string());
+    CHECK(big.view().size() == size);
+    CHECK(big.view() == std::string_view(bytes));
+    CHECK(rayint::json_source::read_text_file(file.string()) == bytes);
+    const rayint::json_source::FileBytes moved = std::move(big);
+    CHECK(moved.view() == std::string_view(bytes));
+    fs::remove(file);
+  }
+  const auto message = [](auto read, const std::string& path) {
+    try {
+      read(path);
+    } catch (const rayint::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  for (const std::string& path : std::vector<std::string>{dir.string(), (dir / "missing.vtk").string()}) {
+    const std::string big = message([](const std::string& p) { (void)rayint::json_source::read_big_file(p); }, path);
+    CHECK(big == message([](const std::string& p) { (void)rayint::json_source::read_text_file(p); }, path));
+    CHECK(big.find("cannot read file") != std::string::npos);
+  }
+  fs::remove_all(dir);
+}

@@ -6,9 +6,9 @@
 // reports/scaling/NOTES.md round 10). Smaller blocks come from std::allocator. Only for arrays
 // whose every page is written anyway: populating pages never touched would only cost.
 //
-// Measured and not taken: the same blocks in transparent huge pages (2 MiB-aligned,
-// madvise(MADV_HUGEPAGE)): 4-7 ms less at 105k tets but 10-25% more at 1.05M and bimodal (the
-// huge pages' clearing), NOTES.md round 10.
+// Transparent huge pages for these blocks were measured slower at 1.05M on the Intel VM (round
+// 10) and faster on the Zen 5 VM (round 15): HugePageAllocator below takes them for the walk's
+// records and gradients only.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -104,5 +104,17 @@ struct HugePageAllocator {
   template <class U>
   bool operator!=(const HugePageAllocator<U>&) const { return false; }
 };
+
+// The same for a std::vector that has its own allocator (TetMesh::tets, the adjacency, ...): after
+// `reserve`, the pages of its whole capacity are prefaulted writable with one
+// madvise(MADV_POPULATE_WRITE) call (Linux 5.14+; elsewhere the call fails and the pages fault in
+// as before). Only for a capacity of at least 256 KiB that is then written in full (issue 33:
+// each 4 KiB page faulted in one by one costs ~1-10 us on the Zen 5 VM, populated in one call a
+// fraction of that; NOTES.md round 15). Values are not touched.
+template <class Vector>
+void prefault_capacity(Vector& v) {
+  const std::size_t bytes = v.capacity() * sizeof(typename Vector::value_type);
+  if (bytes >= (std::size_t{1} << 18)) populate_pages(v.data(), bytes);
+}
 
 }  // namespace rayint

@@ -768,7 +768,7 @@ TetMesh parse_gmsh(std::string_view bytes, const std::string& source, const Scal
 }
 
 TetMesh read_gmsh(const std::string& path, const ScalarChoice& scalar) {
-  return parse_gmsh(json_source::read_text_file(path), path, scalar);
+  return parse_gmsh(json_source::read_big_file(path), path, scalar);
 }
 
 CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, const ScalarChoice& scalar) {
@@ -776,7 +776,7 @@ CellMesh parse_gmsh_cells(std::string_view bytes, const std::string& source, con
 }
 
 CellMesh read_gmsh_cells(const std::string& path, const ScalarChoice& scalar) {
-  return parse_gmsh_cells(json_source::read_text_file(path), path, scalar);
+  return parse_gmsh_cells(json_source::read_big_file(path), path, scalar);
 }
 
 }  // namespace rayint

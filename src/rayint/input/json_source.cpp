@@ -8,6 +8,9 @@
 #include <cstring>
 #include <memory>
 #include <cstdlib>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <unistd.h>
 #include <sys/stat.h>
 #include <type_traits>
 #include <utility>
@@ -264,6 +267,51 @@ std::string read_file_bytes(const std::string& file,
   }
   if (std::ferror(f.get())) cannot_read();
   return bytes;
+}
+
+FileBytes::FileBytes(FileBytes&& o) noexcept
+    : mapped_(std::exchange(o.mapped_, nullptr)), size_(std::exchange(o.size_, 0)),
+      mapped_bytes_(std::exchange(o.mapped_bytes_, 0)), text_(std::move(o.text_)) {}
+
+FileBytes& FileBytes::operator=(FileBytes&& o) noexcept {
+  if (this != &o) {
+    if (mapped_ != nullptr) munmap(mapped_, mapped_bytes_);
+    mapped_ = std::exchange(o.mapped_, nullptr);
+    size_ = std::exchange(o.size_, 0);
+    mapped_bytes_ = std::exchange(o.mapped_bytes_, 0);
+    text_ = std::move(o.text_);
+  }
+  return *this;
+}
+
+FileBytes::~FileBytes() {
+  if (mapped_ != nullptr) munmap(mapped_, mapped_bytes_);
+}
+
+FileBytes read_file_bytes_mapped(const std::string& file, const std::function<void(const std::string& reason)>& fail) {
+  constexpr std::size_t kMinBytes = std::size_t{1} << 20;  // below: read_file_bytes (PrefaultedAllocator's bound)
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || static_cast<unsigned long long>(st.st_size) < kMinBytes ||
+      static_cast<unsigned long long>(st.st_size) > max_input_bytes())
+    return FileBytes(read_file_bytes(file, fail));
+  const auto size = static_cast<std::size_t>(st.st_size);
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return FileBytes(read_file_bytes(file, fail));  // its message
+  void* p = mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+  ::close(fd);
+  if (p == MAP_FAILED) return FileBytes(read_file_bytes(file, fail));
+  FileBytes out;
+  out.mapped_ = static_cast<char*>(p);
+  out.mapped_bytes_ = size;
+  out.size_ = size;
+  InputFileLog::note(file);
+  return out;
+}
+
+FileBytes read_big_file(const std::string& path) {
+  return read_file_bytes_mapped(path, [&path](const std::string& reason) {
+    throw InputError(one_line(path + ": cannot read file (" + reason + ")"));
+  });
 }
 
 std::string read_text_file(const std::string& path) {

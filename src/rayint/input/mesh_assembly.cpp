@@ -95,13 +95,26 @@ Shared assemble_shared(RawMesh& raw, const std::string& source, const AssemblyOp
 // Cell i through the table: counted by type; nullptr for a ghost or a skipped (dimension 0-2)
 // cell, refused with one line when `accepted` says the assembly cannot take it; otherwise its row,
 // after checking that its offsets fit the connectivity and give the type's node count.
+// `last`: the previous cell's type, its row and its count in info.cells_by_type (std::map: the
+// address is stable), so a run of cells of one type costs no table or map lookup per cell.
+struct LastType {
+  long long type = -1;
+  const CellTypeInfo* row = nullptr;
+  long* count = nullptr;
+};
 const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& shared, const std::string& source,
-                               const RawMeshFields& fields, MeshFileInfo& info, bool (*accepted)(CellSupport)) {
+                               const RawMeshFields& fields, MeshFileInfo& info, bool (*accepted)(CellSupport),
+                               LastType& last) {
   const long long type = raw.types[i];
-  const CellTypeInfo* row = cell_type_from_vtk(type);
-  const std::string at = fields.types + "[" + std::to_string(i) + "]";
-  if (row == nullptr) field::fail(source, at, unsupported_cell_message(type));
-  ++info.cells_by_type[row->name];
+  // The field's name is built only for a message (a string per cell was ~1% of the load).
+  const auto at = [&] { return fields.types + "[" + std::to_string(i) + "]"; };
+  if (last.row == nullptr || type != last.type) {
+    const CellTypeInfo* found = cell_type_from_vtk(type);
+    if (found == nullptr) field::fail(source, at(), unsupported_cell_message(type));
+    last = LastType{type, found, &info.cells_by_type[found->name]};
+  }
+  const CellTypeInfo* row = last.row;
+  ++*last.count;
   if (shared.ghost[i]) {
     ++info.ghost_cells;
     return nullptr;
@@ -111,7 +124,7 @@ const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& 
     ++info.skipped_by_type[row->name];
     return nullptr;
   }
-  if (!accepted(row->support)) field::fail(source, at, unsupported_cell_message(type));
+  if (!accepted(row->support)) field::fail(source, at(), unsupported_cell_message(type));
   const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
   if (e < b || e > raw.connectivity.size())
     field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
@@ -203,8 +216,10 @@ std::string assemble_cells(RawMesh& raw, const std::string& source, const Assemb
   MeshFileInfo& info = mesh.info;
   const Shared shared = assemble_shared(raw, source, options, fields, mesh.points, info);
   info.cell_ids.reserve(n_cells);
+  prefault_capacity(info.cell_ids);
+  LastType last;
   for (std::size_t i = 0; i < n_cells; ++i) {
-    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, accepted);
+    const CellTypeInfo* row = table_cell(raw, i, shared, source, fields, info, accepted, last);
     if (row == nullptr) continue;
     take(*row, [&](std::size_t local) {
       return mesh_point(raw, raw.offsets[i] + local, i, local, shared, source, fields);
@@ -252,6 +267,7 @@ TetMesh assemble_tet_mesh(RawMesh raw, const std::string& source, const Assembly
   // Quadratic tetrahedra: corners as a tet, the six mid-edge nodes (VTK's order) beside it.
   TetMesh mesh;
   mesh.tets.reserve(raw.types.size());
+  prefault_capacity(mesh.tets);
   // edge_nodes only once a quadratic tet comes: the linear tets before it get -1 rows then, and
   // a mesh of linear tets never allocates them (24 B a tet that stayed allocated: issue 33).
   const std::array<std::int32_t, 6> linear{-1, -1, -1, -1, -1, -1};

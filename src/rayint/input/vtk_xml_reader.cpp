@@ -239,11 +239,11 @@ CellMesh parse_vtu_cells(std::string_view bytes, const std::string& source, cons
 }
 
 CellMesh read_vtu_cells(const std::string& path, const ScalarChoice& scalar) {
-  return parse_vtu_cells(json_source::read_text_file(path), path, scalar);
+  return parse_vtu_cells(json_source::read_big_file(path), path, scalar);
 }
 
 TetMesh read_vtu(const std::string& path, const ScalarChoice& scalar) {
-  return parse_vtu(json_source::read_text_file(path), path, scalar);
+  return parse_vtu(json_source::read_big_file(path), path, scalar);
 }
 
 namespace {

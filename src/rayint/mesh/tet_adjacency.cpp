@@ -87,7 +87,10 @@ TetNeighbors tet_neighbors(const TetMesh& mesh, const std::string& source) {
     const Vec3& opposite = mesh.points[static_cast<std::size_t>(mesh.tets[t][k])];
     return normal.dot(opposite - mesh.points[static_cast<std::size_t>(key[0])]) < 0.0 ? 1 : -1;
   };
-  TetNeighbors next(n);
+  TetNeighbors next;  // every entry is written below: its pages prefaulted, then zeroed
+  next.reserve(n);
+  prefault_capacity(next);
+  next.resize(n);
   // Compared by element: std::array's == called memcmp (~2% of the 105k load; issue 33).
   const auto same_face = [](const Rec& x, const Rec& y) {
     return x.key[0] == y.key[0] && x.key[1] == y.key[1] && x.key[2] == y.key[2];
