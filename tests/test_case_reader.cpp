@@ -15,6 +15,7 @@
 #include "test_paths.hpp"
 #include "rayint/input/case_reader.hpp"
 #include "rayint/input/json_source.hpp"
+#include "cli_harness.hpp"
 #include "input_text.hpp"
 
 namespace {
@@ -413,8 +414,8 @@ TEST_CASE("read_big_file gives read_text_file's bytes and messages", "[case_read
   // A file of 1 MiB or more is mapped (json_source.hpp, FileBytes); smaller ones, directories and
   // missing files go through read_text_file's path. Bytes and messages must not depend on which.
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "rayint_read_big_file";
-  fs::create_directories(dir);
+  const rayint::test::TempDir tmp;  // removed with its files at the end
+  const fs::path dir = tmp.path;
   for (const std::size_t size : {std::size_t{0}, std::size_t{1000}, (std::size_t{1} << 20) - 1, std::size_t{1} << 20,
                                  (std::size_t{3} << 20) + 17}) {
     INFO("size " << size);
@@ -448,5 +449,4 @@ TEST_CASE("read_big_file gives read_text_file's bytes and messages", "[case_read
     CHECK(big == message([](const std::string& p) { (void)rayint::json_source::read_text_file(p); }, path));
     CHECK(big.find("cannot read file") != std::string::npos);
   }
-  fs::remove_all(dir);
 }

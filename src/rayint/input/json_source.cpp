@@ -270,39 +270,40 @@ std::string read_file_bytes(const std::string& file,
 }
 
 FileBytes::FileBytes(FileBytes&& o) noexcept
-    : mapped_(std::exchange(o.mapped_, nullptr)), size_(std::exchange(o.size_, 0)),
-      mapped_bytes_(std::exchange(o.mapped_bytes_, 0)), text_(std::move(o.text_)) {}
+    : mapped_(std::exchange(o.mapped_, nullptr)), size_(std::exchange(o.size_, 0)), text_(std::move(o.text_)) {}
 
 FileBytes& FileBytes::operator=(FileBytes&& o) noexcept {
   if (this != &o) {
-    if (mapped_ != nullptr) munmap(mapped_, mapped_bytes_);
+    if (mapped_ != nullptr) munmap(mapped_, size_);
     mapped_ = std::exchange(o.mapped_, nullptr);
     size_ = std::exchange(o.size_, 0);
-    mapped_bytes_ = std::exchange(o.mapped_bytes_, 0);
     text_ = std::move(o.text_);
   }
   return *this;
 }
 
 FileBytes::~FileBytes() {
-  if (mapped_ != nullptr) munmap(mapped_, mapped_bytes_);
+  if (mapped_ != nullptr) munmap(mapped_, size_);
 }
 
 FileBytes read_file_bytes_mapped(const std::string& file, const std::function<void(const std::string& reason)>& fail) {
   constexpr std::size_t kMinBytes = std::size_t{1} << 20;  // below: read_file_bytes (PrefaultedAllocator's bound)
-  struct stat st {};
-  if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || static_cast<unsigned long long>(st.st_size) < kMinBytes ||
-      static_cast<unsigned long long>(st.st_size) > max_input_bytes())
-    return FileBytes(read_file_bytes(file, fail));
-  const auto size = static_cast<std::size_t>(st.st_size);
+  // The size is the opened file's (fstat), so a file replaced between a stat and the open cannot
+  // leave a mapping longer than the file.
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return FileBytes(read_file_bytes(file, fail));  // its message
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || static_cast<unsigned long long>(st.st_size) < kMinBytes ||
+      static_cast<unsigned long long>(st.st_size) > max_input_bytes()) {
+    ::close(fd);
+    return FileBytes(read_file_bytes(file, fail));
+  }
+  const auto size = static_cast<std::size_t>(st.st_size);
   void* p = mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
   ::close(fd);
   if (p == MAP_FAILED) return FileBytes(read_file_bytes(file, fail));
   FileBytes out;
   out.mapped_ = static_cast<char*>(p);
-  out.mapped_bytes_ = size;
   out.size_ = size;
   InputFileLog::note(file);
   return out;

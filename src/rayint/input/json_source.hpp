@@ -98,7 +98,7 @@ class FileBytes {
  private:
   friend FileBytes read_file_bytes_mapped(const std::string&, const std::function<void(const std::string&)>&);
   char* mapped_ = nullptr;
-  std::size_t size_ = 0, mapped_bytes_ = 0;
+  std::size_t size_ = 0;
   std::string text_;
 };
 FileBytes read_file_bytes_mapped(const std::string& file, const std::function<void(const std::string& reason)>& fail);
