@@ -364,6 +364,8 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   // Now begin[c + 1] is where cell c starts: cell c is begin[c + 1] .. begin[c + 2].
   begin.erase(begin.begin());
   begin.push_back(static_cast<std::uint32_t>(records));
+  constexpr std::size_t kChunk = 256;
+  std::array<std::uint32_t, kChunk> pass;
   for (std::size_t t = 0; t < n; ++t) {
     const Box b = box_of(m, t);
     bool outside = false;
@@ -383,24 +385,37 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
           // is monotone in the coordinate), max(lo_t, lo_u) on each axis. Where t starts before
           // this cell on an axis, u must start in it there: those axes are `need`.
           const std::uint32_t need = ((ci > sp[0] ? 1U : 0U) | (cj > sp[1] ? 2U : 0U) | (ck > sp[2] ? 4U : 0U)) << 29;
-          for (std::size_t r = begin[c]; r < begin[c + 1]; ++r) {
-            if ((members[r] & need) != need) continue;
-            const Member& M = bm[members[r] & ((1U << 29) - 1)];
-            const std::size_t u = M.tet;
-            // ... and a boundary pair from its lower tet only.
-            if (u == t || (t_boundary && u < t)) continue;
-            // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
-            const auto ui = static_cast<std::int32_t>(u);
-            if (nt[0] == ui || nt[1] == ui || nt[2] == ui || nt[3] == ui) continue;
-            const Box& B = M.box;
-            const double size = std::max(size_t_, M.size);
-            const double tol = kOverlapTolerance * size;
-            bool apart = false;
-            for (int k = 0; k < 3; ++k)
-              if (std::min(b.hi[k], B.hi[k]) - std::max(b.lo[k], B.lo[k]) <= tol) apart = true;
-            if (apart) continue;
-            if (!axes) axes = tet_axes(m, t);
-            if (overlap_exact(*axes, m, u, size, true)) return false;
+          // In chunks, without branches on the two filters that reject most (on the 105k ball
+          // 3.36M members met, 1.33M with the start bits, 0.49M with boxes not apart): the
+          // members passing each are packed into a buffer, in order, and only those go on.
+          for (std::size_t r0 = begin[c]; r0 < begin[c + 1]; r0 += kChunk) {
+            const std::size_t r1 = std::min<std::size_t>(begin[c + 1], r0 + kChunk);
+            std::size_t n_start = 0;
+            for (std::size_t r = r0; r < r1; ++r) {
+              pass[n_start] = members[r] & ((1U << 29) - 1);
+              n_start += (members[r] & need) == need ? 1 : 0;
+            }
+            std::size_t n_box = 0;
+            for (std::size_t q = 0; q < n_start; ++q) {
+              const Box& B = bm[pass[q]].box;
+              const double tol = kOverlapTolerance * std::max(size_t_, bm[pass[q]].size);
+              const bool apart = (std::min(b.hi[0], B.hi[0]) - std::max(b.lo[0], B.lo[0]) <= tol) |
+                                 (std::min(b.hi[1], B.hi[1]) - std::max(b.lo[1], B.lo[1]) <= tol) |
+                                 (std::min(b.hi[2], B.hi[2]) - std::max(b.lo[2], B.lo[2]) <= tol);
+              pass[n_box] = pass[q];
+              n_box += apart ? 0 : 1;
+            }
+            for (std::size_t q = 0; q < n_box; ++q) {
+              const Member& M = bm[pass[q]];
+              const std::size_t u = M.tet;
+              // ... and a boundary pair from its lower tet only.
+              if (u == t || (t_boundary && u < t)) continue;
+              // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
+              const auto ui = static_cast<std::int32_t>(u);
+              if (nt[0] == ui || nt[1] == ui || nt[2] == ui || nt[3] == ui) continue;
+              if (!axes) axes = tet_axes(m, t);
+              if (overlap_exact(*axes, m, u, std::max(size_t_, M.size), true)) return false;
+            }
           }
         }
   }
