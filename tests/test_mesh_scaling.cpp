@@ -133,6 +133,66 @@ TEST_CASE("overlap check: the boundary fast path agrees with testing every pair"
   CHECK(overlapping >= 6);   // shifted, nested, inside one tet
 }
 
+TEST_CASE("overlap check: the boundary fast path with hundreds of boundary tets in one grid cell", "[mesh][scaling]") {
+  // The fast path filters a grid cell's members in chunks of 256: 400 small disjoint tets (every
+  // face a boundary face) in one corner and one large tet far away (the grid's cells follow the
+  // mean box size, so the small ones share a few cells). Then one more small tet overlapping the
+  // last small one, or touching it across a face, or sharing its vertex and reaching into it:
+  // the fast path's verdict against testing every pair.
+  const double s = 1e-3;
+  const auto add_tet = [](TetMesh& m, const Vec3& p, double size) {
+    const auto i = static_cast<std::int32_t>(m.points.size());
+    for (const Vec3& q : {p, Vec3(p + Vec3(size, 0, 0)), Vec3(p + Vec3(0, size, 0)), Vec3(p + Vec3(0, 0, size))}) {
+      m.points.push_back(q);
+      m.scalars.push_back(1.0);
+    }
+    m.tets.push_back({i, i + 1, i + 2, i + 3});
+  };
+  TetMesh base;
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) add_tet(base, Vec3(2 * s * i, 2 * s * j, 0), s);
+  add_tet(base, Vec3(5, 5, 5), 1.0);
+  const Vec3 last(2 * s * 19, 2 * s * 19, 0);
+  std::vector<std::pair<std::string, TetMesh>> meshes{{"apart", base}};
+  TetMesh over = base, touch = base;
+  add_tet(over, last + Vec3(0.3 * s, 0.1 * s, 0.1 * s), s);
+  meshes.emplace_back("overlapping the last small tet", over);
+  {
+    // The mirror image of the last small tet in its face x = last.x, points not shared: the two
+    // meet in that face (the same coordinates), no volume.
+    const auto i0 = static_cast<std::int32_t>(touch.points.size());
+    for (const Vec3& q : {last, Vec3(last + Vec3(0, s, 0)), Vec3(last - Vec3(s, 0, 0)), Vec3(last + Vec3(0, 0, s))}) {
+      touch.points.push_back(q);
+      touch.scalars.push_back(1.0);
+    }
+    touch.tets.push_back({i0, i0 + 1, i0 + 2, i0 + 3});
+  }
+  meshes.emplace_back("touching the last small tet across its face", touch);
+  // Sharing the last small tet's first vertex (a point of the mesh) and reaching into it (near
+  // that vertex it lies inside the small tet).
+  TetMesh shared = base;
+  const auto v = static_cast<std::int32_t>(4 * 399);
+  const auto i0 = static_cast<std::int32_t>(shared.points.size());
+  for (const Vec3& q : {Vec3(last + Vec3(0.5 * s, 0.5 * s, 0.1 * s)), Vec3(last + Vec3(0.5 * s, 0.1 * s, 0.5 * s)),
+                        Vec3(last + Vec3(0.1 * s, 0.5 * s, 0.5 * s))}) {
+    shared.points.push_back(q);
+    shared.scalars.push_back(1.0);
+  }
+  shared.tets.push_back({v, i0, i0 + 2, i0 + 1});  // positive volume
+  meshes.emplace_back("sharing a vertex of the last small tet, inside it", shared);
+  int overlapping = 0;
+  for (const auto& [name, m] : meshes) {
+    INFO(name << ", " << m.tets.size() << " tets");
+    const TetNeighbors next = tet_neighbors(m);
+    const auto all = brute_force_overlap(m, OverlapScope::all_pairs);
+    CHECK(boundary_tets_overlap_free(m, next) == !all.has_value());
+    for (const OverlapScope scope : {OverlapScope::all_pairs, OverlapScope::disjoint_pairs})
+      CHECK(find_overlapping_tets(m, next, scope) == brute_force_overlap(m, scope));
+    if (all) ++overlapping;
+  }
+  CHECK(overlapping == 2);  // the overlapping copy and the vertex-sharing tet; apart and touching: none
+}
+
 TEST_CASE("traversal adjacency equals a map of sorted faces", "[mesh][scaling]") {
   std::vector<std::pair<std::string, TetMesh>> meshes;
   for (const std::string kind : {"ball", "linear-box", "ring"}) meshes.emplace_back(kind, generate_mesh(kind, 3, 1).mesh);
