@@ -6,9 +6,9 @@
 // reports/scaling/NOTES.md round 10). Smaller blocks come from std::allocator. Only for arrays
 // whose every page is written anyway: populating pages never touched would only cost.
 //
-// Transparent huge pages for these blocks were measured slower at 1.05M on the Intel VM (round
-// 10) and faster on the Zen 5 VM (round 15): HugePageAllocator below takes them for the walk's
-// records and gradients only.
+// A block of at least 2 MiB is mapped in transparent huge pages (map_huge below): measured slower
+// at 1.05M on the Intel VM (round 10), faster on the Zen 5 VM (round 15: the walk's records;
+// round 16: every such block, the 1.05M load 1.1-1.4 -> 0.8 us/tet).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -98,42 +98,10 @@ struct PrefaultedAllocator {
 // refuses it the pages are faulted in by the first writes). Issue 33, round 15
 // (reports/scaling/NOTES.md): on the Zen 5 VM the 105k load 0.20 -> 0.17 s CPU, the render's own
 // CPU unchanged.
+// Since round 16 PrefaultedAllocator maps every block of >= 2 MiB this way (map_huge), so this is
+// the same allocator under the name that says why the walk's records use it.
 template <class T>
-struct HugePageAllocator {
-  using value_type = T;
-  static constexpr std::size_t kHuge = std::size_t{2} << 20;
-  static constexpr std::size_t kPage = std::size_t{4} << 10;
-  HugePageAllocator() = default;
-  template <class U>
-  HugePageAllocator(const HugePageAllocator<U>&) {}
-  static std::size_t mapped_bytes(std::size_t n) { return (n * sizeof(T) + kPage - 1) / kPage * kPage; }
-  T* allocate(std::size_t n) {
-    if (n * sizeof(T) < kHuge) return PrefaultedAllocator<T>().allocate(n);
-    const std::size_t bytes = mapped_bytes(n);
-    // Map one huge page more than needed and cut the unaligned head and the tail away.
-    void* raw = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (raw == MAP_FAILED) throw std::bad_alloc();
-    const auto start = reinterpret_cast<std::uintptr_t>(raw);
-    const std::uintptr_t aligned = (start + kHuge - 1) / kHuge * kHuge;
-    if (aligned > start) munmap(raw, aligned - start);
-    const std::size_t tail = start + kHuge - aligned;
-    if (tail > 0) munmap(reinterpret_cast<void*>(aligned + bytes), tail);
-    void* p = reinterpret_cast<void*>(aligned);
-    madvise(p, bytes / kHuge * kHuge, MADV_HUGEPAGE);
-#ifdef MADV_POPULATE_WRITE
-    madvise(p, bytes, MADV_POPULATE_WRITE);
-#endif
-    return static_cast<T*>(p);
-  }
-  void deallocate(T* p, std::size_t n) {
-    if (n * sizeof(T) < kHuge) return PrefaultedAllocator<T>().deallocate(p, n);
-    munmap(p, mapped_bytes(n));
-  }
-  template <class U>
-  bool operator==(const HugePageAllocator<U>&) const { return true; }
-  template <class U>
-  bool operator!=(const HugePageAllocator<U>&) const { return false; }
-};
+using HugePageAllocator = PrefaultedAllocator<T>;
 
 // The same for a std::vector that has its own allocator (TetMesh::tets, the adjacency, ...): after
 // `reserve`, the pages of its whole capacity are prefaulted writable with one
