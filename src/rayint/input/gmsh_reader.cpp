@@ -13,6 +13,7 @@
 #include "rayint/cells/cell_types.hpp"
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
+#include "rayint/core/prefaulted.hpp"
 #include "rayint/input/json_source.hpp"
 #include "rayint/input/mesh_assembly.hpp"
 #include "rayint/input/mesh_text.hpp"
@@ -184,18 +185,45 @@ class MshReader {
     }
   }
 
+  // Node tag t gets the next point index. Tags go into dense_ (indexed by the tag) while they are
+  // at least 0 and below dense_limit_ (4 slots a node of the $Nodes header, + 1024; gmsh numbers
+  // nodes 1..N), else every tag moves to node_index_ (issue 33: a hash-map node per mesh node was
+  // ~1,000 page faults and mallocs at 105k tets).
   std::int32_t add_node(long long t, const Vec3& p, const std::string& field) {
     const auto index = static_cast<std::int32_t>(mesh_.points.size());
-    if (!node_index_.emplace(t, index).second) c_.fail(field, "node tag " + std::to_string(t) + " given twice");
+    bool fresh = true;
+    if (!use_map_ && t >= 0 && t < dense_limit_) {
+      const auto k = static_cast<std::size_t>(t);
+      if (k >= dense_.size()) dense_.resize(k + 1, -1);
+      fresh = dense_[k] < 0;
+      if (fresh) dense_[k] = index;
+    } else {
+      if (!use_map_) {
+        use_map_ = true;
+        for (std::size_t k = 0; k < dense_.size(); ++k)
+          if (dense_[k] >= 0) node_index_.emplace(static_cast<long long>(k), dense_[k]);
+        dense_ = {};
+      }
+      fresh = node_index_.emplace(t, index).second;
+    }
+    if (!fresh) c_.fail(field, "node tag " + std::to_string(t) + " given twice");
     max_node_tag_ = std::max(max_node_tag_, t);
     mesh_.points.push_back(p);
     return index;
   }
 
+  // Room for the n nodes of the $Nodes header: the points (prefaulted: written in full) and the
+  // tag table's bound.
+  void reserve_nodes(long long n) {
+    mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
+    prefault_capacity(mesh_.points);
+    dense_limit_ = 4 * static_cast<long long>(mesh_.points.capacity()) + 1024;
+  }
+
   void nodes2() {
     const std::string f = "$Nodes";
     const long long n = count(c_.need_words(f, 1, "number of nodes")[0], f);
-    mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
+    reserve_nodes(n);
     for (long long i = 0; i < n; ++i) {
       if (binary_) {
         const long long t = bin_int(f);
@@ -251,7 +279,7 @@ class MshReader {
   void nodes4() {
     const std::string f = "$Nodes";
     const auto [blocks, n] = section4_header(f, "numEntityBlocks numNodes minNodeTag maxNodeTag", "nodes");
-    mesh_.points.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 8));
+    reserve_nodes(n);
     long long seen = 0;
     for (long long b = 0; b < blocks; ++b) {
       const BlockHeader h = block_header(f, "entityDim entityTag parametric numNodesInBlock", true, 1);
@@ -346,10 +374,20 @@ class MshReader {
     return k < 4 ? tet_corners_[i][k] : quadratic_ ? tet_edges_[i][k - 4] : kNoNode;
   }
 
+  // Room for n tets (as many as the header's elements), prefaulted; none in keep_cells mode.
+  void reserve_elements(long long n) {
+    if (keep_cells_) return;
+    const std::size_t bound = mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12);
+    tet_corners_.reserve(bound);
+    tet_tags_.reserve(bound);
+    prefault_capacity(tet_corners_);
+    prefault_capacity(tet_tags_);
+  }
+
   void elements2() {
     const std::string f = "$Elements";
     const long long n = count(c_.need_words(f, 1, "number of elements")[0], f);
-    tet_corners_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
+    reserve_elements(n);
     std::vector<long long> nodes;
     if (binary_) {
       long long done = 0;
@@ -389,7 +427,7 @@ class MshReader {
   void elements4() {
     const std::string f = "$Elements";
     const auto [blocks, n] = section4_header(f, "numEntityBlocks numElements minElementTag maxElementTag", "elements");
-    tet_corners_.reserve(mesh_text::reserve_bound(static_cast<std::size_t>(n), c_.remaining_bytes(), 12));
+    reserve_elements(n);
     long long seen = 0;
     std::vector<long long> nodes;
     for (long long b = 0; b < blocks; ++b) {
@@ -517,24 +555,9 @@ class MshReader {
   }
 
   // The point index of node tag t, -1 when $Nodes has no such tag: through a table indexed by
-  // the tag when the tags are dense enough (gmsh numbers nodes 1..N; at most 4 slots a node),
-  // else through node_index_.
-  std::int32_t find_node(long long t) {
-    if (!dense_built_) {
-      dense_built_ = true;
-      const std::size_t n = mesh_.points.size();
-      if (static_cast<unsigned long long>(max_node_tag_) <= 4ULL * n + 1024) {
-        dense_.assign(static_cast<std::size_t>(max_node_tag_) + 1, -1);
-        for (const auto& [tag_value, index] : node_index_) {
-          if (tag_value < 0) {  // (MSH 2 binary tags are int32) not a table index: use the map
-            dense_.clear();
-            break;
-          }
-          dense_[static_cast<std::size_t>(tag_value)] = index;
-        }
-      }
-    }
-    if (!dense_.empty()) return t >= 0 && static_cast<unsigned long long>(t) < dense_.size() ? dense_[static_cast<std::size_t>(t)] : -1;
+  // the tag when the tags are dense enough (add_node), else through node_index_.
+  std::int32_t find_node(long long t) const {
+    if (!use_map_) return t >= 0 && static_cast<unsigned long long>(t) < dense_.size() ? dense_[static_cast<std::size_t>(t)] : -1;
     const auto it = node_index_.find(t);
     return it == node_index_.end() ? -1 : it->second;
   }
@@ -583,6 +606,8 @@ class MshReader {
   TetMesh finish() {
     mesh_.tets.reserve(tet_corners_.size());
     mesh_.info.cell_ids.reserve(tet_corners_.size());
+    prefault_capacity(mesh_.tets);
+    prefault_capacity(mesh_.info.cell_ids);
     if (quadratic_) mesh_.edge_nodes.reserve(tet_corners_.size());
     for (std::size_t i = 0; i < tet_corners_.size(); ++i) {
       std::array<std::int32_t, 4> t{};
@@ -756,8 +781,9 @@ class MshReader {
   static constexpr std::array<long long, 6> kLinearEdges{kNoNode, kNoNode, kNoNode, kNoNode, kNoNode, kNoNode};
   bool quadratic_ = false;                             // some tet has 10 nodes
   TypeCache type_cache_;
-  std::vector<std::int32_t> dense_;  // node tag -> point index, -1: none (find_node)
-  bool dense_built_ = false;
+  std::vector<std::int32_t> dense_;  // node tag -> point index, -1: none (add_node, find_node)
+  long long dense_limit_ = 1024;     // tags below it go into dense_ (reserve_nodes)
+  bool use_map_ = false;             // the tags are in node_index_, not dense_
   DataBlock node_data_, element_data_, cell_data_;
 };
 
