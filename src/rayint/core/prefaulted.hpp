@@ -90,19 +90,6 @@ struct PrefaultedAllocator {
   bool operator!=(const PrefaultedAllocator<U>&) const { return false; }
 };
 
-// The same for the arrays a render reads at random for its whole length (the walk's cell records
-// and Eq. 9 gradients: 13.5 + 2.5 MB at 105k tets), in transparent huge pages where the kernel
-// gives them (THP `madvise` mode): a block of at least 2 MiB is mapped 2 MiB-aligned, its whole
-// 2 MiB pages advised MADV_HUGEPAGE (the last partial one stays in 4 KiB pages, so the peak RSS
-// grows by less than a page), then populated (MADV_POPULATE_WRITE, Linux 5.14; where the kernel
-// refuses it the pages are faulted in by the first writes). Issue 33, round 15
-// (reports/scaling/NOTES.md): on the Zen 5 VM the 105k load 0.20 -> 0.17 s CPU, the render's own
-// CPU unchanged.
-// Since round 16 PrefaultedAllocator maps every block of >= 2 MiB this way (map_huge), so this is
-// the same allocator under the name that says why the walk's records use it.
-template <class T>
-using HugePageAllocator = PrefaultedAllocator<T>;
-
 // The same for a std::vector that has its own allocator (TetMesh::tets, the adjacency, ...): after
 // `reserve`, the pages of its whole capacity are prefaulted writable with one
 // madvise(MADV_POPULATE_WRITE) call (Linux 5.14+; elsewhere the call fails and the pages fault in

@@ -202,9 +202,10 @@ class TetTraversal {
   friend struct FirstHitFilterAccess;
 
   TetMesh mesh_;
-  // cells_ and gradients_ are written in full by the constructor: prefaulted (core/prefaulted.hpp).
-  std::vector<CellRecord, HugePageAllocator<CellRecord>> cells_;
-  std::vector<Vec3, HugePageAllocator<Vec3>> gradients_;  // Eq. 9 gradient per cell (24 B; used once per crossing)
+  // cells_ and gradients_ are written in full by the constructor: prefaulted, and from 2 MiB in
+  // transparent huge pages (core/prefaulted.hpp; 13.5 + 2.5 MB at 105k tets, NOTES rounds 15-16).
+  std::vector<CellRecord, PrefaultedAllocator<CellRecord>> cells_;
+  std::vector<Vec3, PrefaultedAllocator<Vec3>> gradients_;  // Eq. 9 gradient per cell (24 B; used once per crossing)
   std::vector<Face> boundary_;            // boundary faces, in Embree's primitive order
   std::vector<std::int8_t> boundary_k_;   // local index of boundary_[i] in boundary_[i].cells[0]
   std::size_t face_count_ = 0;
