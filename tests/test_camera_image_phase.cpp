@@ -56,6 +56,40 @@ TEST_CASE("camera: JSON form is validated field by field", "[camera]") {
                     Catch::Contains("camera.zoom: unknown field"));
 }
 
+TEST_CASE("image: the 8-bit sRGB code by table equals the pow formula's at every code bound", "[image]") {
+  // The per-sample formula the table replaces (and the PNG writer used): lround(255 srgb_encode).
+  const auto by_pow = [](double v) { return static_cast<int>(std::lround(rayint::srgb_encode(v) * 255.0)); };
+  // Each code bound, found by scanning up from just below the IEC 61966-2-1 crossing computed in
+  // long double (independent of the table's construction), and 200 ulps either side of it.
+  int bounds = 0;
+  for (int q = 0; q < 255; ++q) {
+    const long double y = (q + 0.5L) / 255.0L;
+    const long double x = y <= 0.04045L ? y / 12.92L : std::pow((y + 0.055L) / 1.055L, 2.4L);
+    double v = static_cast<double>(x);
+    for (int k = 0; k < 200; ++k) v = std::nextafter(v, 0.0);
+    for (int k = 0; k < 400; ++k, v = std::nextafter(v, 2.0)) {
+      if (static_cast<int>(rayint::srgb_encode_8bit(v)) != by_pow(v)) FAIL("code " << q << " at v = " << v);
+      if (by_pow(v) == q + 1 && by_pow(std::nextafter(v, 0.0)) == q) ++bounds;
+    }
+  }
+  CHECK(bounds == 255);  // every crossing was inside the scanned window
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_real_distribution<double> wide(-0.5, 1.5);
+  int mismatches = 0;
+  for (int i = 0; i < 1000000; ++i) {
+    const double v = i % 2 ? unit(rng) : wide(rng);
+    mismatches += static_cast<int>(rayint::srgb_encode_8bit(v)) != by_pow(v);
+  }
+  CHECK(mismatches == 0);
+  CHECK(rayint::srgb_encode_8bit(std::nan("")) == 0);
+  CHECK(rayint::srgb_encode_8bit(-1.0) == 0);
+  CHECK(rayint::srgb_encode_8bit(0.0) == 0);
+  CHECK(rayint::srgb_encode_8bit(1.0) == 255);
+  CHECK(rayint::srgb_encode_8bit(7.0) == 255);
+  CHECK(rayint::srgb_encode_8bit(0.5) == 188);  // 255 (1.055 0.5^(1/2.4) - 0.055) = 187.52
+}
+
 TEST_CASE("image: PNG round trip keeps 8-bit values, sRGB encode/decode invert", "[image]") {
   for (double x : {0.0, 0.001, 0.0031308, 0.2, 0.5, 1.0})
     CHECK(std::abs(rayint::srgb_decode(rayint::srgb_encode(x)) - x) < 1e-12);

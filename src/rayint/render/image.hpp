@@ -4,6 +4,7 @@
 // transfer curve; reading inverts the curve, so a background image read from PNG is linear.
 // They are previews, written with libpng's speed setting (PNG_IMAGE_FLAG_FAST: no row filters,
 // zlib level 3); the float formats (render/float_image.hpp) are the exact ones.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -44,5 +45,8 @@ ImageSize read_png_size(const std::string& path);
 
 double srgb_encode(double linear);  // [0,1] -> [0,1]
 double srgb_decode(double encoded); // [0,1] -> [0,1]
+// The PNG's 8-bit sRGB code of a linear value: exactly lround(255 * srgb_encode(v)) for every
+// double v (NaN: 0), without a pow per sample (a table of the 255 code boundaries).
+std::uint8_t srgb_encode_8bit(double linear);
 
 }  // namespace rayint
