@@ -104,12 +104,17 @@ bool flush_stdout() {
 
 int main(int argc, char** argv) {
 #ifdef __GLIBC__
-  // A fixed mmap threshold (glibc's default, 128 KiB) instead of its dynamic one: once a large
-  // block is freed glibc raises the threshold up to 32 MiB, and later blocks below it come from
-  // the heap, which keeps them resident after free. Loading a big mesh frees several such blocks
-  // (the file, the face records): measured on the 1.05M-tet ball, the render's peak RSS falls
-  // from 243 to 210 MB (.vtk; issue 33, reports/scaling/NOTES.md). Same CPU time within noise.
-  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  // A fixed mmap threshold instead of glibc's dynamic one: once a large block is freed glibc
+  // raises the threshold up to 32 MiB, and later blocks below it come from the heap, which keeps
+  // them resident after free. Loading a big mesh frees several such blocks (the file, the face
+  // records): measured on the 1.05M-tet ball, the render's peak RSS falls from 243 to 210 MB (.vtk;
+  // issue 33, reports/scaling/NOTES.md). 1 MiB, PrefaultedAllocator's bound (core/prefaulted.hpp:
+  // larger arrays are mapped there): with glibc's 128 KiB a block that did not fit in the heap's
+  // free top was mapped instead of growing the heap by M_TOP_PAD (below), so whether the loaders'
+  // sub-MiB arrays were reused depended on whether the heap had grown before them (105k-tet .vtu
+  // load: 4,400 minor faults with one subcommand registered at start-up, 3,500 with all, 3,500
+  // with 1 MiB either way; render 512 x 512 peak RSS 46.3 MB at 105k, 220.3 MB at 1.05M).
+  mallopt(M_MMAP_THRESHOLD, 1024 * 1024);
   // Heap growth in steps of 16 MiB (M_TOP_PAD; glibc's default 128 KiB) and no trim below 64 MiB
   // of free top (M_TRIM_THRESHOLD; default 128 KiB). A request that fits in the heap's free top is
   // carved from it without an mmap, whatever its size, so the loaders' temporaries below a few MiB
