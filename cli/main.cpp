@@ -113,19 +113,20 @@ int main(int argc, char** argv) {
   // free top was mapped instead of growing the heap by M_TOP_PAD (below), so whether the loaders'
   // sub-MiB arrays were reused depended on whether the heap had grown before them (105k-tet .vtu
   // load: 4,400 minor faults with one subcommand registered at start-up, 3,500 with all, 3,500
-  // with 1 MiB either way; render 512 x 512 peak RSS 46.3 MB at 105k, 220.3 MB at 1.05M).
+  // with 1 MiB either way; render 512 x 512 peak RSS 46,300 KiB at 105k, 220,300 KiB at 1.05M).
   mallopt(M_MMAP_THRESHOLD, 1024 * 1024);
   // Heap growth in steps of 16 MiB (M_TOP_PAD; glibc's default 128 KiB) and no trim below 64 MiB
   // of free top (M_TRIM_THRESHOLD; default 128 KiB). A request that fits in the heap's free top is
   // carved from it without an mmap, whatever its size, so the loaders' temporaries below a few MiB
   // (the points, offsets and types arrays, the face keys, ...) come from the heap and, once freed,
   // their pages are reused by the next ones instead of being unmapped and faulted in afresh (each
-  // first touch of a 4 KiB page costs ~8 us on the Zen 5 VM). Blocks larger than the free top
-  // still go to mmap as before. Issue 33, 105k-tet ball, with M_ARENA_MAX below and the
-  // malloc_trim after the render (render_mesh.cpp): load (`render` 16 x 16, scripts/load_ab.py)
-  // .vtk/.vtu/.msh 126.8/139.5/141.1 -> 114.6/122.9/118.5 ms CPU (0.90/0.88/0.84), minor faults
-  // 3,895/4,948/4,792 -> 2,918/3,428/2,731; render 512 x 512 peak RSS 47.1 -> 46.8 MB (105k),
-  // 221.0 -> 220.7 MB (1.05M), same images.
+  // first touch of a 4 KiB page costs ~8 us on the Zen 5 VM). Blocks of at least the mmap
+  // threshold that do not fit in the free top are still mapped. Issue 33, 105k-tet ball, with
+  // M_ARENA_MAX below and the malloc_trim after the render (render_mesh.cpp): load (`render`
+  // 16 x 16, scripts/load_ab.py) .vtk/.vtu/.msh 126.8/139.5/141.1 -> 114.6/122.9/118.5 ms CPU
+  // (0.90/0.88/0.84; with the 1 MiB threshold above: 0.83/0.84/0.80), minor faults
+  // 3,895/4,948/4,792 -> 2,918/3,428/2,731; render 512 x 512 peak RSS (/usr/bin/time %M)
+  // 47,100 -> 46,800 KiB (105k), 221,000 -> 220,700 KiB (1.05M), same images.
   mallopt(M_TOP_PAD, 16 << 20);
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
   // One arena for every thread: the render's worker threads then take their buffers from the

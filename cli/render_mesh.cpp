@@ -208,9 +208,9 @@ void render_mesh_file(const nlohmann::json& root, const RenderOptions& options) 
 #ifdef __GLIBC__
   // The render's freed buffers back to the kernel before the outputs are encoded: the heap keeps
   // its free top (main.cpp's M_TOP_PAD / M_TRIM_THRESHOLD), and the encoding's buffers would come
-  // on top of it at the render's peak. Issue 33, render at 512 x 512, peak RSS without this call /
-  // with it: 50.0 / 46.8 MB (105k-tet ball), 221.6 / 220.7 MB (1.05M; before main.cpp's malloc
-  // settings: 47.1 and 221.0 MB).
+  // on top of it at the render's peak. Issue 33, render at 512 x 512, peak RSS (/usr/bin/time %M)
+  // without this call / with it: 50,000 / 46,800 KiB (105k-tet ball), 221,600 / 220,700 KiB
+  // (1.05M; before main.cpp's malloc settings: 47,100 and 221,000 KiB).
   malloc_trim(0);
 #endif
   write_render_outputs(
