@@ -130,19 +130,20 @@ bool overlap_exact(TetAxes& A, const std::array<Vec3, 4>& b, double size, bool f
     return len > 1e-12 * size && overlap_on(a, b, axis / len) <= tol;
   };
   // a's faces: its own interval on each is formed once (most point-sharing pairs end here).
+  // All four without a branch (whether one separates is the answer; which one is not needed).
   const auto a_face_separates = [&] {
     form_faces(A);
+    bool any = false;
     for (std::size_t f = 0; f < 4; ++f) {
-      if (!(A.norm[f] > degenerate)) continue;
       double blo = b[0].dot(A.unit[f]), bhi = blo;
       for (std::size_t k = 1; k < 4; ++k) {
         const double x = b[k].dot(A.unit[f]);
         blo = std::min(blo, x);
         bhi = std::max(bhi, x);
       }
-      if (std::min(A.hi[f], bhi) - std::max(A.lo[f], blo) <= tol) return true;
+      any |= (A.norm[f] > degenerate) & (std::min(A.hi[f], bhi) - std::max(A.lo[f], blo) <= tol);
     }
-    return false;
+    return any;
   };
   if (faces_first) {
     if (a_face_separates() || centroid_separates()) return false;
@@ -338,15 +339,15 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   if (next.size() != n) return false;
   if (n < 2) return true;
   // The members: the tets with a boundary face that may face kSweep, in tet order. One 64-byte
-  // record each with all the filters read (the box of the points of those faces, the tet's box
-  // diagonal: the pair tolerance's scale, the tet), and apart its points, read by exact tests.
+  // record each with all a candidate pair reads of it (the box of the points of those faces, the
+  // tet's box diagonal: the pair tolerance's scale, the tet).
   struct alignas(64) Member {
     Box faces;
     double size;
     std::uint32_t tet;
   };
   std::vector<Member> bm;
-  std::vector<std::array<Vec3, 4>> bp;
+  bm.reserve(n);  // address space only: the pages are touched as members are written
   for (std::size_t t = 0; t < n; ++t) {
     const std::array<std::int32_t, 4>& nt = next[t];
     if (nt[0] >= 0 && nt[1] >= 0 && nt[2] >= 0 && nt[3] >= 0) continue;
@@ -358,14 +359,12 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
     M.tet = static_cast<std::uint32_t>(t);
     M.faces = faces_box(m, t, open);
     bm.push_back(M);
-    std::array<Vec3, 4> p;
-    for (std::size_t k = 0; k < 4; ++k) p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
-    bp.push_back(p);
   }
   if (bm.empty()) return false;  // a finite mesh has a boundary facing every way: let the full check decide
   if (bm.size() >= (std::size_t{1} << 29)) return false;  // let the full check decide
-  // A grid of the members' face boxes: cells of their mean extent, at most ~8 |bm| of them,
-  // filled by a counting sort as in find_overlapping_tets.
+  // A grid of the members' face boxes: cells of their mean extent, at most ~|bm| of them (on the
+  // 105k ball 8 |bm| cost more in fresh pages than they saved), filled by a counting sort as in
+  // find_overlapping_tets.
   Box all = bm[0].faces;
   Vec3 mean_extent = Vec3::Zero();
   for (const Member& M : bm) {
@@ -378,7 +377,7 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   Vec3 inv_cell;
   for (int k = 0; k < 3; ++k) {
     const double span = all.hi[k] - all.lo[k];
-    const double want = std::max(mean_extent[k], span / std::cbrt(8.0 * static_cast<double>(bm.size())));
+    const double want = std::max(mean_extent[k], span / std::cbrt(static_cast<double>(bm.size())));
     dims[static_cast<std::size_t>(k)] = span > 0 && want > 0 ? std::max(1L, std::min(1L << 20, static_cast<long>(span / want))) : 1;
     inv_cell[k] = span > 0 ? static_cast<double>(dims[static_cast<std::size_t>(k)]) / span : 1.0;
   }
@@ -501,7 +500,8 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
             }
             for (std::size_t q = 0; q < n_box; ++q) {
               const Member& M = bm[pass[q]];
-              const std::array<Vec3, 4>& up = bp[pass[q]];
+              std::array<Vec3, 4> up;
+              for (std::size_t k = 0; k < 4; ++k) up[k] = m.points[static_cast<std::size_t>(m.tets[M.tet][k])];
               const std::size_t u = M.tet;
               if (u == t) continue;
               const auto ui = static_cast<std::int32_t>(u);
