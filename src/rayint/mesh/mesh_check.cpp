@@ -346,18 +346,24 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
     double size;
     std::uint32_t tet;
   };
-  std::vector<Member> bm;
-  bm.reserve(n);  // address space only: the pages are touched as members are written
-  for (std::size_t t = 0; t < n; ++t) {
+  const auto open = [&next](std::size_t t) {
     const std::array<std::int32_t, 4>& nt = next[t];
-    if (nt[0] >= 0 && nt[1] >= 0 && nt[2] >= 0 && nt[3] >= 0) continue;
-    const unsigned open = facing_faces(m, t, nt);
-    if (open == 0) continue;
+    return nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0;
+  };
+  std::size_t n_open = 0;
+  for (std::size_t t = 0; t < n; ++t) n_open += open(t) ? 1 : 0;
+  std::vector<Member> bm;
+  bm.reserve(n_open);  // about half of it used: the pages are touched only as members are written
+  for (std::size_t t = 0; t < n; ++t) {
+    if (!open(t)) continue;
+    const std::array<std::int32_t, 4>& nt = next[t];
+    const unsigned facing = facing_faces(m, t, nt);
+    if (facing == 0) continue;
     Member M{};
     const Box tb = box_of(m, t);
     M.size = (tb.hi - tb.lo).norm();
     M.tet = static_cast<std::uint32_t>(t);
-    M.faces = faces_box(m, t, open);
+    M.faces = faces_box(m, t, facing);
     bm.push_back(M);
   }
   if (bm.empty()) return false;  // a finite mesh has a boundary facing every way: let the full check decide
