@@ -308,7 +308,10 @@ unsigned facing_faces(const TetMesh& m, std::size_t t, const std::array<std::int
     // Outward normal: -N when the opposite point is on N's side. Left out when certainly
     // n . kSweep <= 0, i.e. the tet certainly on N's side and N . kSweep >= its error, or
     // certainly on the other side and N . kSweep <= -its error.
-    const bool out = (side > side_err && s >= s_err) || (side < -side_err && s <= -s_err);
+    // Only where the bounds hold: products far from underflow (an absolute error of ~1e-322 each)
+    // and from overflow; otherwise (and for NaN) the face is kept.
+    const bool in_range = side_err > 1e-280 && side_err < 1e280 && s_err > 1e-280 && s_err < 1e280;
+    const bool out = in_range && ((side > side_err && s >= s_err) || (side < -side_err && s <= -s_err));
     if (!out) mask |= 1U << k;
   }
   return mask;
