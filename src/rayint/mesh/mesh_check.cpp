@@ -104,15 +104,14 @@ void form_faces(TetAxes& A) {
   }
 }
 
-// tets_overlap with the pair's size (the larger box diagonal) given and tet a's points. The
-// answer is "no axis below separates", the same whatever the order the axes are tried in; the
-// order only decides how soon a separated pair is settled. faces_first: a's face axes before the
-// centroid axis, for a tet tested against many others (its faces formed once; on the 105k ball
-// they settle 290k of the boundary check's 315k pairs, the centroid axis first 148k, issue 33).
-bool overlap_exact(TetAxes& A, const TetMesh& m, std::size_t ib, double size, bool faces_first) {
+// tets_overlap with the pair's size (the larger box diagonal) given, tet a's axes and tet b's
+// points. The answer is "no axis below separates", the same whatever the order the axes are tried
+// in, and the same with a and b swapped (an edge axis only changes sign); the order only decides
+// how soon a separated pair is settled. faces_first: a's face axes before the centroid axis, for
+// a tet tested against many others (its faces formed once; on the 105k ball they settle 89.6k of
+// the boundary check's 98.9k pairs, the centroid axis next 3.1k, issue 33).
+bool overlap_exact(TetAxes& A, const std::array<Vec3, 4>& b, double size, bool faces_first) {
   const std::array<Vec3, 4>& a = A.p;
-  std::array<Vec3, 4> b;
-  for (std::size_t k = 0; k < 4; ++k) b[k] = m.points[static_cast<std::size_t>(m.tets[ib][k])];
   const double tol = kOverlapTolerance * size;
   const double degenerate = 1e-12 * size * size;  // below: parallel edges, no axis
   const auto separates = [&](const Vec3& axis) {
@@ -131,19 +130,20 @@ bool overlap_exact(TetAxes& A, const TetMesh& m, std::size_t ib, double size, bo
     return len > 1e-12 * size && overlap_on(a, b, axis / len) <= tol;
   };
   // a's faces: its own interval on each is formed once (most point-sharing pairs end here).
+  // All four without a branch (whether one separates is the answer; which one is not needed).
   const auto a_face_separates = [&] {
     form_faces(A);
+    bool any = false;
     for (std::size_t f = 0; f < 4; ++f) {
-      if (!(A.norm[f] > degenerate)) continue;
       double blo = b[0].dot(A.unit[f]), bhi = blo;
       for (std::size_t k = 1; k < 4; ++k) {
         const double x = b[k].dot(A.unit[f]);
         blo = std::min(blo, x);
         bhi = std::max(bhi, x);
       }
-      if (std::min(A.hi[f], bhi) - std::max(A.lo[f], blo) <= tol) return true;
+      any |= (A.norm[f] > degenerate) & (std::min(A.hi[f], bhi) - std::max(A.lo[f], blo) <= tol);
     }
-    return false;
+    return any;
   };
   if (faces_first) {
     if (a_face_separates() || centroid_separates()) return false;
@@ -166,7 +166,7 @@ bool overlap_exact(TetAxes& A, const TetMesh& m, std::size_t ib, double size, bo
 bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
   const Box ba = box_of(m, ia), bb = box_of(m, ib);
   TetAxes A = tet_axes(m, ia);
-  return overlap_exact(A, m, ib, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()), false);
+  return overlap_exact(A, tet_axes(m, ib).p, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()), false);
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& m, OverlapScope scope) {
@@ -245,7 +245,7 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
           if (pa == pb) return;
     }
     TetAxes axes_a = tet_axes(m, a);
-    if (overlap_exact(axes_a, m, b, std::max(spans[a].size, spans[b].size), false)) first = std::make_pair(a, b);
+    if (overlap_exact(axes_a, tet_axes(m, b).p, std::max(spans[a].size, spans[b].size), false)) first = std::make_pair(a, b);
   };
   // A pair is tested once: in the grid cell of the lower corner of the boxes' intersection,
   // max(A.lo, B.lo), whose cell is the larger of the two lower cells on each axis (the cell index
@@ -279,56 +279,126 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
   return first;
 }
 
+namespace {
+
+// The sweep direction of the lemma (mesh_check.hpp): any fixed direction; this one is parallel to
+// no face of a box or Kuhn mesh.
+const Vec3 kSweep(0.8, 0.45, 0.2);
+
+// The boundary faces of tet t (next[t][k] < 0) whose outward normal n may have n . kSweep > 0, as
+// a mask (bit k: the face opposite point k). A face is left out only when n . kSweep <= 0 is
+// certain: the face normal N = (b - a) x (c - a), its sign against the opposite point, and
+// N . kSweep are formed in doubles; each component is a difference of two products l - r, whose
+// rounding error (differences, products, the difference and the sum: < 10 eps (|l| + |r|) per
+// component x |kSweep_i|) is below the bounds used, 1e-14 x sum_i |kSweep_i| (|l_i| + |r_i|) and
+// 1e-14 x sum_i |d_i| (|l_i| + |r_i|) (d: opposite point - a). Within them the face is kept.
+unsigned facing_faces(const TetMesh& m, std::size_t t, const std::array<std::int32_t, 4>& nt) {
+  std::array<Vec3, 4> p;
+  for (std::size_t k = 0; k < 4; ++k) p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
+  unsigned mask = 0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (nt[k] >= 0) continue;
+    const Vec3& a = p[static_cast<std::size_t>(kTetFaces[k][0])];
+    const Vec3 u = p[static_cast<std::size_t>(kTetFaces[k][1])] - a, v = p[static_cast<std::size_t>(kTetFaces[k][2])] - a;
+    const Vec3 l(u[1] * v[2], u[2] * v[0], u[0] * v[1]), r(u[2] * v[1], u[0] * v[2], u[1] * v[0]);
+    const Vec3 N = l - r, mag = l.cwiseAbs() + r.cwiseAbs();
+    const Vec3 d = p[k] - a;
+    const double side = N.dot(d), side_err = 1e-14 * mag.dot(d.cwiseAbs());
+    const double s = N.dot(kSweep), s_err = 1e-14 * mag.dot(kSweep.cwiseAbs());
+    // Outward normal: -N when the opposite point is on N's side. Left out when certainly
+    // n . kSweep <= 0, i.e. the tet certainly on N's side and N . kSweep >= its error, or
+    // certainly on the other side and N . kSweep <= -its error.
+    // Only where the bounds hold: products far from underflow (an absolute error of ~1e-322 each)
+    // and from overflow; otherwise (and for NaN) the face is kept.
+    const bool in_range = side_err > 1e-280 && side_err < 1e280 && s_err > 1e-280 && s_err < 1e280;
+    const bool out = in_range && ((side > side_err && s >= s_err) || (side < -side_err && s <= -s_err));
+    if (!out) mask |= 1U << k;
+  }
+  return mask;
+}
+
+// The box of the points of tet t on the faces in mask (bit k: the face opposite point k).
+Box faces_box(const TetMesh& m, std::size_t t, unsigned mask) {
+  Box b{};
+  bool first = true;
+  for (std::size_t j = 0; j < 4; ++j) {
+    if ((mask & ~(1U << j)) == 0) continue;  // point j is on none of them (the only one is opposite it)
+    const Vec3& q = m.points[static_cast<std::size_t>(m.tets[t][j])];
+    if (first) {
+      b.lo = b.hi = q;
+      first = false;
+    } else {
+      b.lo = b.lo.cwiseMin(q);
+      b.hi = b.hi.cwiseMax(q);
+    }
+  }
+  return b;
+}
+
+}  // namespace
+
 bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   const std::size_t n = m.tets.size();
   if (next.size() != n) return false;
-  std::vector<std::uint32_t> bt;  // the tets with a boundary face
-  for (std::size_t t = 0; t < n; ++t)
-    if (next[t][0] < 0 || next[t][1] < 0 || next[t][2] < 0 || next[t][3] < 0) bt.push_back(static_cast<std::uint32_t>(t));
   if (n < 2) return true;
-  if (bt.empty()) return false;  // a finite mesh has a boundary: let the full check decide
-  // A grid of the boundary tets' boxes (cells of their mean extent, at most ~8 |bt| of them),
-  // filled by a counting sort as in find_overlapping_tets; then every tet is looked up in it.
-  // One 64-byte record per boundary tet, all a candidate pair reads of it (its box, its box
-  // diagonal: the pair tolerance's scale, the tet): one cache line instead of three arrays.
+  // The members: the tets with a boundary face that may face kSweep, in tet order. One 64-byte
+  // record each with all a candidate pair reads of it (the box of the points of those faces, the
+  // tet's box diagonal: the pair tolerance's scale, the tet).
   struct alignas(64) Member {
-    Box box;
+    Box faces;
     double size;
     std::uint32_t tet;
   };
-  std::vector<Member> bm(bt.size());
-  Box all = box_of(m, bt[0]);
-  Vec3 mean_extent = Vec3::Zero();
-  for (std::size_t i = 0; i < bt.size(); ++i) {
-    bm[i].box = box_of(m, bt[i]);
-    bm[i].tet = bt[i];
-    all.lo = all.lo.cwiseMin(bm[i].box.lo);
-    all.hi = all.hi.cwiseMax(bm[i].box.hi);
-    mean_extent += bm[i].box.hi - bm[i].box.lo;
+  const auto open = [&next](std::size_t t) {
+    const std::array<std::int32_t, 4>& nt = next[t];
+    return nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0;
+  };
+  std::size_t n_open = 0;
+  for (std::size_t t = 0; t < n; ++t) n_open += open(t) ? 1 : 0;
+  std::vector<Member> bm;
+  bm.reserve(n_open);  // about half of it used: the pages are touched only as members are written
+  for (std::size_t t = 0; t < n; ++t) {
+    if (!open(t)) continue;
+    const std::array<std::int32_t, 4>& nt = next[t];
+    const unsigned facing = facing_faces(m, t, nt);
+    if (facing == 0) continue;
+    Member M{};
+    const Box tb = box_of(m, t);
+    M.size = (tb.hi - tb.lo).norm();
+    M.tet = static_cast<std::uint32_t>(t);
+    M.faces = faces_box(m, t, facing);
+    bm.push_back(M);
   }
-  mean_extent /= static_cast<double>(bt.size());
+  if (bm.empty()) return false;  // a finite mesh has a boundary facing every way: let the full check decide
+  if (bm.size() >= (std::size_t{1} << 29)) return false;  // let the full check decide
+  // A grid of the members' face boxes: cells of their mean extent, at most ~|bm| of them (on the
+  // 105k ball 8 |bm| cost more in fresh pages than they saved), filled by a counting sort as in
+  // find_overlapping_tets.
+  Box all = bm[0].faces;
+  Vec3 mean_extent = Vec3::Zero();
+  for (const Member& M : bm) {
+    all.lo = all.lo.cwiseMin(M.faces.lo);
+    all.hi = all.hi.cwiseMax(M.faces.hi);
+    mean_extent += M.faces.hi - M.faces.lo;
+  }
+  mean_extent /= static_cast<double>(bm.size());
   std::array<long, 3> dims{};
-  Vec3 cell;
+  Vec3 inv_cell;
   for (int k = 0; k < 3; ++k) {
     const double span = all.hi[k] - all.lo[k];
-    const double want = std::max(mean_extent[k], span / std::cbrt(8.0 * static_cast<double>(bt.size())));
+    const double want = std::max(mean_extent[k], span / std::cbrt(static_cast<double>(bm.size())));
     dims[static_cast<std::size_t>(k)] = span > 0 && want > 0 ? std::max(1L, std::min(1L << 20, static_cast<long>(span / want))) : 1;
-    cell[k] = span > 0 ? span / static_cast<double>(dims[static_cast<std::size_t>(k)]) : 1.0;
+    inv_cell[k] = span > 0 ? static_cast<double>(dims[static_cast<std::size_t>(k)]) / span : 1.0;
   }
-  // floor((x - lo) / cell) clamped to the grid; clamped first in double, where truncation is the
-  // floor (no std::floor call: it was ~2% of the load on the 105k ball) and the cast cannot overflow.
+  // The cell of coordinate x on axis k: (x - lo) x (cells / span), clamped to the grid in double
+  // (where truncation is the floor and the cast cannot overflow). Monotone in x, which is all the
+  // pair bookkeeping below needs.
   const auto index = [&](double x, int k) {
     const double top = static_cast<double>(dims[static_cast<std::size_t>(k)] - 1);
-    return static_cast<long>(std::clamp((x - all.lo[k]) / cell[k], 0.0, top));
+    return static_cast<long>(std::clamp((x - all.lo[k]) * inv_cell[k], 0.0, top));
   };
   const auto key = [&](long i, long j, long k) { return static_cast<std::size_t>(i + dims[0] * (j + dims[1] * k)); };
   const auto n_cells = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
-  // The grid's arrays in 32-bit words (fresh pages cost ~10 us each on the VM of issue 33): the
-  // (cell, member) records' offsets, fewer than 2^32 (checked), and per record the member (an
-  // index into bm, below 2^29: checked) with, in the top 3 bits, the axes on which that box
-  // starts in the grid cell (bit k: its lower cell index on axis k is the cell's), read before
-  // the box itself. A member's cells are formed again in each pass instead of kept.
-  if (bt.size() >= (std::size_t{1} << 29)) return false;  // let the full check decide
   const auto cells_of = [&](const Box& b) {
     std::array<long, 6> sp{};  // lo i, j, k, hi i, j, k
     for (int k = 0; k < 3; ++k) {
@@ -337,11 +407,15 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
     }
     return sp;
   };
+  // The grid's arrays in 32-bit words (fresh pages cost ~10 us each on the VM of issue 33): the
+  // (cell, member) records' offsets, fewer than 2^32 (checked), and per record the member (an
+  // index into bm, below 2^29: checked) with, in the top 3 bits, the axes on which that box
+  // starts in the grid cell (bit k: its lower cell index on axis k is the cell's). A member's
+  // cells are formed again in each pass instead of kept.
   std::vector<std::uint32_t> begin(n_cells + 1, 0);
   std::size_t records = 0;
-  for (std::size_t x = 0; x < bt.size(); ++x) {
-    const auto sp = cells_of(bm[x].box);
-    bm[x].size = (bm[x].box.hi - bm[x].box.lo).norm();
+  for (const Member& M : bm) {
+    const auto sp = cells_of(M.faces);
     records += static_cast<std::size_t>((sp[3] - sp[0] + 1) * (sp[4] - sp[1] + 1) * (sp[5] - sp[2] + 1));
     if (records >= (std::size_t{1} << 32)) return false;  // let the full check decide
     for (long k = sp[2]; k <= sp[5]; ++k)
@@ -350,10 +424,10 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   }
   for (std::size_t c = 0; c < n_cells; ++c) begin[c + 1] += begin[c];
   // Each cell is filled from its end (begin[c + 1] counts down to cell c's start), members
-  // backwards: in the order of bt within a cell, as before.
+  // backwards: in member order within a cell.
   std::vector<std::uint32_t> members(records);
-  for (std::size_t x = bt.size(); x-- > 0;) {
-    const auto sp = cells_of(bm[x].box);
+  for (std::size_t x = bm.size(); x-- > 0;) {
+    const auto sp = cells_of(bm[x].faces);
     for (long k = sp[2]; k <= sp[5]; ++k)
       for (long j = sp[1]; j <= sp[4]; ++j)
         for (long i = sp[0]; i <= sp[3]; ++i) {
@@ -364,19 +438,53 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   // Now begin[c + 1] is where cell c starts: cell c is begin[c + 1] .. begin[c + 2].
   begin.erase(begin.begin());
   begin.push_back(static_cast<std::uint32_t>(records));
+  // Summed counts: sat at (i, j, k) = the records in the cells below (i, j, k) on all three axes,
+  // so whether a block of cells holds any is 8 lookups, whatever its size (sums modulo 2^32:
+  // exact, fewer than 2^32 records). Most tets of a mesh meet no member's cell.
+  const auto sx = static_cast<std::size_t>(dims[0]) + 1, sy = static_cast<std::size_t>(dims[1]) + 1;
+  std::vector<std::uint32_t> sat(sx * sy * (static_cast<std::size_t>(dims[2]) + 1), 0);
+  const auto at = [&](long i, long j, long k) {
+    return static_cast<std::size_t>(i) + sx * (static_cast<std::size_t>(j) + sy * static_cast<std::size_t>(k));
+  };
+  for (long k = 0; k < dims[2]; ++k)
+    for (long j = 0; j < dims[1]; ++j)
+      for (long i = 0; i < dims[0]; ++i) {
+        const std::size_t c = key(i, j, k);
+        sat[at(i + 1, j + 1, k + 1)] = (begin[c + 1] - begin[c]) + sat[at(i, j + 1, k + 1)] + sat[at(i + 1, j, k + 1)] +
+                                       sat[at(i + 1, j + 1, k)] - sat[at(i, j, k + 1)] - sat[at(i, j + 1, k)] -
+                                       sat[at(i + 1, j, k)] + sat[at(i, j, k)];
+      }
+  const auto records_in = [&](const std::array<long, 6>& sp) {
+    const long i0 = sp[0], j0 = sp[1], k0 = sp[2], i1 = sp[3] + 1, j1 = sp[4] + 1, k1 = sp[5] + 1;
+    return sat[at(i1, j1, k1)] - sat[at(i0, j1, k1)] - sat[at(i1, j0, k1)] - sat[at(i1, j1, k0)] + sat[at(i0, j0, k1)] +
+           sat[at(i0, j1, k0)] + sat[at(i1, j0, k0)] - sat[at(i0, j0, k0)];
+  };
+  const auto apart = [](const Box& a, const Box& b) {  // closed boxes without a common point
+    return (a.hi[0] < b.lo[0]) | (a.lo[0] > b.hi[0]) | (a.hi[1] < b.lo[1]) | (a.lo[1] > b.hi[1]) | (a.hi[2] < b.lo[2]) |
+           (a.lo[2] > b.hi[2]);
+  };
+  // Every tet t against the members whose face boxes meet its box.
   constexpr std::size_t kChunk = 256;
   std::array<std::uint32_t, kChunk> pass;
+  std::size_t own = 0;  // the first member whose tet is >= t (members are in tet order)
   for (std::size_t t = 0; t < n; ++t) {
-    const Box b = box_of(m, t);
-    bool outside = false;
-    for (int k = 0; k < 3; ++k)
-      if (b.hi[k] < all.lo[k] || b.lo[k] > all.hi[k]) outside = true;
-    if (outside) continue;
+    TetAxes axes;
+    for (std::size_t k = 0; k < 4; ++k) axes.p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
+    Box b{axes.p[0], axes.p[0]};
+    for (std::size_t k = 1; k < 4; ++k) {
+      b.lo = b.lo.cwiseMin(axes.p[k]);
+      b.hi = b.hi.cwiseMax(axes.p[k]);
+    }
+    if (apart(b, all)) continue;
     const auto sp = cells_of(b);
+    if (records_in(sp) == 0) continue;
+    axes.sum = axes.p[0] + axes.p[1] + axes.p[2] + axes.p[3];
     const double size_t_ = (b.hi - b.lo).norm();
     const std::array<std::int32_t, 4> nt = next[t];
-    const bool t_boundary = nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0;
-    std::optional<TetAxes> axes;  // t's, formed at its first exact test
+    while (own < bm.size() && bm[own].tet < t) ++own;
+    // t a member too: a pair of members (t, u) is met from both sides when each one's face box
+    // meets the other's box; then it is tested from the lower tet only.
+    const Box* t_faces = own < bm.size() && bm[own].tet == t ? &bm[own].faces : nullptr;
     for (long ck = sp[2]; ck <= sp[5]; ++ck)
       for (long cj = sp[1]; cj <= sp[4]; ++cj)
         for (long ci = sp[0]; ci <= sp[3]; ++ci) {
@@ -385,9 +493,8 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
           // is monotone in the coordinate), max(lo_t, lo_u) on each axis. Where t starts before
           // this cell on an axis, u must start in it there: those axes are `need`.
           const std::uint32_t need = ((ci > sp[0] ? 1U : 0U) | (cj > sp[1] ? 2U : 0U) | (ck > sp[2] ? 4U : 0U)) << 29;
-          // In chunks, without branches on the two filters that reject most (on the 105k ball
-          // 3.36M members met, 1.33M with the start bits, 0.49M with boxes not apart): the
-          // members passing each are packed into a buffer, in order, and only those go on.
+          // In chunks, without branches on the two filters that reject most: the members passing
+          // each are packed into a buffer, in order, and only those go on.
           for (std::size_t r0 = begin[c]; r0 < begin[c + 1]; r0 += kChunk) {
             const std::size_t r1 = std::min<std::size_t>(begin[c + 1], r0 + kChunk);
             std::size_t n_start = 0;
@@ -397,24 +504,27 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
             }
             std::size_t n_box = 0;
             for (std::size_t q = 0; q < n_start; ++q) {
-              const Box& B = bm[pass[q]].box;
-              const double tol = kOverlapTolerance * std::max(size_t_, bm[pass[q]].size);
-              const bool apart = (std::min(b.hi[0], B.hi[0]) - std::max(b.lo[0], B.lo[0]) <= tol) |
-                                 (std::min(b.hi[1], B.hi[1]) - std::max(b.lo[1], B.lo[1]) <= tol) |
-                                 (std::min(b.hi[2], B.hi[2]) - std::max(b.lo[2], B.lo[2]) <= tol);
               pass[n_box] = pass[q];
-              n_box += apart ? 0 : 1;
+              n_box += apart(b, bm[pass[q]].faces) ? 0 : 1;
             }
             for (std::size_t q = 0; q < n_box; ++q) {
               const Member& M = bm[pass[q]];
+              std::array<Vec3, 4> up;
+              for (std::size_t k = 0; k < 4; ++k) up[k] = m.points[static_cast<std::size_t>(m.tets[M.tet][k])];
               const std::size_t u = M.tet;
-              // ... and a boundary pair from its lower tet only.
-              if (u == t || (t_boundary && u < t)) continue;
-              // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
+              if (u == t) continue;
               const auto ui = static_cast<std::int32_t>(u);
+              // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
               if (nt[0] == ui || nt[1] == ui || nt[2] == ui || nt[3] == ui) continue;
-              if (!axes) axes = tet_axes(m, t);
-              if (overlap_exact(*axes, m, u, std::max(size_t_, M.size), true)) return false;
+              if (t_faces && u < t) {
+                Box ub{up[0], up[0]};
+                for (std::size_t k = 1; k < 4; ++k) {
+                  ub.lo = ub.lo.cwiseMin(up[k]);
+                  ub.hi = ub.hi.cwiseMax(up[k]);
+                }
+                if (!apart(ub, *t_faces)) continue;
+              }
+              if (overlap_exact(axes, up, std::max(size_t_, M.size), true)) return false;
             }
           }
         }
