@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <random>
 #include <vector>
+
+#include <Eigen/LU>
 
 #include "rayint/studies/mesh_agreement.hpp"
 #include "mesh_case_fixtures.hpp"
@@ -79,6 +82,43 @@ TEST_CASE("Eq. 9 on known tetrahedra", "[mesh]") {
     CHECK(e.v == Approx(1 + 0.2 + 0.6 + 1.2).epsilon(1e-15));
     CHECK(e.w == Approx(3 * 0.6 + 4 * 0.8).epsilon(1e-15));
   }
+}
+
+TEST_CASE("Eq. 9: the gradient is Eigen's full-pivot LU solve bit for bit", "[mesh]") {
+  // fit_linear_tet writes Eigen's FullPivLU<Matrix3d> compute + solve out for 3 x 3 (tet_cell.cpp);
+  // here Eigen itself is the reference, on matrices that exercise each branch: random entries
+  // over 20 decades, small integers (tied pivots, zero entries, exact cancellation, singular
+  // matrices: Eigen's own rank-deficient path), signed zeros in the right-hand side.
+  std::mt19937_64 rng(33);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> small(-2, 2), decade(-10, 10);
+  const auto bits_equal = [](const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0; };
+  long compared = 0, singular = 0;
+  for (int trial = 0; trial < 40000; ++trial) {
+    std::array<Vec3, 4> x;
+    std::array<double, 4> s{};
+    const int kind = trial % 4;
+    const double scale = std::pow(10.0, decade(rng));
+    for (std::size_t k = 0; k < 4; ++k) {
+      for (int j = 0; j < 3; ++j) x[k][j] = kind == 0 ? scale * unit(rng) : kind == 3 ? 1e3 + small(rng) : small(rng);
+      s[k] = kind == 1 ? small(rng) : kind == 2 ? (small(rng) == 0 ? -0.0 : 0.0) : unit(rng);
+    }
+    Eigen::Matrix3d edges;
+    Eigen::Vector3d rhs;
+    for (int k = 0; k < 3; ++k) {
+      edges.row(k) = (x[static_cast<std::size_t>(k + 1)] - x[0]).transpose();
+      rhs[k] = s[static_cast<std::size_t>(k + 1)] - s[0];
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(edges);
+    if (lu.rank() < 3) ++singular;
+    const Vec3 expected = lu.solve(rhs);
+    const Vec3 got = fit_linear_tet(x, s).gradient;
+    INFO("trial " << trial << ": expected " << expected.transpose() << ", got " << got.transpose());
+    CHECK(bits_equal(got, expected));
+    ++compared;
+  }
+  CHECK(compared == 40000);
+  CHECK(singular > 100);  // the rank-deficient branch was exercised too
 }
 
 TEST_CASE("Traversal: rays exactly through vertices, along edges and in faces give the analytic chord", "[mesh]") {
