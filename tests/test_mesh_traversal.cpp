@@ -5,14 +5,22 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
+
+#include <Eigen/LU>
+#include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "rayint/studies/mesh_agreement.hpp"
 #include "mesh_case_fixtures.hpp"
 #include "rayint/integrators/integrator.hpp"
+#include "rayint/input/mesh_case_reader.hpp"
 #include "rayint/mesh/gradients.hpp"
 #include "rayint/mesh/mesh_case.hpp"
 #include "rayint/mesh/mesh_generators.hpp"
@@ -21,6 +29,7 @@
 #include "rayint/mesh/tet_traversal.hpp"
 #include "rayint/reference/reference.hpp"
 #include "rayint/render/mesh_render.hpp"
+#include "test_paths.hpp"
 #include "tolerances.hpp"
 
 using namespace rayint;
@@ -78,6 +87,168 @@ TEST_CASE("Eq. 9 on known tetrahedra", "[mesh]") {
     const Eq13 e = ray_parameters(f, Vec3(0.1, 0.2, 0.3), Vec3(0, 0.6, 0.8));
     CHECK(e.v == Approx(1 + 0.2 + 0.6 + 1.2).epsilon(1e-15));
     CHECK(e.w == Approx(3 * 0.6 + 4 * 0.8).epsilon(1e-15));
+  }
+}
+
+namespace {
+
+// Eq. 9's gradient against its 50-digit value (tet_cell.hpp states the bounds these measure).
+// The reference solves the same system, edges and scalar differences of the same doubles, by
+// Cramer's rule in cpp_bin_float_50 (~1e-50 relative; the worst condition number sampled is
+// ~1e13). Errors are |g - g*| / |g*| and that over eps kappa_F, kappa_F = |A|_F |A^-1|_F of the
+// edge matrix A (the scale of any backward-stable solve's error); Eigen's LU with full pivoting,
+// the method before issue 33, beside the closed form.
+struct Eq9Accuracy {
+  long tets = 0;
+  double closed = 0.0, lu = 0.0;                        // max relative error
+  double closed_over_kappa = 0.0, lu_over_kappa = 0.0;  // max of the error / (eps kappa_F)
+  double worst_kappa = 0.0;
+  long constant = 0, constant_exact = 0;  // cells with equal vertex scalars, those given 0 exactly
+  void add(const std::array<Vec3, 4>& x, const std::array<double, 4>& s) {
+    using Real = boost::multiprecision::cpp_bin_float_50;
+    std::array<std::array<Real, 3>, 3> e;
+    std::array<Real, 3> d;
+    for (int k = 0; k < 3; ++k) {
+      for (int j = 0; j < 3; ++j) e[k][j] = Real(x[k + 1][j]) - Real(x[0][j]);
+      d[k] = Real(s[k + 1]) - Real(s[0]);
+    }
+    const auto cross = [](const std::array<Real, 3>& u, const std::array<Real, 3>& v) {
+      return std::array<Real, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    };
+    const auto c23 = cross(e[1], e[2]), c31 = cross(e[2], e[0]), c12 = cross(e[0], e[1]);
+    const Real det = e[0][0] * c23[0] + e[0][1] * c23[1] + e[0][2] * c23[2];
+    std::array<Real, 3> g;
+    Real a2 = 0, inv2 = 0, g2 = 0;
+    for (int j = 0; j < 3; ++j) {
+      g[j] = (d[0] * c23[j] + d[1] * c31[j] + d[2] * c12[j]) / det;
+      g2 += g[j] * g[j];
+      inv2 += c23[j] * c23[j] + c31[j] * c31[j] + c12[j] * c12[j];
+      for (int k = 0; k < 3; ++k) a2 += e[k][j] * e[k][j];
+    }
+    if (g2 == 0) {  // a constant field: the closed form gives 0 exactly
+      constant_exact += fit_linear_tet(x, s).gradient == Vec3::Zero();
+      ++constant;
+      return;
+    }
+    const double kappa = static_cast<double>(sqrt(a2 * inv2) / abs(det));
+    const auto error = [&](const Vec3& got) {
+      Real r2 = 0;
+      for (int j = 0; j < 3; ++j) r2 += (Real(got[j]) - g[j]) * (Real(got[j]) - g[j]);
+      return static_cast<double>(sqrt(r2 / g2));
+    };
+    Eigen::Matrix3d edges;
+    for (int k = 0; k < 3; ++k) edges.row(k) = (x[static_cast<std::size_t>(k + 1)] - x[0]).transpose();
+    const double closed_error = error(fit_linear_tet(x, s).gradient);
+    const double lu_error = error(edges.fullPivLu().solve(Eigen::Vector3d(s[1] - s[0], s[2] - s[0], s[3] - s[0])));
+    const double eps = std::numeric_limits<double>::epsilon();
+    closed = std::max(closed, closed_error);
+    lu = std::max(lu, lu_error);
+    closed_over_kappa = std::max(closed_over_kappa, closed_error / (eps * kappa));
+    lu_over_kappa = std::max(lu_over_kappa, lu_error / (eps * kappa));
+    worst_kappa = std::max(worst_kappa, kappa);
+    ++tets;
+  }
+  void add(const TetMesh& m) {
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+      std::array<Vec3, 4> x;
+      std::array<double, 4> s{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        const auto p = static_cast<std::size_t>(m.tets[t][k]);
+        x[k] = m.points[p];
+        s[k] = m.cell_scalars.empty() ? m.scalars[p] : m.cell_scalars[t];
+      }
+      add(x, s);
+    }
+  }
+  std::string summary() const {
+    std::ostringstream o;
+    o << tets << " tets (and " << constant << " of a constant field, " << constant_exact << " given 0 exactly): max relative error closed form " << closed << ", LU " << lu << "; over eps kappa_F: closed "
+      << closed_over_kappa << ", LU " << lu_over_kappa << "; worst kappa_F " << worst_kappa;
+    return o.str();
+  }
+};
+
+// The worst shapes the mesh checks accept (tet_mesh.hpp: |6 V| > kDegenerateTetRatio l^3, l the
+// longest edge): slivers (four points nearly in a plane) and needles and caps (three nearly on a
+// line), |6 V| / l^3 from ~1e-12 to 1e-2, turned at random, up to 1e3 sizes from the origin,
+// scalars at random in [-1, 1] (the field's gradient across the flat direction ~ 1 / height).
+void add_worst_shapes(Eq9Accuracy& acc, int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), decade(-11.5, -2.0);
+  const auto random_unit = [&] {
+    Vec3 v;
+    do v = Vec3(unit(rng), unit(rng), unit(rng));
+    while (v.norm() < 0.1 || v.norm() > 1.0);
+    return Vec3(v / v.norm());
+  };
+  for (int i = 0; i < count; ++i) {
+    const double ratio = std::pow(10.0, decade(rng));
+    const Vec3 n = random_unit();
+    Vec3 u = random_unit().cross(n);
+    u /= u.norm();
+    const Vec3 v = n.cross(u);
+    const Vec3 origin = std::pow(10.0, 3.0 * (unit(rng) + 1.0) / 2.0) * random_unit();
+    std::array<Vec3, 4> x;
+    if (i % 2 == 0) {  // sliver: a quadrilateral in the (u, v) plane, point 3 lifted by h along n
+      x = {origin, origin + u, origin + (0.9 + 0.2 * unit(rng)) * (u + v), origin + v};
+      x[3] += ratio * n;  // |6 V| = |(u) . ((u+v) x (v + h n))| ~ h, l ~ sqrt(2): ratio ~ 1e-12 .. 1e-2
+    } else {  // needle or cap: points 0..2 nearly on the line along u, point 3 off it
+      x = {origin, origin + u, origin + (0.5 + 0.4 * unit(rng)) * u + ratio * v, origin + 0.5 * u + n};
+    }
+    const std::array<double, 4> s{unit(rng), unit(rng), unit(rng), unit(rng)};
+    // Only shapes the checks accept (classify_tet's test, the same doubles).
+    TetMesh one;
+    one.points = {x[0], x[1], x[2], x[3]};
+    one.tets = {{0, 1, 2, 3}};
+    const TetShape shape = classify_tet(one, 0);
+    if (shape != TetShape::Positive && shape != TetShape::Inverted) continue;
+    acc.add(x, s);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Eq. 9: the closed-form gradient against 50 digits, with Eigen's LU beside it", "[mesh]") {
+  // The figures quoted in tet_cell.hpp come from this test (run with -s to print them).
+  SECTION("the 105k-tet ball of the scaling runs (rayint generate-mesh ball --n 13)") {
+    Eq9Accuracy acc;
+    acc.add(generate_mesh("ball", 13, 1).mesh);
+    INFO(acc.summary());
+    CHECK(acc.tets + acc.constant == 105456);
+    CHECK(acc.constant_exact == acc.constant);
+    CHECK(acc.closed <= 1e-13);
+    CHECK(acc.closed_over_kappa <= 1.0);
+    WARN(acc.summary());
+  }
+  SECTION("every fixture mesh the tetrahedral reader takes") {
+    Eq9Accuracy acc;
+    int meshes = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(RAYINT_SOURCE_DIR + "/tests/fixtures")) {
+      const std::string ext = entry.path().extension().string();
+      if (ext != ".vtk" && ext != ".vtu" && ext != ".msh" && ext != ".ele" && ext != ".pvtu") continue;
+      TetMesh m;
+      try {
+        m = read_mesh_file(entry.path().string());
+      } catch (const std::exception&) {
+        continue;  // other cells, no scalar, or a file meant to be refused
+      }
+      acc.add(m);
+      ++meshes;
+    }
+    INFO(meshes << " meshes, " << acc.summary());
+    CHECK(meshes >= 20);
+    CHECK(acc.closed <= 1e-13);
+    CHECK(acc.closed_over_kappa <= 1.0);
+    WARN(meshes << " meshes, " << acc.summary());
+  }
+  SECTION("the worst shapes the mesh checks accept") {
+    Eq9Accuracy acc;
+    add_worst_shapes(acc, 100000, 33);
+    INFO(acc.summary());
+    CHECK(acc.tets > 90000);
+    CHECK(acc.worst_kappa > 1e11);
+    CHECK(acc.closed_over_kappa <= 1.0);
+    WARN(acc.summary());
   }
 }
 

@@ -101,6 +101,7 @@ struct LastType {
   long long type = -1;
   const CellTypeInfo* row = nullptr;
   long* count = nullptr;
+  bool accepted = false;  // accepted(row->support), asked once per run of a type
 };
 const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& shared, const std::string& source,
                                const RawMeshFields& fields, MeshFileInfo& info, bool (*accepted)(CellSupport),
@@ -111,7 +112,7 @@ const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& 
   if (last.row == nullptr || type != last.type) {
     const CellTypeInfo* found = cell_type_from_vtk(type);
     if (found == nullptr) field::fail(source, at(), unsupported_cell_message(type));
-    last = LastType{type, found, &info.cells_by_type[found->name]};
+    last = LastType{type, found, &info.cells_by_type[found->name], accepted(found->support)};
   }
   const CellTypeInfo* row = last.row;
   ++*last.count;
@@ -124,7 +125,7 @@ const CellTypeInfo* table_cell(const RawMesh& raw, std::size_t i, const Shared& 
     ++info.skipped_by_type[row->name];
     return nullptr;
   }
-  if (!accepted(row->support)) field::fail(source, at(), unsupported_cell_message(type));
+  if (!last.accepted) field::fail(source, at(), unsupported_cell_message(type));
   const std::size_t b = raw.offsets[i], e = raw.offsets[i + 1];
   if (e < b || e > raw.connectivity.size())
     field::fail(source, fields.cells + "[" + std::to_string(i) + "]", "offsets run outside the connectivity");
