@@ -15,14 +15,22 @@ struct Box {
   Vec3 lo, hi;
 };
 
-Box box_of(const TetMesh& m, std::size_t t) {
-  Box b{m.points[static_cast<std::size_t>(m.tets[t][0])], m.points[static_cast<std::size_t>(m.tets[t][0])]};
+Box box_of_points(const std::array<Vec3, 4>& p) {
+  Box b{p[0], p[0]};
   for (std::size_t k = 1; k < 4; ++k) {
-    b.lo = b.lo.cwiseMin(m.points[static_cast<std::size_t>(m.tets[t][k])]);
-    b.hi = b.hi.cwiseMax(m.points[static_cast<std::size_t>(m.tets[t][k])]);
+    b.lo = b.lo.cwiseMin(p[k]);
+    b.hi = b.hi.cwiseMax(p[k]);
   }
   return b;
 }
+
+std::array<Vec3, 4> tet_points(const TetMesh& m, std::size_t t) {
+  std::array<Vec3, 4> p;
+  for (std::size_t k = 0; k < 4; ++k) p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
+  return p;
+}
+
+Box box_of(const TetMesh& m, std::size_t t) { return box_of_points(tet_points(m, t)); }
 
 // Projections of the 4 points on a unit axis: overlap of the two intervals (negative: a gap).
 double overlap_on(const std::array<Vec3, 4>& a, const std::array<Vec3, 4>& b, const Vec3& axis) {
@@ -83,7 +91,7 @@ struct TetAxes {
 
 TetAxes tet_axes(const TetMesh& m, std::size_t t) {
   TetAxes A;
-  for (std::size_t k = 0; k < 4; ++k) A.p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
+  A.p = tet_points(m, t);
   A.sum = A.p[0] + A.p[1] + A.p[2] + A.p[3];
   return A;
 }
@@ -166,7 +174,7 @@ bool overlap_exact(TetAxes& A, const std::array<Vec3, 4>& b, double size, bool f
 bool tets_overlap(const TetMesh& m, std::size_t ia, std::size_t ib) {
   const Box ba = box_of(m, ia), bb = box_of(m, ib);
   TetAxes A = tet_axes(m, ia);
-  return overlap_exact(A, tet_axes(m, ib).p, std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()), false);
+  return overlap_exact(A, tet_points(m, ib), std::max((ba.hi - ba.lo).norm(), (bb.hi - bb.lo).norm()), false);
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const TetMesh& m, OverlapScope scope) {
@@ -245,7 +253,7 @@ std::optional<std::pair<std::size_t, std::size_t>> find_overlapping_tets(const T
           if (pa == pb) return;
     }
     TetAxes axes_a = tet_axes(m, a);
-    if (overlap_exact(axes_a, tet_axes(m, b).p, std::max(spans[a].size, spans[b].size), false)) first = std::make_pair(a, b);
+    if (overlap_exact(axes_a, tet_points(m, b), std::max(spans[a].size, spans[b].size), false)) first = std::make_pair(a, b);
   };
   // A pair is tested once: in the grid cell of the lower corner of the boxes' intersection,
   // max(A.lo, B.lo), whose cell is the larger of the two lower cells on each axis (the cell index
@@ -293,8 +301,7 @@ const Vec3 kSweep(0.8, 0.45, 0.2);
 // component x |kSweep_i|) is below the bounds used, 1e-14 x sum_i |kSweep_i| (|l_i| + |r_i|) and
 // 1e-14 x sum_i |d_i| (|l_i| + |r_i|) (d: opposite point - a). Within them the face is kept.
 unsigned facing_faces(const TetMesh& m, std::size_t t, const std::array<std::int32_t, 4>& nt) {
-  std::array<Vec3, 4> p;
-  for (std::size_t k = 0; k < 4; ++k) p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
+  const std::array<Vec3, 4> p = tet_points(m, t);
   unsigned mask = 0;
   for (std::size_t k = 0; k < 4; ++k) {
     if (nt[k] >= 0) continue;
@@ -468,17 +475,11 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
   std::array<std::uint32_t, kChunk> pass;
   std::size_t own = 0;  // the first member whose tet is >= t (members are in tet order)
   for (std::size_t t = 0; t < n; ++t) {
-    TetAxes axes;
-    for (std::size_t k = 0; k < 4; ++k) axes.p[k] = m.points[static_cast<std::size_t>(m.tets[t][k])];
-    Box b{axes.p[0], axes.p[0]};
-    for (std::size_t k = 1; k < 4; ++k) {
-      b.lo = b.lo.cwiseMin(axes.p[k]);
-      b.hi = b.hi.cwiseMax(axes.p[k]);
-    }
+    TetAxes axes = tet_axes(m, t);
+    const Box b = box_of_points(axes.p);
     if (apart(b, all)) continue;
     const auto sp = cells_of(b);
     if (records_in(sp) == 0) continue;
-    axes.sum = axes.p[0] + axes.p[1] + axes.p[2] + axes.p[3];
     const double size_t_ = (b.hi - b.lo).norm();
     const std::array<std::int32_t, 4> nt = next[t];
     while (own < bm.size() && bm[own].tet < t) ++own;
@@ -509,21 +510,13 @@ bool boundary_tets_overlap_free(const TetMesh& m, const TetNeighbors& next) {
             }
             for (std::size_t q = 0; q < n_box; ++q) {
               const Member& M = bm[pass[q]];
-              std::array<Vec3, 4> up;
-              for (std::size_t k = 0; k < 4; ++k) up[k] = m.points[static_cast<std::size_t>(m.tets[M.tet][k])];
               const std::size_t u = M.tet;
               if (u == t) continue;
               const auto ui = static_cast<std::int32_t>(u);
               // Face neighbours lie on opposite sides of their face (tet_neighbors checked it).
               if (nt[0] == ui || nt[1] == ui || nt[2] == ui || nt[3] == ui) continue;
-              if (t_faces && u < t) {
-                Box ub{up[0], up[0]};
-                for (std::size_t k = 1; k < 4; ++k) {
-                  ub.lo = ub.lo.cwiseMin(up[k]);
-                  ub.hi = ub.hi.cwiseMax(up[k]);
-                }
-                if (!apart(ub, *t_faces)) continue;
-              }
+              const std::array<Vec3, 4> up = tet_points(m, u);
+              if (t_faces && u < t && !apart(box_of_points(up), *t_faces)) continue;
               if (overlap_exact(axes, up, std::max(size_t_, M.size), true)) return false;
             }
           }

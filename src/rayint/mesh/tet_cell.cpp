@@ -20,9 +20,10 @@ LinearTetField fit_linear_tet(const std::array<Vec3, 4>& x, const std::array<dou
   // det = e1 . (e2 x e3) = 6 V.
   const Vec3 c23 = e2.cross(e3), c31 = e3.cross(e1), c12 = e1.cross(e2);
   const double det = e1.dot(c23);
-  // The shape the mesh checks accept (tet_mesh.hpp): |6 V| > kDegenerateTetRatio l^3, here with
-  // squared lengths (no square root). Inside it the closed form; outside (only a caller that
-  // skipped the checks gets there: a flat, degenerate or non-finite cell) Eigen's LU as before.
+  // The shape the mesh checks accept (classify_tet, tet_mesh.hpp): |6 V| > kDegenerateTetRatio l^3,
+  // here squared (no square root) and with this det, so at the limit a cell may go either way by
+  // rounding (both branches are measured there: tet_cell.hpp). Inside it the closed form; outside
+  // (a caller that skipped the checks: a flat, degenerate or non-finite cell) Eigen's LU as before.
   const double l2 = std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm(), (x[2] - x[1]).squaredNorm(),
                               (x[3] - x[1]).squaredNorm(), (x[3] - x[2]).squaredNorm()});
   if (det * det > (kDegenerateTetRatio * kDegenerateTetRatio) * (l2 * l2 * l2) && std::isfinite(det)) {
