@@ -117,11 +117,13 @@ double q2_series_e0(double A, double B, double em1_A) {
 // the first), each composited as intensity = intensity t + emission per channel and
 // transmittance *= t, from RayResult::of_background. `optics` holds the columns transmittance,
 // emission r, g, b, one after the other, `stride` apart. Each ray's pieces are a chain of
-// dependent multiplies and adds (~6 cycles a piece one ray at a time), so kInterleave rays
-// advance in turn, one piece each, as far as the shortest of them reaches; the rest of each
-// ray, and the rays past the last whole group, alone. Every ray gets the same operations in the
-// same order as alone, so the results are the same bit for bit. The transmittance is one
-// product kept once: every channel's starts at 1 and is multiplied by the same t.
+// dependent multiplies and adds (a multiply and an add of latency per piece, one ray at a
+// time), so kInterleave rays advance in turn, one piece each, as far as the shortest of them
+// reaches (a tile's neighbouring rays have similar piece counts); the rest of each ray, and the
+// rays past the last whole group, alone. Every ray gets the same operations in the same order
+// as alone, so the results are the same bit for bit. The transmittance is one product kept
+// once: every channel's starts at 1 and is multiplied by the same t. (Issue 33, round 20: the
+// compositing's perf samples in a 1-thread 105k-tet 512^2 render ~100 -> ~50-75.)
 void composite_grey(const Ray* rays, std::size_t n_rays, const std::size_t* ends, const double* optics,
                     std::size_t stride, RayResult* results) {
   static_assert(kChannels == 3, "a transmittance and three emission columns");
