@@ -1,6 +1,7 @@
 // The batched exact path (integrators/exact_batch.*) against the 50-digit reference, regime by
 // regime, and against the scalar exact_piece: same branch, same series terms, same gate.
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -307,4 +308,101 @@ TEST_CASE("ExactIntegrator: integrate_many gives each ray's integrate results bi
       }
     }
   }
+}
+
+namespace {
+
+// Runs of thin pieces (0 < T <= 1, the render's common regime) take exact_batch's in-order
+// thin pass when no introspection column is asked for; with one asked for, the grouped path
+// (classification, branch groups, expansion back). Both must give the same bits, for the
+// channel and the grey columns, with a piece of another branch (or none) at the start, in the
+// middle or in the last partial pair, at sizes that leave tails and cross the 4,096-entry chunks.
+void check_thin_in_order_matches_groups() {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto bits_equal = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  const auto thin_piece = [&]() {
+    // T = L (rho_exit + rho_far)/2 from 1e-6 to 1, a quarter with rho_far == rho_exit (B = 0)
+    const double T = std::pow(10.0, -6.0 * u(rng));
+    const double share = u(rng) < 0.25 ? 0.5 : u(rng);
+    const double length = 0.01 + u(rng);
+    return ChannelPiece{length, 2.0 * T * share / length, 2.0 * T * (1.0 - share) / length, u(rng), 4.0 * u(rng)};
+  };
+  const std::vector<ChannelPiece> others = {
+      {1.0, 1.5, 1.5, 0.5, 0.5},                                         // T = 1.5: q2 series
+      {1.0, 0.0, 0.0, 1.0, 2.0},                                         // transparent
+      {1.0, 40.0, 1.0, 1.0, 2.0},                                        // erfcx
+      {1.0, std::numeric_limits<double>::quiet_NaN(), 1.0, 1.0, 1.0},   // NaN density
+  };
+  long in_order_pieces = 0;
+  for (const std::size_t n : {1u, 15u, 16u, 17u, 33u, 100u, 4096u + 40u}) {
+    for (const long at : {-1L, 0L, static_cast<long>(n / 2), static_cast<long>(n) - 1}) {
+      if (at >= static_cast<long>(n)) continue;
+      Batch with_groups;  // introspection asked for: the grouped path
+      std::vector<double> kappa_far_g[kChannels], kappa_exit_g[kChannels];
+      for (std::size_t i = 0; i < n; ++i) {
+        const ChannelPiece p =
+            static_cast<long>(i) == at ? others[static_cast<std::size_t>(i + n) % others.size()] : thin_piece();
+        with_groups.add(p);
+        kappa_far_g[0].push_back(p.kappa_far);
+        kappa_exit_g[0].push_back(p.kappa_exit);
+        for (int c = 1; c < kChannels; ++c) {
+          kappa_far_g[c].push_back(u(rng));
+          kappa_exit_g[c].push_back(u(rng));
+        }
+      }
+      with_groups.run();
+      // the channel columns without introspection
+      std::vector<double> tr(n, -1.0), em(n, -1.0);
+      exact_batch({with_groups.length.data(), with_groups.rho_far.data(), with_groups.rho_exit.data(),
+                   with_groups.kappa_far.data(), with_groups.kappa_exit.data(), n},
+                  {tr.data(), em.data()});
+      // the grey columns (density once, three kappas), against the grouped channel path channel by channel
+      std::vector<double> grey_tr(n, -1.0);
+      std::array<std::vector<double>, kChannels> grey_em;
+      GreyPieceView in{with_groups.length.data(), with_groups.rho_far.data(), with_groups.rho_exit.data(), {}, {}, n};
+      GreyOpticsColumns out{grey_tr.data(), {}};
+      Batch channel_groups[kChannels];
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        grey_em[c].assign(n, -1.0);
+        in.kappa_far[c] = kappa_far_g[c].data();
+        in.kappa_exit[c] = kappa_exit_g[c].data();
+        out.emission[c] = grey_em[c].data();
+        for (std::size_t i = 0; i < n; ++i)
+          channel_groups[c].add(ChannelPiece{with_groups.length[i], with_groups.rho_far[i], with_groups.rho_exit[i],
+                                             kappa_far_g[c][i], kappa_exit_g[c][i]});
+        channel_groups[c].run();
+      }
+      exact_batch(in, out);
+      long mismatches = 0, thin = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        thin += with_groups.branch[i] == ExactBranch::thin_series;
+        mismatches += !bits_equal(tr[i], with_groups.transmittance[i]);
+        mismatches += !bits_equal(em[i], with_groups.emission[i]);
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          mismatches += !bits_equal(grey_tr[i], channel_groups[c].transmittance[i]);
+          mismatches += !bits_equal(grey_em[c][i], channel_groups[c].emission[i]);
+        }
+      }
+      INFO("n " << n << " other piece at " << at << " target " << exact_batch_target());
+      CHECK(mismatches == 0);
+      CHECK(thin == static_cast<long>(n) - (at >= 0 ? 1 : 0));  // the generator's pieces are all thin
+      in_order_pieces += thin;
+    }
+  }
+  CHECK(in_order_pieces > 4096);
+}
+
+}  // namespace
+
+TEST_CASE("exact_batch: runs of thin pieces in order give the grouped path's results bit for bit",
+          "[exact_batch]") {
+  check_thin_in_order_matches_groups();
+}
+
+TEST_CASE("exact_batch: runs of thin pieces on every SIMD target this CPU runs", "[exact_batch][simd_targets]") {
+  for_each_simd_target([] {
+    INFO("dispatched target " << exact_batch_target());
+    check_thin_in_order_matches_groups();
+  });
 }

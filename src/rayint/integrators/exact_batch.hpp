@@ -1,8 +1,10 @@
 #pragma once
 // The exact integral of exact.hpp on many pieces at once: structure-of-arrays in and out, pieces
 // grouped by branch, each group evaluated with vector erfcx/Dawson/exp (Google Highway, target
-// picked at run time). exact_piece (exact.cpp) stays the readable scalar reference; this path
-// computes the same formulas in the same regions. See exact_batch.cpp for the error bounds.
+// picked at run time); runs of thin pieces (the common regime of mesh renders) go through the
+// thin kernel in their own order, with the same results. exact_piece (exact.cpp) stays the
+// readable scalar reference; this path computes the same formulas in the same regions. See
+// exact_batch.cpp for the error bounds.
 #include <array>
 #include <cstddef>
 #include <cstdint>
