@@ -2,10 +2,8 @@
 // Lanes of doubles in GCC's vector extension: + - * / are each lane's IEEE operation, exactly as
 // in scalar code, a comparison gives a mask of -1 / 0 per lane, and `mask ? a : b` selects per
 // lane. V2/M2: two lanes (SSE2, the x86-64 baseline); V4/M4: four lanes (one AVX2 operation in a
-// function compiled for AVX2, two SSE2 ones otherwise); V8/M8: eight lanes (one AVX-512 operation
-// in a function compiled for x86-64-v4, two AVX2 or four SSE2 ones otherwise). Keep V4 and V8
-// inside functions: a 32- or 64-byte vector passed or returned by value changes the calling
-// convention. Used by the tet walk
+// function compiled for AVX2, two SSE2 ones otherwise; keep them inside functions: a 32-byte
+// vector passed or returned by value changes the calling convention). Used by the tet walk
 // (mesh/tet_traversal.cpp), the piece splitter (model/pieces.cpp) and the render's piece count
 // (render/mesh_render.cpp).
 #include <cstdint>
@@ -17,8 +15,6 @@ using V2 = double __attribute__((vector_size(16)));
 using M2 = std::int64_t __attribute__((vector_size(16)));
 using V4 = double __attribute__((vector_size(32)));
 using M4 = std::int64_t __attribute__((vector_size(32)));
-using V8 = double __attribute__((vector_size(64)));
-using M8 = std::int64_t __attribute__((vector_size(64)));
 
 // Two lanes from memory of any alignment.
 inline V2 load2(const double* p) {

@@ -143,51 +143,36 @@ void PieceSplitter::reset(const TransferFunctions& tf) {
   jumps_ = tf.has_jump();
 }
 
-// Slots of both ends at once: core/lanes.hpp.
+// Slots two or four at a time: core/lanes.hpp.
 namespace {
 using lanes::load2;
 using lanes::M2;
 using lanes::M4;
-using lanes::M8;
 using lanes::V2;
 using lanes::V4;
-using lanes::V8;
-// PiecewiseLinear::interpolate's arithmetic for the slots f, f + 1, ... of two splitter rows, as
-// many as half of F's lanes: row `a` at s_a into out[0..n), row `b` at s_b into out[n..2n), in one
-// vector F of 2n lanes; a kept constant is selected over the line. Each lane is its own IEEE
-// operations, whichever width the copy computes them in. (The vectors stay inside: a 32- or
-// 64-byte vector passed or returned would change the calling convention.)
-template <class F, class MF, class Row>
-[[gnu::always_inline]] inline void interpolate_ends(const Row& ra, double s_a, const Row& rb, double s_b, int f,
-                                                    double* out) {
-  constexpr std::size_t n = sizeof(F) / sizeof(double) / 2;
-  static_assert(sizeof(MF) == sizeof(F));
-  // Row a's n slots into the low lanes of v, row b's into the high ones.
-  const auto both = [f](auto& v, const auto* x, const auto* y) {
-    std::memcpy(&v, x + f, sizeof v / 2);
-    std::memcpy(reinterpret_cast<char*>(&v) + sizeof v / 2, y + f, sizeof v / 2);
-  };
-  F s0, s1, span, v0, v1, dv01, dv10, constant;
-  MF keep;
-  both(s0, ra.s0, rb.s0);
-  both(s1, ra.s1, rb.s1);
-  both(span, ra.span, rb.span);
-  both(v0, ra.v0, rb.v0);
-  both(v1, ra.v1, rb.v1);
-  both(dv01, ra.dv01, rb.dv01);
-  both(dv10, ra.dv10, rb.dv10);
-  both(constant, ra.constant, rb.constant);
-  both(keep, ra.keep, rb.keep);
-  F sv;
-  for (std::size_t i = 0; i < n; ++i) {
-    sv[i] = s_a;
-    sv[n + i] = s_b;
-  }
-  const F d0 = sv - s0, d1 = s1 - sv;
-  const MF near0 = d0 <= d1;
-  const F d = near0 ? d0 : d1, base = near0 ? v0 : v1, delta = near0 ? dv01 : dv10;
-  const F line = base + (d / span) * delta;
-  const F value = keep ? constant : line;
+// PiecewiseLinear::interpolate's arithmetic at s for the slots f, f + 1, ... of a splitter row, as
+// many as V has lanes, into out[0..lanes); a kept constant is selected over the line. (The vectors
+// stay inside: a 32-byte vector passed or returned would change the calling convention.)
+template <class V, class M, class Row>
+[[gnu::always_inline]] inline void interpolate_slots(const Row& row, int f, double s, double* out) {
+  V s0, s1, span, v0, v1, dv01, dv10, constant;
+  M keep;
+  std::memcpy(&s0, row.s0 + f, sizeof s0);
+  std::memcpy(&s1, row.s1 + f, sizeof s1);
+  std::memcpy(&span, row.span + f, sizeof span);
+  std::memcpy(&v0, row.v0 + f, sizeof v0);
+  std::memcpy(&v1, row.v1 + f, sizeof v1);
+  std::memcpy(&dv01, row.dv01 + f, sizeof dv01);
+  std::memcpy(&dv10, row.dv10 + f, sizeof dv10);
+  std::memcpy(&constant, row.constant + f, sizeof constant);
+  std::memcpy(&keep, row.keep + f, sizeof keep);
+  V sv;
+  for (std::size_t i = 0; i < sizeof(V) / sizeof(double); ++i) sv[i] = s;
+  const V d0 = sv - s0, d1 = s1 - sv;
+  const M near0 = d0 <= d1;
+  const V d = near0 ? d0 : d1, base = near0 ? v0 : v1, delta = near0 ? dv01 : dv10;
+  const V line = base + (d / span) * delta;
+  const V value = keep ? constant : line;
   std::memcpy(out, &value, sizeof value);
 }
 }  // namespace
@@ -210,35 +195,22 @@ template <class F, class MF, class Row>
   return lt + le;
 }
 
-[[gnu::always_inline]] inline void PieceSplitter::eval(const Row& far_row, double s_far, const Row& exit_row,
-                                                      double s_exit, double* v_far, double* v_exit) const {
-  // PiecewiseLinear::interpolate's arithmetic for the four slots rho r, kappa r, g, b of both ends
-  // in one pass of eight lanes (one AVX-512 instruction per operation in the x86-64-v4 copy of
-  // the per-ray append()s below, two AVX2 ones in the AVX2 copy, four SSE2 ones otherwise), then
-  // the two slots rho g, b of both ends in four lanes when not grey; without a jump (which end is
-  // nearer is unpredictable); a constant is selected over the line. The same IEEE operations in
-  // every lane and every copy.
+[[gnu::always_inline]] inline void PieceSplitter::eval(const Row& row, double s, double* v) const {
+  // PiecewiseLinear::interpolate's arithmetic, for four slots (rho r, kappa r, g, b) at once and
+  // then two (rho g, b), without a jump (which end is nearer is unpredictable); a constant is
+  // selected over the line. Written in four lanes: one AVX2 instruction in the AVX2 copy of the
+  // per-ray append()s below, two SSE2 ones otherwise; the same IEEE operations in every lane.
   static_assert(kFunctions == 6 && kSlotFunction[0] == 0 && kSlotFunction[1] == 3 && kSlotFunction[4] == 1);
-  alignas(64) double grey8[8];  // far then exit: rho r, kappa r, g, b
-  interpolate_ends<V8, M8>(far_row, s_far, exit_row, s_exit, 0, grey8);
-  v_far[0] = grey8[0];
-  v_far[3] = grey8[1];
-  v_far[4] = grey8[2];
-  v_far[5] = grey8[3];
-  v_exit[0] = grey8[4];
-  v_exit[3] = grey8[5];
-  v_exit[4] = grey8[6];
-  v_exit[5] = grey8[7];
+  double grey4[4];  // slots 0-3: rho r, kappa r, g, b
+  interpolate_slots<V4, M4>(row, 0, s, grey4);
+  v[0] = grey4[0];
+  v[3] = grey4[1];
+  v[4] = grey4[2];
+  v[5] = grey4[3];
   if (grey_) {
-    v_far[1] = v_far[2] = v_far[0];
-    v_exit[1] = v_exit[2] = v_exit[0];
+    v[1] = v[2] = v[0];
   } else {
-    alignas(32) double rho_gb[4];  // far then exit: rho g, b (slots 4, 5)
-    interpolate_ends<V4, M4>(far_row, s_far, exit_row, s_exit, 4, rho_gb);
-    v_far[1] = rho_gb[0];
-    v_far[2] = rho_gb[1];
-    v_exit[1] = rho_gb[2];
-    v_exit[2] = rho_gb[3];
+    interpolate_slots<V2, M2>(row, 4, s, v + 1);  // slots 4, 5: rho g, b
   }
 }
 
@@ -264,13 +236,15 @@ template <class Put>
   const double s0 = seg.scalar_far, s1 = seg.scalar_exit;
   std::size_t lt0 = 0, le0 = 0, lt1 = 0, le1 = 0;
   const Row& row0 = rows_[region(s0, lt0, le0, hint)];
-  const Row& row1 = rows_[region(s1, lt1, le1, hint)];
-  alignas(16) double v_far[kFunctions], v_exit[kFunctions];
-  eval(row0, s0, row1, s1, v_far, v_exit);  // both ends in one pass (s0 == s1 too: no branch before it)
+  alignas(16) double v_far[kFunctions];
+  eval(row0, s0, v_far);
   if (s0 == s1) {
     put(seg.length, s0, s1, v_far, v_far, PiecePlace::kNoRegion);
     return 1;
   }
+  const Row& row1 = rows_[region(s1, lt1, le1, hint)];
+  alignas(16) double v_exit[kFunctions];
+  eval(row1, s1, v_exit);
   // An end on a breakpoint (lt < le) takes the limit from inside the segment: the row holds the
   // left value, which differs only at a jump.
   if (jumps_) {
@@ -354,9 +328,17 @@ void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const {
 }
 
 // The per-ray append()s (the render's): an AVX2 copy, picked at run time where the CPU has it,
-// and the baseline one. AVX2 only, not FMA: no multiply-add can be contracted (and -std=c++17
-// keeps -ffp-contract=off), so both copies compute the same IEEE operations in the same order
-// (issue 33, round 6: the splitting took ~19% of a mesh render).
+// and the baseline one. AVX2 only, not FMA: no multiply-add can be contracted, so both copies
+// compute the same IEEE operations in the same order (issue 33, round 6: the splitting took ~19%
+// of a mesh render). GCC 12 contracts in C++ even under -std=c++17 (its ISO-mode
+// -ffp-contract=off is C's only), so a copy for a CPU with FMA (x86-64-v4, AVX-512) would not: the
+// build turns contraction off for this file (src/CMakeLists.txt). Issue 33, round 20, tried and
+// dropped: both ends of a segment in one 8-lane pass with an x86-64-v4 copy (one zmm division
+// instead of two ymm ones): images cmp-identical (once contraction was off), but append's perf
+// samples level with main's (main 556-976, 8-lane 605-1038 per render, six runs each, load 9-10):
+// Zen 5's division took the same time in one zmm as in two ymm ones, and spreading the eight lanes
+// back to the six functions of two ends added shuffles; the same code in the AVX2 and baseline
+// copies (the 8-lane vector lowered to memory) made append ~3x slower.
 template <class Columns>
 [[gnu::always_inline]] inline long PieceSplitter::append_ray_columns(const std::vector<Segment>& segments,
                                                                      Columns& out) const {
@@ -366,17 +348,17 @@ template <class Columns>
   return count;
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
                                                                              PieceChannelColumns& out) const {
   return append_ray_columns(segments, out);
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
                                                                              GreyPieceColumns& out) const {
   return append_ray_columns(segments, out);
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
+__attribute__((target_clones("avx2", "default"))) long PieceSplitter::append(const std::vector<Segment>& segments,
                                                                              PieceChannelColumns& out,
                                                                              std::vector<PiecePlace>& places) const {
   RegionHint hint;

@@ -195,10 +195,9 @@ class PieceSplitter {
     std::size_t j = 0;
   };
   std::size_t region(double s, std::size_t& lt, std::size_t& le, RegionHint& hint) const;
-  // The six functions at both ends of a segment, s_far in far_row and s_exit in exit_row (the rows
-  // of their regions), as operator() gives them, in function order (rho r, g, b, kappa r, g, b).
-  void eval(const Row& far_row, double s_far, const Row& exit_row, double s_exit, double* v_far,
-            double* v_exit) const;
+  // The six functions at s, in the row of its region, as operator() gives them, in function order
+  // (rho r, g, b, kappa r, g, b).
+  void eval(const Row& row, double s, double* v) const;
   // The pieces of a segment with finite scalar ends, each handed to
   // put(length, s_far, s_exit, far values, exit values); both append()s are this. Returns one
   // more than the breakpoints strictly inside the scalar range (the count of append() above).
