@@ -8,7 +8,9 @@
 //   BM_mesh_piece_splitter    PieceSplitter::append on the traced segments (the splitting part
 //                             of `exact`), counter segments/s; shared_ends is the fraction of
 //                             neighbouring segments whose shared end has the same scalar bits
-//                             from both cells (where one evaluation could serve both).
+//                             from both cells (where one evaluation could serve both);
+//   BM_mesh_piece_splitter_grey the per-ray PieceSplitter::append into GreyPieceColumns (what
+//                             the exact render's grey batch calls), counter segments/s.
 // Run: build/bench/rayint_bench --benchmark_filter=BM_mesh --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true      (quote the median)
 #include <benchmark/benchmark.h>
@@ -144,5 +146,22 @@ void BM_mesh_piece_splitter(benchmark::State& state) {
   state.counters["shared_ends"] = pairs > 0 ? static_cast<double>(shared) / static_cast<double>(pairs) : 0.0;
 }
 BENCHMARK(BM_mesh_piece_splitter);
+
+void BM_mesh_piece_splitter_grey(benchmark::State& state) {
+  MeshBench& b = MeshBench::get();
+  const PieceSplitter splitter(b.mc.transfer);
+  GreyPieceColumns columns;
+  std::size_t i = 0;
+  long segments = 0;
+  for (auto _ : state) {
+    const Ray& ray = b.traced[i++ % b.traced.size()];
+    columns.clear();
+    benchmark::DoNotOptimize(splitter.append(ray.segments, columns));
+    segments += static_cast<long>(ray.segments.size());
+    benchmark::DoNotOptimize(columns.length.data());
+  }
+  state.counters["segments"] = benchmark::Counter(static_cast<double>(segments), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_mesh_piece_splitter_grey);
 
 }  // namespace

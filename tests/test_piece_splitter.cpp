@@ -237,3 +237,82 @@ TEST_CASE("PieceSplitter's channel and grey columns hold append_pieces' pieces b
   }
   CHECK(pieces > 10000);
 }
+
+// Both ends of a segment are evaluated in one pass of eight lanes (PieceSplitter::eval), in
+// whichever copy of the per-ray append()s the CPU picks (x86-64-v4, AVX2 or the baseline): each
+// lane must still give append_pieces' values, for grey and non-grey functions with and without
+// jumps, along ray-like sequences whose ends sit on breakpoints, repeat the last exit end bit for
+// bit, stay constant or are NaN.
+TEST_CASE("PieceSplitter's per-ray appends match append_pieces with jumps, NaN ends and shared ends", "[splitter]") {
+  std::mt19937_64 rng(3303);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto bits_equal = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  long pieces = 0, jump_tfs = 0, grey_tfs = 0;
+  for (int t = 0; t < 40; ++t) {
+    TransferFunctions tf = random_tf(rng, t % 2 == 0 ? 3 : 9);
+    if (t % 4 < 2) {  // a jump: one function's inner node stored twice, left value then right value
+      PiecewiseLinear& f = t % 8 < 4 ? tf.density[0] : tf.color[static_cast<std::size_t>(t % 3)];
+      const std::size_t k = f.scalar.size() / 2;
+      f.scalar.insert(f.scalar.begin() + static_cast<std::ptrdiff_t>(k), f.scalar[k]);
+      f.value.insert(f.value.begin() + static_cast<std::ptrdiff_t>(k), 3.0 * u(rng));
+    }
+    if (t % 2 == 0) tf.density[1] = tf.density[2] = tf.density[0];
+    jump_tfs += tf.has_jump();
+    grey_tfs += tf.grey();
+    const std::vector<double> bps = tf.breakpoints();
+    const PieceSplitter splitter(tf);
+    std::uniform_int_distribution<std::size_t> pick(0, bps.size() - 1);
+    std::vector<Segment> segments;
+    double s_walk = 0.5;
+    for (int i = 0; i < 1500; ++i) {
+      Segment seg{u(rng) < 0.02 ? 0.0 : 2.0 * u(rng), s_walk, 0.0};
+      const double r = u(rng);
+      if (r < 0.6) seg.scalar_far = s_walk;  // the last exit end, bit for bit
+      else if (r < 0.8) seg.scalar_far = s_walk + 1e-13 * (u(rng) - 0.5);
+      else seg.scalar_far = bps[pick(rng)];
+      const double q = u(rng);
+      seg.scalar_exit = q < 0.2 ? bps[pick(rng)] : q < 0.25 ? seg.scalar_far : seg.scalar_far + 0.2 * (u(rng) - 0.5);
+      if (i % 101 == 0) seg.scalar_far = nan;
+      if (i % 103 == 0) seg.scalar_exit = nan;
+      if (i % 211 == 0) seg.scalar_exit = 1e300 * (u(rng) - 0.5);  // beyond every function, span huge
+      if (!std::isnan(seg.scalar_exit)) s_walk = seg.scalar_exit;
+      segments.push_back(seg);
+    }
+    std::vector<Piece> expected;
+    for (const Segment& seg : segments) append_pieces(tf, seg, bps, expected);
+    PieceChannelColumns channels;
+    splitter.append(segments, channels);
+    REQUIRE(channels.size() == kChannels * expected.size());
+    GreyPieceColumns grey;
+    if (tf.grey()) {
+      splitter.append(segments, grey);
+      REQUIRE(grey.size() == expected.size());
+    }
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+      const Piece& p = expected[k];
+      INFO("tf " << t << " piece " << k);
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        const std::size_t i = kChannels * k + c;
+        REQUIRE(bits_equal(channels.length[i], p.length));
+        REQUIRE(bits_equal(channels.rho_far[i], p.rho_far[c]));
+        REQUIRE(bits_equal(channels.rho_exit[i], p.rho_exit[c]));
+        REQUIRE(bits_equal(channels.kappa_far[i], p.kappa_far[c]));
+        REQUIRE(bits_equal(channels.kappa_exit[i], p.kappa_exit[c]));
+        if (tf.grey()) {
+          REQUIRE(bits_equal(grey.kappa_far[c][k], p.kappa_far[c]));
+          REQUIRE(bits_equal(grey.kappa_exit[c][k], p.kappa_exit[c]));
+        }
+      }
+      if (tf.grey()) {
+        REQUIRE(bits_equal(grey.length[k], p.length));
+        REQUIRE(bits_equal(grey.rho_far[k], p.rho_far[0]));
+        REQUIRE(bits_equal(grey.rho_exit[k], p.rho_exit[0]));
+      }
+    }
+    pieces += static_cast<long>(expected.size());
+  }
+  CHECK(jump_tfs == 20);
+  CHECK(grey_tfs == 20);
+  CHECK(pieces > 40 * 1500);
+}

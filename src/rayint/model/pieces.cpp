@@ -328,9 +328,17 @@ void PieceSplitter::append(const Segment& seg, GreyPieceColumns& out) const {
 }
 
 // The per-ray append()s (the render's): an AVX2 copy, picked at run time where the CPU has it,
-// and the baseline one. AVX2 only, not FMA: no multiply-add can be contracted (and -std=c++17
-// keeps -ffp-contract=off), so both copies compute the same IEEE operations in the same order
-// (issue 33, round 6: the splitting took ~19% of a mesh render).
+// and the baseline one. AVX2 only, not FMA: no multiply-add can be contracted, so both copies
+// compute the same IEEE operations in the same order (issue 33, round 6: the splitting took ~19%
+// of a mesh render). GCC 12 contracts in C++ even under -std=c++17 (its ISO-mode
+// -ffp-contract=off is C's only), so a copy for a CPU with FMA (x86-64-v4, AVX-512) would not: the
+// build turns contraction off for this file (src/CMakeLists.txt). Issue 33, round 20, tried and
+// dropped: both ends of a segment in one 8-lane pass with an x86-64-v4 copy (one zmm division
+// instead of two ymm ones): images cmp-identical (once contraction was off), but append's perf
+// samples level with main's (main 556-976, 8-lane 605-1038 per render, six runs each, load 9-10):
+// Zen 5's division took the same time in one zmm as in two ymm ones, and spreading the eight lanes
+// back to the six functions of two ends added shuffles; the same code in the AVX2 and baseline
+// copies (the 8-lane vector lowered to memory) made append ~3x slower.
 template <class Columns>
 [[gnu::always_inline]] inline long PieceSplitter::append_ray_columns(const std::vector<Segment>& segments,
                                                                      Columns& out) const {
