@@ -92,6 +92,7 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
     c.first_point = lowest;
     c.second_point = lowest;
     c.k_second = -1;  // no face starts elsewhere (only with a repeated lowest index)
+    c.anchor = tet[0];
     const std::array<std::array<std::int32_t, 3>, 4> keys = face_keys(mesh_, t);
     for (std::size_t k = 0; k < 4; ++k) {
       const std::array<std::int32_t, 3>& key = keys[k];
@@ -245,7 +246,9 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
 // One ray's walk between its boundary queries (trace_many keeps several in flight).
 struct TetTraversal::WalkState {
   Walk w;
-  RayTrace* out = nullptr;
+  RayTrace* out = nullptr;  // the crossings (trace, trace_many), or
+  Ray* ray = nullptr;       // the segments, near -> far until walk_end reverses them (rays_many)
+  double t_eye = 0.0;       // crossings are clipped here
   double t = 0.0;
   double t_end = 0.0;
   long steps = 0;
@@ -257,7 +260,7 @@ struct TetTraversal::WalkState {
 void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stats) const {
   // Ray against the bounding box (slabs), to move the walk's origin just outside it.
   WalkState s;
-  walk_begin(mesh_walk_start(ray, box_min_, box_max_, diagonal_), out, s);
+  walk_begin(mesh_walk_start(ray, box_min_, box_max_, diagonal_), &out, nullptr, s);
   double t_near = 0.0;
   while (walk_query(s, t_near))
     walk_on(s, first_hit_->first(s.w.o, s.w.d, t_near, s.t_end, &FirstHitFilterAccess::accept, &s.w));
@@ -265,6 +268,21 @@ void TetTraversal::trace(const ViewRay& ray, RayTrace& out, TraversalStats* stat
 }
 
 void TetTraversal::trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats) const {
+  walk_many(rays, n, out, nullptr, stats);
+}
+
+void TetTraversal::rays_many(const ViewRay* rays, std::size_t n, const Rgb& background, Ray* out,
+                             TraversalStats* stats) const {
+  if (quadratic()) throw std::invalid_argument("rays_many: a mesh of quadratic tetrahedra has no linear segments");
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i].background = background;
+    out[i].quadratic.clear();
+  }
+  walk_many(rays, n, nullptr, out, stats);
+}
+
+void TetTraversal::walk_many(const ViewRay* rays, std::size_t n, RayTrace* out, Ray* ray_out,
+                             TraversalStats* stats) const {
   constexpr int kPacket = BoundaryFirstHit::kPacket;
   for (std::size_t i0 = 0; i0 < n; i0 += kPacket) {
     const int m = static_cast<int>(std::min<std::size_t>(kPacket, n - i0));
@@ -276,7 +294,8 @@ void TetTraversal::trace_many(const ViewRay* rays, std::size_t n, RayTrace* out,
     std::int64_t prim[kPacket];
     for (int i = 0; i < m; ++i) {
       const std::size_t r = i0 + static_cast<std::size_t>(i);
-      walk_begin(mesh_walk_start(rays[r], box_min_, box_max_, diagonal_), out[r], s[i]);
+      walk_begin(mesh_walk_start(rays[r], box_min_, box_max_, diagonal_), out ? &out[r] : nullptr,
+                 ray_out ? &ray_out[r] : nullptr, s[i]);
       users[i] = &s[i].w;
     }
     // Every ray that asks a boundary query (its first, or a re-entry after it left the mesh) in
@@ -299,16 +318,21 @@ void TetTraversal::trace_many(const ViewRay* rays, std::size_t n, RayTrace* out,
   }
 }
 
-void TetTraversal::walk_begin(const MeshWalkStart& start, RayTrace& out, WalkState& s) const {
-  out.crossings.clear();
-  s.out = &out;
+void TetTraversal::walk_begin(const MeshWalkStart& start, RayTrace* out, Ray* ray, WalkState& s) const {
+  s.out = out;
+  s.ray = ray;
+  if (out) {
+    out->crossings.clear();
+    out->direction = start.direction;
+    out->origin = start.origin;
+    out->t_eye = start.t_eye;
+  }
+  if (ray) ray->segments.clear();
+  s.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
   s.local = TraversalStats{};
   s.local.rays = 1;
-  out.direction = start.direction;
-  out.origin = start.origin;
-  out.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
   s.done = start.empty;
-  s.w.o = out.origin;
+  s.w.o = start.origin;
   s.w.d = start.direction;
   s.w.self = this;
   s.w.strict = false;
@@ -331,6 +355,7 @@ bool TetTraversal::walk_query(WalkState& s, double& t_near) const {
 }
 
 void TetTraversal::walk_end(WalkState& s, TraversalStats* stats) const {
+  if (s.ray) std::reverse(s.ray->segments.begin(), s.ray->segments.end());  // far -> near
   if (s.steps >= s.budget) ++s.local.budget_exhausted;
   if (stats) stats->add(s.local);
 }
@@ -345,7 +370,6 @@ __attribute__((target_clones("avx2", "default"))) void TetTraversal::walk_on(Wal
     s.done = true;
     return;
   }
-  RayTrace& out = *s.out;
   const Walk& w = s.w;
   TraversalStats& local = s.local;
   long& steps = s.steps;
@@ -354,33 +378,48 @@ __attribute__((target_clones("avx2", "default"))) void TetTraversal::walk_on(Wal
   const Vec3 d = w.d;
   const V4 dx = {d[0], d[0], d[0], d[0]}, dy = {d[1], d[1], d[1], d[1]}, dz = {d[2], d[2], d[2], d[2]};
   const V4 ox = {w.o[0], w.o[0], w.o[0], w.o[0]}, oy = {w.o[1], w.o[1], w.o[1], w.o[1]}, oz = {w.o[2], w.o[2], w.o[2], w.o[2]};
-  auto emit = [&](std::int32_t cell, double t_in, double t_out) {
-    double a = std::max(t_in, out.t_eye);
+  // Inlined at both calls (GCC left the lambda out of line, a call and a vzeroupper per crossing).
+  auto emit = [&](std::int32_t cell, double t_in, double t_out) __attribute__((always_inline)) {
+    double a = std::max(t_in, s.t_eye);
     if (!(t_out > a)) return;
-    // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
-    CellCrossing& c = out.crossings.emplace_back();
-    c.cell = cell;
-    c.t_in = a;
-    c.t_out = t_out;
+    ++local.crossings;
+    const auto ci = static_cast<std::size_t>(cell);
     if (!quadratic_.empty()) {  // the hook for quadratic tets: s(t) of their quadratic field
-      const std::array<double, 3> q = quadratic_tet_chord(quadratic_[static_cast<std::size_t>(cell)], w.o + a * d, d);
+      // Written in place: a CellCrossing built on the stack and copied stalled on store forwarding.
+      CellCrossing& c = s.out->crossings.emplace_back();
+      c.cell = cell;
+      c.t_in = a;
+      c.t_out = t_out;
+      const std::array<double, 3> q = quadratic_tet_chord(quadratic_[ci], w.o + a * d, d);
       const double L = t_out - a;
       c.s_in = q[0];
       c.s_out = q[0] + L * (q[1] + L * q[2]);
       c.q = q[2];
-    } else {
-      // field(cell) and ray_parameters, written out so that they are inlined (the same arithmetic).
-      const auto ci = static_cast<std::size_t>(cell);
-      const auto p0 = static_cast<std::size_t>(mesh_.tets[ci][0]);
-      LinearTetField f;
-      f.anchor = mesh_.points[p0];
-      f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[ci];
-      f.gradient = gradients_[ci];
-      const Eq13 e = ray_parameters(f, w.o + a * d, d);
-      c.s_in = e.v;
-      c.s_out = e.v + e.w * (t_out - a);
+      return;
     }
-    ++local.crossings;
+    // field(cell) and ray_parameters, written out so that they are inlined (the same arithmetic);
+    // the anchor's point index from the cell's record (in the cache: the step just read it), not
+    // from mesh_.tets.
+    const auto p0 = static_cast<std::size_t>(cells_[ci].anchor);
+    LinearTetField f;
+    f.anchor = mesh_.points[p0];
+    f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[ci];
+    f.gradient = gradients_[ci];
+    const Eq13 e = ray_parameters(f, w.o + a * d, d);
+    const double length = t_out - a;
+    if (s.ray) {  // rays_many: ray_from_trace's segment, the same doubles, written here
+      Segment& g = s.ray->segments.emplace_back();
+      g.length = length;
+      g.scalar_far = e.v + e.w * length;
+      g.scalar_exit = e.v;
+    } else {
+      CellCrossing& c = s.out->crossings.emplace_back();
+      c.cell = cell;
+      c.t_in = a;
+      c.t_out = t_out;
+      c.s_in = e.v;
+      c.s_out = e.v + e.w * length;
+    }
   };
   {
     std::int32_t cell = boundary_[static_cast<std::size_t>(prim)].cells[0];

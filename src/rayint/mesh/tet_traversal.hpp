@@ -144,6 +144,14 @@ class TetTraversal {
   // tie between faces hit at the same single-precision t (issue 33, round 12: renders
   // cmp-identical on the scaling meshes and the mesh cases).
   void trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats = nullptr) const;
+  // What a render of linear segments needs: out[i] is ray_from_trace(trace(rays[i]), background)
+  // (with Ray::quadratic cleared), the same doubles, but the walk writes each segment as it
+  // crosses the cell (near -> far) and reverses them in place at the end, with no RayTrace in
+  // between (issue 33, round 20). The boundary queries go in packets as in trace_many. Throws
+  // std::invalid_argument for a mesh with quadratic tets (as ray_from_trace does for their
+  // crossings).
+  void rays_many(const ViewRay* rays, std::size_t n, const Rgb& background, Ray* out,
+                 TraversalStats* stats = nullptr) const;
 
   struct Face {
     std::array<std::int32_t, 3> points{};  // sorted ascending
@@ -168,13 +176,15 @@ class TetTraversal {
   // 256-byte records (reports/scaling/README.md, "Memory"). The normals are stored by component
   // (nx[k], ny[k], nz[k]), so that a step computes the faces' crossing parameters two (SSE2) or four
   // (AVX2) per instruction (issue 33, rounds 6 and 13); the arithmetic is Eigen's dot, (x0 y0 + x1 y1) + x2 y2
-  // (dot3 below), lane by lane.
+  // (dot3 below), lane by lane. The last 4 bytes hold the cell's point 0 (Eq. 9's anchor), so that
+  // a crossing's scalar does not first load the cell's row of mesh_.tets (issue 33, round 20).
   struct alignas(64) CellRecord {
     alignas(16) std::array<double, 4> nx, ny, nz;  // face opposite point k, times the cell's sign (outward)
     std::array<std::int32_t, 4> next{};    // the cell across face k, -1 on the boundary
     std::int32_t first_point = 0;          // point index: the first point of every face but k_second
     std::int32_t second_point = 0;         // point index: the first point of face k_second
     std::int32_t k_second = -1;
+    std::int32_t anchor = 0;               // point index: the cell's point 0, Eq. 9's anchor (field())
     Vec3 normal(int k) const {
       const auto i = static_cast<std::size_t>(k);
       return Vec3(nx[i], ny[i], nz[i]);
@@ -195,10 +205,12 @@ class TetTraversal {
   // due (its t_near; the rest is in the state), walk_on from its answer (-1: none, the ray is
   // done); walk_end adds the counts.
   struct WalkState;
-  void walk_begin(const MeshWalkStart& start, RayTrace& out, WalkState& s) const;
+  void walk_begin(const MeshWalkStart& start, RayTrace* out, Ray* ray, WalkState& s) const;
   bool walk_query(WalkState& s, double& t_near) const;
   void walk_on(WalkState& s, std::int64_t prim) const;
   void walk_end(WalkState& s, TraversalStats* stats) const;
+  // trace_many and rays_many: one of `out` (crossings) and `ray_out` (segments) is given.
+  void walk_many(const ViewRay* rays, std::size_t n, RayTrace* out, Ray* ray_out, TraversalStats* stats) const;
   friend struct FirstHitFilterAccess;
 
   TetMesh mesh_;

@@ -178,15 +178,21 @@ MeshRender render_mesh(const MeshCase& mc, const TetTraversal& mesh, const RayIn
       const int n = w * h;  // ray k is pixel (x0 + k % w, y0 + k / w)
       const auto t0 = Clock::now();
       // The tile's rays traced together: their first boundary queries go to Embree as packets.
+      // Unshaded linear segments need only the Rays (rays_many: the walk writes their segments);
+      // shading and quadratic tets take the crossings.
+      const bool together = !quadratic && !mc.shading.enabled;
       for (int k = 0; k < n; ++k) sc.view[static_cast<std::size_t>(k)] = camera_rays.ray_for_pixel(x0 + k % w, y0 + k / w);
-      mesh.trace_many(sc.view.data(), static_cast<std::size_t>(n), sc.traces.data(), &cost.traversal);
-      if (!quadratic)
-        for (int k = 0; k < n; ++k)
-          ray_from_trace(sc.traces[static_cast<std::size_t>(k)], mc.background, sc.rays[static_cast<std::size_t>(k)]);
+      if (together) {
+        mesh.rays_many(sc.view.data(), static_cast<std::size_t>(n), mc.background, sc.rays.data(), &cost.traversal);
+      } else {
+        mesh.trace_many(sc.view.data(), static_cast<std::size_t>(n), sc.traces.data(), &cost.traversal);
+        if (!quadratic)
+          for (int k = 0; k < n; ++k)
+            ray_from_trace(sc.traces[static_cast<std::size_t>(k)], mc.background, sc.rays[static_cast<std::size_t>(k)]);
+      }
       const auto t1 = Clock::now();
       // Unshaded linear segments: the tile's rays in one call (the exact method integrates their
       // pieces in one kernel batch, and counts them on the way: tile_pieces).
-      const bool together = !quadratic && !mc.shading.enabled;
       long tile_pieces = 0;
       bool pieces_counted = false;
       if (together) {
