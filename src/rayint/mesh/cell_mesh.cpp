@@ -129,6 +129,7 @@ void validate_cell_mesh_structure(const CellMesh& mesh, const std::string& sourc
       if (!std::isfinite(mesh.points[i][k]))
         field::fail(source, at(at(names.points, i), static_cast<std::size_t>(k)),
                     "coordinate must be finite, got " + format_number(mesh.points[i][k]));
+  check_mesh_extent(mesh.points, source, names);
   for (std::size_t i = 0; i < mesh.scalars.size(); ++i)
     if (!std::isfinite(mesh.scalars[i]))
       field::fail(source, at(names.scalars, i), "must be finite, got " + format_number(mesh.scalars[i]));

@@ -72,9 +72,11 @@ class CellBoundaryFirstHit {
   // Fills w.best_*: the nearest boundary face hit at t >= w.t_lo - w.tol whose cell holds the ray
   // beyond max(hit, t_lo).
   void first(CellTraversal::Walk& w, double t_near, double t_far) const;
+  const LocalFrame& frame() const { return frame_; }
 
  private:
   RTCDevice device_ = nullptr;
+  LocalFrame frame_;  // Embree's geometry and rays (mesh/embree_ray.hpp)
   RTCScene scene_ = nullptr;
   std::vector<std::array<float, 6>> bounds_;
   friend void cell_face_bounds(const RTCBoundsFunctionArguments* args);
@@ -128,7 +130,12 @@ CellBoundaryFirstHit::CellBoundaryFirstHit(const CellTraversal& mesh) {
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   const std::size_t n = mesh.boundary_face_count();
-  const double pad = 1e-7 * ((mesh.box_max() - mesh.box_min()).norm());
+  frame_ = LocalFrame::of(mesh.mesh().points);
+  // The pad covers 1e-7 of the diagonal and the rounding of moving a bound into the frame (half
+  // an ulp of the largest coordinate, or of the centre, each; the scaling is exact).
+  const Vec3 box_lo = mesh.box_min(), box_hi = mesh.box_max();
+  const double largest = std::max(box_lo.cwiseAbs().maxCoeff(), box_hi.cwiseAbs().maxCoeff());
+  const double pad = frame_.length(1e-7 * (box_hi - box_lo).norm() + 8.0 * std::numeric_limits<double>::epsilon() * largest);
   bounds_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& f = mesh.boundary_face(i);
@@ -140,10 +147,11 @@ CellBoundaryFirstHit::CellBoundaryFirstHit(const CellTraversal& mesh) {
     }
     if (f.mids[0] >= 0)  // a quadratic patch: the box of its Bernstein control points
       patch_control_box(patch_nodes(mesh.mesh(), f), f.count, f.centre >= 0, lo, hi);
+    const Vec3 flo = frame_.point(lo), fhi = frame_.point(hi);
     for (int k = 0; k < 3; ++k) {
-      // Rounded outward to float, then padded.
-      bounds_[i][static_cast<std::size_t>(k)] = std::nextafter(static_cast<float>(lo[k] - pad), -HUGE_VALF);
-      bounds_[i][static_cast<std::size_t>(k + 3)] = std::nextafter(static_cast<float>(hi[k] + pad), HUGE_VALF);
+      // Padded, then rounded outward to float.
+      bounds_[i][static_cast<std::size_t>(k)] = std::nextafter(static_cast<float>(flo[k] - pad), -HUGE_VALF);
+      bounds_[i][static_cast<std::size_t>(k + 3)] = std::nextafter(static_cast<float>(fhi[k] + pad), HUGE_VALF);
     }
   }
   if (n > 0) {
@@ -170,9 +178,10 @@ void CellBoundaryFirstHit::first(CellTraversal::Walk& w, double t_near, double t
   w.best_t = std::numeric_limits<double>::infinity();
   w.best_face = -1;
   RTCRayHit rh;
-  init_ray_hit(rh, w.o, w.d, t_near,
-               std::isfinite(t_far) && t_far < 3e38 ? std::nextafter(static_cast<float>(t_far), HUGE_VALF)
-                                                    : std::numeric_limits<float>::infinity());
+  const double frame_far = frame_.length(t_far);
+  init_ray_hit(rh, frame_, w.o, w.d, t_near,
+               std::isfinite(frame_far) && frame_far < 3e38 ? std::nextafter(static_cast<float>(frame_far), HUGE_VALF)
+                                                            : std::numeric_limits<float>::infinity());
   rtcIntersect1(scene_, &ctx.base, &rh);
 }
 
@@ -206,7 +215,7 @@ void CellFirstHitAccess::intersect_face(const CellTraversal::Walk& cw, std::uint
     w.best_face = prim;
     w.best_exit = std::move(exit_faces);
     // Let Embree cull boxes beyond this hit (rounded up: a nearer hit is never culled).
-    rh.ray.tfar = std::nextafter(static_cast<float>(t_hit), HUGE_VALF);
+    rh.ray.tfar = std::nextafter(static_cast<float>(m.first_hit_->frame().length(t_hit)), HUGE_VALF);
     rh.hit.geomID = geom_id;
     rh.hit.primID = prim;
     rh.hit.u = rh.hit.v = 0.0f;

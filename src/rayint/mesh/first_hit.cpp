@@ -16,6 +16,7 @@ namespace rayint {
 struct BoundaryFirstHit::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  LocalFrame frame;
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
@@ -54,6 +55,7 @@ float embree_t_far(double t_far) {
 BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
                                    const std::vector<std::array<std::int32_t, 3>>& faces)
     : impl_(std::make_unique<Impl>()) {
+  impl_->frame = LocalFrame::of(points);
   impl_->device = rtcNewDevice("threads=1");  // build only; queries run on the caller's threads
   if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
   impl_->scene = rtcNewScene(impl_->device);
@@ -64,8 +66,10 @@ BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), points.size()));
     if (!v) embree_failed(impl_->device, "vertex buffer");
-    for (std::size_t i = 0; i < points.size(); ++i)
-      for (int k = 0; k < 3; ++k) v[3 * i + static_cast<std::size_t>(k)] = static_cast<float>(points[i][k]);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vec3 p = impl_->frame.point(points[i]);
+      for (int k = 0; k < 3; ++k) v[3 * i + static_cast<std::size_t>(k)] = static_cast<float>(p[k]);
+    }
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), faces.size()));
     if (!idx) embree_failed(impl_->device, "index buffer");
@@ -82,14 +86,31 @@ BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
 
 BoundaryFirstHit::~BoundaryFirstHit() = default;
 
-void init_ray_hit(RTCRayHit& rh, const Vec3& origin, const Vec3& direction, double t_near, float t_far) {
-  rh.ray.org_x = static_cast<float>(origin.x());
-  rh.ray.org_y = static_cast<float>(origin.y());
-  rh.ray.org_z = static_cast<float>(origin.z());
+LocalFrame LocalFrame::of(const std::vector<Vec3>& points) {
+  LocalFrame f;
+  if (points.empty()) return f;
+  Vec3 lo = points.front(), hi = lo;
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diagonal = (hi - lo).norm();
+  if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return f;
+  f.centre = 0.5 * (lo + hi);
+  f.scale = std::ldexp(1.0, -std::ilogb(diagonal));
+  return f;
+}
+
+void init_ray_hit(RTCRayHit& rh, const LocalFrame& frame, const Vec3& origin, const Vec3& direction, double t_near,
+                  float t_far) {
+  const Vec3 o = frame.point(origin);
+  rh.ray.org_x = static_cast<float>(o.x());
+  rh.ray.org_y = static_cast<float>(o.y());
+  rh.ray.org_z = static_cast<float>(o.z());
   rh.ray.dir_x = static_cast<float>(direction.x());
   rh.ray.dir_y = static_cast<float>(direction.y());
   rh.ray.dir_z = static_cast<float>(direction.z());
-  rh.ray.tnear = static_cast<float>(std::max(0.0, t_near));
+  rh.ray.tnear = static_cast<float>(frame.length(std::max(0.0, t_near)));
   rh.ray.tfar = t_far;
   rh.ray.time = 0.0f;
   rh.ray.mask = 0xFFFFFFFFu;
@@ -107,7 +128,7 @@ std::int64_t BoundaryFirstHit::first(const Vec3& origin, const Vec3& direction, 
   ctx.filter = filter;
   ctx.users = &user;  // init_ray_hit gives the ray id 0
   RTCRayHit rh;
-  init_ray_hit(rh, origin, direction, t_near, embree_t_far(t_far));
+  init_ray_hit(rh, impl_->frame, origin, direction, t_near, embree_t_far(impl_->frame.length(t_far)));
   rtcIntersect1(impl_->scene, &ctx.base, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
   return static_cast<std::int64_t>(rh.hit.primID);
@@ -129,8 +150,8 @@ void BoundaryFirstHit::first_packet(const Vec3* origins, const Vec3* directions,
     RTCRayHit one;
     const bool on = i < n && active[i];
     valid[i] = on ? -1 : 0;
-    if (on) init_ray_hit(one, origins[i], directions[i], t_near[i], embree_t_far(t_far[i]));
-    else init_ray_hit(one, Vec3::Zero(), Vec3::UnitZ(), 0.0, 0.0f);
+    if (on) init_ray_hit(one, impl_->frame, origins[i], directions[i], t_near[i], embree_t_far(impl_->frame.length(t_far[i])));
+    else init_ray_hit(one, LocalFrame{}, Vec3::Zero(), Vec3::UnitZ(), 0.0, 0.0f);
     rh.ray.org_x[i] = one.ray.org_x;
     rh.ray.org_y[i] = one.ray.org_y;
     rh.ray.org_z[i] = one.ray.org_z;

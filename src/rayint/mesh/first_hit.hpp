@@ -5,9 +5,10 @@
 // Embree intersects in single precision, so it only proposes a face; the decision is taken in
 // double precision by the caller's filter (TetTraversal passes one that recomputes the crossing
 // parameter from the face's own plane and accepts only entering faces at or beyond a bound).
-// Consequence, documented in cases/README.md: whether a ray that passes within ~1e-7 x the scene
+// Consequence, documented in cases/README.md: whether a ray that passes within ~1e-7 x the mesh
 // size of a boundary edge of the mesh's silhouette hits the adjacent face or not is decided in
-// single precision.
+// single precision. Embree's copy of the points is in the mesh's LocalFrame (embree_ray.hpp), so
+// that holds wherever the mesh lies and whatever its size.
 #include <array>
 #include <cstdint>
 #include <functional>

@@ -62,6 +62,20 @@ TetShape classify_tet(const TetMesh& mesh, std::size_t tet) {
   return v6 < 0.0 ? TetShape::Inverted : TetShape::Positive;
 }
 
+void check_mesh_extent(const std::vector<Vec3>& points, const std::string& source, const MeshFieldNames& names) {
+  if (points.empty()) return;
+  Vec3 lo = points.front(), hi = lo;
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double extent = (hi - lo).norm();
+  if (extent > 0.0 && extent < kMinMeshExtent)
+    fail(source, names.points,
+         "the points span " + format_number(extent) + " (box diagonal), below 1e-60: tetrahedron volumes and face "
+         "areas underflow in double precision there; scale the mesh (and the densities by the inverse)");
+}
+
 void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,
                                  const MeshFieldNames& names) {
   if (mesh.points.empty()) fail(source, names.points, "no points");
@@ -83,6 +97,7 @@ void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,
       if (!std::isfinite(mesh.points[i][k]))
         fail(source, at(at(names.points, i), static_cast<std::size_t>(k)),
              "coordinate must be finite, got " + format_number(mesh.points[i][k]));
+  check_mesh_extent(mesh.points, source, names);
   for (std::size_t i = 0; i < mesh.scalars.size(); ++i)
     if (!std::isfinite(mesh.scalars[i]))
       fail(source, at(names.scalars, i),

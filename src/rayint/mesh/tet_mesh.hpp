@@ -124,8 +124,20 @@ struct TetRepairs {
 // The shape of tet i (its indices must be in range).
 TetShape classify_tet(const TetMesh& mesh, std::size_t tet);
 
+// The smallest extent (box diagonal of the points) a mesh may have. Below it the squared face
+// areas the traversal and the checks form (~extent^4) leave double's normal range (from ~1e-77)
+// and tetrahedron volumes underflow (from ~1e-103): a mesh scaled to 1e-90 was refused as
+// overlapping, one at 1e-150 as all zero-volume; every ray still gave its unscaled crossings down
+// to 1e-80 through tetrahedra and 1e-75 through cells in their own interpolation (issue 33, round
+// 20, tests/test_mesh_frames.cpp checks from this limit up).
+inline constexpr double kMinMeshExtent = 1e-60;
+// Throws InputError "<source>: <names.points>: ..." when the points' extent is positive but
+// below kMinMeshExtent (scaling the mesh, and its densities by the inverse, is the remedy). A
+// zero extent is left to the degeneracy checks. The points must be finite.
+void check_mesh_extent(const std::vector<Vec3>& points, const std::string& source, const MeshFieldNames& names = {});
+
 // Checks the structure only: at least one point and one tet, scalar count == point count, finite
-// coordinates and scalars, indices in [0, points). Every reader calls this; orientation and
+// coordinates (spanning at least kMinMeshExtent) and scalars, indices in [0, points). Every reader calls this; orientation and
 // degeneracy are left to repair_tet_mesh (default) or validate_tet_mesh (strict).
 void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,
                                  const MeshFieldNames& names = {});
