@@ -362,9 +362,9 @@ void TetTraversal::walk_end(WalkState& s, TraversalStats* stats) const {
 
 // An AVX2 copy, picked at run time where the CPU has it, and the baseline one (issue 33, round 13:
 // the four faces' crossing parameters in one AVX2 instruction each, two SSE2 ones otherwise).
-// AVX2 only, not FMA: no multiply-add can be contracted (-std=c++17 keeps -ffp-contract=off), so
-// both copies compute the same IEEE operations in the same order, as the splitter's copies
-// (model/pieces.cpp).
+// AVX2 only, not FMA: no multiply-add can be contracted (GCC 12 contracts in C++ even under
+// -std=c++17 where the target has FMA: issue 33, round 20, src/CMakeLists.txt), so both copies
+// compute the same IEEE operations in the same order, as the splitter's copies (model/pieces.cpp).
 __attribute__((target_clones("avx2", "default"))) void TetTraversal::walk_on(WalkState& s, std::int64_t prim) const {
   if (prim < 0) {
     s.done = true;
