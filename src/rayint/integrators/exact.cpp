@@ -129,16 +129,18 @@ void composite_grey(const Ray* rays, std::size_t n_rays, const std::size_t* ends
   static_assert(kChannels == 3, "a transmittance and three emission columns");
   constexpr std::size_t kInterleave = 4;
   const std::size_t s1 = stride, s2 = 2 * stride, s3 = 3 * stride;
+  // one piece (its transmittance at `at`, its emissions a stride apart) onto one ray's sums
+  const auto composite = [&](const double* at, double& i_r, double& i_g, double& i_b, double& tr) {
+    const double t = at[0];
+    i_r = i_r * t + at[s1];
+    i_g = i_g * t + at[s2];
+    i_b = i_b * t + at[s3];
+    tr *= t;
+  };
   // one ray's pieces from q (its transmittance) for `count` pieces
   const auto alone = [&](const double* q, std::size_t count, double i_r, double i_g, double i_b, double tr,
                          RayResult& result) {
-    for (const double* end = q + count; q != end; ++q) {
-      const double t = q[0];
-      i_r = i_r * t + q[s1];
-      i_g = i_g * t + q[s2];
-      i_b = i_b * t + q[s3];
-      tr *= t;
-    }
+    for (const double* end = q + count; q != end; ++q) composite(q, i_r, i_g, i_b, tr);
     result.intensity = {i_r, i_g, i_b};
     result.transmittance = {tr, tr, tr};
   };
@@ -159,16 +161,8 @@ void composite_grey(const Ray* rays, std::size_t n_rays, const std::size_t* ends
       i_b[j] = r.intensity[2];
       tr[j] = r.transmittance[0];
     }
-    for (std::size_t step = 0; step < shortest; ++step) {
-      for (std::size_t j = 0; j < kInterleave; ++j) {
-        const double* at = q[j] + step;
-        const double t = at[0];
-        i_r[j] = i_r[j] * t + at[s1];
-        i_g[j] = i_g[j] * t + at[s2];
-        i_b[j] = i_b[j] * t + at[s3];
-        tr[j] *= t;
-      }
-    }
+    for (std::size_t step = 0; step < shortest; ++step)
+      for (std::size_t j = 0; j < kInterleave; ++j) composite(q[j] + step, i_r[j], i_g[j], i_b[j], tr[j]);
     for (std::size_t j = 0; j < kInterleave; ++j)
       alone(q[j] + shortest, count[j] - shortest, i_r[j], i_g[j], i_b[j], tr[j], results[i + j]);
     begin = ends[i + kInterleave - 1];

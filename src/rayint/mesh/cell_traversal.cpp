@@ -130,10 +130,10 @@ CellBoundaryFirstHit::CellBoundaryFirstHit(const CellTraversal& mesh) {
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   const std::size_t n = mesh.boundary_face_count();
-  frame_ = LocalFrame::of(mesh.mesh().points);
   // The pad covers 1e-7 of the diagonal and the rounding of moving a bound into the frame (half
   // an ulp of the largest coordinate, or of the centre, each; the scaling is exact).
   const Vec3 box_lo = mesh.box_min(), box_hi = mesh.box_max();
+  frame_ = LocalFrame::of(box_lo, box_hi);
   const double largest = std::max(box_lo.cwiseAbs().maxCoeff(), box_hi.cwiseAbs().maxCoeff());
   const double pad = frame_.length(1e-7 * (box_hi - box_lo).norm() + 8.0 * std::numeric_limits<double>::epsilon() * largest);
   bounds_.resize(n);

@@ -3,8 +3,6 @@
 // and mesh/cell_traversal.cpp's CellBoundaryFirstHit), and the frame their single-precision
 // geometry lives in. Embree's own header is not included here: only the .cpp files that call
 // Embree do.
-#include <vector>
-
 #include "rayint/geometry/vec3.hpp"
 
 struct RTCRayHit;  // Embree 3's ray-and-hit record (embree3/rtcore_ray.h)
@@ -23,8 +21,9 @@ namespace rayint {
 struct LocalFrame {
   Vec3 centre = Vec3::Zero();
   double scale = 1.0;  // a power of two
-  // The frame of a point set (the identity for no points or a zero or non-finite diagonal).
-  static LocalFrame of(const std::vector<Vec3>& points);
+  // The frame of the points' bounding box [lo, hi] (the traversal's own box; the identity for a
+  // zero or non-finite diagonal).
+  static LocalFrame of(const Vec3& lo, const Vec3& hi);
   Vec3 point(const Vec3& p) const { return (p - centre) * scale; }
   // A ray parameter along a unit direction (lengths scale; directions do not).
   double length(double t) const { return t * scale; }

@@ -53,9 +53,10 @@ float embree_t_far(double t_far) {
 }  // namespace
 
 BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
-                                   const std::vector<std::array<std::int32_t, 3>>& faces)
+                                   const std::vector<std::array<std::int32_t, 3>>& faces, const Vec3& box_min,
+                                   const Vec3& box_max)
     : impl_(std::make_unique<Impl>()) {
-  impl_->frame = LocalFrame::of(points);
+  impl_->frame = LocalFrame::of(box_min, box_max);
   impl_->device = rtcNewDevice("threads=1");  // build only; queries run on the caller's threads
   if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
   impl_->scene = rtcNewScene(impl_->device);
@@ -86,14 +87,8 @@ BoundaryFirstHit::BoundaryFirstHit(const std::vector<Vec3>& points,
 
 BoundaryFirstHit::~BoundaryFirstHit() = default;
 
-LocalFrame LocalFrame::of(const std::vector<Vec3>& points) {
+LocalFrame LocalFrame::of(const Vec3& lo, const Vec3& hi) {
   LocalFrame f;
-  if (points.empty()) return f;
-  Vec3 lo = points.front(), hi = lo;
-  for (const Vec3& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
   const double diagonal = (hi - lo).norm();
   if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return f;
   f.centre = 0.5 * (lo + hi);

@@ -24,9 +24,10 @@ class BoundaryFirstHit {
   // Accepts or rejects a proposed boundary face (index into the faces given to the constructor).
   using Filter = bool (*)(const void* user, std::uint32_t face);
 
-  // points: all mesh points; faces: boundary triangles as point indices.
-  BoundaryFirstHit(const std::vector<Vec3>& points,
-                   const std::vector<std::array<std::int32_t, 3>>& faces);
+  // points: all mesh points; faces: boundary triangles as point indices; [box_min, box_max]: the
+  // points' bounding box (Embree's LocalFrame is formed from it).
+  BoundaryFirstHit(const std::vector<Vec3>& points, const std::vector<std::array<std::int32_t, 3>>& faces,
+                   const Vec3& box_min, const Vec3& box_max);
   ~BoundaryFirstHit();
   BoundaryFirstHit(const BoundaryFirstHit&) = delete;
   BoundaryFirstHit& operator=(const BoundaryFirstHit&) = delete;

@@ -138,7 +138,7 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
     // Embree needs no particular winding (the filter decides entering vs leaving).
     tris.push_back(f.points);
   }
-  first_hit_ = std::make_unique<BoundaryFirstHit>(mesh_.points, tris);
+  first_hit_ = std::make_unique<BoundaryFirstHit>(mesh_.points, tris, box_min_, box_max_);
 }
 
 TetTraversal::~TetTraversal() = default;
