@@ -49,7 +49,7 @@ struct MeshBench {
     mc = read_mesh_case_file((base / "mesh-ball-100k.json").string());
     mesh = std::make_unique<TetTraversal>(mc.mesh, mc.neighbors, mc.mesh_source);
     for (std::size_t f = 0; f < mesh->boundary_face_count(); ++f) boundary.push_back(mesh->boundary_face(f).points);
-    embree = std::make_unique<BoundaryFirstHit>(mc.mesh.points, boundary);
+    embree = std::make_unique<BoundaryFirstHit>(mc.mesh.points, boundary, mesh->box_min(), mesh->box_max());
     for (int y = 0; y < mc.camera->height; y += 8)
       for (int x = 0; x < mc.camera->width; x += 8) rays.push_back(mc.camera->ray_for_pixel(x, y));
     for (const ViewRay& r : rays) traced.push_back(mesh_ray(*mesh, r, mc.background));
