@@ -3,11 +3,14 @@
 #include "rayint/mesh/tet_traversal.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <tuple>
+#include <vector>
 
 #include "rayint/core/error.hpp"
 #include "rayint/core/lanes.hpp"
@@ -247,7 +250,13 @@ bool TetTraversal::star_search(const Walk& w, std::int32_t from, double t, std::
 struct TetTraversal::WalkState {
   Walk w;
   RayTrace* out = nullptr;  // the crossings (trace, trace_many), or
-  Ray* ray = nullptr;       // the segments, near -> far until walk_end reverses them (rays_many)
+  Ray* ray = nullptr;       // the segments' Ray (rays_many): walk_end copies them into it, far -> near
+  // rays_many: the segments as the walk crosses the cells (near -> far), in a buffer of the
+  // thread's kept from ray to ray, written by index (issue 33, round 21: emplace_back into the Ray
+  // was a call per crossing, out of line with a vzeroupper, and the Ray was then reversed in place).
+  std::vector<Segment>* buffer = nullptr;
+  Segment* segments = nullptr;  // buffer->data()
+  std::size_t segment_count = 0;
   double t_eye = 0.0;       // crossings are clipped here
   double t = 0.0;
   double t_end = 0.0;
@@ -284,6 +293,7 @@ void TetTraversal::rays_many(const ViewRay* rays, std::size_t n, const Rgb& back
 void TetTraversal::walk_many(const ViewRay* rays, std::size_t n, RayTrace* out, Ray* ray_out,
                              TraversalStats* stats) const {
   constexpr int kPacket = BoundaryFirstHit::kPacket;
+  thread_local std::array<std::vector<Segment>, kPacket> buffers;  // rays_many's, per lane
   for (std::size_t i0 = 0; i0 < n; i0 += kPacket) {
     const int m = static_cast<int>(std::min<std::size_t>(kPacket, n - i0));
     WalkState s[kPacket];
@@ -296,6 +306,8 @@ void TetTraversal::walk_many(const ViewRay* rays, std::size_t n, RayTrace* out, 
       const std::size_t r = i0 + static_cast<std::size_t>(i);
       walk_begin(mesh_walk_start(rays[r], box_min_, box_max_, diagonal_), out ? &out[r] : nullptr,
                  ray_out ? &ray_out[r] : nullptr, s[i]);
+      s[i].buffer = &buffers[static_cast<std::size_t>(i)];
+      s[i].segments = buffers[static_cast<std::size_t>(i)].data();
       users[i] = &s[i].w;
     }
     // Every ray that asks a boundary query (its first, or a re-entry after it left the mesh) in
@@ -321,13 +333,13 @@ void TetTraversal::walk_many(const ViewRay* rays, std::size_t n, RayTrace* out, 
 void TetTraversal::walk_begin(const MeshWalkStart& start, RayTrace* out, Ray* ray, WalkState& s) const {
   s.out = out;
   s.ray = ray;
+  s.segment_count = 0;
   if (out) {
     out->crossings.clear();
     out->direction = start.direction;
     out->origin = start.origin;
     out->t_eye = start.t_eye;
   }
-  if (ray) ray->segments.clear();
   s.t_eye = start.t_eye;  // > 0 when the eye is inside the box: clip there
   s.local = TraversalStats{};
   s.local.rays = 1;
@@ -355,7 +367,9 @@ bool TetTraversal::walk_query(WalkState& s, double& t_near) const {
 }
 
 void TetTraversal::walk_end(WalkState& s, TraversalStats* stats) const {
-  if (s.ray) std::reverse(s.ray->segments.begin(), s.ray->segments.end());  // far -> near
+  if (s.ray)  // far -> near
+    s.ray->segments.assign(std::make_reverse_iterator(s.segments + s.segment_count),
+                           std::make_reverse_iterator(s.segments));
   if (s.steps >= s.budget) ++s.local.budget_exhausted;
   if (stats) stats->add(s.local);
 }
@@ -408,7 +422,11 @@ __attribute__((target_clones("avx2", "default"))) void TetTraversal::walk_on(Wal
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
     const double length = t_out - a;
     if (s.ray) {  // rays_many: ray_from_trace's segment, the same doubles, written here
-      Segment& g = s.ray->segments.emplace_back();
+      if (s.segment_count == s.buffer->size()) {  // rare: the thread's buffer grows, once warm never
+        s.buffer->resize(std::max<std::size_t>(256, 2 * s.buffer->size()));
+        s.segments = s.buffer->data();
+      }
+      Segment& g = s.segments[s.segment_count++];
       g.length = length;
       g.scalar_far = e.v + e.w * length;
       g.scalar_exit = e.v;
