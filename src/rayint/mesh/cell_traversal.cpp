@@ -27,7 +27,7 @@ LinearCellType linear_type_of(MeshCellType type) {
 }
 
 namespace {
-// As tet_traversal.cpp: Embree's single-precision ray must stay within +-1.8e18.
+// The largest point coordinate taken: as tet_traversal.cpp's (a tested, conservative bound).
 constexpr double kMaxCoordinate = 1e18;
 }  // namespace
 
@@ -401,7 +401,7 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
       if (!(std::fabs(mesh_.points[i][k]) <= kMaxCoordinate))
         throw InputError(source + ": points[" + std::to_string(i) + "][" + std::to_string(k) + "]: coordinate " +
                          format_number(mesh_.points[i][k]) +
-                         " beyond +-1e18, the range of the boundary ray tracer (Embree, single precision)");
+                         " beyond +-1e18, the largest coordinate taken (docs/meshes.md)");
   const std::size_t n = mesh_.cell_count();
   if (n == 0) throw InputError(source + ": cells: no volume cells");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 8))

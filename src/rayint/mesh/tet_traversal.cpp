@@ -26,12 +26,14 @@ void TraversalStats::add(const TraversalStats& o) {
 }
 
 namespace {
-// The largest point coordinate the boundary ray tracer takes. Embree works in single precision
-// and asserts ray.valid(): |origin|, |direction| <= FLT_LARGE = 1.844e18 (embree
-// common/math/constants.h); a coordinate beyond float's range even becomes inf. The walk's
-// origin lies within 1% of the box diagonal outside the box (trace below), so points within
-// +-1e18 keep it below 1.04e18. Found by fuzz/gmsh_fuzzer and fuzz/vtk_legacy_fuzzer (a point
-// at 4e252: Embree's assertion aborted the process; tests/test_mesh_io.cpp).
+// The largest point coordinate taken. It was Embree's range: Embree works in single precision and
+// asserts ray.valid(): |origin|, |direction| <= FLT_LARGE = 1.844e18 (embree
+// common/math/constants.h), and a point at 4e252 aborted the process (found by fuzz/gmsh_fuzzer and
+// fuzz/vtk_legacy_fuzzer; tests/test_fuzz_regressions.cpp). Since Embree's copy lives in a
+// LocalFrame (mesh/embree_ray.hpp: box centre, unit size) it sees no coordinate beyond a few
+// units, so the bound is now the walk's, and conservative: face normals (~size^2) and plane
+// products (~size^3) stay far from overflow at 1e18, and the frames are tested to 1e17
+// (tests/test_mesh_frames.cpp); beyond it nothing is tested, so it stays refused.
 constexpr double kMaxCoordinate = 1e18;
 
 // The four faces at a time in the walk: core/lanes.hpp.
@@ -48,7 +50,7 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
       if (!(std::fabs(mesh_.points[i][k]) <= kMaxCoordinate))
         throw InputError(source + ": points[" + std::to_string(i) + "][" + std::to_string(k) +
                          "]: coordinate " + format_number(mesh_.points[i][k]) +
-                         " beyond +-1e18, the range of the boundary ray tracer (Embree, single precision)");
+                         " beyond +-1e18, the largest coordinate taken (docs/meshes.md)");
   const std::size_t n = mesh_.tets.size();
   // Phase 1, adjacency (mesh/tet_adjacency.hpp): given by the caller (the mesh case reader
   // computes it for the overlap check) or computed here.
