@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Render speed of two rayint binaries, interleaved, beside VTK's projected tetrahedra (issue 33).
 
-One run: for each round, each binary renders the 512 x 512 case (and the 16 x 16 case, the load
-alone) with each thread count, in turn; then, optionally, VTK's vtkProjectedTetrahedraMapper
+One run: for each round, each binary (which goes first alternates from round to round) renders
+the 512 x 512 case (and the 16 x 16 case, the load alone) with each thread count, in turn; then,
+optionally, VTK's vtkProjectedTetrahedraMapper
 renders the same case (scripts/scaling.py --vtk-one under xvfb-run). Quoted: medians over the
 rounds of
   render wall s   rayint's own summary line ("... rays in X s"), the render phase alone;
-  render CPU s    user + system of the 512 x 512 process minus the median of the 16 x 16 one;
+  render CPU s    user + system of the 512 x 512 process minus the median of the 16 x 16 one
+                  (each from the process's rusage, to the microsecond);
   VTK frame       wall and CPU (process_time, llvmpipe's threads included) of a second Render().
 The images of the two binaries are compared: max relative pixel difference (0 = identical).
 
@@ -20,12 +22,13 @@ usage: render_ab.py --old OLD_RAYINT --new NEW_RAYINT --case CASE512.json --smal
 import argparse
 import json
 import os
-import re
 import statistics
 import subprocess
 import sys
 
 import numpy as np
+
+import scaling  # scripts/scaling.py: timed()
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -36,11 +39,14 @@ def loadavg():
 
 
 def timed(cmd):
-    p = subprocess.run(["/usr/bin/time", "-f", "@@TIME %U %S %e"] + cmd, capture_output=True, text=True)
-    m = re.search(r"@@TIME ([\d.]+) ([\d.]+) ([\d.]+)", p.stderr)
-    if p.returncode != 0 or not m:
-        raise SystemExit("failed (exit %d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr[-800:]))
-    return float(m.group(1)) + float(m.group(2)), p.stdout, p.stderr
+    """(cpu_s, stdout, stderr): user + system from the process's own rusage, to the microsecond
+    (scaling.timed; /usr/bin/time, used here until round 21, printed it in steps of 10 ms, 2% of
+    the 105k render)."""
+    try:
+        cpu, _, out, err = scaling.timed(cmd)
+    except scaling.RunFailed as e:
+        raise SystemExit(str(e))
+    return cpu, out, err
 
 
 def main():
@@ -64,15 +70,19 @@ def main():
     small = {b: [] for b in bins}
     vtk = []
     for r in range(a.rounds):
+        # Which binary runs first alternates from round to round: with a fixed order, the same
+        # binary as "old" and "new" measured 1.02x (1 thread) and 1.08x (2 threads) "faster" in
+        # the second place (round 21, 15 rounds; reports/scaling/NOTES.md).
+        order = list(bins.items()) if r % 2 == 0 else list(reversed(bins.items()))
         for t in a.threads:
-            for b, exe in bins.items():
+            for b, exe in order:
                 cpu, _, err = timed([exe, "render", a.case, "-o", os.path.join(a.work, "%s.%s" % (b, ext)), "--threads",
                                      str(t), "-q", "--stats", os.path.join(a.work, "%s.json" % b)])
                 with open(os.path.join(a.work, "%s.json" % b)) as f:
                     wall = json.load(f)["cost"]["wall_seconds"]
                 samples[(b, t)]["wall"].append(wall)
                 samples[(b, t)]["cpu"].append(cpu)
-        for b, exe in bins.items():
+        for b, exe in order:
             cpu, _, _ = timed([exe, "render", a.small, "-o", os.path.join(a.work, "small-%s.%s" % (b, ext)), "-q"])
             small[b].append(cpu)
         if a.vtk:
