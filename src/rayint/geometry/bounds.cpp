@@ -15,6 +15,16 @@ bool Bounds::contains(const Vec3& p) const {
 
 bool Bounds::finite() const { return lower.allFinite() && upper.allFinite(); }
 
+Bounds point_bounds(const std::vector<Vec3>& points) {
+  if (points.empty()) return {Vec3::Zero(), Vec3::Zero()};
+  Bounds b{points.front(), points.front()};
+  for (const Vec3& p : points) {
+    b.lower = b.lower.cwiseMin(p);
+    b.upper = b.upper.cwiseMax(p);
+  }
+  return b;
+}
+
 RaySpan Bounds::clip(const ViewRay& ray) const {
   double t_enter = 0.0;
   double t_exit = std::numeric_limits<double>::infinity();

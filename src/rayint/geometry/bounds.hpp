@@ -9,6 +9,8 @@
 // x and y). The arithmetic is two divisions per axis and nothing else, so t_enter and t_exit are
 // within 1 ulp of the plane crossings (tests/test_voxel_grid.cpp checks the chords to 2e-15 of
 // the box diagonal).
+#include <vector>
+
 #include "rayint/geometry/vec3.hpp"
 
 namespace rayint {
@@ -31,6 +33,10 @@ struct Bounds {
   // the intersection is empty, a single point, or unbounded.
   RaySpan clip(const ViewRay& ray) const;
 };
+
+// The smallest box holding every point (componentwise min and max, exact); the zero box for no
+// points. The mesh checks and both traversals take their bounding box from here.
+Bounds point_bounds(const std::vector<Vec3>& points);
 
 // The same slabs against [lower - pad, upper + pad], NOT restricted to t >= 0: {t0, t1} with t0
 // negative when the origin is inside, and t1 < max(t0, 0) (or -1) when the ray misses. The mesh

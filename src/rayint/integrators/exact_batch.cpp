@@ -135,6 +135,18 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 using namespace exact_batch_detail;
 
+// exact_piece's optical depths of the vector of pieces from i: a = rho_exit L, b = rho_far L and
+// T = (a + b)/2, with the scalar path's operations in its order. Classification and the in-order
+// thin pass (ThinInOrder) both form them here, so a lane's T and thin test agree bit for bit.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V OpticalDepths(D d, const double* HWY_RESTRICT len, const double* HWY_RESTRICT rho_far,
+                           const double* HWY_RESTRICT rho_exit, std::size_t i, V& a, V& b) {
+  const V length = hn::LoadU(d, len + i);
+  a = hn::Mul(hn::LoadU(d, rho_exit + i), length);
+  b = hn::Mul(hn::LoadU(d, rho_far + i), length);
+  return hn::Mul(hn::Set(d, 0.5), hn::Add(a, b));
+}
+
 // 1. Classification, lane-parallel: a = rho_exit L, b = rho_far L, T = (a + b)/2, B = (b - a)/2
 // with the scalar path's operations in its order, the branch tests of exact_piece as masks, and
 // each lane appended to its branch's columns with a compressing store (no branch per piece, no
@@ -160,10 +172,8 @@ void ClassifyColumns(const double* HWY_RESTRICT len, const double* HWY_RESTRICT 
   unsigned char* bits = sink->bits + first_vector * kMaskSlots * kMaskBytes;
   for (std::size_t i = 0; i < n; i += L, bits += kMaskSlots * kMaskBytes) {
     const auto valid = hn::FirstN(d, n_valid > i ? n_valid - i : 0);
-    const auto length = hn::LoadU(d, len + i);
-    const auto a = hn::Mul(hn::LoadU(d, rho_exit + i), length);
-    const auto b = hn::Mul(hn::LoadU(d, rho_far + i), length);
-    const auto T = hn::Mul(half, hn::Add(a, b));
+    hn::Vec<D> a, b;
+    const auto T = OpticalDepths(d, len, rho_far, rho_exit, i, a, b);
     const auto B = hn::Mul(half, hn::Sub(b, a));
     const auto positive = hn::Gt(T, zero);  // false for NaN, as !(T > 0) in exact_piece
     const auto live = hn::And(positive, valid);
@@ -601,12 +611,11 @@ HWY_INLINE std::size_t ThinInOrderChannels(const double* HWY_RESTRICT len, const
   using V = hn::Vec<D>;
   const D d;
   const std::size_t L = hn::Lanes(d);
-  const V zero = hn::Zero(d), half = hn::Set(d, 0.5), thin_depth = hn::Set(d, kThinDepth);
+  const V zero = hn::Zero(d), thin_depth = hn::Set(d, kThinDepth);
   for (std::size_t i = 0; i < n; i += 2 * L) {
-    const V length0 = hn::LoadU(d, len + i), length1 = hn::LoadU(d, len + i + L);
-    const V a0 = hn::Mul(hn::LoadU(d, rho_exit + i), length0), a1 = hn::Mul(hn::LoadU(d, rho_exit + i + L), length1);
-    const V b0 = hn::Mul(hn::LoadU(d, rho_far + i), length0), b1 = hn::Mul(hn::LoadU(d, rho_far + i + L), length1);
-    const V T0 = hn::Mul(half, hn::Add(a0, b0)), T1 = hn::Mul(half, hn::Add(a1, b1));
+    V a0, b0, a1, b1;
+    const V T0 = OpticalDepths(d, len, rho_far, rho_exit, i, a0, b0);
+    const V T1 = OpticalDepths(d, len, rho_far, rho_exit, i + L, a1, b1);
     // thin: T > 0 (false for NaN) and not T > kThinDepth, as ClassifyColumns' masks
     const auto thin0 = hn::AndNot(hn::Gt(T0, thin_depth), hn::Gt(T0, zero));
     const auto thin1 = hn::AndNot(hn::Gt(T1, thin_depth), hn::Gt(T1, zero));

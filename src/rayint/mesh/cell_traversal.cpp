@@ -553,11 +553,9 @@ CellTraversal::CellTraversal(CellMesh mesh, const std::string& source) : mesh_(s
       for (std::size_t k = 0; k < mesh_.nodes_of(c); ++k)
         point_cells_[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh_.cell(c)[k])]++)] = static_cast<std::int32_t>(c);
   }
-  box_min_ = box_max_ = mesh_.points.front();
-  for (const Vec3& p : mesh_.points) {
-    box_min_ = box_min_.cwiseMin(p);
-    box_max_ = box_max_.cwiseMax(p);
-  }
+  const Bounds box = point_bounds(mesh_.points);
+  box_min_ = box.lower;
+  box_max_ = box.upper;
   diagonal_ = (box_max_ - box_min_).norm();
   // Each linear cell's corner box (next_cell's star filter), padded by 1e-7 of the diagonal plus
   // the largest |coordinate|: >= 1e5 x the face hits' reach beyond their face (kFaceSlack 1e-12 of

@@ -7,6 +7,7 @@
 
 #include "rayint/core/error.hpp"
 #include "rayint/core/format.hpp"
+#include "rayint/geometry/bounds.hpp"
 
 namespace rayint {
 namespace {
@@ -63,17 +64,13 @@ TetShape classify_tet(const TetMesh& mesh, std::size_t tet) {
 }
 
 void check_mesh_extent(const std::vector<Vec3>& points, const std::string& source, const MeshFieldNames& names) {
-  if (points.empty()) return;
-  Vec3 lo = points.front(), hi = lo;
-  for (const Vec3& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double extent = (hi - lo).norm();
+  const Bounds box = point_bounds(points);
+  const double extent = (box.upper - box.lower).norm();
   if (extent > 0.0 && extent < kMinMeshExtent)
     fail(source, names.points,
-         "the points span " + format_number(extent) + " (box diagonal), below 1e-60: tetrahedron volumes and face "
-         "areas underflow in double precision there; scale the mesh (and the densities by the inverse)");
+         "the points span " + format_number(extent) + " (box diagonal), below " + format_number(kMinMeshExtent) +
+             ": tetrahedron volumes and face areas underflow in double precision there; scale the mesh (and the "
+             "densities by the inverse)");
 }
 
 void validate_tet_mesh_structure(const TetMesh& mesh, const std::string& source,

@@ -36,6 +36,18 @@ namespace {
 // (tests/test_mesh_frames.cpp); beyond it nothing is tested, so it stays refused.
 constexpr double kMaxCoordinate = 1e18;
 
+// Eq. 9 of a cell: its gradient as stored, its anchor point p0 (the cell's point 0) and that
+// point's scalar, or the cell's own scalar for cell data. Shared by field() and the walk's
+// crossings (inlined into the walk's AVX2 copy too).
+[[gnu::always_inline]] inline LinearTetField cell_field(const TetMesh& mesh, const Vec3& gradient, std::size_t cell,
+                                                        std::size_t p0) {
+  LinearTetField f;
+  f.anchor = mesh.points[p0];
+  f.anchor_scalar = mesh.cell_scalars.empty() ? mesh.scalars[p0] : mesh.cell_scalars[cell];
+  f.gradient = gradient;
+  return f;
+}
+
 // The four faces at a time in the walk: core/lanes.hpp.
 using lanes::M4;
 using lanes::V4;
@@ -131,11 +143,9 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
     quadratic_.resize(n);
     for (std::size_t t = 0; t < n; ++t) quadratic_[t] = fit_quadratic_tet(mesh_, t);
   }
-  box_min_ = box_max_ = mesh_.points.front();
-  for (const Vec3& p : mesh_.points) {
-    box_min_ = box_min_.cwiseMin(p);
-    box_max_ = box_max_.cwiseMax(p);
-  }
+  const Bounds box = point_bounds(mesh_.points);
+  box_min_ = box.lower;
+  box_max_ = box.upper;
   diagonal_ = (box_max_ - box_min_).norm();
   std::vector<std::array<std::int32_t, 3>> tris;
   tris.reserve(boundary_.size());
@@ -149,12 +159,7 @@ TetTraversal::TetTraversal(TetMesh mesh, TetNeighbors neighbors, const std::stri
 TetTraversal::~TetTraversal() = default;
 
 LinearTetField TetTraversal::field(std::size_t cell) const {
-  LinearTetField f;
-  const auto p0 = static_cast<std::size_t>(mesh_.tets[cell][0]);
-  f.anchor = mesh_.points[p0];
-  f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[cell];
-  f.gradient = gradients_[cell];
-  return f;
+  return cell_field(mesh_, gradients_[cell], cell, static_cast<std::size_t>(cells_[cell].anchor));
 }
 
 std::int32_t TetTraversal::neighbor(std::size_t cell, int k) const {
@@ -413,14 +418,9 @@ __attribute__((target_clones("avx2", "default"))) void TetTraversal::walk_on(Wal
       c.q = q[2];
       return;
     }
-    // field(cell) and ray_parameters, written out so that they are inlined (the same arithmetic);
-    // the anchor's point index from the cell's record (in the cache: the step just read it), not
-    // from mesh_.tets.
-    const auto p0 = static_cast<std::size_t>(cells_[ci].anchor);
-    LinearTetField f;
-    f.anchor = mesh_.points[p0];
-    f.anchor_scalar = mesh_.cell_scalars.empty() ? mesh_.scalars[p0] : mesh_.cell_scalars[ci];
-    f.gradient = gradients_[ci];
+    // field(cell) and ray_parameters, inlined; the anchor's point index from the cell's record (in
+    // the cache: the step just read it), not from mesh_.tets.
+    const LinearTetField f = cell_field(mesh_, gradients_[ci], ci, static_cast<std::size_t>(cells_[ci].anchor));
     const Eq13 e = ray_parameters(f, w.o + a * d, d);
     const double length = t_out - a;
     if (s.ray) {  // rays_many: ray_from_trace's segment, the same doubles, written here

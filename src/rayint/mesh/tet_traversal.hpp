@@ -146,8 +146,8 @@ class TetTraversal {
   void trace_many(const ViewRay* rays, std::size_t n, RayTrace* out, TraversalStats* stats = nullptr) const;
   // What a render of linear segments needs: out[i] is ray_from_trace(trace(rays[i]), background)
   // (with Ray::quadratic cleared), the same doubles, but the walk writes each segment as it
-  // crosses the cell (near -> far) and reverses them in place at the end, with no RayTrace in
-  // between (issue 33, round 20). The boundary queries go in packets as in trace_many. Throws
+  // crosses the cell (near -> far, into a per-thread buffer) and copies them into the Ray
+  // reversed at the end, with no RayTrace in between (issue 33, rounds 20-21). The boundary queries go in packets as in trace_many. Throws
   // std::invalid_argument for a mesh with quadratic tets (as ray_from_trace does for their
   // crossings).
   void rays_many(const ViewRay* rays, std::size_t n, const Rgb& background, Ray* out,
